@@ -1,0 +1,2 @@
+//! Benchmarks of the reference (filled in below).
+fn main() {}

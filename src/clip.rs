@@ -1,0 +1,148 @@
+//! Homogeneous clipping (Sutherland–Hodgman) with canonical edge intersections.
+
+use glam::{DVec3, DVec4};
+
+use crate::depth::DepthRange;
+use crate::viewport::Viewport;
+
+/// A polygon vertex in clip space with its barycentric coordinates in the original triangle.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ClipVertex {
+    /// Clip-space position `(x, y, z, w)`.
+    pub position: DVec4,
+    /// Barycentrics in the input triangle; linear in clip space, so perspective-correct.
+    pub barycentric: DVec3,
+}
+
+/// How x and y are clipped; z is always clipped at the near plane (and far when enabled).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum ClipMode {
+    /// Clip x/y only at the guard band and let traversal clamp to the viewport (what GPUs do).
+    #[default]
+    GuardBand,
+    /// Clip against all six planes of the view volume, as the Sutherland–Hodgman lab does.
+    Full,
+}
+
+/// One plane of the clip volume; a point is inside when its distance is `≥ 0`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ClipPlane {
+    /// `z ≥ 0` (or `z ≥ −w`): also keeps points behind the eye out.
+    Near(DepthRange),
+    /// `z ≤ w`.
+    Far,
+    /// `x ≥ −k·w`.
+    Left(f64),
+    /// `x ≤ k·w`.
+    Right(f64),
+    /// `y ≥ −k·w`.
+    Bottom(f64),
+    /// `y ≤ k·w`.
+    Top(f64),
+}
+
+impl ClipPlane {
+    /// Signed distance of `p` (scaled by the plane's normal length), `≥ 0` inside.
+    #[must_use]
+    pub fn distance(self, p: DVec4) -> f64 {
+        match self {
+            Self::Near(range) => range.near_distance(p.z, p.w),
+            Self::Far => p.w - p.z,
+            Self::Left(k) => p.x + k * p.w,
+            Self::Right(k) => k * p.w - p.x,
+            Self::Bottom(k) => p.y + k * p.w,
+            Self::Top(k) => k * p.w - p.y,
+        }
+    }
+}
+
+/// The planes a draw clips against, in a fixed order.
+#[must_use]
+pub fn clip_planes(mode: ClipMode, viewport: Viewport, far: bool, range: DepthRange) -> Vec<ClipPlane> {
+    let (kx, ky) = match mode {
+        ClipMode::GuardBand => viewport.guard_band_ndc(),
+        ClipMode::Full => (1.0, 1.0),
+    };
+    let mut planes = vec![ClipPlane::Near(range)];
+    if far {
+        planes.push(ClipPlane::Far);
+    }
+    planes.extend([
+        ClipPlane::Left(kx),
+        ClipPlane::Right(kx),
+        ClipPlane::Bottom(ky),
+        ClipPlane::Top(ky),
+    ]);
+    planes
+}
+
+/// Where edge `inside → outside` crosses the plane, computed from the inside end.
+///
+/// Always starting from the inside vertex makes the result independent of the direction the
+/// edge is walked, so two triangles sharing an edge get the same point and stay watertight.
+#[must_use]
+pub fn intersect(inside: &ClipVertex, outside: &ClipVertex, d_inside: f64, d_outside: f64) -> ClipVertex {
+    let t = d_inside / (d_inside - d_outside);
+    ClipVertex {
+        position: inside.position + (outside.position - inside.position) * t,
+        barycentric: inside.barycentric + (outside.barycentric - inside.barycentric) * t,
+    }
+}
+
+/// Clips a convex polygon against one plane, writing the kept part into `out`.
+pub fn clip_polygon(polygon: &[ClipVertex], plane: ClipPlane, out: &mut Vec<ClipVertex>) {
+    out.clear();
+    for (i, current) in polygon.iter().enumerate() {
+        let next = &polygon[(i + 1) % polygon.len()];
+        let (dc, dn) = (plane.distance(current.position), plane.distance(next.position));
+        if dc >= 0.0 {
+            out.push(*current);
+        }
+        match (dc >= 0.0, dn >= 0.0) {
+            (true, false) => out.push(intersect(current, next, dc, dn)),
+            (false, true) => out.push(intersect(next, current, dn, dc)),
+            _ => {}
+        }
+    }
+}
+
+/// What clipping did to a triangle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ClipOutcome {
+    /// Wholly inside every plane: the triangle is drawn as it is.
+    Inside,
+    /// Wholly outside (or behind the eye): nothing is drawn.
+    Outside,
+    /// Cut: the polygon left in the output buffer is drawn.
+    Clipped,
+}
+
+/// Clips triangle `tri` against `planes`, leaving the polygon in `polygon` when it was cut.
+pub fn clip_triangle(
+    tri: &[ClipVertex; 3],
+    planes: &[ClipPlane],
+    polygon: &mut Vec<ClipVertex>,
+    scratch: &mut Vec<ClipVertex>,
+) -> ClipOutcome {
+    let mut all_inside = true;
+    for &plane in planes {
+        let inside = tri.map(|v| plane.distance(v.position) >= 0.0);
+        if inside.iter().all(|&i| !i) {
+            return ClipOutcome::Outside;
+        }
+        all_inside &= inside.iter().all(|&i| i);
+    }
+    if all_inside {
+        return ClipOutcome::Inside;
+    }
+    polygon.clear();
+    polygon.extend_from_slice(tri);
+    for &plane in planes {
+        clip_polygon(polygon, plane, scratch);
+        std::mem::swap(polygon, scratch);
+        if polygon.len() < 3 {
+            return ClipOutcome::Outside;
+        }
+    }
+    ClipOutcome::Clipped
+}

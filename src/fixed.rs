@@ -1,0 +1,102 @@
+//! Snapping raster-space coordinates to the subpixel grid.
+//!
+//! Every coverage decision in refrast is made on these integers; floats never decide coverage.
+
+use crate::error::ConfigError;
+
+/// The largest magnitude, in pixels, that a snapped raster coordinate may have.
+///
+/// At 8 subpixel bits a coordinate is at most 2^23 units, an edge difference 2^24 and an edge
+/// product 2^48, so [`orient2d`](crate::orient2d) is exact in `i64` with 14 bits to spare.
+/// It matches D3D11's 16.8 fixed-point range (§3.2.4.1).
+pub const COORD_LIMIT: f64 = 32768.0;
+
+/// The number of fractional bits of the subpixel grid (1..=8; 8 is D3D11 and Vulkan Roadmap 2026).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct SubpixelBits(u8);
+
+impl SubpixelBits {
+    /// The fewest bits accepted: one bit is needed to place the sample at the pixel centre.
+    pub const MIN: u8 = 1;
+    /// The most bits accepted: more would break the `i64` headroom proof of [`COORD_LIMIT`].
+    pub const MAX: u8 = 8;
+    /// Eight bits, as D3D11 mandates and Vulkan Roadmap 2026 requires.
+    pub const DEFAULT: SubpixelBits = SubpixelBits(8);
+
+    /// Checks that `bits` lies in `MIN..=MAX`.
+    pub fn new(bits: u8) -> Result<Self, ConfigError> {
+        if (Self::MIN..=Self::MAX).contains(&bits) {
+            Ok(Self(bits))
+        } else {
+            Err(ConfigError::SubpixelBits(bits))
+        }
+    }
+
+    /// The number of fractional bits.
+    #[must_use]
+    pub fn get(self) -> u8 {
+        self.0
+    }
+
+    /// Subpixel units per pixel, `2^bits`.
+    #[must_use]
+    pub fn one(self) -> i64 {
+        1 << self.0
+    }
+}
+
+impl Default for SubpixelBits {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// A raster-space point on the subpixel grid, in units of `2^-bits` pixel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub struct FixedPoint {
+    /// x in subpixel units, growing to the right.
+    pub x: i64,
+    /// y in subpixel units, growing downwards.
+    pub y: i64,
+}
+
+impl FixedPoint {
+    /// A point from subpixel units.
+    #[must_use]
+    pub const fn new(x: i64, y: i64) -> Self {
+        Self { x, y }
+    }
+
+    /// Snaps a raster-space point, or `None` when a coordinate is not finite or exceeds [`COORD_LIMIT`].
+    #[must_use]
+    pub fn snap(x: f64, y: f64, bits: SubpixelBits) -> Option<Self> {
+        Some(Self::new(snap(x, bits)?, snap(y, bits)?))
+    }
+
+    /// The sample position of pixel `(px, py)`, its centre `(px + ½, py + ½)`.
+    #[must_use]
+    pub fn sample(px: i64, py: i64, bits: SubpixelBits) -> Self {
+        let half = bits.one() / 2;
+        Self::new(px * bits.one() + half, py * bits.one() + half)
+    }
+
+    /// Back to raster space in pixels (exact: at most 23 significant bits).
+    #[must_use]
+    pub fn to_raster(self, bits: SubpixelBits) -> (f64, f64) {
+        let one = bits.one() as f64;
+        (self.x as f64 / one, self.y as f64 / one)
+    }
+}
+
+/// Snaps one raster coordinate to the grid, rounding half to even (D3D11 §3.2.4.1).
+///
+/// `None` when `v` is NaN, infinite or beyond [`COORD_LIMIT`].
+#[must_use]
+pub fn snap(v: f64, bits: SubpixelBits) -> Option<i64> {
+    if !v.is_finite() || v.abs() > COORD_LIMIT {
+        return None;
+    }
+    // Exact: scaling by a power of two only changes the exponent.
+    let scaled = v * bits.one() as f64;
+    Some(scaled.round_ties_even() as i64)
+}

@@ -1,0 +1,115 @@
+//! Interpolation: screen-space weights from exact edge values, perspective correction, depth.
+
+use glam::DVec3;
+
+use crate::fixed::FixedPoint;
+
+/// A vertex of the polygon being drawn, after projection and snapping.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RasterVertex {
+    /// Snapped raster position.
+    pub position: FixedPoint,
+    /// Window depth (linear in screen space).
+    pub depth: f64,
+    /// `1/w`, the weight that makes interpolation perspective-correct.
+    pub inv_w: f64,
+    /// Barycentrics in the input triangle (perspective-correct ones).
+    pub barycentric: DVec3,
+}
+
+/// What a covered sample gets from its triangle.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Interpolated {
+    /// Window depth.
+    pub depth: f64,
+    /// Perspective-correct barycentrics in the input triangle.
+    pub barycentric: DVec3,
+    /// Screen-space barycentrics in the input triangle, when its vertices all have `w > 0`.
+    pub screen_barycentric: Option<DVec3>,
+}
+
+/// Screen-space weights of a sample from its exact edge values (they sum to `area2`).
+///
+/// Each weight is one division of exact integers, so it is correctly rounded in f64 and the
+/// three sum to 1 within 2 ulp; a weight is exactly 1 at its vertex and 0 on its opposite edge.
+#[must_use]
+pub fn screen_weights(values: [i64; 3], area2: i64) -> [f64; 3] {
+    let area = area2 as f64;
+    values.map(|v| v as f64 / area)
+}
+
+/// Interpolates depth and barycentrics at a sample with screen weights `s` over `corners`.
+///
+/// Depth is `Σ sᵢ zᵢ` (linear in screen space, Vulkan/D3D). Perspective-correct weights are
+/// `(sᵢ/wᵢ) / Σ sⱼ/wⱼ`; they map the corners' own barycentrics back to the input triangle.
+/// Screen-space barycentrics in the input triangle follow from `bᵢ·wᵢ` normalised, which needs
+/// every input `w` positive (`input_w`), as behind-the-eye vertices have no screen position.
+/// For an unclipped triangle (`clipped == false`) the screen weights are used directly.
+#[must_use]
+pub fn interpolate(
+    corners: [&RasterVertex; 3],
+    s: [f64; 3],
+    input_w: Option<[f64; 3]>,
+    clipped: bool,
+) -> Interpolated {
+    let depth = corners.iter().zip(s).map(|(c, si)| c.depth * si).sum();
+    let q = [0, 1, 2].map(|i| s[i] * corners[i].inv_w);
+    let q_sum: f64 = q.iter().sum();
+    let barycentric: DVec3 = corners
+        .iter()
+        .zip(q)
+        .map(|(c, qi)| c.barycentric * (qi / q_sum))
+        .sum();
+    let screen_barycentric = if clipped {
+        input_w.map(|w| {
+            let scaled = barycentric * DVec3::from(w);
+            scaled / scaled.element_sum()
+        })
+    } else {
+        // Unclipped corners are the input vertices: the screen weights are the answer, unrounded.
+        Some(corners.iter().zip(s).map(|(c, si)| c.barycentric * si).sum())
+    };
+    Interpolated {
+        depth,
+        barycentric,
+        screen_barycentric,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn vertex(depth: f64, w: f64, barycentric: DVec3) -> RasterVertex {
+        RasterVertex {
+            position: FixedPoint::default(),
+            depth,
+            inv_w: 1.0 / w,
+            barycentric,
+        }
+    }
+
+    #[test]
+    fn equal_w_makes_perspective_equal_to_screen_space() {
+        let a = vertex(0.1, 2.0, DVec3::X);
+        let b = vertex(0.5, 2.0, DVec3::Y);
+        let c = vertex(0.9, 2.0, DVec3::Z);
+        let s = [0.25, 0.25, 0.5];
+        let out = interpolate([&a, &b, &c], s, Some([2.0; 3]), true);
+        approx::assert_relative_eq!(out.barycentric, DVec3::from(s), epsilon = 1e-15);
+        approx::assert_relative_eq!(out.screen_barycentric.unwrap(), DVec3::from(s), epsilon = 1e-15);
+        approx::assert_relative_eq!(out.depth, 0.025 + 0.125 + 0.45, epsilon = 1e-15);
+    }
+
+    #[test]
+    fn perspective_weights_favour_the_near_vertex() {
+        // Midway on screen between a vertex at w = 1 and one at w = 3: 3/4 of the way in 3D is
+        // the near one, b = (1/1)/(1/1 + 1/3) = 0.75.
+        let a = vertex(0.0, 1.0, DVec3::X);
+        let b = vertex(0.0, 3.0, DVec3::Y);
+        let c = vertex(0.0, 3.0, DVec3::Z);
+        let out = interpolate([&a, &b, &c], [0.5, 0.5, 0.0], Some([1.0, 3.0, 3.0]), true);
+        approx::assert_relative_eq!(out.barycentric.x, 0.75, epsilon = 1e-15);
+        approx::assert_relative_eq!(out.screen_barycentric.unwrap().x, 0.5, epsilon = 1e-15);
+    }
+}

@@ -1,0 +1,273 @@
+//! The pipeline on top of the reference: vertices with attributes, model-view-projection,
+//! a fragment-shading hook, a framebuffer with RGBA8 colour and f32 depth, PNG output.
+
+use std::path::Path;
+
+use glam::{Mat4, Vec2, Vec3, Vec4};
+
+use crate::clip::{ClipMode, ClipPlane, ClipVertex, clip_planes, intersect};
+use crate::error::{ConfigError, DrawError};
+use crate::line::{LineVertex, rasterize_line};
+use crate::rasterizer::{Draw, DrawState};
+use crate::reference::{DrawStats, Reference};
+use crate::viewport::Viewport;
+
+/// A vertex with the attributes the labs use.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct Vertex {
+    /// Model-space position.
+    pub position: Vec3,
+    /// Linear RGBA colour in `[0, 1]`.
+    pub color: Vec4,
+    /// Model-space normal.
+    pub normal: Vec3,
+    /// Texture coordinates.
+    pub uv: Vec2,
+}
+
+impl Vertex {
+    /// A vertex with a position and an opaque RGB colour.
+    #[must_use]
+    pub fn colored(position: Vec3, rgb: Vec3) -> Self {
+        Self {
+            position,
+            color: rgb.extend(1.0),
+            ..Self::default()
+        }
+    }
+}
+
+/// An indexed triangle mesh.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Mesh {
+    /// The vertices.
+    pub vertices: Vec<Vertex>,
+    /// Three vertex indices per triangle.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// What the shading hook sees at a fragment: attributes interpolated perspective-correctly.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShadeInput {
+    /// Pixel column.
+    pub x: u32,
+    /// Pixel row.
+    pub y: u32,
+    /// Window depth.
+    pub depth: f32,
+    /// Triangle index in the mesh.
+    pub primitive: u32,
+    /// Whether the triangle faces the viewer.
+    pub front_facing: bool,
+    /// World-space position.
+    pub position: Vec3,
+    /// Interpolated colour.
+    pub color: Vec4,
+    /// Interpolated world-space normal (not renormalised).
+    pub normal: Vec3,
+    /// Interpolated texture coordinates.
+    pub uv: Vec2,
+}
+
+/// A colour buffer (RGBA8) and a depth buffer (f32) of one size.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Framebuffer {
+    viewport: Viewport,
+    /// Row-major RGBA8 pixels.
+    pub color: Vec<[u8; 4]>,
+    /// Row-major depth values.
+    pub depth: Vec<f32>,
+}
+
+impl Framebuffer {
+    /// A framebuffer cleared to opaque black and depth 1.0.
+    pub fn new(width: u32, height: u32) -> Result<Self, ConfigError> {
+        let viewport = Viewport::new(width, height)?;
+        Ok(Self {
+            viewport,
+            color: vec![[0, 0, 0, 255]; viewport.pixel_count()],
+            depth: vec![1.0; viewport.pixel_count()],
+        })
+    }
+
+    /// Its size as a viewport.
+    #[must_use]
+    pub fn viewport(&self) -> Viewport {
+        self.viewport
+    }
+
+    /// Fills colour and depth.
+    pub fn clear(&mut self, color: [u8; 4], depth: f32) {
+        self.color.fill(color);
+        self.depth.fill(depth);
+    }
+
+    /// The colour at `(x, y)`.
+    #[must_use]
+    pub fn pixel(&self, x: u32, y: u32) -> [u8; 4] {
+        self.color[self.viewport.index(x, y)]
+    }
+
+    /// The colour buffer as an image.
+    #[must_use]
+    pub fn to_image(&self) -> image::RgbaImage {
+        let raw = self.color.iter().flatten().copied().collect();
+        image::RgbaImage::from_raw(self.viewport.width(), self.viewport.height(), raw)
+            .expect("the buffer holds width × height RGBA pixels by construction")
+    }
+
+    /// Writes the colour buffer as a PNG.
+    pub fn save_png(&self, path: impl AsRef<Path>) -> Result<(), image::ImageError> {
+        self.to_image().save_with_format(path, image::ImageFormat::Png)
+    }
+}
+
+/// Linear `[0, 1]` colour to RGBA8, clamped and rounded to nearest.
+#[must_use]
+pub fn to_rgba8(c: Vec4) -> [u8; 4] {
+    let c = (c.clamp(Vec4::ZERO, Vec4::ONE) * 255.0).round();
+    [c.x as u8, c.y as u8, c.z as u8, c.w as u8]
+}
+
+/// Draws meshes and lines with the reference: transform, rasterize, depth-test, shade, write.
+#[derive(Clone, Debug, Default)]
+pub struct Renderer {
+    /// The rasterizer.
+    pub reference: Reference,
+    /// Culling, depth and clipping state of every draw.
+    pub state: DrawState,
+}
+
+impl Renderer {
+    /// Draws `mesh` with `model` then `view_projection`, colouring fragments with `shader`.
+    ///
+    /// The shader returns a linear colour, or `None` to discard the fragment (no depth write).
+    pub fn draw_mesh(
+        &self,
+        target: &mut Framebuffer,
+        mesh: &Mesh,
+        model: Mat4,
+        view_projection: Mat4,
+        shader: impl Fn(&ShadeInput) -> Option<Vec4>,
+    ) -> Result<DrawStats, DrawError> {
+        let mvp = view_projection * model;
+        let normal_matrix = model.inverse().transpose();
+        let world: Vec<Vec3> = mesh
+            .vertices
+            .iter()
+            .map(|v| model.transform_point3(v.position))
+            .collect();
+        let draw = Draw {
+            viewport: target.viewport,
+            positions: mesh
+                .vertices
+                .iter()
+                .map(|v| (mvp * v.position.extend(1.0)).to_array())
+                .collect(),
+            triangles: mesh.triangles.clone(),
+            state: self.state,
+        };
+        let depth_state = self.state.depth;
+        self.reference.draw(&draw, |f| {
+            let i = target.viewport.index(f.x, f.y);
+            if !depth_state.compare.passes(f.depth, target.depth[i]) {
+                return;
+            }
+            let corners = mesh.triangles[f.primitive as usize].map(|k| k as usize);
+            let b = f.barycentric;
+            let mix3 = |get: &dyn Fn(usize) -> Vec3| (0..3).map(|k| get(corners[k]) * b[k]).sum::<Vec3>();
+            let input = ShadeInput {
+                x: f.x,
+                y: f.y,
+                depth: f.depth,
+                primitive: f.primitive,
+                front_facing: f.front_facing,
+                position: mix3(&|v| world[v]),
+                color: (0..3).map(|k| mesh.vertices[corners[k]].color * b[k]).sum(),
+                normal: mix3(&|v| normal_matrix.transform_vector3(mesh.vertices[v].normal)),
+                uv: (0..3).map(|k| mesh.vertices[corners[k]].uv * b[k]).sum(),
+            };
+            if let Some(color) = shader(&input) {
+                if depth_state.write {
+                    target.depth[i] = f.depth;
+                }
+                target.color[i] = to_rgba8(color);
+            }
+        })
+    }
+
+    /// Draws line segments between mesh vertices, colour interpolated along each line.
+    ///
+    /// Segments are clipped in clip space at the near plane, the guard band (and far when
+    /// enabled); the depth test applies. Returns the number of pixels that passed.
+    pub fn draw_lines(
+        &self,
+        target: &mut Framebuffer,
+        vertices: &[Vertex],
+        segments: &[[u32; 2]],
+        mvp: Mat4,
+    ) -> usize {
+        let viewport = target.viewport;
+        let planes = clip_planes(
+            ClipMode::GuardBand,
+            viewport,
+            self.state.clip_far,
+            self.state.depth_range,
+        );
+        let mut written = 0;
+        for &[a, b] in segments {
+            let (Some(va), Some(vb)) = (vertices.get(a as usize), vertices.get(b as usize)) else {
+                continue;
+            };
+            let end = |v: &Vertex, t: f64| ClipVertex {
+                position: (mvp * v.position.extend(1.0)).as_dvec4(),
+                barycentric: glam::DVec3::new(1.0 - t, t, 0.0),
+            };
+            let Some((ca, cb)) = clip_segment(end(va, 0.0), end(vb, 1.0), &planes) else {
+                continue;
+            };
+            let project = |c: &ClipVertex| {
+                let p = c.position;
+                let (x, y) = viewport.to_raster(p.x / p.w, p.y / p.w);
+                LineVertex {
+                    x,
+                    y,
+                    depth: self.state.depth_range.window_depth(p.z, p.w),
+                }
+            };
+            let (ta, tb) = (ca.barycentric.y, cb.barycentric.y);
+            rasterize_line(project(&ca), project(&cb), viewport, |f| {
+                let i = viewport.index(f.x, f.y);
+                if self
+                    .state
+                    .depth
+                    .test_and_write(f.depth as f32, &mut target.depth[i])
+                {
+                    let t = (ta + (tb - ta) * f.t) as f32;
+                    target.color[i] = to_rgba8(va.color.lerp(vb.color, t));
+                    written += 1;
+                }
+            });
+        }
+        written
+    }
+}
+
+/// Clips segment `a → b` against `planes`, keeping `w > 0`; `None` when nothing is left.
+fn clip_segment(
+    mut a: ClipVertex,
+    mut b: ClipVertex,
+    planes: &[ClipPlane],
+) -> Option<(ClipVertex, ClipVertex)> {
+    for &plane in planes {
+        let (da, db) = (plane.distance(a.position), plane.distance(b.position));
+        match (da >= 0.0, db >= 0.0) {
+            (true, true) => {}
+            (false, false) => return None,
+            (true, false) => b = intersect(&a, &b, da, db),
+            (false, true) => a = intersect(&b, &a, db, da),
+        }
+    }
+    (a.position.w > 0.0 && b.position.w > 0.0 && a.position.is_finite() && b.position.is_finite())
+        .then_some((a, b))
+}

@@ -1,0 +1,253 @@
+//! The `Rasterizer` trait: the contract the conformance suite certifies, and its data types.
+
+use crate::depth::{DepthRange, DepthState};
+use crate::edge::FillConvention;
+use crate::error::DrawError;
+use crate::viewport::Viewport;
+
+/// Which facing a draw discards.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum CullMode {
+    /// Draw both facings.
+    #[default]
+    None,
+    /// Discard front-facing triangles.
+    Front,
+    /// Discard back-facing triangles (zero-area ones are back-facing and never drawn anyway).
+    Back,
+}
+
+/// Which on-screen winding is front-facing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum FrontFace {
+    /// Counter-clockwise as seen on screen (Vulkan's and OpenGL's default).
+    #[default]
+    CounterClockwise,
+    /// Clockwise as seen on screen (D3D's default).
+    Clockwise,
+}
+
+/// Everything about a draw besides its geometry.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct DrawState {
+    /// Facing to discard.
+    pub cull: CullMode,
+    /// Which winding is front-facing.
+    pub front_face: FrontFace,
+    /// Depth test and write.
+    pub depth: DepthState,
+    /// The clip volume's z range.
+    pub depth_range: DepthRange,
+    /// Whether triangles are clipped at the far plane `z = w` (near is always clipped).
+    pub clip_far: bool,
+}
+
+/// One draw call: clip-space vertices, triangles indexing them, and state.
+///
+/// Triangle `i` of `triangles` is primitive `i` in every output.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Draw {
+    /// The render target's size.
+    pub viewport: Viewport,
+    /// Clip-space positions `[x, y, z, w]`.
+    pub positions: Vec<[f32; 4]>,
+    /// Vertex indices, three per triangle.
+    pub triangles: Vec<[u32; 3]>,
+    /// Culling, depth and clipping state.
+    pub state: DrawState,
+}
+
+impl Draw {
+    /// A draw with default state (no culling, CCW front, LESS depth, far clipping off).
+    #[must_use]
+    pub fn new(viewport: Viewport, positions: Vec<[f32; 4]>, triangles: Vec<[u32; 3]>) -> Self {
+        Self {
+            viewport,
+            positions,
+            triangles,
+            state: DrawState::default(),
+        }
+    }
+
+    /// Checks every index, so rasterizers can index `positions` freely afterwards.
+    pub fn validate(&self) -> Result<(), DrawError> {
+        let vertices = self.positions.len();
+        for (triangle, indices) in self.triangles.iter().enumerate() {
+            if let Some(&index) = indices.iter().find(|&&i| i as usize >= vertices) {
+                return Err(DrawError::IndexOutOfRange {
+                    triangle,
+                    index,
+                    vertices,
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A covered sample before the depth test.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fragment {
+    /// Pixel column.
+    pub x: u32,
+    /// Pixel row.
+    pub y: u32,
+    /// Index of the triangle in [`Draw::triangles`].
+    pub primitive: u32,
+    /// Window depth in `[0, 1]`, linear in screen space.
+    pub depth: f32,
+    /// Perspective-correct barycentrics of the sample in the input triangle.
+    pub barycentric: [f32; 3],
+    /// Screen-space (affine) barycentrics, where the implementation can give them.
+    pub screen_barycentric: Option<[f32; 3]>,
+    /// Whether the triangle faces the viewer under the draw's [`FrontFace`].
+    pub front_facing: bool,
+}
+
+/// The depth and primitive-id buffers after the depth test, row-major.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Resolved {
+    /// The target's size.
+    pub viewport: Viewport,
+    /// Depth per pixel.
+    pub depth: Vec<f32>,
+    /// The primitive whose fragment was last written at each pixel, if any.
+    pub primitive: Vec<Option<u32>>,
+}
+
+impl Resolved {
+    /// Replays fragments through the draw's depth test in primitive order (API order).
+    #[must_use]
+    pub fn from_fragments(draw: &Draw, mut fragments: Vec<Fragment>) -> Self {
+        let viewport = draw.viewport;
+        let mut resolved = Self {
+            viewport,
+            depth: vec![draw.state.depth.clear; viewport.pixel_count()],
+            primitive: vec![None; viewport.pixel_count()],
+        };
+        // Stable: fragments of one primitive keep their order.
+        fragments.sort_by_key(|f| f.primitive);
+        for f in fragments {
+            if f.x >= viewport.width() || f.y >= viewport.height() {
+                continue;
+            }
+            let i = viewport.index(f.x, f.y);
+            if draw.state.depth.test_and_write(f.depth, &mut resolved.depth[i]) {
+                resolved.primitive[i] = Some(f.primitive);
+            }
+        }
+        resolved
+    }
+}
+
+/// How depth values are produced, as declared by an implementation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum DepthConvention {
+    /// z/w interpolated linearly in screen space (Vulkan, D3D, the reference).
+    #[default]
+    ScreenLinearZOverW,
+    /// Anything else (view-space z, 1/z, …): depth rules that need z/w do not apply.
+    Other,
+}
+
+/// Optional abilities; a rule needing one that is absent is "not applicable", never "passed".
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Features {
+    /// Fragments carry perspective-correct barycentrics.
+    pub perspective_barycentrics: bool,
+    /// Fragments carry screen-space barycentrics.
+    pub screen_barycentrics: bool,
+    /// Culling by facing is implemented.
+    pub culling: bool,
+    /// The depth test is implemented (compare ops and write masking).
+    pub depth_test: bool,
+    /// Far-plane clipping can be switched on.
+    pub far_clipping: bool,
+    /// The OpenGL `−w ≤ z` clip volume is supported.
+    pub negative_one_to_one: bool,
+}
+
+impl Features {
+    /// Everything the reference does.
+    pub const ALL: Features = Features {
+        perspective_barycentrics: true,
+        screen_barycentrics: true,
+        culling: true,
+        depth_test: true,
+        far_clipping: true,
+        negative_one_to_one: true,
+    };
+}
+
+/// What an implementation declares about itself; the suite checks it against this.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct Profile {
+    /// A short name, as `--impl` takes it.
+    pub name: String,
+    /// Fractional bits of its subpixel grid.
+    pub subpixel_bits: u8,
+    /// Which edges own samples lying exactly on them.
+    pub fill: FillConvention,
+    /// How depth is interpolated.
+    pub depth: DepthConvention,
+    /// Half-width in subpixels of the band around edges where invariant rules don't care.
+    pub tolerance_subpixels: u32,
+    /// Optional abilities.
+    pub features: Features,
+}
+
+/// A triangle rasterizer that the conformance suite can certify.
+///
+/// Batch-oriented so that a GPU behind an API can implement it as well as a CPU loop: a
+/// [`Draw`] goes in, fragments (before the depth test) and resolved buffers (after) come out.
+///
+/// # Implementing it
+///
+/// Only [`profile`](Rasterizer::profile) and [`rasterize`](Rasterizer::rasterize) are required.
+/// Here an outside crate wraps the reference and declares itself:
+///
+/// ```
+/// use refrast::{Draw, DrawError, Fragment, Profile, Rasterizer, Reference, Viewport};
+///
+/// /// A rasterizer of our own (here it forwards to the reference).
+/// struct Mine(Reference);
+///
+/// impl Rasterizer for Mine {
+///     fn profile(&self) -> Profile {
+///         Profile { name: "mine".into(), ..self.0.profile() }
+///     }
+///     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+///         self.0.rasterize(draw)
+///     }
+/// }
+///
+/// let viewport = Viewport::new(8, 8).unwrap();
+/// let draw = Draw::new(
+///     viewport,
+///     vec![[-1.0, 1.0, 0.5, 1.0], [1.0, 1.0, 0.5, 1.0], [-1.0, -1.0, 0.5, 1.0]],
+///     vec![[0, 1, 2]],
+/// );
+/// let mut mine = Mine(Reference::default());
+/// let fragments = mine.rasterize(&draw).unwrap();
+/// // The upper-left half of an 8×8 target; the 8 samples on the diagonal lie on a right edge,
+/// // which does not own them under the top-left rule: 36 − 8 = 28.
+/// assert_eq!(fragments.len(), 28);
+/// let resolved = mine.resolve(&draw).unwrap();
+/// assert_eq!(resolved.primitive[0], Some(0));
+/// ```
+pub trait Rasterizer {
+    /// The conventions and abilities this implementation declares.
+    fn profile(&self) -> Profile;
+
+    /// Every covered sample of the draw, before the depth test, in any order.
+    fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError>;
+
+    /// Depth and primitive-id buffers after the depth test.
+    ///
+    /// The default replays [`rasterize`](Rasterizer::rasterize) in primitive order; an
+    /// implementation with its own depth test overrides it so that test is what gets certified.
+    fn resolve(&mut self, draw: &Draw) -> Result<Resolved, DrawError> {
+        let fragments = self.rasterize(draw)?;
+        Ok(Resolved::from_fragments(draw, fragments))
+    }
+}

@@ -1,0 +1,246 @@
+//! The reference rasterizer: clip, project, snap, set up, traverse, interpolate — nothing clever.
+
+use glam::{DVec3, DVec4};
+
+use crate::clip::{ClipMode, ClipOutcome, ClipVertex, clip_planes, clip_triangle};
+use crate::edge::{FillConvention, orient2d};
+use crate::error::DrawError;
+use crate::fixed::{FixedPoint, SubpixelBits};
+use crate::interp::{RasterVertex, interpolate, screen_weights};
+use crate::rasterizer::{
+    CullMode, DepthConvention, Draw, Features, Fragment, FrontFace, Profile, Rasterizer,
+};
+use crate::setup::{PixelRect, TriangleSetup, Winding};
+use crate::traverse::{FanTriangle, traverse};
+
+/// Which pixels are tested against a triangle; both give identical output.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum Traversal {
+    /// Only the pixels of the triangle's bounding box, clamped to the viewport.
+    #[default]
+    BoundingBox,
+    /// Every pixel of the viewport, as the first lab step does.
+    Viewport,
+}
+
+/// The reference's knobs; the defaults are the conventions stated in the crate docs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub struct ReferenceConfig {
+    /// Subpixel precision of snapping.
+    pub subpixel_bits: SubpixelBits,
+    /// Which edges own the samples on them.
+    pub fill: FillConvention,
+    /// Guard band (default) or full six-plane clipping for x and y.
+    pub clip: ClipMode,
+    /// Bounding-box (default) or whole-viewport traversal.
+    pub traversal: Traversal,
+}
+
+/// What happened to the triangles of a draw.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct DrawStats {
+    /// Triangles submitted.
+    pub triangles: usize,
+    /// Discarded for a NaN or infinite coordinate.
+    pub non_finite: usize,
+    /// Wholly outside the clip volume, behind the eye included.
+    pub clipped_away: usize,
+    /// Zero area after snapping (back-facing, drawn never).
+    pub degenerate: usize,
+    /// Discarded by the cull mode.
+    pub culled: usize,
+    /// Inside the clip volume but covering no sample of the viewport.
+    pub off_screen: usize,
+    /// Triangles that reached traversal.
+    pub traversed: usize,
+    /// Fragments emitted.
+    pub fragments: usize,
+}
+
+/// The reference rasterizer: exact coverage on snapped coordinates, the definition of correct.
+#[derive(Clone, Debug, Default)]
+pub struct Reference {
+    config: ReferenceConfig,
+}
+
+/// Buffers reused across the triangles of one draw.
+#[derive(Default)]
+struct Scratch {
+    polygon: Vec<ClipVertex>,
+    clip: Vec<ClipVertex>,
+    raster: Vec<RasterVertex>,
+    fan: Vec<FanTriangle>,
+    row: Vec<[i64; 3]>,
+}
+
+impl Reference {
+    /// A reference rasterizer with the given configuration.
+    #[must_use]
+    pub fn new(config: ReferenceConfig) -> Self {
+        Self { config }
+    }
+
+    /// Its configuration.
+    #[must_use]
+    pub fn config(&self) -> ReferenceConfig {
+        self.config
+    }
+
+    /// Rasterizes `draw`, handing each fragment to `emit` in primitive order.
+    pub fn draw(&self, draw: &Draw, mut emit: impl FnMut(Fragment)) -> Result<DrawStats, DrawError> {
+        draw.validate()?;
+        let state = &draw.state;
+        let planes = clip_planes(self.config.clip, draw.viewport, state.clip_far, state.depth_range);
+        let mut scratch = Scratch::default();
+        let mut stats = DrawStats::default();
+        for (primitive, indices) in draw.triangles.iter().enumerate() {
+            stats.triangles += 1;
+            let positions = indices.map(|i| draw.positions[i as usize]);
+            if positions.iter().flatten().any(|c| !c.is_finite()) {
+                stats.non_finite += 1;
+                continue;
+            }
+            let input: [ClipVertex; 3] = [0, 1, 2].map(|k| ClipVertex {
+                position: DVec4::from(positions[k].map(f64::from)),
+                barycentric: DVec3::AXES[k],
+            });
+            let outcome = clip_triangle(&input, &planes, &mut scratch.polygon, &mut scratch.clip);
+            let polygon: &[ClipVertex] = match outcome {
+                ClipOutcome::Outside => {
+                    stats.clipped_away += 1;
+                    continue;
+                }
+                ClipOutcome::Inside => &input,
+                ClipOutcome::Clipped => &scratch.polygon,
+            };
+            if !self.project(draw, polygon, &mut scratch.raster) {
+                stats.degenerate += 1;
+                continue;
+            }
+            let raster = &scratch.raster;
+            let area2 = fan_area2(raster);
+            let winding = Winding::from_area2(area2);
+            let front_facing = match (winding, state.front_face) {
+                (Winding::Degenerate, _) => {
+                    stats.degenerate += 1;
+                    continue;
+                }
+                (w, FrontFace::Clockwise) => w == Winding::Clockwise,
+                (w, FrontFace::CounterClockwise) => w == Winding::CounterClockwise,
+            };
+            let culled = match state.cull {
+                CullMode::None => false,
+                CullMode::Front => front_facing,
+                CullMode::Back => !front_facing,
+            };
+            if culled {
+                stats.culled += 1;
+                continue;
+            }
+            self.build_fan(raster, area2, &mut scratch.fan);
+            let bits = self.config.subpixel_bits;
+            let positions: Vec<FixedPoint> = raster.iter().map(|v| v.position).collect();
+            let rect = match self.config.traversal {
+                Traversal::BoundingBox => PixelRect::bounding(&positions, bits, draw.viewport),
+                Traversal::Viewport => Some(PixelRect::of_viewport(draw.viewport)),
+            };
+            let Some(rect) = rect else {
+                stats.off_screen += 1;
+                continue;
+            };
+            stats.traversed += 1;
+            let input_w = positions_w(&input);
+            let clipped = outcome == ClipOutcome::Clipped;
+            let fan = &scratch.fan;
+            traverse(fan, rect, bits, &mut scratch.row, |hit| {
+                let t = &fan[hit.triangle];
+                let s = screen_weights(hit.values, t.setup.area2);
+                let corners = t.setup.order.map(|k| &raster[t.corners[k]]);
+                let out = interpolate(corners, s, input_w, clipped);
+                stats.fragments += 1;
+                emit(Fragment {
+                    x: hit.x,
+                    y: hit.y,
+                    primitive: primitive as u32,
+                    depth: out.depth as f32,
+                    barycentric: out.barycentric.as_vec3().to_array(),
+                    screen_barycentric: out.screen_barycentric.map(|b| b.as_vec3().to_array()),
+                    front_facing,
+                });
+            });
+        }
+        Ok(stats)
+    }
+
+    /// Projects and snaps a clipped polygon; `false` when a vertex has no finite raster position.
+    fn project(&self, draw: &Draw, polygon: &[ClipVertex], out: &mut Vec<RasterVertex>) -> bool {
+        out.clear();
+        for v in polygon {
+            let p = v.position;
+            // After clipping w ≥ 0; w = 0 only at the clip-space origin, which has no projection.
+            if p.w <= 0.0 {
+                return false;
+            }
+            let (x, y) = draw.viewport.to_raster(p.x / p.w, p.y / p.w);
+            let Some(position) = FixedPoint::snap(x, y, self.config.subpixel_bits) else {
+                return false;
+            };
+            out.push(RasterVertex {
+                position,
+                depth: draw.state.depth_range.window_depth(p.z, p.w),
+                inv_w: 1.0 / p.w,
+                barycentric: v.barycentric,
+            });
+        }
+        true
+    }
+
+    /// Fans the snapped polygon from its first vertex, marking slivers that snapping turned over.
+    fn build_fan(&self, raster: &[RasterVertex], area2: i64, fan: &mut Vec<FanTriangle>) {
+        fan.clear();
+        for i in 1..raster.len() - 1 {
+            let corners = [0, i, i + 1];
+            let v = corners.map(|c| raster[c].position);
+            if let Some(setup) = TriangleSetup::new(v, self.config.fill) {
+                let agrees = orient2d(v[0], v[1], v[2]).signum() == area2.signum();
+                fan.push(FanTriangle {
+                    setup,
+                    agrees,
+                    corners,
+                });
+            }
+        }
+    }
+}
+
+/// Twice the signed area of a snapped polygon, summed over its fan (exact).
+fn fan_area2(raster: &[RasterVertex]) -> i64 {
+    (1..raster.len() - 1)
+        .map(|i| orient2d(raster[0].position, raster[i].position, raster[i + 1].position))
+        .sum()
+}
+
+/// The input triangle's `w`s when all are positive: only then does it have a screen-space shape.
+fn positions_w(input: &[ClipVertex; 3]) -> Option<[f64; 3]> {
+    let w = input.map(|v| v.position.w);
+    w.iter().all(|&w| w > 0.0).then_some(w)
+}
+
+impl Rasterizer for Reference {
+    fn profile(&self) -> Profile {
+        Profile {
+            name: "reference".into(),
+            subpixel_bits: self.config.subpixel_bits.get(),
+            fill: self.config.fill,
+            depth: DepthConvention::ScreenLinearZOverW,
+            tolerance_subpixels: 0,
+            features: Features::ALL,
+        }
+    }
+
+    fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+        let mut fragments = Vec::new();
+        self.draw(draw, |f| fragments.push(f))?;
+        Ok(fragments)
+    }
+}

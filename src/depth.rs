@@ -20,7 +20,7 @@ impl DepthRange {
         }
     }
 
-    /// Window depth in `[0, 1]` for a clip-space point inside the volume.
+    /// Window depth of a clip-space point inside the volume (`> 1` beyond an unclipped far plane).
     #[must_use]
     pub fn window_depth(self, z: f64, w: f64) -> f64 {
         match self {
@@ -29,6 +29,18 @@ impl DepthRange {
         }
     }
 }
+
+/// The depth a fragment stores: interpolated window depth clamped to `[0, 1]`.
+///
+/// With far clipping off this is depth clamping (D3D11 `DepthClipEnable = FALSE`): geometry
+/// beyond the far plane is drawn at depth 1 instead of at an unbounded or infinite depth.
+/// With it on, it only removes rounding just outside the range.
+#[must_use]
+pub fn fragment_depth(interpolated: f64) -> f32 {
+    interpolated.clamp(0.0, 1.0) as f32
+}
+
+impl DepthRange {}
 
 /// How an incoming depth is compared with the stored one; the fragment passes when true.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]

@@ -20,7 +20,7 @@
 //! | setup | `setup` | [`TriangleSetup`], [`Winding`], [`PixelRect`] |
 //! | traversal | `traverse` | [`traverse`], [`FanTriangle`] |
 //! | interpolation | `interp` | [`screen_weights`], [`interpolate`] |
-//! | depth | `depth` | [`DepthRange`], [`CompareOp`], [`DepthState`] |
+//! | depth | `depth` | [`DepthRange`], [`CompareOp`], [`DepthState`], [`fragment_depth`] |
 //! | the contract | `rasterizer` | [`Rasterizer`], [`Draw`], [`Fragment`], [`Profile`], [`Resolved`] |
 //! | the reference | `reference` | [`Reference`], [`ReferenceConfig`] |
 //! | lines, points | `line` | [`rasterize_line`], [`rasterize_point`] |
@@ -47,7 +47,8 @@
 //! - **Clip volume**: `−w ≤ x, y ≤ w`, `0 ≤ z ≤ w` (or `−w ≤ z`, [`DepthRange`]). Near is always
 //!   clipped, far when enabled, x/y at the guard band ([`GUARD_BAND`]) and clamped by traversal,
 //!   or at the viewport with [`ClipMode::Full`]. Intersections are canonical ([`clip::intersect`]).
-//! - **Depth**: window depth `z/w` interpolated linearly in screen space ([`interpolate`]).
+//! - **Depth**: window depth `z/w` interpolated linearly in screen space ([`interpolate`]),
+//!   then clamped to `[0, 1]` ([`fragment_depth`]; depth clamping when far clipping is off).
 //! - **Attributes**: perspective-correct, `Σ sᵢ fᵢ/wᵢ / Σ sᵢ/wᵢ`; screen-space weights also given.
 //! - **Bad numbers**: a triangle with a NaN or infinite coordinate is discarded and counted
 //!   ([`DrawStats::non_finite`]); an out-of-range viewport or subpixel count is a
@@ -72,7 +73,7 @@ mod viewport;
 
 pub use camera::{Camera, Projection};
 pub use clip::{ClipMode, ClipOutcome, ClipPlane, ClipVertex, clip_triangle};
-pub use depth::{CompareOp, DepthRange, DepthState};
+pub use depth::{CompareOp, DepthRange, DepthState, fragment_depth};
 pub use edge::{EdgeFunction, FillConvention, is_top_left, orient2d};
 pub use error::{ConfigError, DrawError};
 pub use fixed::{COORD_LIMIT, FixedPoint, SubpixelBits, snap};

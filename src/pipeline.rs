@@ -6,6 +6,7 @@ use std::path::Path;
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
 use crate::clip::{ClipMode, ClipPlane, ClipVertex, clip_planes, intersect};
+use crate::depth::fragment_depth;
 use crate::error::{ConfigError, DrawError};
 use crate::line::{LineVertex, rasterize_line};
 use crate::rasterizer::{Draw, DrawState};
@@ -157,16 +158,7 @@ impl Renderer {
             .iter()
             .map(|v| model.transform_point3(v.position))
             .collect();
-        let draw = Draw {
-            viewport: target.viewport,
-            positions: mesh
-                .vertices
-                .iter()
-                .map(|v| (mvp * v.position.extend(1.0)).to_array())
-                .collect(),
-            triangles: mesh.triangles.clone(),
-            state: self.state,
-        };
+        let draw = self.mesh_draw(target.viewport, mesh, mvp);
         let depth_state = self.state.depth;
         self.reference.draw(&draw, |f| {
             let i = target.viewport.index(f.x, f.y);
@@ -194,6 +186,21 @@ impl Renderer {
                 target.color[i] = to_rgba8(color);
             }
         })
+    }
+
+    /// The clip-space draw of `mesh` under `mvp` with this renderer's state.
+    #[must_use]
+    pub fn mesh_draw(&self, viewport: Viewport, mesh: &Mesh, mvp: Mat4) -> Draw {
+        Draw {
+            viewport,
+            positions: mesh
+                .vertices
+                .iter()
+                .map(|v| (mvp * v.position.extend(1.0)).to_array())
+                .collect(),
+            triangles: mesh.triangles.clone(),
+            state: self.state,
+        }
     }
 
     /// Draws line segments between mesh vertices, colour interpolated along each line.
@@ -241,7 +248,7 @@ impl Renderer {
                 if self
                     .state
                     .depth
-                    .test_and_write(f.depth as f32, &mut target.depth[i])
+                    .test_and_write(fragment_depth(f.depth), &mut target.depth[i])
                 {
                     let t = (ta + (tb - ta) * f.t) as f32;
                     target.color[i] = to_rgba8(va.color.lerp(vb.color, t));

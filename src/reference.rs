@@ -3,6 +3,7 @@
 use glam::{DVec3, DVec4};
 
 use crate::clip::{ClipMode, ClipOutcome, ClipVertex, clip_planes, clip_triangle};
+use crate::depth::fragment_depth;
 use crate::edge::{FillConvention, orient2d};
 use crate::error::DrawError;
 use crate::fixed::{FixedPoint, SubpixelBits};
@@ -162,7 +163,7 @@ impl Reference {
                     x: hit.x,
                     y: hit.y,
                     primitive: primitive as u32,
-                    depth: out.depth as f32,
+                    depth: fragment_depth(out.depth),
                     barycentric: out.barycentric.as_vec3().to_array(),
                     screen_barycentric: out.screen_barycentric.map(|b| b.as_vec3().to_array()),
                     front_facing,

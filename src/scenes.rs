@@ -11,7 +11,9 @@ use crate::camera::{Camera, Projection};
 use crate::depth::{CompareOp, DepthState};
 use crate::error::{ConfigError, DrawError};
 use crate::pipeline::{Framebuffer, Mesh, Renderer, Vertex};
+use crate::rasterizer::Draw;
 use crate::reference::{Reference, ReferenceConfig, Traversal};
+use crate::viewport::Viewport;
 
 /// A built-in scene: its name (as `refrast render` takes it) and what it shows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -96,8 +98,28 @@ fn rgb_vertices() -> [Vertex; 3] {
     ]
 }
 
-/// The mesh, view-projection, depth state and traversal of a scene.
-fn setup(name: &str, aspect: f32) -> Option<(Mesh, Mat4, DepthState, Traversal)> {
+/// A scene ready to draw: its mesh, camera and projection, and the renderer set up as the lab step does.
+#[derive(Clone, Debug)]
+pub struct SceneSetup {
+    /// The triangles with their colours.
+    pub mesh: Mesh,
+    /// World to clip space.
+    pub view_projection: Mat4,
+    /// The reference configured for the step (traversal) and its draw state (depth test).
+    pub renderer: Renderer,
+}
+
+impl SceneSetup {
+    /// The scene as a clip-space draw for `viewport`.
+    #[must_use]
+    pub fn draw(&self, viewport: Viewport) -> Draw {
+        self.renderer
+            .mesh_draw(viewport, &self.mesh, self.view_projection)
+    }
+}
+
+/// Sets up the scene `name` for a target of the given aspect ratio (width / height).
+pub fn build(name: &str, aspect: f32) -> Result<SceneSetup, SceneError> {
     let camera = Camera::new(Vec3::new(0.0, 0.0, -10.0), Vec3::Z);
     let projection = Projection::Perspective {
         fov_y: 60f32.to_radians(),
@@ -112,7 +134,7 @@ fn setup(name: &str, aspect: f32) -> Option<(Mesh, Mat4, DepthState, Traversal)>
         write: false,
         clear: 1.0,
     };
-    Some(match name {
+    let (mesh, view_projection, depth, traversal) = match name {
         "lab000-ndc" => (
             white([[0.0, 0.5, 1.0], [0.5, -0.5, 1.0], [-0.5, -0.5, 1.0]]),
             Mat4::IDENTITY,
@@ -157,16 +179,8 @@ fn setup(name: &str, aspect: f32) -> Option<(Mesh, Mat4, DepthState, Traversal)>
                 traversal,
             )
         }
-        _ => return None,
-    })
-}
-
-/// Renders the scene `name` at `width × height` onto the lab's clear colour.
-pub fn render(name: &str, width: u32, height: u32) -> Result<Framebuffer, SceneError> {
-    let mut target = Framebuffer::new(width, height).map_err(SceneError::Config)?;
-    let (mesh, view_projection, depth, traversal) =
-        setup(name, width as f32 / height as f32).ok_or_else(|| SceneError::Unknown(name.to_owned()))?;
-    target.clear(CLEAR, depth.clear);
+        _ => return Err(SceneError::Unknown(name.to_owned())),
+    };
     let mut renderer = Renderer {
         reference: Reference::new(ReferenceConfig {
             traversal,
@@ -175,10 +189,27 @@ pub fn render(name: &str, width: u32, height: u32) -> Result<Framebuffer, SceneE
         ..Renderer::default()
     };
     renderer.state.depth = depth;
-    renderer
-        .draw_mesh(&mut target, &mesh, Mat4::IDENTITY, view_projection, |f| {
-            Some(f.color)
-        })
+    Ok(SceneSetup {
+        mesh,
+        view_projection,
+        renderer,
+    })
+}
+
+/// Renders the scene `name` at `width × height` onto the lab's clear colour.
+pub fn render(name: &str, width: u32, height: u32) -> Result<Framebuffer, SceneError> {
+    let mut target = Framebuffer::new(width, height).map_err(SceneError::Config)?;
+    let scene = build(name, width as f32 / height as f32)?;
+    target.clear(CLEAR, scene.renderer.state.depth.clear);
+    scene
+        .renderer
+        .draw_mesh(
+            &mut target,
+            &scene.mesh,
+            Mat4::IDENTITY,
+            scene.view_projection,
+            |f| Some(f.color),
+        )
         .map_err(SceneError::Draw)?;
     Ok(target)
 }

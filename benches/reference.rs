@@ -1,2 +1,169 @@
-//! Benchmarks of the reference (filled in below).
-fn main() {}
+//! The reference at 1920×1080 with depth and colour, against a plain scalar rasterizer.
+//!
+//! Two workloads: 100 000 triangles of about 10 px and 1 000 of about 50 000 px (≈24× overdraw),
+//! equilateral, randomly rotated and placed, random depth. `baseline` is the plain scalar loop
+//! the performance anchors describe (16.8 fixed point, incremental i64 edges, top-left bias, f32
+//! depth LESS, one colour per triangle), run in the same process so the ratio survives a noisy
+//! machine. `scripts/bench_ratio.py` prints medians, Mtri/s, Mpix/s and the ratio.
+
+use std::hint::black_box;
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use glam::{Mat4, Vec3, Vec4};
+use refrast::{Framebuffer, Mesh, Renderer, Vertex};
+
+const WIDTH: u32 = 1920;
+const HEIGHT: u32 = 1080;
+
+/// A small deterministic generator (xorshift64*), so every run draws the same scene.
+struct Rng(u64);
+
+impl Rng {
+    fn next_f32(&mut self) -> f32 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 40) as f32 / (1u64 << 24) as f32
+    }
+}
+
+/// `count` equilateral triangles of `area` px², as raster-space `(x, y, z)` and a colour each.
+fn scene(count: usize, area: f32) -> Vec<([Vec3; 3], Vec4)> {
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let side = (4.0 * area / 3f32.sqrt()).sqrt();
+    let radius = side / 3f32.sqrt();
+    (0..count)
+        .map(|_| {
+            let centre = (rng.next_f32() * WIDTH as f32, rng.next_f32() * HEIGHT as f32);
+            let (angle, z) = (rng.next_f32() * std::f32::consts::TAU, rng.next_f32());
+            let corner = |k: f32| {
+                let a = angle + k * std::f32::consts::TAU / 3.0;
+                Vec3::new(centre.0 + radius * a.cos(), centre.1 + radius * a.sin(), z)
+            };
+            let colour = Vec4::new(rng.next_f32(), rng.next_f32(), rng.next_f32(), 1.0);
+            ([corner(0.0), corner(1.0), corner(2.0)], colour)
+        })
+        .collect()
+}
+
+/// The scene as a mesh in NDC (the renderer is given identity matrices).
+fn mesh(triangles: &[([Vec3; 3], Vec4)]) -> Mesh {
+    let to_ndc = |p: Vec3| {
+        Vec3::new(
+            p.x / WIDTH as f32 * 2.0 - 1.0,
+            1.0 - p.y / HEIGHT as f32 * 2.0,
+            p.z,
+        )
+    };
+    let vertices = triangles
+        .iter()
+        .flat_map(|(t, c)| {
+            t.map(|p| Vertex {
+                position: to_ndc(p),
+                color: *c,
+                ..Vertex::default()
+            })
+        })
+        .collect();
+    let indices = (0..triangles.len() as u32)
+        .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
+        .collect();
+    Mesh {
+        vertices,
+        triangles: indices,
+    }
+}
+
+/// The reference pipeline: clip, snap, set up, traverse, interpolate, shade, depth-test, write.
+fn reference(target: &mut Framebuffer, mesh: &Mesh) -> usize {
+    target.clear([0, 0, 0, 255], 1.0);
+    let stats = Renderer::default()
+        .draw_mesh(target, mesh, Mat4::IDENTITY, Mat4::IDENTITY, |f| Some(f.color))
+        .expect("valid mesh");
+    stats.fragments
+}
+
+/// A plain scalar rasterizer: what the reference is measured against.
+fn baseline(color: &mut [[u8; 4]], depth: &mut [f32], triangles: &[([Vec3; 3], Vec4)]) -> usize {
+    color.fill([0, 0, 0, 255]);
+    depth.fill(1.0);
+    let mut fragments = 0;
+    for (t, c) in triangles {
+        let fx = |v: f32| (v * 256.0).round() as i64;
+        let (mut a, mut b, c3) = (
+            (fx(t[0].x), fx(t[0].y)),
+            (fx(t[1].x), fx(t[1].y)),
+            (fx(t[2].x), fx(t[2].y)),
+        );
+        let (mut za, mut zb) = (t[0].z, t[1].z);
+        let mut area = (b.0 - a.0) * (c3.1 - a.1) - (b.1 - a.1) * (c3.0 - a.0);
+        if area < 0 {
+            std::mem::swap(&mut a, &mut b);
+            std::mem::swap(&mut za, &mut zb);
+            area = -area;
+        } else if area == 0 {
+            continue;
+        }
+        let (x0, x1) = (a.0.min(b.0).min(c3.0), a.0.max(b.0).max(c3.0));
+        let (y0, y1) = (a.1.min(b.1).min(c3.1), a.1.max(b.1).max(c3.1));
+        let px0 = ((x0 - 128 + 255) >> 8).max(0);
+        let px1 = ((x1 - 128) >> 8).min(i64::from(WIDTH) - 1);
+        let py0 = ((y0 - 128 + 255) >> 8).max(0);
+        let py1 = ((y1 - 128) >> 8).min(i64::from(HEIGHT) - 1);
+        let edge = |p: (i64, i64), q: (i64, i64)| {
+            let top_left = (p.1 == q.1 && q.0 > p.0) || q.1 < p.1;
+            (p.1 - q.1, q.0 - p.0, p, if top_left { 0 } else { -1 })
+        };
+        let edges = [edge(b, c3), edge(c3, a), edge(a, b)];
+        let inv_area = 1.0 / area as f32;
+        let (dz1, dz2) = ((zb - za) * inv_area, (t[2].z - za) * inv_area);
+        let rgba = [c.x, c.y, c.z, c.w].map(|v| (v * 255.0) as u8);
+        for py in py0..=py1 {
+            let sy = py * 256 + 128;
+            let sx = px0 * 256 + 128;
+            let mut w = edges.map(|(ex, ey, o, _)| ex * (sx - o.0) + ey * (sy - o.1));
+            for px in px0..=px1 {
+                if (w[0] + edges[0].3) | (w[1] + edges[1].3) | (w[2] + edges[2].3) >= 0 {
+                    let z = za + w[1] as f32 * dz1 + w[2] as f32 * dz2;
+                    let i = py as usize * WIDTH as usize + px as usize;
+                    if z < depth[i] {
+                        depth[i] = z;
+                        color[i] = rgba;
+                    }
+                    fragments += 1;
+                }
+                for k in 0..3 {
+                    w[k] += edges[k].0 * 256;
+                }
+            }
+        }
+    }
+    fragments
+}
+
+fn bench(c: &mut Criterion) {
+    for (name, count, area) in [("small_10px", 100_000, 10.0), ("large_50kpx", 1_000, 50_000.0)] {
+        let triangles = scene(count, area);
+        let mesh = mesh(&triangles);
+        let mut target = Framebuffer::new(WIDTH, HEIGHT).expect("1080p is a valid size");
+        let (mut color, mut depth) = (target.color.clone(), target.depth.clone());
+        let fragments = reference(&mut target, &mesh);
+        let base_fragments = baseline(&mut color, &mut depth, &triangles);
+        // Read by scripts/bench_ratio.py to turn medians into Mpix/s.
+        println!("fragments {name} reference {fragments} baseline {base_fragments} triangles {count}");
+        let mut group = c.benchmark_group(name);
+        group
+            .sample_size(10)
+            .throughput(Throughput::Elements(count as u64));
+        group.bench_function("reference", |b| {
+            b.iter(|| black_box(reference(&mut target, &mesh)))
+        });
+        group.bench_function("baseline", |b| {
+            b.iter(|| black_box(baseline(&mut color, &mut depth, &triangles)))
+        });
+        group.finish();
+    }
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

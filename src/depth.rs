@@ -36,6 +36,7 @@ impl DepthRange {
 /// beyond the far plane is drawn at depth 1 instead of at an unbounded or infinite depth.
 /// With it on, it only removes rounding just outside the range.
 #[must_use]
+#[inline]
 pub fn fragment_depth(interpolated: f64) -> f32 {
     interpolated.clamp(0.0, 1.0) as f32
 }
@@ -67,6 +68,7 @@ pub enum CompareOp {
 impl CompareOp {
     /// Whether a fragment at depth `new` passes against `stored`.
     #[must_use]
+    #[inline]
     pub fn passes(self, new: f32, stored: f32) -> bool {
         match self {
             Self::Never => false,
@@ -105,6 +107,7 @@ impl Default for DepthState {
 
 impl DepthState {
     /// Applies the test to one stored value: stores when asked and reports whether it passed.
+    #[inline]
     pub fn test_and_write(&self, new: f32, stored: &mut f32) -> bool {
         let pass = self.compare.passes(new, *stored);
         if pass && self.write {

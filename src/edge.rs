@@ -9,6 +9,7 @@ use crate::fixed::FixedPoint;
 #[doc(alias = "determinant")]
 #[doc(alias = "cross")]
 #[must_use]
+#[inline]
 pub fn orient2d(a: FixedPoint, b: FixedPoint, c: FixedPoint) -> i64 {
     (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x)
 }
@@ -104,20 +105,30 @@ impl EdgeFunction {
 
     /// The exact edge function at `p`, equal to `orient2d(a, b, p)`.
     #[must_use]
+    #[inline]
     pub fn value(&self, p: FixedPoint) -> i64 {
         self.step_x * (p.x - self.origin.x) + self.step_y * (p.y - self.origin.y)
     }
 
     /// How much the value changes from one pixel to the next in x (`one` subpixel units per pixel).
     #[must_use]
+    #[inline]
     pub fn pixel_step_x(&self, one: i64) -> i64 {
         self.step_x * one
     }
 
+    /// The value with the fill rule folded in: non-negative exactly when the sample is inside.
+    #[must_use]
+    #[inline]
+    pub fn biased(&self, value: i64) -> i64 {
+        value + self.bias
+    }
+
     /// Whether an edge value means the sample is on the inside under the fill rule.
     #[must_use]
+    #[inline]
     pub fn is_inside(&self, value: i64) -> bool {
-        value + self.bias >= 0
+        self.biased(value) >= 0
     }
 }
 

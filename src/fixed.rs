@@ -40,6 +40,7 @@ impl SubpixelBits {
 
     /// Subpixel units per pixel, `2^bits`.
     #[must_use]
+    #[inline]
     pub fn one(self) -> i64 {
         1 << self.0
     }
@@ -75,6 +76,7 @@ impl FixedPoint {
 
     /// The sample position of pixel `(px, py)`, its centre `(px + ½, py + ½)`.
     #[must_use]
+    #[inline]
     pub fn sample(px: i64, py: i64, bits: SubpixelBits) -> Self {
         let half = bits.one() / 2;
         Self::new(px * bits.one() + half, py * bits.one() + half)

@@ -17,15 +17,13 @@ pub struct RasterVertex {
     pub barycentric: DVec3,
 }
 
-/// What a covered sample gets from its triangle.
+/// Barycentrics of a covered sample in the input triangle.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Interpolated {
-    /// Window depth.
-    pub depth: f64,
-    /// Perspective-correct barycentrics in the input triangle.
-    pub barycentric: DVec3,
-    /// Screen-space barycentrics in the input triangle, when its vertices all have `w > 0`.
-    pub screen_barycentric: Option<DVec3>,
+pub struct Barycentrics {
+    /// Perspective-correct barycentrics.
+    pub perspective: DVec3,
+    /// Screen-space barycentrics, when the input triangle's vertices all have `w > 0`.
+    pub screen: Option<DVec3>,
 }
 
 /// Screen-space weights of a sample from its exact edge values (they sum to `area2`).
@@ -33,47 +31,55 @@ pub struct Interpolated {
 /// Each weight is one division of exact integers, so it is correctly rounded in f64 and the
 /// three sum to 1 within 2 ulp; a weight is exactly 1 at its vertex and 0 on its opposite edge.
 #[must_use]
+#[inline]
 pub fn screen_weights(values: [i64; 3], area2: i64) -> [f64; 3] {
     let area = area2 as f64;
     values.map(|v| v as f64 / area)
 }
 
-/// Interpolates depth and barycentrics at a sample with screen weights `s` over `corners`.
+/// Window depth at a sample with exact edge values `values` over `corners`: `Σ sᵢ zᵢ` with
+/// `sᵢ = valuesᵢ / area2`, linear in screen space (Vulkan, D3D).
 ///
-/// Depth is `Σ sᵢ zᵢ` (linear in screen space, Vulkan/D3D). Perspective-correct weights are
-/// `(sᵢ/wᵢ) / Σ sⱼ/wⱼ`; they map the corners' own barycentrics back to the input triangle.
-/// Screen-space barycentrics in the input triangle follow from `bᵢ·wᵢ` normalised, which needs
-/// every input `w` positive (`input_w`), as behind-the-eye vertices have no screen position.
-/// For an unclipped triangle (`clipped == false`) the screen weights are used directly.
+/// Computed as `(Σ valuesᵢ zᵢ) / area2`: the values convert to f64 exactly (below 2^53), so
+/// the result is within a few f64 ulps of the exact value, far below f32 resolution.
 #[must_use]
+#[inline]
+pub fn interpolate_depth(corners: [&RasterVertex; 3], values: [i64; 3], area2: i64) -> f64 {
+    let [a, b, c] = values.map(|v| v as f64);
+    (corners[0].depth * a + corners[1].depth * b + corners[2].depth * c) / area2 as f64
+}
+
+/// Barycentrics in the input triangle at a sample with screen weights `s` over `corners`.
+///
+/// Perspective-correct weights are `(sᵢ/wᵢ) / Σ sⱼ/wⱼ`; they map the corners' own barycentrics
+/// back to the input triangle. Screen-space barycentrics in the input triangle follow from
+/// `bᵢ·wᵢ` normalised, which needs every input `w` positive (`input_w`): behind-the-eye vertices
+/// have no screen position. Unclipped (`clipped == false`), the screen weights are used directly.
+#[must_use]
+#[inline]
 pub fn interpolate(
     corners: [&RasterVertex; 3],
     s: [f64; 3],
     input_w: Option<[f64; 3]>,
     clipped: bool,
-) -> Interpolated {
-    let depth = corners.iter().zip(s).map(|(c, si)| c.depth * si).sum();
+) -> Barycentrics {
     let q = [0, 1, 2].map(|i| s[i] * corners[i].inv_w);
     let q_sum: f64 = q.iter().sum();
-    let barycentric: DVec3 = corners
+    let perspective: DVec3 = corners
         .iter()
         .zip(q)
         .map(|(c, qi)| c.barycentric * (qi / q_sum))
         .sum();
-    let screen_barycentric = if clipped {
+    let screen = if clipped {
         input_w.map(|w| {
-            let scaled = barycentric * DVec3::from(w);
+            let scaled = perspective * DVec3::from(w);
             scaled / scaled.element_sum()
         })
     } else {
         // Unclipped corners are the input vertices: the screen weights are the answer, unrounded.
         Some(corners.iter().zip(s).map(|(c, si)| c.barycentric * si).sum())
     };
-    Interpolated {
-        depth,
-        barycentric,
-        screen_barycentric,
-    }
+    Barycentrics { perspective, screen }
 }
 
 #[cfg(test)]
@@ -96,9 +102,10 @@ mod tests {
         let c = vertex(0.9, 2.0, DVec3::Z);
         let s = [0.25, 0.25, 0.5];
         let out = interpolate([&a, &b, &c], s, Some([2.0; 3]), true);
-        approx::assert_relative_eq!(out.barycentric, DVec3::from(s), epsilon = 1e-15);
-        approx::assert_relative_eq!(out.screen_barycentric.unwrap(), DVec3::from(s), epsilon = 1e-15);
-        approx::assert_relative_eq!(out.depth, 0.025 + 0.125 + 0.45, epsilon = 1e-15);
+        approx::assert_relative_eq!(out.perspective, DVec3::from(s), epsilon = 1e-15);
+        approx::assert_relative_eq!(out.screen.unwrap(), DVec3::from(s), epsilon = 1e-15);
+        let depth = interpolate_depth([&a, &b, &c], [1, 1, 2], 4);
+        approx::assert_relative_eq!(depth, 0.025 + 0.125 + 0.45, epsilon = 1e-15);
     }
 
     #[test]
@@ -109,7 +116,7 @@ mod tests {
         let b = vertex(0.0, 3.0, DVec3::Y);
         let c = vertex(0.0, 3.0, DVec3::Z);
         let out = interpolate([&a, &b, &c], [0.5, 0.5, 0.0], Some([1.0, 3.0, 3.0]), true);
-        approx::assert_relative_eq!(out.barycentric.x, 0.75, epsilon = 1e-15);
-        approx::assert_relative_eq!(out.screen_barycentric.unwrap().x, 0.5, epsilon = 1e-15);
+        approx::assert_relative_eq!(out.perspective.x, 0.75, epsilon = 1e-15);
+        approx::assert_relative_eq!(out.screen.unwrap().x, 0.5, epsilon = 1e-15);
     }
 }

@@ -19,10 +19,10 @@
 //! | clipping | `clip` | [`clip_triangle`], [`ClipMode`], [`ClipPlane`] |
 //! | setup | `setup` | [`TriangleSetup`], [`Winding`], [`PixelRect`] |
 //! | traversal | `traverse` | [`traverse`], [`FanTriangle`] |
-//! | interpolation | `interp` | [`screen_weights`], [`interpolate`] |
+//! | interpolation | `interp` | [`screen_weights`], [`interpolate_depth`], [`interpolate`] |
 //! | depth | `depth` | [`DepthRange`], [`CompareOp`], [`DepthState`], [`fragment_depth`] |
 //! | the contract | `rasterizer` | [`Rasterizer`], [`Draw`], [`Fragment`], [`Profile`], [`Resolved`] |
-//! | the reference | `reference` | [`Reference`], [`ReferenceConfig`] |
+//! | the reference | `reference` | [`Reference`], [`ReferenceConfig`], [`Sample`] |
 //! | lines, points | `line` | [`rasterize_line`], [`rasterize_point`] |
 //! | camera, projection | `camera` | [`Camera`], [`Projection`] |
 //! | pipeline | `pipeline` | [`Renderer`], [`Mesh`], [`Vertex`], [`Framebuffer`] |
@@ -47,7 +47,7 @@
 //! - **Clip volume**: `−w ≤ x, y ≤ w`, `0 ≤ z ≤ w` (or `−w ≤ z`, [`DepthRange`]). Near is always
 //!   clipped, far when enabled, x/y at the guard band ([`GUARD_BAND`]) and clamped by traversal,
 //!   or at the viewport with [`ClipMode::Full`]. Intersections are canonical ([`clip::intersect`]).
-//! - **Depth**: window depth `z/w` interpolated linearly in screen space ([`interpolate`]),
+//! - **Depth**: window depth `z/w` interpolated linearly in screen space ([`interpolate_depth`]),
 //!   then clamped to `[0, 1]` ([`fragment_depth`]; depth clamping when far clipping is off).
 //! - **Attributes**: perspective-correct, `Σ sᵢ fᵢ/wᵢ / Σ sᵢ/wᵢ`; screen-space weights also given.
 //! - **Bad numbers**: a triangle with a NaN or infinite coordinate is discarded and counted
@@ -77,13 +77,13 @@ pub use depth::{CompareOp, DepthRange, DepthState, fragment_depth};
 pub use edge::{EdgeFunction, FillConvention, is_top_left, orient2d};
 pub use error::{ConfigError, DrawError};
 pub use fixed::{COORD_LIMIT, FixedPoint, SubpixelBits, snap};
-pub use interp::{Interpolated, RasterVertex, interpolate, screen_weights};
+pub use interp::{Barycentrics, RasterVertex, interpolate, interpolate_depth, screen_weights};
 pub use line::{LineFragment, LineVertex, rasterize_line, rasterize_point};
 pub use pipeline::{Framebuffer, Mesh, Renderer, ShadeInput, Vertex};
 pub use rasterizer::{
     CullMode, DepthConvention, Draw, DrawState, Features, Fragment, FrontFace, Profile, Rasterizer, Resolved,
 };
-pub use reference::{DrawStats, Reference, ReferenceConfig, Traversal};
+pub use reference::{DrawStats, Reference, ReferenceConfig, Sample, Traversal};
 pub use setup::{PixelRect, TriangleSetup, Winding};
 pub use traverse::{FanTriangle, Hit, traverse};
 pub use viewport::{GUARD_BAND, MAX_VIEWPORT, Viewport};

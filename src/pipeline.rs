@@ -125,6 +125,7 @@ impl Framebuffer {
 
 /// Linear `[0, 1]` colour to RGBA8, clamped and rounded to nearest.
 #[must_use]
+#[inline]
 pub fn to_rgba8(c: Vec4) -> [u8; 4] {
     let c = (c.clamp(Vec4::ZERO, Vec4::ONE) * 255.0).round();
     [c.x as u8, c.y as u8, c.z as u8, c.w as u8]
@@ -153,31 +154,39 @@ impl Renderer {
     ) -> Result<DrawStats, DrawError> {
         let mvp = view_projection * model;
         let normal_matrix = model.inverse().transpose();
-        let world: Vec<Vec3> = mesh
+        // Per vertex, once per draw: world position and normal, with colour and uv, to mix per fragment.
+        let world: Vec<(Vec3, Vec3)> = mesh
             .vertices
             .iter()
-            .map(|v| model.transform_point3(v.position))
+            .map(|v| {
+                (
+                    model.transform_point3(v.position),
+                    normal_matrix.transform_vector3(v.normal),
+                )
+            })
             .collect();
         let draw = self.mesh_draw(target.viewport, mesh, mvp);
         let depth_state = self.state.depth;
-        self.reference.draw(&draw, |f| {
-            let i = target.viewport.index(f.x, f.y);
-            if !depth_state.compare.passes(f.depth, target.depth[i]) {
+        self.reference.draw_samples(&draw, |sample| {
+            let i = target.viewport.index(sample.x, sample.y);
+            // Early depth test: most fragments of a deep scene stop here, before any interpolation.
+            if !depth_state.compare.passes(sample.depth, target.depth[i]) {
                 return;
             }
-            let corners = mesh.triangles[f.primitive as usize].map(|k| k as usize);
-            let b = f.barycentric;
-            let mix3 = |get: &dyn Fn(usize) -> Vec3| (0..3).map(|k| get(corners[k]) * b[k]).sum::<Vec3>();
+            let f = sample.fragment();
+            let [a, b, c] = mesh.triangles[f.primitive as usize].map(|k| k as usize);
+            let [ba, bb, bc] = f.barycentric;
+            let (va, vb, vc) = (&mesh.vertices[a], &mesh.vertices[b], &mesh.vertices[c]);
             let input = ShadeInput {
                 x: f.x,
                 y: f.y,
                 depth: f.depth,
                 primitive: f.primitive,
                 front_facing: f.front_facing,
-                position: mix3(&|v| world[v]),
-                color: (0..3).map(|k| mesh.vertices[corners[k]].color * b[k]).sum(),
-                normal: mix3(&|v| normal_matrix.transform_vector3(mesh.vertices[v].normal)),
-                uv: (0..3).map(|k| mesh.vertices[corners[k]].uv * b[k]).sum(),
+                position: world[a].0 * ba + world[b].0 * bb + world[c].0 * bc,
+                color: va.color * ba + vb.color * bb + vc.color * bc,
+                normal: world[a].1 * ba + world[b].1 * bb + world[c].1 * bc,
+                uv: va.uv * ba + vb.uv * bb + vc.uv * bc,
             };
             if let Some(color) = shader(&input) {
                 if depth_state.write {

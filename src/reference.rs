@@ -7,7 +7,7 @@ use crate::depth::fragment_depth;
 use crate::edge::{FillConvention, orient2d};
 use crate::error::DrawError;
 use crate::fixed::{FixedPoint, SubpixelBits};
-use crate::interp::{RasterVertex, interpolate, screen_weights};
+use crate::interp::{RasterVertex, interpolate, interpolate_depth, screen_weights};
 use crate::rasterizer::{
     CullMode, DepthConvention, Draw, Features, Fragment, FrontFace, Profile, Rasterizer,
 };
@@ -89,6 +89,18 @@ impl Reference {
 
     /// Rasterizes `draw`, handing each fragment to `emit` in primitive order.
     pub fn draw(&self, draw: &Draw, mut emit: impl FnMut(Fragment)) -> Result<DrawStats, DrawError> {
+        self.draw_samples(draw, |sample| emit(sample.fragment()))
+    }
+
+    /// Rasterizes `draw`, handing each covered [`Sample`] to `visit` in primitive order.
+    ///
+    /// A sample carries its depth; its barycentrics are computed only when asked for, so a
+    /// depth test can reject it first.
+    pub fn draw_samples(
+        &self,
+        draw: &Draw,
+        mut visit: impl FnMut(&Sample<'_>),
+    ) -> Result<DrawStats, DrawError> {
         draw.validate()?;
         let state = &draw.state;
         let planes = clip_planes(self.config.clip, draw.viewport, state.clip_far, state.depth_range);
@@ -155,18 +167,19 @@ impl Reference {
             let fan = &scratch.fan;
             traverse(fan, rect, bits, &mut scratch.row, |hit| {
                 let t = &fan[hit.triangle];
-                let s = screen_weights(hit.values, t.setup.area2);
                 let corners = t.setup.order.map(|k| &raster[t.corners[k]]);
-                let out = interpolate(corners, s, input_w, clipped);
                 stats.fragments += 1;
-                emit(Fragment {
+                visit(&Sample {
                     x: hit.x,
                     y: hit.y,
                     primitive: primitive as u32,
-                    depth: fragment_depth(out.depth),
-                    barycentric: out.barycentric.as_vec3().to_array(),
-                    screen_barycentric: out.screen_barycentric.map(|b| b.as_vec3().to_array()),
+                    depth: fragment_depth(interpolate_depth(corners, hit.values, t.setup.area2)),
                     front_facing,
+                    values: hit.values,
+                    area2: t.setup.area2,
+                    corners,
+                    input_w,
+                    clipped,
                 });
             });
         }
@@ -210,6 +223,45 @@ impl Reference {
                     corners,
                 });
             }
+        }
+    }
+}
+
+/// A covered sample with its depth; [`fragment`](Sample::fragment) adds the barycentrics.
+#[derive(Clone, Copy, Debug)]
+pub struct Sample<'a> {
+    /// Pixel column.
+    pub x: u32,
+    /// Pixel row.
+    pub y: u32,
+    /// The triangle's index in the draw.
+    pub primitive: u32,
+    /// Window depth, as [`Fragment::depth`].
+    pub depth: f32,
+    /// Whether the triangle faces the viewer.
+    pub front_facing: bool,
+    values: [i64; 3],
+    area2: i64,
+    corners: [&'a RasterVertex; 3],
+    input_w: Option<[f64; 3]>,
+    clipped: bool,
+}
+
+impl Sample<'_> {
+    /// The full fragment: the sample plus its perspective-correct and screen-space barycentrics.
+    #[must_use]
+    #[inline]
+    pub fn fragment(&self) -> Fragment {
+        let weights = screen_weights(self.values, self.area2);
+        let b = interpolate(self.corners, weights, self.input_w, self.clipped);
+        Fragment {
+            x: self.x,
+            y: self.y,
+            primitive: self.primitive,
+            depth: self.depth,
+            barycentric: b.perspective.as_vec3().to_array(),
+            screen_barycentric: b.screen.map(|s| s.as_vec3().to_array()),
+            front_facing: self.front_facing,
         }
     }
 }

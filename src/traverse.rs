@@ -43,6 +43,10 @@ pub fn traverse(
     mut visit: impl FnMut(Hit),
 ) {
     let one = bits.one();
+    if let [single] = fan {
+        traverse_triangle(single, rect, bits, visit);
+        return;
+    }
     for y in rect.y0..rect.y1 {
         let start = FixedPoint::sample(i64::from(rect.x0), i64::from(y), bits);
         row.clear();
@@ -70,6 +74,30 @@ pub fn traverse(
                 for (value, edge) in values.iter_mut().zip(&t.setup.edges) {
                     *value += edge.pixel_step_x(one);
                 }
+            }
+        }
+    }
+}
+
+/// The common case of a fan of one triangle: the winding number is just "inside".
+fn traverse_triangle(t: &FanTriangle, rect: PixelRect, bits: SubpixelBits, mut visit: impl FnMut(Hit)) {
+    let one = bits.one();
+    let steps = t.setup.edges.map(|e| e.pixel_step_x(one));
+    for y in rect.y0..rect.y1 {
+        let mut values = t
+            .setup
+            .edge_values(FixedPoint::sample(i64::from(rect.x0), i64::from(y), bits));
+        for x in rect.x0..rect.x1 {
+            if t.setup.is_inside(values) {
+                visit(Hit {
+                    x,
+                    y,
+                    triangle: 0,
+                    values,
+                });
+            }
+            for (value, step) in values.iter_mut().zip(steps) {
+                *value += step;
             }
         }
     }

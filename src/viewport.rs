@@ -49,6 +49,7 @@ impl Viewport {
 
     /// Index of pixel `(x, y)` in a row-major buffer.
     #[must_use]
+    #[inline]
     pub fn index(self, x: u32, y: u32) -> usize {
         y as usize * self.width as usize + x as usize
     }

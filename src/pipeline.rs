@@ -8,7 +8,7 @@ use glam::{Mat4, Vec2, Vec3, Vec4};
 use crate::clip::{ClipMode, ClipPlane, ClipVertex, clip_planes, intersect};
 use crate::depth::fragment_depth;
 use crate::error::{ConfigError, DrawError};
-use crate::line::{LineVertex, rasterize_line};
+use crate::line::{LineVertex, rasterize_line, rasterize_point};
 use crate::rasterizer::{Draw, DrawState};
 use crate::reference::{DrawStats, Reference};
 use crate::viewport::Viewport;
@@ -210,6 +210,43 @@ impl Renderer {
             triangles: mesh.triangles.clone(),
             state: self.state,
         }
+    }
+
+    /// Draws each vertex as a point: the pixel holding its projection, in its colour.
+    ///
+    /// A point outside the clip volume (behind the eye, before the near plane, beyond the far
+    /// plane when enabled, or not finite) is not drawn; the depth test applies. Returns the
+    /// number of pixels that passed.
+    pub fn draw_points(&self, target: &mut Framebuffer, vertices: &[Vertex], mvp: Mat4) -> usize {
+        let viewport = target.viewport;
+        let planes = clip_planes(
+            ClipMode::Full,
+            viewport,
+            self.state.clip_far,
+            self.state.depth_range,
+        );
+        let mut written = 0;
+        for v in vertices {
+            let p = (mvp * v.position.extend(1.0)).as_dvec4();
+            if !p.is_finite() || p.w <= 0.0 || planes.iter().any(|plane| plane.distance(p) < 0.0) {
+                continue;
+            }
+            let (x, y) = viewport.to_raster(p.x / p.w, p.y / p.w);
+            let depth = self.state.depth_range.window_depth(p.z, p.w);
+            let Some(f) = rasterize_point(LineVertex { x, y, depth }, viewport) else {
+                continue;
+            };
+            let i = viewport.index(f.x, f.y);
+            if self
+                .state
+                .depth
+                .test_and_write(fragment_depth(f.depth), &mut target.depth[i])
+            {
+                target.color[i] = to_rgba8(v.color);
+                written += 1;
+            }
+        }
+        written
     }
 
     /// Draws line segments between mesh vertices, colour interpolated along each line.

@@ -8,9 +8,7 @@ use crate::edge::{FillConvention, orient2d};
 use crate::error::DrawError;
 use crate::fixed::{FixedPoint, SubpixelBits};
 use crate::interp::{RasterVertex, interpolate, interpolate_depth, screen_weights};
-use crate::rasterizer::{
-    CullMode, DepthConvention, Draw, Features, Fragment, FrontFace, Profile, Rasterizer,
-};
+use crate::rasterizer::{DepthConvention, Draw, Features, Fragment, Profile, Rasterizer};
 use crate::setup::{PixelRect, TriangleSetup, Winding};
 use crate::traverse::{FanTriangle, traverse};
 
@@ -72,6 +70,7 @@ struct Scratch {
     raster: Vec<RasterVertex>,
     fan: Vec<FanTriangle>,
     row: Vec<[i64; 3]>,
+    points: Vec<FixedPoint>,
 }
 
 impl Reference {
@@ -132,29 +131,20 @@ impl Reference {
             }
             let raster = &scratch.raster;
             let area2 = fan_area2(raster);
-            let winding = Winding::from_area2(area2);
-            let front_facing = match (winding, state.front_face) {
-                (Winding::Degenerate, _) => {
-                    stats.degenerate += 1;
-                    continue;
-                }
-                (w, FrontFace::Clockwise) => w == Winding::Clockwise,
-                (w, FrontFace::CounterClockwise) => w == Winding::CounterClockwise,
+            let Some(front_facing) = state.front_face.is_front(Winding::from_area2(area2)) else {
+                stats.degenerate += 1;
+                continue;
             };
-            let culled = match state.cull {
-                CullMode::None => false,
-                CullMode::Front => front_facing,
-                CullMode::Back => !front_facing,
-            };
-            if culled {
+            if state.cull.culls(front_facing) {
                 stats.culled += 1;
                 continue;
             }
             self.build_fan(raster, area2, &mut scratch.fan);
             let bits = self.config.subpixel_bits;
-            let positions: Vec<FixedPoint> = raster.iter().map(|v| v.position).collect();
+            scratch.points.clear();
+            scratch.points.extend(raster.iter().map(|v| v.position));
             let rect = match self.config.traversal {
-                Traversal::BoundingBox => PixelRect::bounding(&positions, bits, draw.viewport),
+                Traversal::BoundingBox => PixelRect::bounding(&scratch.points, bits, draw.viewport),
                 Traversal::Viewport => Some(PixelRect::of_viewport(draw.viewport)),
             };
             let Some(rect) = rect else {

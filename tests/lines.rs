@@ -1,0 +1,101 @@
+//! Lines and points through the pipeline (labs 002 and 004): clipping, depth, colour along `t`.
+
+use glam::{Mat4, Vec3, Vec4};
+use refrast::pipeline::to_rgba8;
+use refrast::{CompareOp, Framebuffer, Renderer, Vertex};
+
+const CLEAR: [u8; 4] = [0, 0, 0, 255];
+
+fn target() -> Framebuffer {
+    let mut t = Framebuffer::new(32, 32).unwrap();
+    t.clear(CLEAR, 1.0);
+    t
+}
+
+fn lit(t: &Framebuffer) -> Vec<(u32, u32)> {
+    (0..32)
+        .flat_map(|y| (0..32).map(move |x| (x, y)))
+        .filter(|&(x, y)| t.pixel(x, y) != CLEAR)
+        .collect()
+}
+
+/// A vertex at an NDC position with depth z (identity matrices make clip = NDC, w = 1).
+fn v(x: f32, y: f32, z: f32, rgb: Vec3) -> Vertex {
+    Vertex::colored(Vec3::new(x, y, z), rgb)
+}
+
+#[test]
+fn a_horizontal_line_runs_from_red_to_blue() {
+    let mut t = target();
+    // NDC x from −1 + 1/32 to 1 − 1/32 is raster x from 0.5 to 31.5 on row 15.
+    let ends = [
+        v(-1.0 + 1.0 / 32.0, 1.0 / 32.0, 0.5, Vec3::X),
+        v(1.0 - 1.0 / 32.0, 1.0 / 32.0, 0.5, Vec3::Z),
+    ];
+    let n = Renderer::default().draw_lines(&mut t, &ends, &[[0, 1]], Mat4::IDENTITY);
+    assert_eq!(n, 32);
+    assert!(lit(&t).iter().all(|&(_, y)| y == 15));
+    assert_eq!(t.pixel(0, 15), [255, 0, 0, 255]);
+    assert_eq!(t.pixel(31, 15), [0, 0, 255, 255]);
+    // Halfway (t = 15/31) the colour is the mix.
+    assert_eq!(
+        t.pixel(15, 15),
+        to_rgba8(Vec4::new(1.0, 0.0, 0.0, 1.0).lerp(Vec4::new(0.0, 0.0, 1.0, 1.0), 15.0 / 31.0))
+    );
+}
+
+#[test]
+fn a_line_crossing_the_near_plane_keeps_its_front_part() {
+    let mut t = target();
+    // z from 0.9 to −0.9 along x: the near plane z = 0 is at x_ndc = 0, raster x = 16.
+    // (Not from 1: depth 1 fails LESS against a buffer cleared to 1.)
+    let ends = [
+        v(-1.0 + 1.0 / 32.0, 0.0, 0.9, Vec3::ONE),
+        v(1.0 - 1.0 / 32.0, 0.0, -0.9, Vec3::ONE),
+    ];
+    Renderer::default().draw_lines(&mut t, &ends, &[[0, 1]], Mat4::IDENTITY);
+    let xs: Vec<u32> = lit(&t).iter().map(|p| p.0).collect();
+    // From the pixel holding raster x = ½ to the one holding the clipped end at x = 16.
+    assert_eq!(xs, (0..=16).collect::<Vec<u32>>());
+}
+
+#[test]
+fn lines_behind_the_eye_draw_nothing_and_bad_indices_are_skipped() {
+    let mut t = target();
+    let behind = [v(-0.5, 0.0, -0.5, Vec3::ONE), v(0.5, 0.0, -0.2, Vec3::ONE)];
+    assert_eq!(
+        Renderer::default().draw_lines(&mut t, &behind, &[[0, 1], [0, 7]], Mat4::IDENTITY),
+        0
+    );
+    assert!(lit(&t).is_empty());
+}
+
+#[test]
+fn lines_are_depth_tested() {
+    let mut t = target();
+    let renderer = Renderer::default();
+    let near = [v(-0.9, 0.0, 0.2, Vec3::X), v(0.9, 0.0, 0.2, Vec3::X)];
+    let far = [v(0.0, -0.9, 0.8, Vec3::Y), v(0.0, 0.9, 0.8, Vec3::Y)];
+    renderer.draw_lines(&mut t, &near, &[[0, 1]], Mat4::IDENTITY);
+    renderer.draw_lines(&mut t, &far, &[[0, 1]], Mat4::IDENTITY);
+    // Where they cross, the nearer red line stays; elsewhere the green one shows.
+    assert_eq!(t.pixel(16, 16), [255, 0, 0, 255]);
+    assert_eq!(t.pixel(16, 5), [0, 255, 0, 255]);
+}
+
+#[test]
+fn points_land_in_the_pixel_holding_them() {
+    let mut t = target();
+    let mut renderer = Renderer::default();
+    renderer.state.depth.compare = CompareOp::Always;
+    let points = [
+        v(0.0, 0.0, 0.5, Vec3::X),               // raster (16, 16)
+        v(-1.0 + 0.1 / 32.0, 1.0, 0.5, Vec3::Y), // raster (0.05, 0): pixel (0, 0)
+        v(0.0, 0.0, -0.5, Vec3::Z),              // before the near plane: not drawn
+        v(3.0, 0.0, 0.5, Vec3::Z),               // off screen: not drawn
+        v(f32::NAN, 0.0, 0.5, Vec3::Z),          // not finite: not drawn
+    ];
+    assert_eq!(renderer.draw_points(&mut t, &points, Mat4::IDENTITY), 2);
+    assert_eq!(lit(&t), vec![(0, 0), (16, 16)]);
+    assert_eq!(t.pixel(16, 16), [255, 0, 0, 255]);
+}

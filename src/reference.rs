@@ -276,7 +276,8 @@ impl Rasterizer for Reference {
             subpixel_bits: self.config.subpixel_bits.get(),
             fill: self.config.fill,
             depth: DepthConvention::ScreenLinearZOverW,
-            tolerance_subpixels: 0,
+            // Snapping moves an edge by up to √2/2 subpixel from where the float input puts it.
+            tolerance_subpixels: 1,
             features: Features::ALL,
         }
     }

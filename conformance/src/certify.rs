@@ -1,0 +1,283 @@
+//! Certification: every applicable rule against one rasterizer, summed up as a report.
+
+use std::path::{Path, PathBuf};
+
+use refrast::{Profile, Rasterizer};
+use serde::Serialize;
+
+use crate::picture;
+use crate::rules::{Family, Kind, Rule, catalogue};
+use crate::runner::{DEFAULT_SEED, RunConfig, Verdict};
+use crate::violation::Counts;
+
+/// What to run and where to write pictures.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Options {
+    /// Cases per rule; `None` takes `PROPTEST_CASES`, else each rule's default.
+    pub cases: Option<u32>,
+    /// Seed of the case generator.
+    pub seed: u64,
+    /// Only rules whose ID matches this glob (`*` matches anything; no `*` means a prefix).
+    pub rule: Option<String>,
+    /// Where to write counterexample pictures; `None` writes none.
+    pub report_dir: Option<PathBuf>,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Self {
+            cases: None,
+            seed: DEFAULT_SEED,
+            rule: None,
+            report_dir: None,
+        }
+    }
+}
+
+/// A rule's outcome.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+pub enum Status {
+    /// Every case held.
+    #[serde(rename = "pass")]
+    Pass,
+    /// A case failed.
+    #[serde(rename = "fail")]
+    Fail,
+    /// The rule does not apply to the profile.
+    #[serde(rename = "n/a")]
+    NotApplicable,
+}
+
+impl Status {
+    /// As printed: `pass`, `FAIL`, `n/a`.
+    #[must_use]
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::Pass => "pass",
+            Self::Fail => "FAIL",
+            Self::NotApplicable => "n/a",
+        }
+    }
+}
+
+/// One rule's line in the report.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RuleReport {
+    /// The rule's ID.
+    pub id: String,
+    /// Its family.
+    pub family: Family,
+    /// Invariant or exact.
+    pub kind: Kind,
+    /// Pass, fail or not applicable.
+    pub status: Status,
+    /// Cases tried (0 when not applicable).
+    pub cases: u32,
+    /// The generator's seed.
+    pub seed: u64,
+    /// The tolerance band used, in subpixels.
+    pub tolerance_subpixels: u32,
+    /// Why it failed, or why it does not apply.
+    pub message: Option<String>,
+    /// Sample tallies of a failed coverage check.
+    pub counts: Option<Counts>,
+    /// The shrunk failing input, as Rust.
+    pub counterexample: Option<String>,
+    /// The counterexample picture, if one was written.
+    pub picture: Option<PathBuf>,
+}
+
+/// The profile as the report prints it.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct ProfileReport {
+    /// Declared name.
+    pub name: String,
+    /// Subpixel bits.
+    pub subpixel_bits: u8,
+    /// Fill convention.
+    pub fill: String,
+    /// Depth convention.
+    pub depth: String,
+    /// Tolerance band in subpixels as declared.
+    pub tolerance_subpixels: u32,
+    /// Optional features, as declared.
+    pub features: Vec<String>,
+}
+
+impl From<&Profile> for ProfileReport {
+    fn from(p: &Profile) -> Self {
+        let f = &p.features;
+        let features = [
+            (f.perspective_barycentrics, "perspective-barycentrics"),
+            (f.screen_barycentrics, "screen-barycentrics"),
+            (f.culling, "culling"),
+            (f.depth_test, "depth-test"),
+            (f.far_clipping, "far-clipping"),
+            (f.negative_one_to_one, "negative-one-to-one"),
+        ]
+        .iter()
+        .filter(|(on, _)| *on)
+        .map(|(_, name)| (*name).to_owned())
+        .collect();
+        Self {
+            name: p.name.clone(),
+            subpixel_bits: p.subpixel_bits,
+            fill: p.fill.name().to_owned(),
+            depth: format!("{:?}", p.depth),
+            tolerance_subpixels: p.tolerance_subpixels,
+            features,
+        }
+    }
+}
+
+/// The whole certification of one implementation.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Report {
+    /// The implementation's name.
+    pub implementation: String,
+    /// Its declared profile.
+    pub profile: ProfileReport,
+    /// One entry per rule run.
+    pub rules: Vec<RuleReport>,
+}
+
+impl Report {
+    /// Whether every applicable rule passed.
+    #[must_use]
+    pub fn passed(&self) -> bool {
+        self.rules.iter().all(|r| r.status != Status::Fail)
+    }
+
+    /// How many rules passed, failed, and did not apply.
+    #[must_use]
+    pub fn tally(&self) -> (usize, usize, usize) {
+        let n = |s| self.rules.iter().filter(|r| r.status == s).count();
+        (n(Status::Pass), n(Status::Fail), n(Status::NotApplicable))
+    }
+}
+
+/// Whether a rule ID matches a pattern: a glob with `*`, or a prefix when there is none.
+#[must_use]
+pub fn matches(pattern: &str, id: &str) -> bool {
+    if !pattern.contains('*') {
+        return id.starts_with(pattern);
+    }
+    let parts: Vec<&str> = pattern.split('*').collect();
+    let (first, last) = (parts[0], parts[parts.len() - 1]);
+    if !id.starts_with(first) || !id[first.len()..].ends_with(last) || id.len() < first.len() + last.len() {
+        return false;
+    }
+    let mut rest = &id[first.len()..id.len() - last.len()];
+    for part in &parts[1..parts.len() - 1] {
+        match rest.find(part) {
+            Some(i) => rest = &rest[i + part.len()..],
+            None => return false,
+        }
+    }
+    true
+}
+
+/// Cases for a rule: the option, else `PROPTEST_CASES`, else the rule's default.
+#[must_use]
+pub fn cases_for(rule: &Rule, options: &Options) -> u32 {
+    options
+        .cases
+        .or_else(|| std::env::var("PROPTEST_CASES").ok().and_then(|c| c.parse().ok()))
+        .unwrap_or(rule.default_cases)
+}
+
+/// Runs one rule against `rasterizer` and reports it, writing a picture on failure.
+pub fn run_rule(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options) -> RuleReport {
+    let profile = rasterizer.profile();
+    let mut report = RuleReport {
+        id: rule.id.to_owned(),
+        family: rule.family,
+        kind: rule.kind,
+        status: Status::Pass,
+        cases: 0,
+        seed: options.seed,
+        tolerance_subpixels: profile.tolerance_subpixels.max(1),
+        message: None,
+        counts: None,
+        counterexample: None,
+        picture: None,
+    };
+    if let Err(reason) = (rule.applies)(&profile) {
+        report.status = Status::NotApplicable;
+        report.message = Some(reason.to_owned());
+        return report;
+    }
+    let cfg = RunConfig {
+        cases: cases_for(rule, options),
+        seed: options.seed,
+    };
+    report.cases = cfg.cases;
+    if let Verdict::Fail {
+        counterexample,
+        violation,
+    } = (rule.run)(rasterizer, &cfg)
+    {
+        report.status = Status::Fail;
+        report.message = Some(violation.to_string());
+        report.counts = violation.counts;
+        report.counterexample = Some(counterexample);
+        if let (Some(dir), Some(pic)) = (&options.report_dir, &violation.picture) {
+            report.picture = write_picture(dir, &profile.name, rule.id, pic);
+        }
+    }
+    report
+}
+
+fn write_picture(
+    dir: &Path,
+    implementation: &str,
+    id: &str,
+    pic: &crate::violation::Picture,
+) -> Option<PathBuf> {
+    let safe: String = implementation
+        .chars()
+        .map(|c| if c.is_alphanumeric() || c == '-' { c } else { '_' })
+        .collect();
+    let path = dir.join(format!("{safe}__{id}.png"));
+    std::fs::create_dir_all(dir).ok()?;
+    picture::save(pic, &path).ok()?;
+    Some(path)
+}
+
+/// Certifies `rasterizer` against every rule selected by `options`, calling `progress` after each.
+pub fn certify(
+    rasterizer: &mut dyn Rasterizer,
+    options: &Options,
+    mut progress: impl FnMut(&RuleReport),
+) -> Report {
+    let profile = rasterizer.profile();
+    let mut rules = Vec::new();
+    for rule in catalogue() {
+        if options.rule.as_deref().is_some_and(|p| !matches(p, rule.id)) {
+            continue;
+        }
+        let report = run_rule(&rule, rasterizer, options);
+        progress(&report);
+        rules.push(report);
+    }
+    Report {
+        implementation: profile.name.clone(),
+        profile: ProfileReport::from(&profile),
+        rules,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::matches;
+
+    #[test]
+    fn patterns_are_globs_or_prefixes() {
+        assert!(matches("fill.*", "fill.mesh.exactly-once"));
+        assert!(matches("fill", "fill.mesh.exactly-once"));
+        assert!(matches("*.exact", "fill.top-left.exact"));
+        assert!(matches("*mesh*", "clip.mesh.watertight"));
+        assert!(!matches("depth.*", "fill.mesh.exactly-once"));
+        assert!(!matches("*.exact", "fill.mesh.exactly-once"));
+    }
+}

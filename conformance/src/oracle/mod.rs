@@ -1,0 +1,10 @@
+//! Oracles that decide the right answer without the reference's code path.
+//!
+//! - [`brute_force`]: every pixel of the viewport, exact `orient2d` in i128, explicit fill-rule
+//!   bias, on snapped coordinates. Decides coverage exactly.
+//! - [`ray_cast`]: the ray through each sample centre against the triangle in clip space, in
+//!   f64. Decides coverage away from edges and gives the true perspective-correct barycentrics
+//!   and depth, whatever the clipping.
+
+pub mod brute_force;
+pub mod ray_cast;

@@ -1,0 +1,231 @@
+//! Barycentrics: they sum to one, stay in range, are one at their vertex, and equal the ray cast.
+
+use refrast::{Profile, Rasterizer};
+
+use super::common::{BARY_EPS, ORACLE_EPS, band_px, clip_triangle, fragments, sample_ndc, snapped_triangle};
+use super::{Family, Kind, Rule};
+use crate::oracle::ray_cast::{distance_to_outline, ray_cast, visible_outline};
+use crate::runner::property;
+use crate::scene::Scene;
+use crate::strategy;
+use crate::violation::Violation;
+
+fn needs_perspective(p: &Profile) -> Result<(), &'static str> {
+    if p.features.perspective_barycentrics {
+        Ok(())
+    } else {
+        Err("no perspective-correct barycentrics")
+    }
+}
+
+fn needs_screen(p: &Profile) -> Result<(), &'static str> {
+    if p.features.screen_barycentrics {
+        Ok(())
+    } else {
+        Err("no screen-space barycentrics")
+    }
+}
+
+pub(super) fn rules() -> Vec<Rule> {
+    vec![
+        Rule {
+            id: "bary.sum.one",
+            family: Family::Bary,
+            kind: Kind::Invariant,
+            sentence: "Every fragment's barycentrics sum to 1 within 2^-20.",
+            source: "Vulkan 1.4 §28.7.5 (a + b + c = 1)",
+            default_cases: 500,
+            applies: needs_perspective,
+            run: |r, cfg| property(r, cfg, strategy::float_scene(), check_sum_one),
+        },
+        Rule {
+            id: "bary.range.unit",
+            family: Family::Bary,
+            kind: Kind::Invariant,
+            sentence: "Barycentrics of samples outside the tolerance band lie in [0, 1] within 2^-20.",
+            source: "Vulkan 1.4 §28.7.5 (clipped polygons: convex combinations)",
+            default_cases: 500,
+            applies: needs_perspective,
+            run: |r, cfg| property(r, cfg, strategy::crossing_scene(), check_in_range),
+        },
+        Rule {
+            id: "bary.vertex.one",
+            family: Family::Bary,
+            kind: Kind::Invariant,
+            sentence: "A covered sample exactly on a vertex has weight 1 for that vertex and 0 for the others.",
+            source: "Vulkan 1.4 §28.7.5 (aᵢ = 1 at vertex i)",
+            default_cases: 1000,
+            applies: needs_perspective,
+            run: |r, cfg| property(r, cfg, strategy::perspective_grid_scene(), check_vertex_one),
+        },
+        Rule {
+            id: "bary.perspective.matches-raycast",
+            family: Family::Bary,
+            kind: Kind::Invariant,
+            sentence: "Perspective-correct barycentrics equal those of the ray-cast hit within 2^-18.",
+            source: "seed 002 (q/z interpolation); Vulkan 1.4 §28.7.5",
+            default_cases: 500,
+            applies: needs_perspective,
+            run: |r, cfg| property(r, cfg, strategy::perspective_grid_scene(), check_matches_raycast),
+        },
+        Rule {
+            id: "bary.screen.reconstructs-sample",
+            family: Family::Bary,
+            kind: Kind::Invariant,
+            sentence: "Screen-space barycentrics weight the projected vertices to the sample position.",
+            source: "seed 000 (P = W0·V0 + W1·V1 + W2·V2)",
+            default_cases: 500,
+            applies: needs_screen,
+            run: |r, cfg| property(r, cfg, strategy::perspective_grid_scene(), check_reconstructs),
+        },
+        Rule {
+            id: "bary.equal-w.affine",
+            family: Family::Bary,
+            kind: Kind::Invariant,
+            sentence: "With equal w at every vertex, perspective-correct and screen-space barycentrics agree within 2^-18.",
+            source: "conformance-anchors (d5: perspective equals linear when all w are equal)",
+            default_cases: 500,
+            applies: |p| needs_screen(p).and(needs_perspective(p)),
+            run: |r, cfg| property(r, cfg, equal_w_scene(), check_equal_w),
+        },
+    ]
+}
+
+/// Grid scenes with one `w` for all three vertices.
+fn equal_w_scene() -> impl proptest::strategy::Strategy<Value = Scene> {
+    use proptest::prelude::*;
+    (strategy::grid_scene(), 0.1f32..4.0).prop_map(|(mut s, w)| {
+        for p in &mut s.positions {
+            *p = p.map(|c| c * w);
+        }
+        s
+    })
+}
+
+fn check_sum_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    for f in fragments(r, scene)? {
+        let sum: f32 = f.barycentric.iter().sum();
+        if (sum - 1.0).abs() > BARY_EPS {
+            return Err(Violation::new(format!(
+                "fragment {:?} has barycentrics summing to {sum}",
+                (f.x, f.y)
+            )));
+        }
+    }
+    Ok(())
+}
+
+fn check_in_range(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let band = band_px(&r.profile());
+    let outline = visible_outline(&clip_triangle(scene, 0), scene.width, scene.height, &scene.state);
+    for f in fragments(r, scene)? {
+        let s = [f64::from(f.x) + 0.5, f64::from(f.y) + 0.5];
+        if distance_to_outline(&outline, s, |_| true) < band {
+            continue;
+        }
+        if let Some(b) = f
+            .barycentric
+            .iter()
+            .find(|&&b| !(-BARY_EPS..=1.0 + BARY_EPS).contains(&b))
+        {
+            return Err(Violation::new(format!(
+                "fragment {:?} has barycentric {b} outside [0, 1]: {:?}",
+                (f.x, f.y),
+                f.barycentric
+            )));
+        }
+    }
+    Ok(())
+}
+
+fn check_vertex_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let tri = clip_triangle(scene, 0);
+    for f in fragments(r, scene)? {
+        let s = [f64::from(f.x) + 0.5, f64::from(f.y) + 0.5];
+        for (k, v) in tri.iter().enumerate() {
+            let p = [
+                (v[0] / v[3] + 1.0) * 0.5 * f64::from(scene.width),
+                (1.0 - v[1] / v[3]) * 0.5 * f64::from(scene.height),
+            ];
+            // Grid vertices are exact to f32 rounding of x·w: well within 1e-3 px of a sample.
+            if (p[0] - s[0]).abs() < 1e-3 && (p[1] - s[1]).abs() < 1e-3 {
+                let b = f.barycentric;
+                let ok = (0..3).all(|i| (b[i] - if i == k { 1.0 } else { 0.0 }).abs() <= BARY_EPS);
+                if !ok {
+                    return Err(Violation::new(format!(
+                        "the sample on vertex {k} has barycentrics {b:?}"
+                    )));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+fn check_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let Some(tri) = snapped_triangle(scene, 0, r.profile().subpixel_bits) else {
+        return Ok(());
+    };
+    for f in fragments(r, scene)? {
+        let (nx, ny) = sample_ndc(scene, f.x, f.y);
+        // A covered sample on an edge may be a hair outside in f64; the ray then misses: skip it.
+        let Some(hit) = ray_cast(&tri, nx, ny, &scene.state) else {
+            continue;
+        };
+        for k in 0..3 {
+            if (f64::from(f.barycentric[k]) - hit.barycentric[k]).abs() > ORACLE_EPS {
+                return Err(Violation::new(format!(
+                    "fragment {:?}: barycentrics {:?}, ray cast {:?}",
+                    (f.x, f.y),
+                    f.barycentric,
+                    hit.barycentric
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+fn check_reconstructs(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let tri = clip_triangle(scene, 0);
+    let (w, h) = (f64::from(scene.width), f64::from(scene.height));
+    let p = tri.map(|v| [(v[0] / v[3] + 1.0) * 0.5 * w, (1.0 - v[1] / v[3]) * 0.5 * h]);
+    let extent = p.iter().flatten().fold(1.0f64, |m, c| m.max(c.abs()));
+    for f in fragments(r, scene)? {
+        let Some(b) = f.screen_barycentric else {
+            return Err(Violation::new(
+                "the profile declares screen-space barycentrics, but a fragment has none",
+            ));
+        };
+        let b = b.map(f64::from);
+        let at = [0, 1].map(|c| b[0] * p[0][c] + b[1] * p[1][c] + b[2] * p[2][c]);
+        let s = [f64::from(f.x) + 0.5, f64::from(f.y) + 0.5];
+        // Weights within ORACLE_EPS each move the point by at most 3·ORACLE_EPS·extent.
+        if (at[0] - s[0]).hypot(at[1] - s[1]) > 3.0 * ORACLE_EPS * extent {
+            return Err(Violation::new(format!(
+                "fragment {:?}: screen barycentrics {b:?} give {at:?}",
+                (f.x, f.y)
+            )));
+        }
+    }
+    Ok(())
+}
+
+fn check_equal_w(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    for f in fragments(r, scene)? {
+        let Some(s) = f.screen_barycentric else {
+            return Err(Violation::new(
+                "the profile declares screen-space barycentrics, but a fragment has none",
+            ));
+        };
+        if (0..3).any(|k| f64::from((f.barycentric[k] - s[k]).abs()) > ORACLE_EPS) {
+            return Err(Violation::new(format!(
+                "fragment {:?}: perspective {:?} but screen {:?} with equal w",
+                (f.x, f.y),
+                f.barycentric,
+                s
+            )));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,205 @@
+//! Helpers shared by the rule families: running the rasterizer, oracles over scenes, tolerances.
+
+use std::collections::HashMap;
+
+use refrast::{Fragment, Profile, Rasterizer, Reference, ReferenceConfig, SubpixelBits};
+
+use crate::oracle::brute_force;
+use crate::oracle::ray_cast::{OutlinePoint, distance_to_outline, ray_cast, visible_outline};
+use crate::scene::Scene;
+use crate::violation::{Expect, Violation, compare_coverage, count_fragments};
+
+/// Bound on `|Σ bᵢ − 1|` and on each weight's excursion outside [0, 1].
+///
+/// An f32 implementation that divides exact edge values by the exact area and sums in f32
+/// stays within 5·2^-24; 2^-20 allows three times that.
+pub const BARY_EPS: f32 = 1.0 / (1 << 20) as f32;
+
+/// Bound on the difference between a barycentric (or window depth) and the oracle's.
+///
+/// The perspective correction `(sᵢ/wᵢ) / Σ sⱼ/wⱼ` adds only positive terms, so an f32
+/// implementation loses about ten ulps of 1 (≈ 2^-20.7); 2^-18 allows four times that.
+pub const ORACLE_EPS: f64 = 1.0 / (1 << 18) as f64;
+
+/// The rasterizer's fragments for `scene`; an error becomes a violation.
+pub fn fragments(r: &mut dyn Rasterizer, scene: &Scene) -> Result<Vec<Fragment>, Violation> {
+    r.rasterize(&scene.draw())
+        .map_err(|e| Violation::new(format!("rasterize returned an error: {e}")))
+}
+
+/// The tolerance band in pixels: the profile's, but never under one subpixel, because
+/// snapping alone moves an edge by up to √2/2 subpixel.
+#[must_use]
+pub fn band_px(profile: &Profile) -> f64 {
+    f64::from(profile.tolerance_subpixels.max(1)) / f64::from(1u32 << profile.subpixel_bits.min(16))
+}
+
+/// The reference configured as the profile says, for exact rules.
+#[must_use]
+pub fn reference_for(profile: &Profile) -> Option<Reference> {
+    let subpixel_bits = SubpixelBits::new(profile.subpixel_bits).ok()?;
+    Some(Reference::new(ReferenceConfig {
+        subpixel_bits,
+        fill: profile.fill,
+        ..ReferenceConfig::default()
+    }))
+}
+
+/// Exact rules apply only where the reference can reproduce the profile.
+pub fn reference_can_match(profile: &Profile) -> Result<(), &'static str> {
+    if SubpixelBits::new(profile.subpixel_bits).is_ok() {
+        Ok(())
+    } else {
+        Err("the reference supports 1..=8 subpixel bits only")
+    }
+}
+
+/// The clip-space vertices of triangle `t` in f64.
+#[must_use]
+pub fn clip_triangle(scene: &Scene, t: usize) -> [[f64; 4]; 3] {
+    scene.triangles[t].map(|i| scene.positions[i as usize].map(f64::from))
+}
+
+/// Triangle `t` as the rasterizer draws it: each vertex snapped to the profile's grid, then put
+/// back into clip space at its own `w` and `z`. `None` unless every `w > 0`.
+///
+/// The oracles compare against this, not the f32 input, so that rounding the input on a sliver
+/// triangle does not count against the rasterizer.
+#[must_use]
+pub fn snapped_triangle(scene: &Scene, t: usize, bits: u8) -> Option<[[f64; 4]; 3]> {
+    let bits = bits.min(16);
+    let one = f64::from(1u32 << bits);
+    let (w, h) = (f64::from(scene.width), f64::from(scene.height));
+    let mut out = [[0.0; 4]; 3];
+    for (k, &i) in scene.triangles[t].iter().enumerate() {
+        let p = scene.positions[i as usize];
+        let (x, y) = brute_force::snap(p, scene.width, scene.height, bits)?;
+        let (nx, ny) = (x as f64 / one / w * 2.0 - 1.0, 1.0 - y as f64 / one / h * 2.0);
+        let pw = f64::from(p[3]);
+        out[k] = [nx * pw, ny * pw, f64::from(p[2]), pw];
+    }
+    Some(out)
+}
+
+/// NDC of pixel `(x, y)`'s sample.
+#[must_use]
+pub fn sample_ndc(scene: &Scene, x: u32, y: u32) -> (f64, f64) {
+    (
+        (f64::from(x) + 0.5) / f64::from(scene.width) * 2.0 - 1.0,
+        1.0 - (f64::from(y) + 0.5) / f64::from(scene.height) * 2.0,
+    )
+}
+
+/// The finite part of each triangle's visible outline, for pictures.
+#[must_use]
+pub fn picture_outlines(outlines: &[Vec<OutlinePoint>]) -> Vec<Vec<[f64; 2]>> {
+    outlines
+        .iter()
+        .map(|o| o.iter().filter(|p| p.finite).map(|p| p.position).collect())
+        .collect()
+}
+
+/// Ray-cast expectations for a scene whose triangles do not overlap (one triangle, or a mesh).
+///
+/// A sample inside some triangle should be covered exactly once, one outside all should not
+/// be covered, except within `band` pixels of an outline segment that is not a shared edge:
+/// the mesh boundary and the cuts made by clip planes. Shared edges get no band, so a crack
+/// or an overlap along them is caught exactly.
+#[must_use]
+pub fn mesh_expectation(scene: &Scene, band: f64) -> (Vec<Expect>, Vec<Vec<[f64; 2]>>) {
+    let mut edge_use: HashMap<(u32, u32), u32> = HashMap::new();
+    for t in &scene.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            *edge_use.entry((a.min(b), a.max(b))).or_default() += 1;
+        }
+    }
+    let tris: Vec<[[f64; 4]; 3]> = (0..scene.triangles.len())
+        .map(|t| clip_triangle(scene, t))
+        .collect();
+    let outlines: Vec<Vec<OutlinePoint>> = tris
+        .iter()
+        .map(|t| visible_outline(t, scene.width, scene.height, &scene.state))
+        .collect();
+    let shared: Vec<u8> = scene
+        .triangles
+        .iter()
+        .map(|t| {
+            (0..3)
+                .filter(|&k| {
+                    let (a, b) = (t[k], t[(k + 1) % 3]);
+                    edge_use[&(a.min(b), a.max(b))] > 1
+                })
+                .fold(0u8, |mask, k| mask | (1 << k))
+        })
+        .collect();
+    let mut expected = Vec::with_capacity(scene.width as usize * scene.height as usize);
+    for y in 0..scene.height {
+        for x in 0..scene.width {
+            let (nx, ny) = sample_ndc(scene, x, y);
+            let s = [f64::from(x) + 0.5, f64::from(y) + 0.5];
+            let near_boundary = outlines.iter().zip(&shared).any(|(o, &sh)| {
+                // Keep segments not lying on a shared input edge.
+                distance_to_outline(o, s, |edges| edges & sh == 0) < band
+            });
+            let inside = tris.iter().any(|t| ray_cast(t, nx, ny, &scene.state).is_some());
+            expected.push(match (near_boundary, inside) {
+                (true, _) => Expect::ZeroOrOne,
+                (false, true) => Expect::One,
+                (false, false) => Expect::Zero,
+            });
+        }
+    }
+    (expected, picture_outlines(&outlines))
+}
+
+/// Checks a scene's coverage against [`mesh_expectation`].
+pub fn check_mesh_coverage(r: &mut dyn Rasterizer, scene: &Scene, what: &str) -> Result<(), Violation> {
+    let band = band_px(&r.profile());
+    let frags = fragments(r, scene)?;
+    let (expected, outlines) = mesh_expectation(scene, band);
+    let counts = count_fragments(&frags, scene.width, scene.height);
+    compare_coverage(&counts, &expected, scene.width, scene.height, outlines, what)
+}
+
+/// Coverage as a sorted list of `(primitive, x, y)`.
+#[must_use]
+pub fn coverage_set(frags: &[Fragment]) -> Vec<(u32, u32, u32)> {
+    let mut v: Vec<_> = frags.iter().map(|f| (f.primitive, f.x, f.y)).collect();
+    v.sort_unstable();
+    v
+}
+
+/// A picture-carrying violation comparing two coverages of the same scene.
+pub fn compare_sets(scene: &Scene, got: &[Fragment], want: &[Fragment], what: &str) -> Result<(), Violation> {
+    if coverage_set(got) == coverage_set(want) {
+        return Ok(());
+    }
+    let counts = count_fragments(got, scene.width, scene.height);
+    let want_counts = count_fragments(want, scene.width, scene.height);
+    let expected: Vec<Expect> = want_counts
+        .iter()
+        .map(|&n| if n == 0 { Expect::Zero } else { Expect::One })
+        .collect();
+    let tris: Vec<_> = (0..scene.triangles.len())
+        .map(|t| clip_triangle(scene, t))
+        .collect();
+    let outlines: Vec<_> = tris
+        .iter()
+        .map(|t| visible_outline(t, scene.width, scene.height, &scene.state))
+        .collect();
+    match compare_coverage(
+        &counts,
+        &expected,
+        scene.width,
+        scene.height,
+        picture_outlines(&outlines),
+        what,
+    ) {
+        Err(v) => Err(v),
+        // Same per-pixel counts but different owners: still a difference, named as such.
+        Ok(()) => Err(Violation::new(format!(
+            "{what}: same samples covered, but by different primitives"
+        ))),
+    }
+}

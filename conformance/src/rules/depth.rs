@@ -1,0 +1,213 @@
+//! Depth: within the vertices' range, equal to the ray cast, independent of draw order.
+
+use proptest::prelude::*;
+use refrast::{CompareOp, DepthState, Profile, Rasterizer, Resolved};
+
+use super::common::{BARY_EPS, ORACLE_EPS, fragments, sample_ndc, snapped_triangle};
+use super::{Family, Kind, Rule};
+use crate::oracle::ray_cast::ray_cast;
+use crate::runner::property;
+use crate::scene::Scene;
+use crate::strategy;
+use crate::violation::Violation;
+
+fn needs_z_over_w(p: &Profile) -> Result<(), &'static str> {
+    match p.depth {
+        refrast::DepthConvention::ScreenLinearZOverW => Ok(()),
+        refrast::DepthConvention::Other => Err("depth is not z/w linear in screen space"),
+    }
+}
+
+fn needs_depth_test(p: &Profile) -> Result<(), &'static str> {
+    if p.features.depth_test {
+        Ok(())
+    } else {
+        Err("no depth test")
+    }
+}
+
+pub(super) fn rules() -> Vec<Rule> {
+    vec![
+        Rule {
+            id: "depth.range.vertices",
+            family: Family::Depth,
+            kind: Kind::Invariant,
+            sentence: "The depth of an unclipped triangle's fragment lies between its vertices' smallest and largest z/w.",
+            source: "Vulkan 1.4 §28.7.5 (depth is linearly interpolated); seed 000",
+            default_cases: 500,
+            applies: needs_z_over_w,
+            run: |r, cfg| property(r, cfg, strategy::perspective_grid_scene(), check_within_vertices),
+        },
+        Rule {
+            id: "depth.screen-linear.matches-raycast",
+            family: Family::Depth,
+            kind: Kind::Invariant,
+            sentence: "Fragment depth equals z/w at the ray-cast hit within 2^-18.",
+            source: "Vulkan 1.4 §28.7.5; D3D11.3 §15.6",
+            default_cases: 500,
+            applies: needs_z_over_w,
+            run: |r, cfg| {
+                property(
+                    r,
+                    cfg,
+                    strategy::perspective_grid_scene(),
+                    check_depth_matches_raycast,
+                )
+            },
+        },
+        Rule {
+            id: "depth.order.independent",
+            family: Family::Depth,
+            kind: Kind::Invariant,
+            sentence: "After a LESS depth test the depth buffer is identical under every submission order, and the primitive ids too where depths differ.",
+            source: "seed 000 (depth buffer); conformance-anchors d5",
+            default_cases: 300,
+            applies: needs_depth_test,
+            run: |r, cfg| property(r, cfg, strategy::overlapping_scene(), check_order_independent),
+        },
+        Rule {
+            id: "depth.resolve.matches-fragments",
+            family: Family::Depth,
+            kind: Kind::Invariant,
+            sentence: "The resolved depth and id buffers are the fragments replayed in primitive order through the draw's compare op and write mask.",
+            source: "Vulkan 1.4 §29.8 (depth test); seed 000",
+            default_cases: 300,
+            applies: needs_depth_test,
+            run: |r, cfg| property(r, cfg, depth_state_scene(), check_resolve),
+        },
+    ]
+}
+
+fn depth_state_scene() -> impl Strategy<Value = Scene> {
+    let op = prop_oneof![
+        Just(CompareOp::Never),
+        Just(CompareOp::Less),
+        Just(CompareOp::Equal),
+        Just(CompareOp::LessOrEqual),
+        Just(CompareOp::Greater),
+        Just(CompareOp::NotEqual),
+        Just(CompareOp::GreaterOrEqual),
+        Just(CompareOp::Always),
+    ];
+    (
+        strategy::overlapping_scene(),
+        op,
+        any::<bool>(),
+        prop_oneof![Just(1.0f32), Just(0.0), 0.0f32..1.0],
+    )
+        .prop_map(|(mut s, compare, write, clear)| {
+            s.state.depth = DepthState {
+                compare,
+                write,
+                clear,
+            };
+            s
+        })
+}
+
+fn check_within_vertices(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let z: Vec<f32> = scene.positions.iter().map(|p| p[2] / p[3]).collect();
+    let (lo, hi) = z
+        .iter()
+        .fold((f32::MAX, f32::MIN), |(l, h), &v| (l.min(v), h.max(v)));
+    for f in fragments(r, scene)? {
+        if f.depth < lo - BARY_EPS || f.depth > hi + BARY_EPS {
+            return Err(Violation::new(format!(
+                "fragment {:?} has depth {} outside the vertices' [{lo}, {hi}]",
+                (f.x, f.y),
+                f.depth
+            )));
+        }
+    }
+    Ok(())
+}
+
+fn check_depth_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let Some(tri) = snapped_triangle(scene, 0, r.profile().subpixel_bits) else {
+        return Ok(());
+    };
+    for f in fragments(r, scene)? {
+        let (nx, ny) = sample_ndc(scene, f.x, f.y);
+        let Some(hit) = ray_cast(&tri, nx, ny, &scene.state) else {
+            continue;
+        };
+        if (f64::from(f.depth) - hit.depth.clamp(0.0, 1.0)).abs() > ORACLE_EPS {
+            return Err(Violation::new(format!(
+                "fragment {:?} has depth {}, the ray cast {}",
+                (f.x, f.y),
+                f.depth,
+                hit.depth
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The scene with its triangles in the order `order` (entries are original indices).
+fn reorder(scene: &Scene, order: &[usize]) -> Scene {
+    let mut s = scene.clone();
+    s.triangles = order.iter().map(|&i| scene.triangles[i]).collect();
+    s
+}
+
+fn resolve(r: &mut dyn Rasterizer, scene: &Scene) -> Result<Resolved, Violation> {
+    r.resolve(&scene.draw())
+        .map_err(|e| Violation::new(format!("resolve returned an error: {e}")))
+}
+
+fn check_order_independent(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let n = scene.triangles.len();
+    let base = resolve(r, scene)?;
+    // Ties: how many fragments reach each pixel's winning depth; with several, either may own it.
+    let mut ties = vec![0u32; base.depth.len()];
+    for f in fragments(r, scene)? {
+        let i = f.y as usize * scene.width as usize + f.x as usize;
+        if f.x < scene.width && f.y < scene.height && f.depth == base.depth[i] {
+            ties[i] += 1;
+        }
+    }
+    let reversed: Vec<usize> = (0..n).rev().collect();
+    let rotated: Vec<usize> = (0..n).map(|i| (i + 1) % n).collect();
+    for order in [reversed, rotated] {
+        let other = resolve(r, &reorder(scene, &order))?;
+        for (i, &pixel_ties) in ties.iter().enumerate() {
+            let (x, y) = (i as u32 % scene.width, i as u32 / scene.width);
+            if base.depth[i].to_bits() != other.depth[i].to_bits() {
+                return Err(Violation::new(format!(
+                    "pixel {:?}: depth {} in API order, {} in order {order:?}",
+                    (x, y),
+                    base.depth[i],
+                    other.depth[i]
+                )));
+            }
+            let mapped = other.primitive[i].map(|p| order[p as usize] as u32);
+            if pixel_ties <= 1 && mapped != base.primitive[i] {
+                return Err(Violation::new(format!(
+                    "pixel {:?}: primitive {:?} in API order, {mapped:?} in order {order:?}",
+                    (x, y),
+                    base.primitive[i]
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+fn check_resolve(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let draw = scene.draw();
+    let got = resolve(r, scene)?;
+    let want = Resolved::from_fragments(&draw, fragments(r, scene)?);
+    for i in 0..want.depth.len() {
+        if got.depth[i].to_bits() != want.depth[i].to_bits() || got.primitive[i] != want.primitive[i] {
+            return Err(Violation::new(format!(
+                "pixel {:?}: resolved ({}, {:?}), fragments replayed give ({}, {:?})",
+                (i as u32 % scene.width, i as u32 / scene.width),
+                got.depth[i],
+                got.primitive[i],
+                want.depth[i],
+                want.primitive[i]
+            )));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,135 @@
+//! Coverage and the fill rule: watertight meshes counted per sample, exact ownership.
+
+use refrast::{Fragment, Rasterizer};
+
+use super::common::{check_mesh_coverage, compare_sets, fragments, reference_can_match, reference_for};
+use super::{Family, Kind, Rule, always};
+use crate::oracle::brute_force;
+use crate::runner::property;
+use crate::scene::Scene;
+use crate::strategy;
+use crate::violation::Violation;
+
+pub(super) fn rules() -> Vec<Rule> {
+    vec![
+        Rule {
+            id: "fill.mesh.exactly-once",
+            family: Family::Fill,
+            kind: Kind::Invariant,
+            sentence: "A spade triangulation of grid points and the viewport corners covers every sample exactly once.",
+            source: "Vulkan 1.4 §28.7.1 (shared edges covered by exactly one polygon); design.md",
+            default_cases: 200,
+            applies: always,
+            run: |r, cfg| property(r, cfg, strategy::mesh_scene(), check_exactly_once),
+        },
+        Rule {
+            id: "fill.fan.exactly-once",
+            family: Family::Fill,
+            kind: Kind::Invariant,
+            sentence: "A fan around an interior vertex on a sample centre covers its interior samples exactly once.",
+            source: "piglit triangle-rasterization-overdraw; design.md",
+            default_cases: 300,
+            applies: always,
+            run: |r, cfg| property(r, cfg, strategy::fan_scene(), check_exactly_once),
+        },
+        Rule {
+            id: "fill.rotated-quad.exactly-once",
+            family: Family::Fill,
+            kind: Kind::Invariant,
+            sentence: "A rotated quad split on either diagonal covers its interior samples exactly once.",
+            source: "dEQP-VK.rasterization.fill_rules.basic_quad*",
+            default_cases: 300,
+            applies: always,
+            run: |r, cfg| property(r, cfg, strategy::rotated_quad_scene(), check_exactly_once),
+        },
+        Rule {
+            id: "fill.projected-mesh.exactly-once",
+            family: Family::Fill,
+            kind: Kind::Invariant,
+            sentence: "A viewport-covering mesh with w in [0.1, 4] per vertex covers every sample exactly once.",
+            source: "dEQP-VK.rasterization.fill_rules.projected",
+            default_cases: 200,
+            applies: always,
+            run: |r, cfg| property(r, cfg, strategy::projected_mesh_scene(), check_exactly_once),
+        },
+        Rule {
+            id: "fill.interior.matches-raycast",
+            family: Family::Fill,
+            kind: Kind::Invariant,
+            sentence: "Samples farther than the tolerance band from every edge are covered exactly when the ray through them hits the triangle.",
+            source: "seed 000 (rasterization and ray casting answer one question); dEQP triangle verifier",
+            default_cases: 500,
+            applies: always,
+            run: |r, cfg| property(r, cfg, strategy::float_scene(), check_exactly_once),
+        },
+        Rule {
+            id: "fill.top-left.exact",
+            family: Family::Fill,
+            kind: Kind::Exact,
+            sentence: "Coverage equals the reference's under the same subpixel bits and fill convention, sample for sample.",
+            source: "D3D11.3 §3.4 (top-left rule), §3.2.4.1 (16.8 snapping)",
+            default_cases: 2000,
+            applies: reference_can_match,
+            run: |r, cfg| property(r, cfg, strategy::grid_scene(), check_matches_reference),
+        },
+        Rule {
+            id: "fill.brute-force.exact",
+            family: Family::Fill,
+            kind: Kind::Exact,
+            sentence: "Coverage of an unclipped triangle equals the brute-force oracle (i128 orient2d, explicit fill bias) at every pixel.",
+            source: "Giesen, Triangle rasterization in practice; piglit triangle-rasterization",
+            default_cases: 2000,
+            applies: always,
+            run: |r, cfg| property(r, cfg, strategy::grid_scene(), check_matches_brute_force),
+        },
+    ]
+}
+
+/// Every sample is covered as often as the ray-cast mesh says: once inside, never outside.
+pub fn check_exactly_once(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    check_mesh_coverage(r, scene, "the ray-cast mesh (each sample inside exactly once)")
+}
+
+/// Coverage bit-identical to the reference under the same profile.
+pub fn check_matches_reference(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let profile = r.profile();
+    let got = fragments(r, scene)?;
+    let Some(mut reference) = reference_for(&profile) else {
+        return Ok(());
+    };
+    let want = fragments(&mut reference, scene)?;
+    compare_sets(scene, &got, &want, "the reference with the same profile")
+}
+
+/// Coverage of an unclipped triangle bit-identical to the brute-force oracle.
+pub fn check_matches_brute_force(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let profile = r.profile();
+    let got = fragments(r, scene)?;
+    let p = [0, 1, 2].map(|k| scene.positions[scene.triangles[0][k] as usize]);
+    // The oracle knows nothing of clipping: triangles leaving the view volume are not judged here.
+    if !brute_force::unclipped(&p, scene.state.depth_range, scene.state.clip_far) {
+        return Ok(());
+    }
+    let bits = profile.subpixel_bits.min(16);
+    let Some(t) = p
+        .iter()
+        .map(|&v| brute_force::snap(v, scene.width, scene.height, bits))
+        .collect::<Option<Vec<_>>>()
+    else {
+        return Ok(());
+    };
+    let want: Vec<Fragment> =
+        brute_force::coverage([t[0], t[1], t[2]], scene.width, scene.height, bits, profile.fill)
+            .into_iter()
+            .map(|(x, y)| Fragment {
+                x,
+                y,
+                primitive: 0,
+                depth: 0.0,
+                barycentric: [0.0; 3],
+                screen_barycentric: None,
+                front_facing: true,
+            })
+            .collect();
+    compare_sets(scene, &got, &want, "the brute-force oracle")
+}

@@ -1,0 +1,402 @@
+//! Metamorphic relations: changes to the input that must leave coverage alone, or move it predictably.
+
+use proptest::prelude::*;
+use refrast::{CullMode, Fragment, FrontFace, Profile, Rasterizer};
+
+use super::common::{ORACLE_EPS, compare_sets, coverage_set, fragments};
+use super::{Family, Kind, Rule, always};
+use crate::oracle::brute_force;
+use crate::runner::property;
+use crate::scene::Scene;
+use crate::strategy;
+use crate::violation::Violation;
+
+/// A scene and a translation in whole pixels.
+#[derive(Clone, Debug)]
+pub struct Translated {
+    /// The scene (`w = 1`).
+    pub scene: Scene,
+    /// Pixels right.
+    pub dx: i32,
+    /// Pixels down.
+    pub dy: i32,
+}
+
+impl crate::runner::Reduce for Translated {
+    fn reductions(&self) -> Vec<Self> {
+        let (dx, dy) = (self.dx, self.dy);
+        self.scene
+            .reductions()
+            .into_iter()
+            .map(|scene| Self { scene, dx, dy })
+            .collect()
+    }
+}
+
+fn needs_culling(p: &Profile) -> Result<(), &'static str> {
+    if p.features.culling {
+        Ok(())
+    } else {
+        Err("no culling")
+    }
+}
+
+pub(super) fn rules() -> Vec<Rule> {
+    vec![
+        Rule {
+            id: "meta.rotation.same-coverage",
+            family: Family::Meta,
+            kind: Kind::Invariant,
+            sentence: "Rotating a triangle's vertex order leaves its coverage unchanged and rotates its barycentrics.",
+            source: "conformance-anchors d3 (llvmpipe attributes change under rotation); DRTK #9",
+            default_cases: 1000,
+            applies: always,
+            run: |r, cfg| property(r, cfg, strategy::perspective_grid_scene(), check_rotation),
+        },
+        Rule {
+            id: "meta.reversal.flips-facing",
+            family: Family::Meta,
+            kind: Kind::Invariant,
+            sentence: "Reversing a triangle's winding keeps its coverage, swaps two barycentrics and flips its facing.",
+            source: "conformance-anchors d3; Vulkan 1.4 §28.7.1",
+            default_cases: 1000,
+            applies: always,
+            run: |r, cfg| property(r, cfg, strategy::perspective_grid_scene(), check_reversal),
+        },
+        Rule {
+            id: "meta.translate.whole-pixels",
+            family: Family::Meta,
+            kind: Kind::Invariant,
+            sentence: "Moving a triangle by whole pixels moves its coverage by the same pixels.",
+            source: "OpenGL 4.6 §14.5 (invariance under integer translation); conformance-anchors d3",
+            default_cases: 1000,
+            applies: always,
+            run: |r, cfg| property(r, cfg, translated(), check_translation),
+        },
+        Rule {
+            id: "meta.translate.one-subpixel",
+            family: Family::Meta,
+            kind: Kind::Invariant,
+            sentence: "Moving a triangle by one subpixel unit changes only samples within one unit (plus the band) of an edge.",
+            source: "conformance-anchors d3 (translation by 2^-bits)",
+            default_cases: 1000,
+            applies: always,
+            run: |r, cfg| property(r, cfg, strategy::grid_scene(), check_subpixel_translation),
+        },
+        Rule {
+            id: "meta.viewport.neutral",
+            family: Family::Meta,
+            kind: Kind::Invariant,
+            sentence: "A triangle at the same raster position in a viewport twice as large covers the same samples.",
+            source: "Vulkan 1.4 (invariance: scissor and viewport have no side effects); conformance-anchors d3",
+            default_cases: 500,
+            applies: always,
+            run: |r, cfg| property(r, cfg, strategy::grid_scene(), check_viewport_neutral),
+        },
+        Rule {
+            id: "meta.batch.independent",
+            family: Family::Meta,
+            kind: Kind::Invariant,
+            sentence: "Each triangle of a draw covers the same samples as when drawn alone, in any submission order.",
+            source: "conformance-anchors d3 (tile, thread and traversal-order independence); piglit quad-invariance",
+            default_cases: 300,
+            applies: always,
+            run: |r, cfg| property(r, cfg, strategy::overlapping_scene(), check_batch_independent),
+        },
+        Rule {
+            id: "meta.cull.by-facing",
+            family: Family::Meta,
+            kind: Kind::Invariant,
+            sentence: "Culling removes exactly the fragments of triangles with the culled facing, under either front face.",
+            source: "dEQP-VK.rasterization.culling.*; seed 003 (back-face culling)",
+            default_cases: 300,
+            applies: needs_culling,
+            run: |r, cfg| property(r, cfg, strategy::overlapping_scene(), check_culling),
+        },
+        Rule {
+            id: "meta.degenerate.empty",
+            family: Family::Meta,
+            kind: Kind::Invariant,
+            sentence: "Zero-area triangles (collinear or repeated vertices, on sample centres too) draw nothing.",
+            source: "Vulkan 1.4 §28.7.1 (zero area is back-facing); D3D11.3 §15.16",
+            default_cases: 1000,
+            applies: always,
+            run: |r, cfg| property(r, cfg, degenerate_scene(), check_empty),
+        },
+    ]
+}
+
+fn translated() -> impl Strategy<Value = Translated> {
+    (strategy::grid_scene(), -12i32..12, -12i32..12).prop_map(|(scene, dx, dy)| Translated { scene, dx, dy })
+}
+
+fn degenerate_scene() -> impl Strategy<Value = Scene> {
+    (strategy::side(), strategy::grid_triangle(), -3i64..4, 1i64..4).prop_map(|(s, t, num, den)| {
+        let (a, b) = (t[0], t[1]);
+        // c on the line through a and b: a + (num/den)(b − a), kept on the grid by scaling by den.
+        let (a, b) = ((a.0 * den, a.1 * den), (b.0 * den, b.1 * den));
+        let c = (a.0 + num * (b.0 - a.0) / den, a.1 + num * (b.1 - a.1) / den);
+        let scale = |p: (i64, i64)| (p.0 / den, p.1 / den);
+        let tri = [scale(a), scale(b), scale(c)];
+        // Dividing back may break exact collinearity: repeat a vertex then, which is always degenerate.
+        let collinear = brute_force::orient2d(
+            (i128::from(tri[0].0), i128::from(tri[0].1)),
+            (i128::from(tri[1].0), i128::from(tri[1].1)),
+            (i128::from(tri[2].0), i128::from(tri[2].1)),
+        ) == 0;
+        let tri = if collinear { tri } else { [tri[0], tri[1], tri[0]] };
+        Scene::from_subpixels(s, s, 8, &[tri], 0.5)
+    })
+}
+
+fn check_empty(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let frags = fragments(r, scene)?;
+    match frags.first() {
+        None => Ok(()),
+        Some(f) => Err(Violation::new(format!(
+            "a zero-area triangle drew {} fragments, the first at {:?}",
+            frags.len(),
+            (f.x, f.y)
+        ))),
+    }
+}
+
+/// Compares two fragment lists of one triangle drawn two ways; `map[k]` is where weight k went.
+fn compare_permuted(
+    scene: &Scene,
+    base: &[Fragment],
+    other: &[Fragment],
+    map: [usize; 3],
+    flip: bool,
+    what: &str,
+) -> Result<(), Violation> {
+    compare_sets(scene, other, base, what)?;
+    let mut by_pixel: Vec<&Fragment> = other.iter().collect();
+    by_pixel.sort_by_key(|f| (f.y, f.x));
+    let mut base_sorted: Vec<&Fragment> = base.iter().collect();
+    base_sorted.sort_by_key(|f| (f.y, f.x));
+    for (a, b) in base_sorted.iter().zip(&by_pixel) {
+        if a.front_facing == b.front_facing && flip || a.front_facing != b.front_facing && !flip {
+            return Err(Violation::new(format!(
+                "{what}: facing at {:?} is {} then {}",
+                (a.x, a.y),
+                a.front_facing,
+                b.front_facing
+            )));
+        }
+        for (k, &moved_to) in map.iter().enumerate() {
+            if f64::from((a.barycentric[k] - b.barycentric[moved_to]).abs()) > ORACLE_EPS {
+                return Err(Violation::new(format!(
+                    "{what}: barycentrics at {:?} are {:?} then {:?}",
+                    (a.x, a.y),
+                    a.barycentric,
+                    b.barycentric
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+fn check_rotation(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let base = fragments(r, scene)?;
+    let mut rotated = scene.clone();
+    let [a, b, c] = scene.triangles[0];
+    rotated.triangles[0] = [b, c, a];
+    // Vertex a is now third: weight 0 moved to slot 2, 1 to 0, 2 to 1.
+    compare_permuted(
+        scene,
+        &base,
+        &fragments(r, &rotated)?,
+        [2, 0, 1],
+        false,
+        "after rotating the vertices",
+    )
+}
+
+fn check_reversal(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let base = fragments(r, scene)?;
+    let mut reversed = scene.clone();
+    let [a, b, c] = scene.triangles[0];
+    reversed.triangles[0] = [a, c, b];
+    compare_permuted(
+        scene,
+        &base,
+        &fragments(r, &reversed)?,
+        [0, 2, 1],
+        true,
+        "after reversing the winding",
+    )
+}
+
+fn check_translation(r: &mut dyn Rasterizer, t: &Translated) -> Result<(), Violation> {
+    let s = &t.scene;
+    let mut moved = s.clone();
+    let (ox, oy) = (
+        2.0 * t.dx as f32 / s.width as f32,
+        2.0 * t.dy as f32 / s.height as f32,
+    );
+    for p in &mut moved.positions {
+        // Exact in f32: both terms are short dyadic fractions and w = 1.
+        p[0] += ox * p[3];
+        p[1] -= oy * p[3];
+    }
+    let shift = |f: &Fragment, dx: i32, dy: i32| -> Option<(u32, u32)> {
+        let (x, y) = (f.x as i64 + i64::from(dx), f.y as i64 + i64::from(dy));
+        (x >= 0 && y >= 0 && x < i64::from(s.width) && y < i64::from(s.height))
+            .then_some((x as u32, y as u32))
+    };
+    let mut want: Vec<(u32, u32)> = fragments(r, s)?
+        .iter()
+        .filter_map(|f| shift(f, t.dx, t.dy))
+        .collect();
+    let got_frags = fragments(r, &moved)?;
+    // Only samples whose pre-image is inside the viewport can be compared.
+    let mut got: Vec<(u32, u32)> = got_frags
+        .iter()
+        .filter(|f| shift(f, -t.dx, -t.dy).is_some())
+        .map(|f| (f.x, f.y))
+        .collect();
+    want.sort_unstable();
+    got.sort_unstable();
+    if got == want {
+        return Ok(());
+    }
+    let missing = want.iter().find(|p| !got.contains(p));
+    let extra = got.iter().find(|p| !want.contains(p));
+    Err(Violation::new(format!(
+        "translated by ({}, {}) px the coverage is not translated: e.g. missing {missing:?}, unexpected {extra:?}",
+        t.dx, t.dy
+    )))
+}
+
+fn check_subpixel_translation(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let profile = r.profile();
+    let bits = profile.subpixel_bits.min(16);
+    let unit = 1.0 / f64::from(1u32 << bits);
+    let mut moved = scene.clone();
+    let step = (2.0 * unit / f64::from(scene.width)) as f32;
+    for p in &mut moved.positions {
+        p[0] += step * p[3];
+    }
+    let (a, b) = (fragments(r, scene)?, fragments(r, &moved)?);
+    let (sa, sb) = (coverage_set(&a), coverage_set(&b));
+    let changed = sa
+        .iter()
+        .filter(|p| !sb.contains(p))
+        .chain(sb.iter().filter(|p| !sa.contains(p)));
+    let Some(t) = (0..3)
+        .map(|k| {
+            brute_force::snap(
+                scene.positions[scene.triangles[0][k] as usize],
+                scene.width,
+                scene.height,
+                bits,
+            )
+        })
+        .collect::<Option<Vec<_>>>()
+    else {
+        return Ok(());
+    };
+    let pts: Vec<[f64; 2]> = t
+        .iter()
+        .map(|&(x, y)| [x as f64 * unit, y as f64 * unit])
+        .collect();
+    let limit = unit + super::common::band_px(&profile);
+    for &(_, x, y) in changed {
+        let s = [f64::from(x) + 0.5, f64::from(y) + 0.5];
+        let d = (0..3)
+            .map(|k| segment_distance(pts[k], pts[(k + 1) % 3], s))
+            .fold(f64::INFINITY, f64::min);
+        if d > limit + unit {
+            return Err(Violation::new(format!(
+                "moving one subpixel right changed sample {:?}, {d:.4} px from every edge",
+                (x, y)
+            )));
+        }
+    }
+    Ok(())
+}
+
+fn segment_distance(a: [f64; 2], b: [f64; 2], s: [f64; 2]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let len2 = dx * dx + dy * dy;
+    let t = if len2 > 0.0 {
+        (((s[0] - a[0]) * dx + (s[1] - a[1]) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (s[0] - a[0] - t * dx).hypot(s[1] - a[1] - t * dy)
+}
+
+fn check_viewport_neutral(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let mut big = scene.clone();
+    big.width *= 2;
+    big.height *= 2;
+    for p in &mut big.positions {
+        // Same raster position in a viewport twice as large: ndc' = (ndc + 1)/2 − 1 for x, (ndc − 1)/2 + 1 for y.
+        p[0] = ((p[0] / p[3] + 1.0) / 2.0 - 1.0) * p[3];
+        p[1] = ((p[1] / p[3] - 1.0) / 2.0 + 1.0) * p[3];
+    }
+    let small = fragments(r, scene)?;
+    let large: Vec<Fragment> = fragments(r, &big)?
+        .into_iter()
+        .filter(|f| f.x < scene.width && f.y < scene.height)
+        .collect();
+    compare_sets(
+        scene,
+        &large,
+        &small,
+        "the same triangle in a viewport twice as large",
+    )
+}
+
+fn check_batch_independent(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let together = fragments(r, scene)?;
+    for (i, t) in scene.triangles.iter().enumerate() {
+        let mut alone = scene.clone();
+        alone.triangles = vec![*t];
+        let want = fragments(r, &alone)?;
+        let got: Vec<Fragment> = together
+            .iter()
+            .filter(|f| f.primitive == i as u32)
+            .map(|f| Fragment { primitive: 0, ..*f })
+            .collect();
+        compare_sets(&alone, &got, &want, &format!("triangle {i} drawn alone"))?;
+    }
+    let mut reversed = scene.clone();
+    reversed.triangles.reverse();
+    let n = scene.triangles.len() as u32;
+    let back: Vec<Fragment> = fragments(r, &reversed)?
+        .into_iter()
+        .map(|f| Fragment {
+            primitive: n - 1 - f.primitive,
+            ..f
+        })
+        .collect();
+    compare_sets(scene, &back, &together, "the draw in reverse order")
+}
+
+fn check_culling(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    for front_face in [FrontFace::CounterClockwise, FrontFace::Clockwise] {
+        let mut none = scene.clone();
+        none.state.front_face = front_face;
+        let all = fragments(r, &none)?;
+        for cull in [CullMode::Front, CullMode::Back] {
+            let mut culled = none.clone();
+            culled.state.cull = cull;
+            let want: Vec<Fragment> = all
+                .iter()
+                .filter(|f| !cull.culls(f.front_facing))
+                .copied()
+                .collect();
+            compare_sets(
+                scene,
+                &fragments(r, &culled)?,
+                &want,
+                &format!("{cull:?} culling with {front_face:?} front faces"),
+            )?;
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,158 @@
+//! Bad and extreme input: no panic, no error where the outcome is defined, sane output.
+
+use proptest::prelude::*;
+use refrast::{Fragment, Rasterizer};
+
+use super::common::{compare_sets, fragments};
+use super::{Family, Kind, Rule, always};
+use crate::runner::property;
+use crate::scene::Scene;
+use crate::strategy;
+use crate::violation::Violation;
+
+/// A scene with one coordinate of triangle 0 replaced by a non-finite value.
+#[derive(Clone, Debug)]
+pub struct Poisoned {
+    /// The scene before poisoning; its triangles share no vertices.
+    pub scene: Scene,
+    /// Which vertex of triangle 0 (0..3) and which component (0..4).
+    pub at: (usize, usize),
+    /// The bad value.
+    pub value: f32,
+}
+
+impl crate::runner::Reduce for Poisoned {
+    /// Drops any triangle but the poisoned one (triangle 0).
+    fn reductions(&self) -> Vec<Self> {
+        (1..self.scene.triangles.len())
+            .map(|t| Self {
+                scene: self.scene.without(t),
+                at: self.at,
+                value: self.value,
+            })
+            .collect()
+    }
+}
+
+pub(super) fn rules() -> Vec<Rule> {
+    vec![
+        Rule {
+            id: "robust.non-finite.discarded",
+            family: Family::Robust,
+            kind: Kind::Invariant,
+            sentence: "A NaN or infinite coordinate discards its triangle and nothing else, without an error.",
+            source: "D3D11.3 §3.3.1 (NaN positions are discarded); design.md",
+            default_cases: 300,
+            applies: always,
+            run: |r, cfg| property(r, cfg, poisoned(), check_poisoned),
+        },
+        Rule {
+            id: "robust.bit-patterns.sane-output",
+            family: Family::Robust,
+            kind: Kind::Invariant,
+            sentence: "Arbitrary f32 bit patterns (NaN, Inf, subnormal, huge, w = 0) give no panic, no error, and only well-formed fragments.",
+            source: "zeno #1, raqote #107, tiny-skia #112 (ecosystem.md); D3D11.3 §3.3.1",
+            default_cases: 2000,
+            applies: always,
+            run: |r, cfg| property(r, cfg, bit_pattern_scene(), check_well_formed),
+        },
+        Rule {
+            id: "robust.output.well-formed",
+            family: Family::Robust,
+            kind: Kind::Invariant,
+            sentence: "Fragments lie in the viewport, name a real primitive, cover a pixel at most once per primitive, and have depth in [0, 1].",
+            source: "design.md (what must be observable)",
+            default_cases: 500,
+            applies: always,
+            run: |r, cfg| property(r, cfg, strategy::crossing_scene(), check_well_formed),
+        },
+        Rule {
+            id: "robust.bad-index.error",
+            family: Family::Robust,
+            kind: Kind::Invariant,
+            sentence: "A triangle naming a vertex that does not exist makes the draw fail with an error, not a panic.",
+            source: "design.md (bad input gets a clear error)",
+            default_cases: 100,
+            applies: always,
+            run: |r, cfg| property(r, cfg, bad_index_scene(), check_bad_index),
+        },
+    ]
+}
+
+fn poisoned() -> impl Strategy<Value = Poisoned> {
+    let value = prop_oneof![Just(f32::NAN), Just(f32::INFINITY), Just(f32::NEG_INFINITY)];
+    (strategy::overlapping_scene(), 0..3usize, 0..4usize, value).prop_map(|(scene, v, c, value)| Poisoned {
+        scene,
+        at: (v, c),
+        value,
+    })
+}
+
+fn bit_pattern_scene() -> impl Strategy<Value = Scene> {
+    (1..48u32, 1..48u32, prop::array::uniform12(any::<u32>())).prop_map(|(w, h, bits)| {
+        let c: Vec<f32> = bits.iter().map(|&b| f32::from_bits(b)).collect();
+        let positions = c.chunks(4).map(|p| [p[0], p[1], p[2], p[3]]).collect();
+        Scene::new(w, h, positions, vec![[0, 1, 2]])
+    })
+}
+
+fn bad_index_scene() -> impl Strategy<Value = Scene> {
+    (strategy::grid_scene(), 3u32..u32::MAX).prop_map(|(mut s, bad)| {
+        s.triangles.push([0, bad, 1]);
+        s
+    })
+}
+
+fn check_poisoned(r: &mut dyn Rasterizer, p: &Poisoned) -> Result<(), Violation> {
+    let clean = fragments(r, &p.scene)?;
+    let mut bad = p.scene.clone();
+    let vertex = p.scene.triangles[0][p.at.0] as usize;
+    bad.positions[vertex][p.at.1] = p.value;
+    let got = fragments(r, &bad)?;
+    if let Some(f) = got.iter().find(|f| f.primitive == 0) {
+        return Err(Violation::new(format!(
+            "the triangle with a {} coordinate drew at {:?}",
+            p.value,
+            (f.x, f.y)
+        )));
+    }
+    let others: Vec<Fragment> = clean.into_iter().filter(|f| f.primitive != 0).collect();
+    compare_sets(
+        &p.scene,
+        &got,
+        &others,
+        "the other triangles without the poisoned one",
+    )
+}
+
+fn check_well_formed(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let frags = fragments(r, scene)?;
+    let mut seen = std::collections::HashSet::new();
+    for f in &frags {
+        let problem = if f.x >= scene.width || f.y >= scene.height {
+            "lies outside the viewport"
+        } else if f.primitive as usize >= scene.triangles.len() {
+            "names a primitive that does not exist"
+        } else if !(0.0..=1.0).contains(&f.depth) {
+            "has depth outside [0, 1]"
+        } else if f.barycentric.iter().any(|b| !b.is_finite()) {
+            "has a non-finite barycentric"
+        } else if !seen.insert((f.primitive, f.x, f.y)) {
+            "covers its pixel a second time"
+        } else {
+            continue;
+        };
+        return Err(Violation::new(format!("fragment {f:?} {problem}")));
+    }
+    Ok(())
+}
+
+fn check_bad_index(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    match r.rasterize(&scene.draw()) {
+        Err(_) => Ok(()),
+        Ok(frags) => Err(Violation::new(format!(
+            "a draw with vertex index out of range succeeded with {} fragments",
+            frags.len()
+        ))),
+    }
+}

@@ -1,0 +1,134 @@
+//! Runs one rule's property with proptest: seeded, shrunk, panics caught.
+
+use std::cell::RefCell;
+use std::fmt::Debug;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+
+use proptest::strategy::Strategy;
+use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestError, TestRng, TestRunner};
+use refrast::Rasterizer;
+
+use crate::violation::Violation;
+
+/// The seed used when none is given, so that every run tries the same cases.
+pub const DEFAULT_SEED: u64 = 0x5eed_2026_0001;
+
+/// How many cases to try and from which seed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RunConfig {
+    /// Random cases to generate (shrinking comes on top).
+    pub cases: u32,
+    /// The seed of the case generator.
+    pub seed: u64,
+}
+
+/// How a property run ended.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Verdict {
+    /// Every case held.
+    Pass,
+    /// A case failed: the shrunk input as Rust and why it failed.
+    Fail {
+        /// The minimal failing input, printed as Rust.
+        counterexample: String,
+        /// Why it fails.
+        violation: Violation,
+    },
+}
+
+/// A check: the rasterizer under test against one input.
+pub type Check<T> = fn(&mut dyn Rasterizer, &T) -> Result<(), Violation>;
+
+/// Inputs that can be made smaller after proptest has shrunk them, e.g. by dropping triangles.
+///
+/// Proptest shrinks each part of an input in one greedy pass; a failing mesh may keep a vertex
+/// it does not need. Dropping whole triangles while the check still fails (as lyon's reducer
+/// does) leaves the fewest triangles that show the failure.
+pub trait Reduce: Sized {
+    /// Candidate inputs one step smaller; empty when there is none.
+    fn reductions(&self) -> Vec<Self>;
+}
+
+/// Runs `check` on `cfg.cases` inputs drawn from `strategy`, shrinking the first failure.
+pub fn property<T, S>(
+    rasterizer: &mut dyn Rasterizer,
+    cfg: &RunConfig,
+    strategy: S,
+    check: Check<T>,
+) -> Verdict
+where
+    T: Debug + Clone + Reduce,
+    S: Strategy<Value = T>,
+{
+    let config = Config {
+        cases: cfg.cases,
+        failure_persistence: None,
+        max_shrink_iters: 2048,
+        ..Config::default()
+    };
+    let rng = TestRng::from_seed(RngAlgorithm::ChaCha, &seed_bytes(cfg.seed));
+    let mut runner = TestRunner::new_with_rng(config, rng);
+    let cell = RefCell::new(rasterizer);
+    let result = runner.run(&strategy, |input| {
+        let mut r = cell.borrow_mut();
+        run_check(&mut **r, check, &input).map_err(|v| TestCaseError::fail(v.message))
+    });
+    match result {
+        Ok(()) => Verdict::Pass,
+        Err(TestError::Fail(reason, input)) => {
+            let mut r = cell.borrow_mut();
+            let input = reduce(&mut **r, check, input);
+            let violation = run_check(&mut **r, check, &input).err().unwrap_or_else(|| {
+                Violation::new(format!(
+                    "{reason} (the shrunk case passed on a second run: is the rasterizer deterministic?)"
+                ))
+            });
+            Verdict::Fail {
+                counterexample: format!("{input:?}"),
+                violation,
+            }
+        }
+        Err(TestError::Abort(reason)) => Verdict::Fail {
+            counterexample: String::new(),
+            violation: Violation::new(format!("the case generator gave up: {reason}")),
+        },
+    }
+}
+
+/// Takes the first smaller input that still fails, until none does.
+fn reduce<T: Reduce>(r: &mut dyn Rasterizer, check: Check<T>, mut input: T) -> T {
+    'outer: loop {
+        for candidate in input.reductions() {
+            if run_check(r, check, &candidate).is_err() {
+                input = candidate;
+                continue 'outer;
+            }
+        }
+        return input;
+    }
+}
+
+/// Runs one check, turning a panic of the rasterizer into a violation.
+fn run_check<T>(r: &mut dyn Rasterizer, check: Check<T>, input: &T) -> Result<(), Violation> {
+    match catch_unwind(AssertUnwindSafe(|| check(r, input))) {
+        Ok(result) => result,
+        Err(payload) => {
+            let what = payload
+                .downcast_ref::<&str>()
+                .map(|s| (*s).to_owned())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "a non-string payload".into());
+            Err(Violation::new(format!("the rasterizer panicked: {what}")))
+        }
+    }
+}
+
+/// Spreads a u64 seed over ChaCha's 32 seed bytes.
+fn seed_bytes(seed: u64) -> [u8; 32] {
+    let mut bytes = [0u8; 32];
+    for (i, chunk) in bytes.chunks_mut(8).enumerate() {
+        let word = seed.wrapping_add(i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+        chunk.copy_from_slice(&word.to_le_bytes());
+    }
+    bytes
+}

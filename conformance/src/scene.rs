@@ -1,0 +1,207 @@
+//! The suite's input: a draw that prints as pasteable Rust, and exact ways to build one.
+
+use std::fmt;
+
+use refrast::{CullMode, DepthRange, Draw, DrawState, FrontFace, Viewport};
+
+/// One draw call as the rules generate it; `Debug` prints Rust that rebuilds it.
+///
+/// Paste a counterexample after `use refrast::*; use refrast_conformance::Scene;`.
+#[derive(Clone, PartialEq)]
+pub struct Scene {
+    /// Viewport width in pixels.
+    pub width: u32,
+    /// Viewport height in pixels.
+    pub height: u32,
+    /// Clip-space positions.
+    pub positions: Vec<[f32; 4]>,
+    /// Vertex indices, one triple per triangle.
+    pub triangles: Vec<[u32; 3]>,
+    /// Culling, depth and clipping state.
+    pub state: DrawState,
+}
+
+impl Scene {
+    /// A scene with default state.
+    #[must_use]
+    pub fn new(width: u32, height: u32, positions: Vec<[f32; 4]>, triangles: Vec<[u32; 3]>) -> Self {
+        Self {
+            width,
+            height,
+            positions,
+            triangles,
+            state: DrawState::default(),
+        }
+    }
+
+    /// Triangles given in raster space, in units of `2^-bits` pixel, at depth `z` with `w = 1`.
+    ///
+    /// Exact when the viewport sides are powers of two: `X / 2^bits / W · 2 − 1` then has few
+    /// enough significant bits for f32, so every implementation snaps to exactly `X`.
+    #[must_use]
+    pub fn from_subpixels(width: u32, height: u32, bits: u8, triangles: &[[(i64, i64); 3]], z: f32) -> Self {
+        let mut positions = Vec::with_capacity(3 * triangles.len());
+        for t in triangles {
+            positions.extend(t.iter().map(|&(x, y)| clip_of(width, height, bits, x, y, z, 1.0)));
+        }
+        let indices = (0..triangles.len() as u32)
+            .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
+            .collect();
+        Self::new(width, height, positions, indices)
+    }
+
+    /// The viewport, or `None` when its size is out of range.
+    #[must_use]
+    pub fn viewport(&self) -> Option<Viewport> {
+        Viewport::new(self.width, self.height).ok()
+    }
+
+    /// The draw the rasterizer under test receives.
+    ///
+    /// # Panics
+    /// When the viewport is out of range; strategies only build valid sizes.
+    #[must_use]
+    pub fn draw(&self) -> Draw {
+        Draw {
+            viewport: self.viewport().expect("strategies build valid viewports"),
+            positions: self.positions.clone(),
+            triangles: self.triangles.clone(),
+            state: self.state,
+        }
+    }
+}
+
+impl Scene {
+    /// The scene without triangle `t`, its unused vertices dropped.
+    #[must_use]
+    pub fn without(&self, t: usize) -> Self {
+        let mut s = self.clone();
+        s.triangles.remove(t);
+        s.compact()
+    }
+
+    /// Drops vertices no triangle uses, renumbering the rest (a bad index is kept as it is).
+    #[must_use]
+    pub fn compact(mut self) -> Self {
+        let n = self.positions.len();
+        let mut used = vec![false; n];
+        for &i in self.triangles.iter().flatten() {
+            if let Some(u) = used.get_mut(i as usize) {
+                *u = true;
+            }
+        }
+        let mut new_index = vec![0u32; n];
+        let mut positions = Vec::new();
+        for (i, p) in self.positions.iter().enumerate() {
+            if used[i] {
+                new_index[i] = positions.len() as u32;
+                positions.push(*p);
+            }
+        }
+        for i in self.triangles.iter_mut().flatten() {
+            if (*i as usize) < n {
+                *i = new_index[*i as usize];
+            }
+        }
+        self.positions = positions;
+        self
+    }
+}
+
+impl crate::runner::Reduce for Scene {
+    /// Every way of dropping one triangle (a scene keeps at least one).
+    fn reductions(&self) -> Vec<Self> {
+        if self.triangles.len() < 2 {
+            return Vec::new();
+        }
+        (0..self.triangles.len()).map(|t| self.without(t)).collect()
+    }
+}
+
+/// Clip-space position of the raster point `(x, y)` given in `2^-bits` pixel units, scaled by `w`.
+#[must_use]
+pub fn clip_of(width: u32, height: u32, bits: u8, x: i64, y: i64, z: f32, w: f32) -> [f32; 4] {
+    let one = f64::from(1u32 << bits);
+    let nx = x as f64 / one / f64::from(width) * 2.0 - 1.0;
+    let ny = 1.0 - y as f64 / one / f64::from(height) * 2.0;
+    let w64 = f64::from(w);
+    [(nx * w64) as f32, (ny * w64) as f32, z * w, w]
+}
+
+/// A float as Rust source: `1.5`, `-0.0`, `f32::NAN`, `f32::INFINITY`.
+fn rust_f32(v: f32) -> String {
+    if v.is_nan() {
+        "f32::NAN".into()
+    } else if v.is_infinite() {
+        if v > 0.0 {
+            "f32::INFINITY"
+        } else {
+            "f32::NEG_INFINITY"
+        }
+        .into()
+    } else {
+        // `{:?}` prints the shortest string that reads back to the same f32.
+        format!("{v:?}")
+    }
+}
+
+impl fmt::Debug for Scene {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(f, "Scene {{")?;
+        writeln!(f, "    width: {},", self.width)?;
+        writeln!(f, "    height: {},", self.height)?;
+        writeln!(f, "    positions: vec![")?;
+        for p in &self.positions {
+            let c: Vec<String> = p.iter().map(|&v| rust_f32(v)).collect();
+            writeln!(f, "        [{}],", c.join(", "))?;
+        }
+        writeln!(f, "    ],")?;
+        let t: Vec<String> = self
+            .triangles
+            .iter()
+            .map(|t| format!("[{}, {}, {}]", t[0], t[1], t[2]))
+            .collect();
+        writeln!(f, "    triangles: vec![{}],", t.join(", "))?;
+        let s = &self.state;
+        writeln!(f, "    state: DrawState {{")?;
+        writeln!(f, "        cull: CullMode::{},", cull_name(s.cull))?;
+        writeln!(f, "        front_face: FrontFace::{},", front_name(s.front_face))?;
+        writeln!(
+            f,
+            "        depth: DepthState {{ compare: CompareOp::{:?}, write: {}, clear: {} }},",
+            s.depth.compare,
+            s.depth.write,
+            rust_f32(s.depth.clear)
+        )?;
+        writeln!(
+            f,
+            "        depth_range: DepthRange::{},",
+            range_name(s.depth_range)
+        )?;
+        writeln!(f, "        clip_far: {},", s.clip_far)?;
+        writeln!(f, "    }},")?;
+        write!(f, "}}")
+    }
+}
+
+fn cull_name(c: CullMode) -> &'static str {
+    match c {
+        CullMode::None => "None",
+        CullMode::Front => "Front",
+        CullMode::Back => "Back",
+    }
+}
+
+fn front_name(f: FrontFace) -> &'static str {
+    match f {
+        FrontFace::Clockwise => "Clockwise",
+        FrontFace::CounterClockwise => "CounterClockwise",
+    }
+}
+
+fn range_name(r: DepthRange) -> &'static str {
+    match r {
+        DepthRange::ZeroToOne => "ZeroToOne",
+        DepthRange::NegativeOneToOne => "NegativeOneToOne",
+    }
+}

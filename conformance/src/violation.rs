@@ -1,0 +1,154 @@
+//! What a failed check returns: a message, sample counts, and a picture of the samples.
+
+use std::fmt;
+
+use refrast::Fragment;
+
+/// How one sample came out against what was expected.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Class {
+    /// Not covered, and rightly so.
+    Empty,
+    /// Covered once, and rightly so.
+    Covered,
+    /// Should be covered, is not (purple).
+    Missing,
+    /// Covered, should not be (red).
+    Unexpected,
+    /// Covered more than once (blue).
+    Double,
+    /// Within the tolerance band of an edge: either answer is right (yellow).
+    DontCare,
+}
+
+/// What a sample should get.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Expect {
+    /// No fragment.
+    Zero,
+    /// Exactly one fragment.
+    One,
+    /// No fragment or one: the sample is in the tolerance band.
+    ZeroOrOne,
+}
+
+/// The tally of a coverage comparison.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize)]
+pub struct Counts {
+    /// Samples that should be covered and are not.
+    pub missing: usize,
+    /// Samples covered that should not be.
+    pub unexpected: usize,
+    /// Samples covered more than once.
+    pub double: usize,
+    /// Samples in the tolerance band (not judged).
+    pub dont_care: usize,
+}
+
+/// A picture of a viewport's samples with the triangles drawn over them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Picture {
+    /// Viewport width in pixels.
+    pub width: u32,
+    /// Viewport height in pixels.
+    pub height: u32,
+    /// One class per pixel, row-major.
+    pub classes: Vec<Class>,
+    /// Closed outlines in raster space (pixels), usually one per triangle.
+    pub outlines: Vec<Vec<[f64; 2]>>,
+}
+
+/// Why a check failed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Violation {
+    /// What went wrong, in one or a few sentences.
+    pub message: String,
+    /// Sample tallies, for coverage checks.
+    pub counts: Option<Counts>,
+    /// The samples, for coverage checks.
+    pub picture: Option<Picture>,
+}
+
+impl Violation {
+    /// A violation with only a message.
+    #[must_use]
+    pub fn new(message: impl Into<String>) -> Self {
+        Self {
+            message: message.into(),
+            counts: None,
+            picture: None,
+        }
+    }
+}
+
+impl fmt::Display for Violation {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.message)?;
+        if let Some(c) = &self.counts {
+            write!(
+                f,
+                " ({} missing, {} unexpected, {} double-covered, {} don't care)",
+                c.missing, c.unexpected, c.double, c.dont_care
+            )?;
+        }
+        Ok(())
+    }
+}
+
+/// Fragments per pixel, row-major.
+#[must_use]
+pub fn count_fragments(fragments: &[Fragment], width: u32, height: u32) -> Vec<u32> {
+    let mut counts = vec![0; width as usize * height as usize];
+    for f in fragments.iter().filter(|f| f.x < width && f.y < height) {
+        counts[f.y as usize * width as usize + f.x as usize] += 1;
+    }
+    counts
+}
+
+/// Compares per-sample counts with expectations; on a mismatch the violation carries counts and
+/// a picture. `what` names the expectation for the message.
+pub fn compare_coverage(
+    counts: &[u32],
+    expected: &[Expect],
+    width: u32,
+    height: u32,
+    outlines: Vec<Vec<[f64; 2]>>,
+    what: &str,
+) -> Result<(), Violation> {
+    let mut tally = Counts::default();
+    let classes: Vec<Class> = counts
+        .iter()
+        .zip(expected)
+        .map(|(&n, &e)| {
+            let class = match (e, n) {
+                (_, 2..) => Class::Double,
+                (Expect::ZeroOrOne, _) => Class::DontCare,
+                (Expect::One, 1) => Class::Covered,
+                (Expect::One, _) => Class::Missing,
+                (Expect::Zero, 0) => Class::Empty,
+                (Expect::Zero, _) => Class::Unexpected,
+            };
+            match class {
+                Class::Missing => tally.missing += 1,
+                Class::Unexpected => tally.unexpected += 1,
+                Class::Double => tally.double += 1,
+                Class::DontCare => tally.dont_care += 1,
+                Class::Empty | Class::Covered => {}
+            }
+            class
+        })
+        .collect();
+    if tally.missing + tally.unexpected + tally.double == 0 {
+        return Ok(());
+    }
+    Err(Violation {
+        message: format!("coverage differs from {what}"),
+        counts: Some(tally),
+        picture: Some(Picture {
+            width,
+            height,
+            classes,
+            outlines,
+        }),
+    })
+}

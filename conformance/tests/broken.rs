@@ -1,0 +1,122 @@
+//! The suite catches a classic bug: inclusive edges everywhere (`E ≥ 0`, no fill rule).
+
+use refrast::{
+    Draw, DrawError, FixedPoint, Fragment, Profile, Rasterizer, Reference, SubpixelBits, orient2d,
+};
+use refrast_conformance::{Options, Status, certify};
+
+/// Covers a sample when every edge function is `≥ 0`: samples on shared edges go to both sides.
+struct InclusiveEdges;
+
+impl Rasterizer for InclusiveEdges {
+    fn profile(&self) -> Profile {
+        Profile {
+            name: "inclusive-edges".into(),
+            ..Reference::default().profile()
+        }
+    }
+
+    fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+        draw.validate()?;
+        let bits = SubpixelBits::DEFAULT;
+        let vp = draw.viewport;
+        let mut out = Vec::new();
+        for (primitive, t) in draw.triangles.iter().enumerate() {
+            let clip = t.map(|i| draw.positions[i as usize]);
+            // No clipping: only triangles wholly in front of the eye are drawn.
+            if clip
+                .iter()
+                .any(|p| p[3].is_nan() || p[3] <= 0.0 || p.iter().any(|c| !c.is_finite()))
+            {
+                continue;
+            }
+            let snapped = clip.map(|p| {
+                let (x, y) = vp.to_raster(f64::from(p[0] / p[3]), f64::from(p[1] / p[3]));
+                FixedPoint::snap(x, y, bits)
+            });
+            let [Some(a), Some(b), Some(c)] = snapped else {
+                continue;
+            };
+            let area = orient2d(a, b, c);
+            if area == 0 {
+                continue;
+            }
+            for y in 0..vp.height() {
+                for x in 0..vp.width() {
+                    let s = FixedPoint::sample(i64::from(x), i64::from(y), bits);
+                    let e =
+                        [orient2d(b, c, s), orient2d(c, a, s), orient2d(a, b, s)].map(|e| e * area.signum());
+                    if e.iter().all(|&e| e >= 0) {
+                        let w = e.map(|e| e as f32 / area.abs() as f32);
+                        let depth = (0..3)
+                            .map(|k| w[k] * clip[k][2] / clip[k][3])
+                            .sum::<f32>()
+                            .clamp(0.0, 1.0);
+                        out.push(Fragment {
+                            x,
+                            y,
+                            primitive: primitive as u32,
+                            depth,
+                            barycentric: w,
+                            screen_barycentric: Some(w),
+                            front_facing: area < 0,
+                        });
+                    }
+                }
+            }
+        }
+        Ok(out)
+    }
+}
+
+#[test]
+fn inclusive_edges_fail_the_fill_rules_with_a_small_counterexample_and_a_picture() {
+    let dir = std::env::temp_dir().join("refrast-broken-test");
+    let options = Options {
+        rule: Some("fill.*".into()),
+        report_dir: Some(dir),
+        ..Options::default()
+    };
+    let report = certify(&mut InclusiveEdges, &options, |_| {});
+    let failed: Vec<_> = report.rules.iter().filter(|r| r.status == Status::Fail).collect();
+    for id in [
+        "fill.mesh.exactly-once",
+        "fill.fan.exactly-once",
+        "fill.top-left.exact",
+        "fill.brute-force.exact",
+    ] {
+        assert!(failed.iter().any(|r| r.id == id), "{id} should fail: {report:#?}");
+    }
+    let mesh = failed.iter().find(|r| r.id == "fill.mesh.exactly-once").unwrap();
+    let counts = mesh.counts.expect("coverage failures carry counts");
+    assert!(
+        counts.double > 0,
+        "inclusive edges double-cover shared edges: {counts:?}"
+    );
+    let input = mesh.counterexample.as_deref().unwrap();
+    let triangles = input
+        .lines()
+        .find(|l| l.trim_start().starts_with("triangles:"))
+        .unwrap();
+    let n = triangles.matches('[').count() - 1;
+    assert!(n <= 2, "shrunk to {n} triangles:\n{input}");
+    let picture = mesh.picture.as_ref().expect("a picture is written");
+    let image = image::open(picture).expect("the picture is a PNG").to_rgba8();
+    // Double-covered samples are drawn blue.
+    assert!(
+        image.pixels().any(|p| p.0 == [40, 90, 255, 255]),
+        "no blue sample in {}",
+        picture.display()
+    );
+}
+
+#[test]
+fn the_reference_passes_what_the_broken_one_fails() {
+    let options = Options {
+        rule: Some("fill.*".into()),
+        cases: Some(64),
+        ..Options::default()
+    };
+    let report = certify(&mut Reference::default(), &options, |_| {});
+    assert!(report.passed(), "{report:#?}");
+}

@@ -116,6 +116,10 @@ impl Reference {
                 position: DVec4::from(positions[k].map(f64::from)),
                 barycentric: DVec3::AXES[k],
             });
+            if self.is_degenerate_before_clipping(draw, &input) {
+                stats.degenerate += 1;
+                continue;
+            }
             let outcome = clip_triangle(&input, &planes, &mut scratch.polygon, &mut scratch.clip);
             let polygon: &[ClipVertex] = match outcome {
                 ClipOutcome::Outside => {
@@ -174,6 +178,27 @@ impl Reference {
             });
         }
         Ok(stats)
+    }
+
+    /// Whether the input triangle, snapped as it is, has zero area.
+    ///
+    /// Clipping a zero-area triangle makes new vertices on its line that snap off it, which
+    /// would leave a sliver able to cover a sample; deciding on the input first draws nothing,
+    /// as a zero-area triangle must. Only decidable when every vertex projects into the valid
+    /// range (`w > 0`); other triangles are judged by their clipped, snapped polygon.
+    fn is_degenerate_before_clipping(&self, draw: &Draw, input: &[ClipVertex; 3]) -> bool {
+        let snapped = input.map(|v| {
+            let p = v.position;
+            if p.w <= 0.0 {
+                return None;
+            }
+            let (x, y) = draw.viewport.to_raster(p.x / p.w, p.y / p.w);
+            FixedPoint::snap(x, y, self.config.subpixel_bits)
+        });
+        match snapped {
+            [Some(a), Some(b), Some(c)] => orient2d(a, b, c) == 0,
+            _ => false,
+        }
     }
 
     /// Projects and snaps a clipped polygon; `false` when a vertex has no finite raster position.

@@ -1,10 +1,13 @@
-//! The refrast command line: render the built-in scenes (and, later, certify rasterizers).
+//! The refrast command line: certify rasterizers, list the rules, render built-in scenes.
+
+mod certify;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use refrast::scenes::{self, DEFAULT_SIZE, SCENES};
+use refrast_conformance::{builtins, catalogue};
 
 /// refrast: a reference triangle rasterizer and conformance suite.
 #[derive(Parser, Debug)]
@@ -16,6 +19,12 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
+    /// Certify rasterizers against the rule catalogue.
+    Certify(certify::Args),
+    /// List the rules: ID, kind, family, source, sentence.
+    Rules,
+    /// List the built-in implementations and their profiles.
+    Impls,
     /// Render a built-in scene to a PNG with the reference rasterizer.
     Render {
         /// The scene (see `refrast scenes`).
@@ -37,6 +46,35 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
+        Command::Certify(args) => certify::run(&args),
+        Command::Rules => {
+            for rule in catalogue() {
+                println!(
+                    "{:<38} {:<9} {:<6} [{}] {}",
+                    rule.id,
+                    rule.kind,
+                    rule.family.name(),
+                    rule.source,
+                    rule.sentence
+                );
+            }
+            ExitCode::SUCCESS
+        }
+        Command::Impls => {
+            for b in builtins() {
+                let p = (b.make)().profile();
+                let kind = if b.correct { "correct" } else { "broken on purpose" };
+                println!(
+                    "{:<22} {} subpixel bits, {}, band {} subpixels, {kind}: {}",
+                    b.name,
+                    p.subpixel_bits,
+                    p.fill.name(),
+                    p.tolerance_subpixels,
+                    b.description
+                );
+            }
+            ExitCode::SUCCESS
+        }
         Command::Scenes => {
             for scene in SCENES {
                 println!("{:<14} {}", scene.name, scene.description);
@@ -48,21 +86,23 @@ fn main() -> ExitCode {
             output,
             width,
             height,
-        } => {
-            let output = output.unwrap_or_else(|| PathBuf::from(format!("{scene}.png")));
-            let target = match scenes::render(&scene, width, height) {
-                Ok(target) => target,
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    return ExitCode::from(2);
-                }
-            };
-            if let Err(e) = target.save_png(&output) {
-                eprintln!("error: could not write {}: {e}", output.display());
-                return ExitCode::FAILURE;
-            }
-            println!("wrote {} ({width}x{height}, scene {scene})", output.display());
-            ExitCode::SUCCESS
-        }
+        } => render(&scene, output, width, height),
     }
+}
+
+fn render(scene: &str, output: Option<PathBuf>, width: u32, height: u32) -> ExitCode {
+    let output = output.unwrap_or_else(|| PathBuf::from(format!("{scene}.png")));
+    let target = match scenes::render(scene, width, height) {
+        Ok(target) => target,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    if let Err(e) = target.save_png(&output) {
+        eprintln!("error: could not write {}: {e}", output.display());
+        return ExitCode::FAILURE;
+    }
+    println!("wrote {} ({width}x{height}, scene {scene})", output.display());
+    ExitCode::SUCCESS
 }

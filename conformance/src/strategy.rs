@@ -80,6 +80,41 @@ pub fn perspective_grid_scene() -> impl Strategy<Value = Scene> {
         })
 }
 
+/// A grid triangle within the top-left 16 × 16 pixels (every viewport side is at least 16):
+/// it needs no clipping, so no implementation moves its edges. Vertices often sit on sample
+/// centres or pixel edges.
+pub fn inside_triangle() -> impl Strategy<Value = [(i64, i64); 3]> {
+    let coordinate = || {
+        prop_oneof![
+            2 => 0..=16 * GRID,
+            1 => (0i64..16).prop_map(|p| p * GRID + GRID / 2),
+            1 => (0i64..=16).prop_map(|p| p * GRID),
+        ]
+    };
+    prop::array::uniform3((coordinate(), coordinate()))
+}
+
+/// One triangle inside the viewport at depth ½, `w = 1`.
+pub fn inside_scene() -> impl Strategy<Value = Scene> {
+    (inside_triangle(), side(), side()).prop_map(|(t, w, h)| Scene::from_subpixels(w, h, 8, &[t], 0.5))
+}
+
+/// One triangle inside the viewport with its own `w` in [0.1, 4] and depth in [0, 1] per vertex.
+pub fn perspective_inside_scene() -> impl Strategy<Value = Scene> {
+    (
+        inside_triangle(),
+        prop::array::uniform3((0.1f32..4.0, 0.0f32..1.0)),
+        side(),
+        side(),
+    )
+        .prop_map(|(t, wz, w, h)| {
+            let positions = (0..3)
+                .map(|i| clip_of(w, h, 8, t[i].0, t[i].1, wz[i].1, wz[i].0))
+                .collect();
+            Scene::new(w, h, positions, vec![[0, 1, 2]])
+        })
+}
+
 /// A clip-space triangle anywhere near the view volume, off any grid, with `w` in [0.1, 4].
 pub fn float_scene() -> impl Strategy<Value = Scene> {
     let vertex = (-1.6f32..1.6, -1.6f32..1.6, 0.0f32..1.0, 0.1f32..4.0)

@@ -36,7 +36,14 @@ pub(super) fn rules() -> Vec<Rule> {
             source: "Vulkan 1.4 §28.7.5 (depth is linearly interpolated); seed 000",
             default_cases: 500,
             applies: needs_z_over_w,
-            run: |r, cfg| property(r, cfg, strategy::perspective_grid_scene(), check_within_vertices),
+            run: |r, cfg| {
+                property(
+                    r,
+                    cfg,
+                    strategy::perspective_inside_scene(),
+                    check_within_vertices,
+                )
+            },
         },
         Rule {
             id: "depth.screen-linear.matches-raycast",
@@ -50,7 +57,7 @@ pub(super) fn rules() -> Vec<Rule> {
                 property(
                     r,
                     cfg,
-                    strategy::perspective_grid_scene(),
+                    strategy::perspective_inside_scene(),
                     check_depth_matches_raycast,
                 )
             },

@@ -66,11 +66,11 @@ pub(super) fn rules() -> Vec<Rule> {
             id: "fill.top-left.exact",
             family: Family::Fill,
             kind: Kind::Exact,
-            sentence: "Coverage equals the reference's under the same subpixel bits and fill convention, sample for sample.",
+            sentence: "Coverage of a triangle needing no clipping equals the reference's under the same subpixel bits and fill convention.",
             source: "D3D11.3 §3.4 (top-left rule), §3.2.4.1 (16.8 snapping)",
             default_cases: 2000,
             applies: reference_can_match,
-            run: |r, cfg| property(r, cfg, strategy::grid_scene(), check_matches_reference),
+            run: |r, cfg| property(r, cfg, strategy::inside_scene(), check_matches_reference),
         },
         Rule {
             id: "fill.brute-force.exact",
@@ -80,7 +80,7 @@ pub(super) fn rules() -> Vec<Rule> {
             source: "Giesen, Triangle rasterization in practice; piglit triangle-rasterization",
             default_cases: 2000,
             applies: always,
-            run: |r, cfg| property(r, cfg, strategy::grid_scene(), check_matches_brute_force),
+            run: |r, cfg| property(r, cfg, strategy::inside_scene(), check_matches_brute_force),
         },
     ]
 }

@@ -146,7 +146,7 @@ fn bench(c: &mut Criterion) {
         let triangles = scene(count, area);
         let mesh = mesh(&triangles);
         let mut target = Framebuffer::new(WIDTH, HEIGHT).expect("1080p is a valid size");
-        let (mut color, mut depth) = (target.color.clone(), target.depth.clone());
+        let (mut color, mut depth) = (target.color().to_vec(), target.depth().to_vec());
         let fragments = reference(&mut target, &mesh);
         let base_fragments = baseline(&mut color, &mut depth, &triangles);
         // Read by scripts/bench_ratio.py to turn medians into Mpix/s.

@@ -4,7 +4,8 @@ use crate::fixed::FixedPoint;
 
 /// Twice the signed area of `a, b, c`: positive when they turn clockwise on screen (y down).
 ///
-/// Exact for every input within [`COORD_LIMIT`](crate::COORD_LIMIT): each product is below 2^48.
+/// Exact for every point: coordinates are at most [`FixedPoint::LIMIT`] = 2^23, so each
+/// product is below 2^48.
 #[doc(alias = "edge function")]
 #[doc(alias = "determinant")]
 #[doc(alias = "cross")]
@@ -137,7 +138,7 @@ mod tests {
     use super::*;
 
     fn p(x: i64, y: i64) -> FixedPoint {
-        FixedPoint::new(x, y)
+        FixedPoint::new(x, y).unwrap()
     }
 
     #[test]

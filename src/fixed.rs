@@ -18,7 +18,7 @@ pub struct SubpixelBits(u8);
 impl SubpixelBits {
     /// The fewest bits accepted: one bit is needed to place the sample at the pixel centre.
     pub const MIN: u8 = 1;
-    /// The most bits accepted: more would break the `i64` headroom proof of [`COORD_LIMIT`].
+    /// The most bits accepted: 8, as D3D11 and Vulkan Roadmap 2026 use; [`FixedPoint::LIMIT`] is sized for it.
     pub const MAX: u8 = 8;
     /// Eight bits, as D3D11 mandates and Vulkan Roadmap 2026 requires.
     pub const DEFAULT: SubpixelBits = SubpixelBits(8);
@@ -53,33 +53,64 @@ impl Default for SubpixelBits {
 }
 
 /// A raster-space point on the subpixel grid, in units of `2^-bits` pixel.
+///
+/// Its coordinates never exceed [`FixedPoint::LIMIT`] in magnitude (the constructors check),
+/// which is what makes every edge function on it exact in `i64`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub struct FixedPoint {
-    /// x in subpixel units, growing to the right.
-    pub x: i64,
-    /// y in subpixel units, growing downwards.
-    pub y: i64,
+    pub(crate) x: i64,
+    pub(crate) y: i64,
 }
 
 impl FixedPoint {
-    /// A point from subpixel units.
+    /// The largest coordinate magnitude in subpixel units: [`COORD_LIMIT`] at the finest grid.
+    pub const LIMIT: i64 = (COORD_LIMIT as i64) << SubpixelBits::MAX;
+
+    /// A point from subpixel units, or `None` beyond [`LIMIT`](Self::LIMIT).
     #[must_use]
-    pub const fn new(x: i64, y: i64) -> Self {
-        Self { x, y }
+    pub fn new(x: i64, y: i64) -> Option<Self> {
+        (x.abs() <= Self::LIMIT && y.abs() <= Self::LIMIT).then_some(Self { x, y })
+    }
+
+    /// x in subpixel units, growing to the right.
+    #[must_use]
+    pub fn x(self) -> i64 {
+        self.x
+    }
+
+    /// y in subpixel units, growing downwards.
+    #[must_use]
+    pub fn y(self) -> i64 {
+        self.y
     }
 
     /// Snaps a raster-space point, or `None` when a coordinate is not finite or exceeds [`COORD_LIMIT`].
     #[must_use]
     pub fn snap(x: f64, y: f64, bits: SubpixelBits) -> Option<Self> {
-        Some(Self::new(snap(x, bits)?, snap(y, bits)?))
+        // `snap` stays within COORD_LIMIT pixels, hence within LIMIT units at any grid.
+        Some(Self {
+            x: snap(x, bits)?,
+            y: snap(y, bits)?,
+        })
     }
 
-    /// The sample position of pixel `(px, py)`, its centre `(px + ½, py + ½)`.
+    /// The sample position of pixel `(px, py)`, its centre `(px + ½, py + ½)`; `None` for a
+    /// pixel beyond [`COORD_LIMIT`].
+    #[must_use]
+    pub fn sample(px: i64, py: i64, bits: SubpixelBits) -> Option<Self> {
+        let limit = COORD_LIMIT as i64;
+        (px.abs() < limit && py.abs() < limit).then(|| Self::pixel_sample(px, py, bits))
+    }
+
+    /// The sample of a pixel of a viewport (sides at most [`MAX_VIEWPORT`](crate::MAX_VIEWPORT)).
     #[must_use]
     #[inline]
-    pub fn sample(px: i64, py: i64, bits: SubpixelBits) -> Self {
+    pub(crate) fn pixel_sample(px: i64, py: i64, bits: SubpixelBits) -> Self {
         let half = bits.one() / 2;
-        Self::new(px * bits.one() + half, py * bits.one() + half)
+        Self {
+            x: px * bits.one() + half,
+            y: py * bits.one() + half,
+        }
     }
 
     /// Back to raster space in pixels (exact: at most 23 significant bits).

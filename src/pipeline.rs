@@ -71,13 +71,13 @@ pub struct ShadeInput {
 }
 
 /// A colour buffer (RGBA8) and a depth buffer (f32) of one size.
+///
+/// The buffers are reachable as slices only, so they always hold `width × height` pixels.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Framebuffer {
     viewport: Viewport,
-    /// Row-major RGBA8 pixels.
-    pub color: Vec<[u8; 4]>,
-    /// Row-major depth values.
-    pub depth: Vec<f32>,
+    color: Vec<[u8; 4]>,
+    depth: Vec<f32>,
 }
 
 impl Framebuffer {
@@ -103,10 +103,33 @@ impl Framebuffer {
         self.depth.fill(depth);
     }
 
-    /// The colour at `(x, y)`.
+    /// The colour at `(x, y)`, or `None` outside the buffer.
     #[must_use]
-    pub fn pixel(&self, x: u32, y: u32) -> [u8; 4] {
-        self.color[self.viewport.index(x, y)]
+    pub fn pixel(&self, x: u32, y: u32) -> Option<[u8; 4]> {
+        (x < self.viewport.width() && y < self.viewport.height())
+            .then(|| self.color[self.viewport.index(x, y)])
+    }
+
+    /// Row-major RGBA8 pixels.
+    #[must_use]
+    pub fn color(&self) -> &[[u8; 4]] {
+        &self.color
+    }
+
+    /// Row-major RGBA8 pixels, to write.
+    pub fn color_mut(&mut self) -> &mut [[u8; 4]] {
+        &mut self.color
+    }
+
+    /// Row-major depth values.
+    #[must_use]
+    pub fn depth(&self) -> &[f32] {
+        &self.depth
+    }
+
+    /// Row-major depth values, to write.
+    pub fn depth_mut(&mut self) -> &mut [f32] {
+        &mut self.depth
     }
 
     /// The colour buffer as an image.
@@ -249,7 +272,7 @@ impl Renderer {
         written
     }
 
-    /// Draws line segments between mesh vertices, colour interpolated along each line.
+    /// Draws line segments between mesh vertices, colour interpolated perspective-correctly.
     ///
     /// Segments are clipped in clip space at the near plane, the guard band (and far when
     /// enabled); the depth test applies. Returns the number of pixels that passed.
@@ -288,7 +311,9 @@ impl Renderer {
                     depth: self.state.depth_range.window_depth(p.z, p.w),
                 }
             };
+            // Where the visible ends lie on the segment (linear in clip space) and their 1/w.
             let (ta, tb) = (ca.barycentric.y, cb.barycentric.y);
+            let (qa, qb) = (1.0 / ca.position.w, 1.0 / cb.position.w);
             rasterize_line(project(&ca), project(&cb), viewport, |f| {
                 let i = viewport.index(f.x, f.y);
                 if self
@@ -296,7 +321,9 @@ impl Renderer {
                     .depth
                     .test_and_write(fragment_depth(f.depth), &mut target.depth[i])
                 {
-                    let t = (ta + (tb - ta) * f.t) as f32;
+                    // Perspective-correct, as for triangles: t/w and 1/w are linear on screen.
+                    let s = f.t;
+                    let t = ((ta * qa * (1.0 - s) + tb * qb * s) / (qa * (1.0 - s) + qb * s)) as f32;
                     target.color[i] = to_rgba8(va.color.lerp(vb.color, t));
                     written += 1;
                 }

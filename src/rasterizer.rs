@@ -137,7 +137,7 @@ pub struct Resolved {
     pub viewport: Viewport,
     /// Depth per pixel.
     pub depth: Vec<f32>,
-    /// The primitive whose fragment was last written at each pixel, if any.
+    /// The primitive whose fragment last passed the depth test at each pixel (written or not), if any.
     pub primitive: Vec<Option<u32>>,
 }
 

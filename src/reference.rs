@@ -44,11 +44,11 @@ pub struct DrawStats {
     pub non_finite: usize,
     /// Wholly outside the clip volume, behind the eye included.
     pub clipped_away: usize,
-    /// Zero area after snapping (back-facing, drawn never).
+    /// Zero area after snapping, or a vertex with no raster position (drawn never).
     pub degenerate: usize,
     /// Discarded by the cull mode.
     pub culled: usize,
-    /// Inside the clip volume but covering no sample of the viewport.
+    /// Inside the clip volume, but with a bounding box that holds no sample of the viewport.
     pub off_screen: usize,
     /// Triangles that reached traversal.
     pub traversed: usize,
@@ -206,7 +206,8 @@ impl Reference {
         out.clear();
         for v in polygon {
             let p = v.position;
-            // After clipping w ≥ 0; w = 0 only at the clip-space origin, which has no projection.
+            // After clipping w ≥ 0; a vertex with w = 0 (x = y = 0, any z ≥ 0) is a point at
+            // infinity with no raster position: such a triangle projects to a segment at most.
             if p.w <= 0.0 {
                 return false;
             }

@@ -27,20 +27,22 @@ impl Winding {
     }
 }
 
-/// A half-open rectangle of pixels, `x0..x1 × y0..y1`.
+/// A half-open rectangle of pixels, `x0..x1 × y0..y1`, always inside a viewport.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct PixelRect {
-    /// First column.
-    pub x0: u32,
-    /// First row.
-    pub y0: u32,
-    /// One past the last column.
-    pub x1: u32,
-    /// One past the last row.
-    pub y1: u32,
+    pub(crate) x0: u32,
+    pub(crate) y0: u32,
+    pub(crate) x1: u32,
+    pub(crate) y1: u32,
 }
 
 impl PixelRect {
+    /// First column, last column + 1, first row, last row + 1.
+    #[must_use]
+    pub fn bounds(self) -> (u32, u32, u32, u32) {
+        (self.x0, self.x1, self.y0, self.y1)
+    }
+
     /// The whole viewport.
     #[must_use]
     pub fn of_viewport(viewport: Viewport) -> Self {
@@ -91,13 +93,13 @@ impl PixelRect {
 #[derive(Clone, Copy, Debug)]
 pub struct TriangleSetup {
     /// The vertices in clockwise order.
-    pub vertices: [FixedPoint; 3],
+    pub(crate) vertices: [FixedPoint; 3],
     /// `order[k]` is the input position of `vertices[k]` (the input is reordered when counter-clockwise).
-    pub order: [usize; 3],
+    pub(crate) order: [usize; 3],
     /// `edges[k]` is the edge opposite `vertices[k]`, so its value is vertex k's barycentric weight.
-    pub edges: [EdgeFunction; 3],
+    pub(crate) edges: [EdgeFunction; 3],
     /// Twice the (positive) area, the sum of the three edge values at any point.
-    pub area2: i64,
+    pub(crate) area2: i64,
 }
 
 impl TriangleSetup {
@@ -121,6 +123,24 @@ impl TriangleSetup {
             ],
             area2: area2.abs(),
         })
+    }
+
+    /// The vertices in clockwise order.
+    #[must_use]
+    pub fn vertices(&self) -> [FixedPoint; 3] {
+        self.vertices
+    }
+
+    /// `order()[k]` is the input position of `vertices()[k]`.
+    #[must_use]
+    pub fn order(&self) -> [usize; 3] {
+        self.order
+    }
+
+    /// Twice the triangle's (positive) area in square subpixel units.
+    #[must_use]
+    pub fn area2(&self) -> i64 {
+        self.area2
     }
 
     /// The three edge values at `p` (exact), whether or not `p` is inside.

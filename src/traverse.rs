@@ -48,7 +48,7 @@ pub fn traverse(
         return;
     }
     for y in rect.y0..rect.y1 {
-        let start = FixedPoint::sample(i64::from(rect.x0), i64::from(y), bits);
+        let start = FixedPoint::pixel_sample(i64::from(rect.x0), i64::from(y), bits);
         row.clear();
         row.extend(fan.iter().map(|t| t.setup.edge_values(start)));
         for x in rect.x0..rect.x1 {
@@ -84,9 +84,9 @@ fn traverse_triangle(t: &FanTriangle, rect: PixelRect, bits: SubpixelBits, mut v
     let one = bits.one();
     let steps = t.setup.edges.map(|e| e.pixel_step_x(one));
     for y in rect.y0..rect.y1 {
-        let mut values = t
-            .setup
-            .edge_values(FixedPoint::sample(i64::from(rect.x0), i64::from(y), bits));
+        let mut values =
+            t.setup
+                .edge_values(FixedPoint::pixel_sample(i64::from(rect.x0), i64::from(y), bits));
         for x in rect.x0..rect.x1 {
             if t.setup.is_inside(values) {
                 visit(Hit {

@@ -6,7 +6,8 @@ use refrast::{
     ClipMode, ClipOutcome, ClipPlane, ClipVertex, DepthRange, Draw, Rasterizer, Reference, ReferenceConfig,
     Viewport, clip_triangle,
 };
-use support::brute_force;
+use refrast_conformance::oracle::brute_force;
+use refrast_conformance::oracle::ray_cast::ray_cast;
 
 fn viewport(size: u32) -> Viewport {
     Viewport::new(size, size).unwrap()
@@ -64,7 +65,7 @@ fn crossing_the_near_plane_keeps_exactly_the_part_in_front() {
     let got = covered(&mut reference, &draw);
     let s = 256;
     let triangle = [(0, 64 * s), (64 * s, 64 * s), (64 * s, 0)];
-    let want: Vec<_> = brute_force::coverage(triangle, 64, 64, 8)
+    let want: Vec<_> = brute_force::coverage(triangle, 64, 64, 8, refrast::FillConvention::TopLeft)
         .into_iter()
         .filter(|&(x, _)| x >= 32)
         .collect();
@@ -96,7 +97,7 @@ fn crossing_all_six_planes_leaves_the_slab_between_near_and_far() {
         });
         assert_eq!(covered(&mut reference, &draw), want, "{clip:?}");
     }
-    // The clipper itself: six planes each add a vertex to the polygon.
+    // The clipper itself: every vertex it leaves is inside all six planes, its barycentrics convex.
     let tri = [0, 1, 2].map(|i| ClipVertex {
         position: glam::DVec4::from(draw.positions[i].map(f64::from)),
         barycentric: glam::DVec3::AXES[i],
@@ -149,8 +150,7 @@ fn intersections_do_not_depend_on_walking_direction() {
 fn shared_edges_crossing_the_near_plane_stay_watertight() {
     // A quad (two triangles) from in front of the eye to behind it. Behind the eye (w < 0) x is
     // mirrored, so the back vertices are listed right-to-left to keep the quad unfolded; listed
-    // the other way it folds over itself and 12 samples are rightly covered twice (checked with
-    // an independent ray cast: 180 samples, none hit by both triangles, for this order).
+    // the other way it folds over itself and 12 samples are rightly covered twice.
     let positions = vec![
         [-0.8, -0.8, 0.5, 1.0],
         [0.8, -0.8, 0.5, 1.0],
@@ -168,7 +168,8 @@ fn shared_edges_crossing_the_near_plane_stay_watertight() {
             let n = got.len();
             got.dedup();
             assert_eq!(n, got.len(), "double coverage with {clip:?}");
-            assert_eq!(n, 180, "{clip:?}");
+            // The ray cast sees 180 samples, none on both triangles (or on an edge, where it could not tell).
+            assert_eq!(n, ray_cast_count(&draw), "{clip:?}");
             // No hole: each covered row is one contiguous run (the visible quad is convex).
             for y in 0..64 {
                 let row: Vec<u32> = got.iter().filter(|p| p.1 == y).map(|p| p.0).collect();
@@ -182,4 +183,32 @@ fn shared_edges_crossing_the_near_plane_stay_watertight() {
             }
         }
     }
+}
+
+/// Samples whose ray hits a triangle of the draw, checked to be hit by at most one.
+fn ray_cast_count(draw: &Draw) -> usize {
+    let (w, h) = (draw.viewport.width(), draw.viewport.height());
+    let tris: Vec<[[f64; 4]; 3]> = draw
+        .triangles
+        .iter()
+        .map(|t| t.map(|i| draw.positions[i as usize].map(f64::from)))
+        .collect();
+    let mut count = 0;
+    for y in 0..h {
+        for x in 0..w {
+            let nx = (f64::from(x) + 0.5) / f64::from(w) * 2.0 - 1.0;
+            let ny = 1.0 - (f64::from(y) + 0.5) / f64::from(h) * 2.0;
+            let hits = tris
+                .iter()
+                .filter(|t| ray_cast(t, nx, ny, &draw.state).is_some())
+                .count();
+            assert!(
+                hits <= 1,
+                "sample ({x}, {y}) is on both triangles: the quad folds"
+            );
+            count += hits;
+        }
+    }
+    assert_eq!(count, 180);
+    count
 }

@@ -11,7 +11,7 @@ const CCW: [(f64, f64); 3] = [(1.0, 1.0), (4.0, 7.0), (7.0, 1.0)];
 
 #[test]
 fn winding_comes_from_the_sign_of_orient2d() {
-    let p = |(x, y): (f64, f64)| FixedPoint::new(x as i64, y as i64);
+    let p = |(x, y): (f64, f64)| FixedPoint::new(x as i64, y as i64).unwrap();
     assert_eq!(
         Winding::from_area2(orient2d(p(CW[0]), p(CW[1]), p(CW[2]))),
         Winding::Clockwise

@@ -8,7 +8,7 @@ use refrast::{FillConvention, FixedPoint, is_top_left};
 use support::{pixels, raster_draw};
 
 fn p(x: i64, y: i64) -> FixedPoint {
-    FixedPoint::new(x, y)
+    FixedPoint::new(x, y).unwrap()
 }
 
 #[test]
@@ -115,11 +115,13 @@ fn every_convention_is_watertight_on_a_fan() {
             fill,
             ..Default::default()
         };
-        let fragments = refrast::Reference::new(config)
-            .draw(&draw, |_| {})
-            .unwrap()
-            .fragments;
-        // The 8 × 8 square, which owns two of its four sides under any convention: 8 × 8 samples.
-        assert_eq!(fragments, 64, "{fill:?}");
+        let mut counts = vec![0u32; 16 * 16];
+        refrast::Reference::new(config)
+            .draw(&draw, |f| counts[(f.y * 16 + f.x) as usize] += 1)
+            .unwrap();
+        // Counted per sample: none twice, and the 8 × 8 square (which owns two of its four sides
+        // under any convention) has exactly 64 covered.
+        assert!(counts.iter().all(|&c| c <= 1), "{fill:?}: a sample covered twice");
+        assert_eq!(counts.iter().filter(|&&c| c == 1).count(), 64, "{fill:?}");
     }
 }

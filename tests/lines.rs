@@ -15,7 +15,7 @@ fn target() -> Framebuffer {
 fn lit(t: &Framebuffer) -> Vec<(u32, u32)> {
     (0..32)
         .flat_map(|y| (0..32).map(move |x| (x, y)))
-        .filter(|&(x, y)| t.pixel(x, y) != CLEAR)
+        .filter(|&(x, y)| t.pixel(x, y) != Some(CLEAR))
         .collect()
 }
 
@@ -35,11 +35,11 @@ fn a_horizontal_line_runs_from_red_to_blue() {
     let n = Renderer::default().draw_lines(&mut t, &ends, &[[0, 1]], Mat4::IDENTITY);
     assert_eq!(n, 32);
     assert!(lit(&t).iter().all(|&(_, y)| y == 15));
-    assert_eq!(t.pixel(0, 15), [255, 0, 0, 255]);
-    assert_eq!(t.pixel(31, 15), [0, 0, 255, 255]);
+    assert_eq!(t.pixel(0, 15), Some([255, 0, 0, 255]));
+    assert_eq!(t.pixel(31, 15), Some([0, 0, 255, 255]));
     // Halfway (t = 15/31) the colour is the mix.
     assert_eq!(
-        t.pixel(15, 15),
+        t.pixel(15, 15).unwrap(),
         to_rgba8(Vec4::new(1.0, 0.0, 0.0, 1.0).lerp(Vec4::new(0.0, 0.0, 1.0, 1.0), 15.0 / 31.0))
     );
 }
@@ -79,8 +79,8 @@ fn lines_are_depth_tested() {
     renderer.draw_lines(&mut t, &near, &[[0, 1]], Mat4::IDENTITY);
     renderer.draw_lines(&mut t, &far, &[[0, 1]], Mat4::IDENTITY);
     // Where they cross, the nearer red line stays; elsewhere the green one shows.
-    assert_eq!(t.pixel(16, 16), [255, 0, 0, 255]);
-    assert_eq!(t.pixel(16, 5), [0, 255, 0, 255]);
+    assert_eq!(t.pixel(16, 16), Some([255, 0, 0, 255]));
+    assert_eq!(t.pixel(16, 5), Some([0, 255, 0, 255]));
 }
 
 #[test]
@@ -97,5 +97,20 @@ fn points_land_in_the_pixel_holding_them() {
     ];
     assert_eq!(renderer.draw_points(&mut t, &points, Mat4::IDENTITY), 2);
     assert_eq!(lit(&t), vec![(0, 0), (16, 16)]);
-    assert_eq!(t.pixel(16, 16), [255, 0, 0, 255]);
+    assert_eq!(t.pixel(16, 16), Some([255, 0, 0, 255]));
+}
+
+#[test]
+fn line_colour_is_perspective_correct() {
+    let mut t = target();
+    // From w = 1 to w = 3: the screen midpoint is only a quarter of the way along in 3D.
+    let far = Vertex::colored(Vec3::new(0.9, 0.0, 3.0), Vec3::Z);
+    let near = Vertex::colored(Vec3::new(-0.9, 0.0, 1.0), Vec3::X);
+    // w = z: x_ndc = x / z, so the ends project to −0.9 and 0.3.
+    let w_from_z = Mat4::from_cols(Vec4::X, Vec4::Y, Vec4::new(0.0, 0.0, 0.5, 1.0), Vec4::ZERO);
+    Renderer::default().draw_lines(&mut t, &[near, far], &[[0, 1]], w_from_z);
+    // Raster x: −0.9 → 1.6, 0.3 → 20.8, 19 steps; pixel 11 is step 10, s = 10/19. The 3D
+    // parameter is (s/3) / ((1 − s)/1 + s/3) = 0.27: red 186. Screen-linear would give 121.
+    let p = t.pixel(11, 16).unwrap();
+    assert!(p[0] > 170 && p[2] < 85, "{p:?}");
 }

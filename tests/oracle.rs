@@ -6,10 +6,10 @@ mod support;
 
 use proptest::prelude::*;
 use refrast::{
-    COORD_LIMIT, Draw, FixedPoint, PixelRect, Rasterizer, Reference, ReferenceConfig, SubpixelBits,
-    TriangleSetup, Viewport, snap, traverse,
+    COORD_LIMIT, Draw, FillConvention, FixedPoint, PixelRect, Rasterizer, Reference, ReferenceConfig,
+    SubpixelBits, Traversal, TriangleSetup, Viewport, snap, traverse,
 };
-use support::brute_force;
+use refrast_conformance::oracle::brute_force;
 
 fn config() -> ProptestConfig {
     let cases = std::env::var("PROPTEST_CASES")
@@ -71,7 +71,7 @@ fn reference_coverage(reference: &mut Reference, draw: &Draw) -> Vec<(u32, u32)>
     pixels
 }
 
-fn widen(t: [(i64, i64); 3]) -> [brute_force::P; 3] {
+fn widen(t: [(i64, i64); 3]) -> [brute_force::Point; 3] {
     t.map(|(x, y)| (i128::from(x), i128::from(y)))
 }
 
@@ -89,10 +89,14 @@ proptest! {
         check_draw(t, width, height, bits)?;
     }
 
-    /// Triangles generated directly (shrinkable), default 8 bits, 64 × 32 viewport.
+    /// Every fill convention and both traversals, 8 bits, 64 × 32 viewport.
     #[test]
-    fn reference_matches_brute_force_shrinkable(t in triangle(64, 32, 8)) {
-        check_draw(t, 64, 32, 8)?;
+    fn every_convention_and_traversal_matches_brute_force(
+        t in triangle(64, 32, 8),
+        fill in prop::sample::select(FillConvention::ALL.to_vec()),
+        traversal in prop::sample::select(vec![Traversal::BoundingBox, Traversal::Viewport]),
+    ) {
+        check_draw_with(t, 64, 32, 8, fill, traversal)?;
     }
 
     /// Triangles with vertices at the ends of the valid range, through setup and traversal directly.
@@ -111,7 +115,7 @@ proptest! {
         };
         let t = [far(corner[0]), far(corner[1]), (on_screen.0 * 256 + 128, on_screen.1 * 256 + 128)];
         let viewport = Viewport::new(64, 64).unwrap();
-        let points = t.map(|(x, y)| FixedPoint::new(x, y));
+        let points = t.map(|(x, y)| FixedPoint::new(x, y).unwrap());
         let mut got = Vec::new();
         if let (Some(setup), Some(rect)) = (
             TriangleSetup::new(points, refrast::FillConvention::TopLeft),
@@ -121,11 +125,29 @@ proptest! {
             traverse(&fan, rect, bits, &mut Vec::new(), |hit| got.push((hit.x, hit.y)));
         }
         got.sort_unstable_by_key(|&(x, y)| (y, x));
-        prop_assert_eq!(got, brute_force::coverage(widen(t), 64, 64, 8));
+        prop_assert_eq!(got, brute_force::coverage(widen(t), 64, 64, 8, refrast::FillConvention::TopLeft));
     }
 }
 
 fn check_draw(t: [(i64, i64); 3], width: u32, height: u32, bits: u8) -> Result<(), TestCaseError> {
+    check_draw_with(
+        t,
+        width,
+        height,
+        bits,
+        FillConvention::TopLeft,
+        Traversal::BoundingBox,
+    )
+}
+
+fn check_draw_with(
+    t: [(i64, i64); 3],
+    width: u32,
+    height: u32,
+    bits: u8,
+    fill: FillConvention,
+    traversal: Traversal,
+) -> Result<(), TestCaseError> {
     let viewport = Viewport::new(width, height).unwrap();
     let subpixel_bits = SubpixelBits::new(bits).unwrap();
     let positions = to_clip(t, viewport, bits);
@@ -140,18 +162,22 @@ fn check_draw(t: [(i64, i64); 3], width: u32, height: u32, bits: u8) -> Result<(
     let draw = Draw::new(viewport, positions, vec![[0, 1, 2]]);
     let mut reference = Reference::new(ReferenceConfig {
         subpixel_bits,
+        fill,
+        traversal,
         ..ReferenceConfig::default()
     });
     let got = reference_coverage(&mut reference, &draw);
-    let want = brute_force::coverage(widen(t), width, height, bits);
+    let want = brute_force::coverage(widen(t), width, height, bits, fill);
     prop_assert_eq!(
         got,
         want,
-        "triangle {:?} in {}x{} at {} bits",
+        "triangle {:?} in {}x{} at {} bits, {:?}, {:?}",
         t,
         width,
         height,
-        bits
+        bits,
+        fill,
+        traversal
     );
     Ok(())
 }

@@ -60,5 +60,12 @@ fn subpixel_bits_outside_one_to_eight_are_errors() {
 fn samples_sit_at_pixel_centres() {
     assert_eq!(FixedPoint::sample(0, 0, bits(8)), FixedPoint::new(128, 128));
     assert_eq!(FixedPoint::sample(3, -2, bits(4)), FixedPoint::new(56, -24));
-    assert_eq!(FixedPoint::sample(3, -2, bits(4)).to_raster(bits(4)), (3.5, -1.5));
+    assert_eq!(
+        FixedPoint::sample(3, -2, bits(4)).unwrap().to_raster(bits(4)),
+        (3.5, -1.5)
+    );
+    // Beyond the valid range there is no point to return.
+    assert_eq!(FixedPoint::sample(40_000, 0, bits(8)), None);
+    assert_eq!(FixedPoint::new(FixedPoint::LIMIT + 1, 0), None);
+    assert!(FixedPoint::new(-FixedPoint::LIMIT, FixedPoint::LIMIT).is_some());
 }

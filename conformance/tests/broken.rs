@@ -43,7 +43,9 @@ impl Rasterizer for InclusiveEdges {
             }
             for y in 0..vp.height() {
                 for x in 0..vp.width() {
-                    let s = FixedPoint::sample(i64::from(x), i64::from(y), bits);
+                    let Some(s) = FixedPoint::sample(i64::from(x), i64::from(y), bits) else {
+                        continue;
+                    };
                     let e =
                         [orient2d(b, c, s), orient2d(c, a, s), orient2d(a, b, s)].map(|e| e * area.signum());
                     if e.iter().all(|&e| e >= 0) {

@@ -1,8 +1,6 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)] // Each test binary uses its own subset of these helpers.
 
-pub mod brute_force;
-
 use refrast::{Draw, Fragment, Rasterizer, Reference, Viewport};
 
 /// Clip-space position (w = 1) of a raster point given in pixels; exact for power-of-two viewports.

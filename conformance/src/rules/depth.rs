@@ -34,7 +34,7 @@ pub(super) fn rules() -> Vec<Rule> {
             kind: Kind::Invariant,
             sentence: "The depth of an unclipped triangle's fragment lies between its vertices' smallest and largest z/w.",
             source: "Vulkan 1.4 §28.7.5 (depth is linearly interpolated); seed 000",
-            default_cases: 500,
+            default_cases: 5000,
             applies: needs_z_over_w,
             run: |r, cfg| {
                 property(
@@ -51,7 +51,7 @@ pub(super) fn rules() -> Vec<Rule> {
             kind: Kind::Invariant,
             sentence: "Fragment depth equals z/w at the ray-cast hit within 2^-18.",
             source: "Vulkan 1.4 §28.7.5; D3D11.3 §15.6",
-            default_cases: 500,
+            default_cases: 5000,
             applies: needs_z_over_w,
             run: |r, cfg| {
                 property(
@@ -68,7 +68,7 @@ pub(super) fn rules() -> Vec<Rule> {
             kind: Kind::Invariant,
             sentence: "After a LESS depth test the depth buffer is identical under every submission order, and the primitive ids too where depths differ.",
             source: "seed 000 (depth buffer); conformance-anchors d5",
-            default_cases: 300,
+            default_cases: 3000,
             applies: needs_depth_test,
             run: |r, cfg| property(r, cfg, strategy::overlapping_scene(), check_order_independent),
         },
@@ -78,7 +78,7 @@ pub(super) fn rules() -> Vec<Rule> {
             kind: Kind::Invariant,
             sentence: "The resolved depth and id buffers are the fragments replayed in primitive order through the draw's compare op and write mask.",
             source: "Vulkan 1.4 §29.8 (depth test); seed 000",
-            default_cases: 300,
+            default_cases: 3000,
             applies: needs_depth_test,
             run: |r, cfg| property(r, cfg, depth_state_scene(), check_resolve),
         },

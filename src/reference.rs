@@ -134,8 +134,11 @@ impl Reference {
                 continue;
             }
             let raster = &scratch.raster;
-            let area2 = fan_area2(raster);
-            let Some(front_facing) = state.front_face.is_front(Winding::from_area2(area2)) else {
+            let winding = match outcome {
+                ClipOutcome::Clipped => clipped_winding(&input, raster),
+                _ => Winding::from_area2(fan_area2(raster)),
+            };
+            let Some(front_facing) = state.front_face.is_front(winding) else {
                 stats.degenerate += 1;
                 continue;
             };
@@ -143,7 +146,7 @@ impl Reference {
                 stats.culled += 1;
                 continue;
             }
-            self.build_fan(raster, area2, &mut scratch.fan);
+            self.build_fan(raster, winding, &mut scratch.fan);
             let bits = self.config.subpixel_bits;
             scratch.points.clear();
             scratch.points.extend(raster.iter().map(|v| v.position));
@@ -226,13 +229,13 @@ impl Reference {
     }
 
     /// Fans the snapped polygon from its first vertex, marking slivers that snapping turned over.
-    fn build_fan(&self, raster: &[RasterVertex], area2: i64, fan: &mut Vec<FanTriangle>) {
+    fn build_fan(&self, raster: &[RasterVertex], winding: Winding, fan: &mut Vec<FanTriangle>) {
         fan.clear();
         for i in 1..raster.len() - 1 {
             let corners = [0, i, i + 1];
             let v = corners.map(|c| raster[c].position);
             if let Some(setup) = TriangleSetup::new(v, self.config.fill) {
-                let agrees = orient2d(v[0], v[1], v[2]).signum() == area2.signum();
+                let agrees = Winding::from_area2(orient2d(v[0], v[1], v[2])) == winding;
                 fan.push(FanTriangle {
                     setup,
                     agrees,
@@ -287,6 +290,37 @@ fn fan_area2(raster: &[RasterVertex]) -> i64 {
     (1..raster.len() - 1)
         .map(|i| orient2d(raster[0].position, raster[i].position, raster[i + 1].position))
         .sum()
+}
+
+/// The on-screen winding of a clipped triangle, from its unclipped vertices.
+///
+/// The visible (`w > 0`) part of a triangle turns on screen as `−sign(det[x y w])` says, for
+/// any signs of `w` (Olano–Greer 1997; raster y points down, hence the minus). Taking it from
+/// the input rather than the snapped, clipped polygon keeps a sliver that snapping folds across
+/// a shared edge from counting as a polygon of its own: its winding cancels instead of drawing
+/// twice. When the determinant is too close to zero for its sign to be sure in f64, the
+/// snapped polygon's area decides.
+fn clipped_winding(input: &[ClipVertex; 3], raster: &[RasterVertex]) -> Winding {
+    let [a, b, c] = input.map(|v| v.position);
+    let terms = [
+        a.x * (b.y * c.w - c.y * b.w),
+        -a.y * (b.x * c.w - c.x * b.w),
+        a.w * (b.x * c.y - c.x * b.y),
+    ];
+    let det: f64 = terms.iter().sum();
+    let scale = a.x.abs() * (b.y * c.w).abs().max((c.y * b.w).abs())
+        + a.y.abs() * (b.x * c.w).abs().max((c.x * b.w).abs())
+        + a.w.abs() * (b.x * c.y).abs().max((c.x * b.y).abs());
+    // f64 rounding in a 3×3 determinant stays far below 1e-10 of the terms' size.
+    if det.abs() > 1e-10 * scale {
+        if det < 0.0 {
+            Winding::Clockwise
+        } else {
+            Winding::CounterClockwise
+        }
+    } else {
+        Winding::from_area2(fan_area2(raster))
+    }
 }
 
 /// The input triangle's `w`s when all are positive: only then does it have a screen-space shape.

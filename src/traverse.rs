@@ -44,7 +44,10 @@ pub fn traverse(
 ) {
     let one = bits.one();
     if let [single] = fan {
-        traverse_triangle(single, rect, bits, visit);
+        // Alone, a triangle turned over by snapping has winding −1 everywhere: it draws nothing.
+        if single.agrees {
+            traverse_triangle(single, rect, bits, visit);
+        }
         return;
     }
     for y in rect.y0..rect.y1 {
@@ -79,7 +82,7 @@ pub fn traverse(
     }
 }
 
-/// The common case of a fan of one triangle: the winding number is just "inside".
+/// The common case of a fan of one agreeing triangle: the winding number is just "inside".
 fn traverse_triangle(t: &FanTriangle, rect: PixelRect, bits: SubpixelBits, mut visit: impl FnMut(Hit)) {
     let one = bits.one();
     let steps = t.setup.edges.map(|e| e.pixel_step_x(one));

@@ -36,6 +36,6 @@ pub use certify::{Options, ProfileReport, Report, RuleReport, Status, certify, m
 pub use harness::{failure_text, run_as_tests};
 pub use impls::{BuiltIn, Named, builtin, builtins};
 pub use rules::{Family, Kind, Rule, catalogue};
-pub use runner::{DEFAULT_SEED, Reduce, RunConfig, Verdict, property};
+pub use runner::{Case, DEFAULT_SEED, RunConfig, Verdict, property};
 pub use scene::{Scene, clip_of};
 pub use violation::{Class, Counts, Expect, Picture, Violation, compare_coverage, count_fragments};

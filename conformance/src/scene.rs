@@ -108,13 +108,17 @@ impl Scene {
     }
 }
 
-impl crate::runner::Reduce for Scene {
+impl crate::runner::Case for Scene {
     /// Every way of dropping one triangle (a scene keeps at least one).
     fn reductions(&self) -> Vec<Self> {
         if self.triangles.len() < 2 {
             return Vec::new();
         }
         (0..self.triangles.len()).map(|t| self.without(t)).collect()
+    }
+
+    fn scene(&self) -> &Scene {
+        self
     }
 }
 

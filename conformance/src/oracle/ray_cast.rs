@@ -20,39 +20,157 @@ pub struct Hit {
 /// Casts the ray through NDC point `(nx, ny)` at the clip-space triangle `tri`.
 ///
 /// `None` when it misses, the hit is behind the eye or outside the near (or enabled far)
-/// plane, or the triangle is seen edge-on.
+/// plane, or the triangle is seen edge-on. Every decision is exact: f64 first, with a forward
+/// error bound on each sign; when a sign is within its bound of zero (a sample on an edge, a
+/// triangle nearly edge-on), the same solve runs again in exact rationals.
 #[must_use]
 pub fn ray_cast(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Option<Hit> {
-    let u = tri.map(|p| p[0] - nx * p[3]);
-    let v = tri.map(|p| p[1] - ny * p[3]);
-    // Solve [1 1 1; u; v] b = (1, 0, 0) by Cramer's rule.
-    let det = (u[1] * v[2] - u[2] * v[1]) - (u[0] * v[2] - u[2] * v[0]) + (u[0] * v[1] - u[1] * v[0]);
-    if det == 0.0 || !det.is_finite() {
-        return None;
+    match ray_cast_f64(tri, nx, ny, state) {
+        Filtered::Sure(hit) => hit,
+        Filtered::Unsure => ray_cast_exact(tri, nx, ny, state),
     }
-    let b = [
-        (u[1] * v[2] - u[2] * v[1]) / det,
-        (u[2] * v[0] - u[0] * v[2]) / det,
-        (u[0] * v[1] - u[1] * v[0]) / det,
+}
+
+enum Filtered {
+    Sure(Option<Hit>),
+    Unsure,
+}
+
+/// A value with a bound on its rounding error.
+#[derive(Clone, Copy)]
+struct Bounded {
+    v: f64,
+    err: f64,
+}
+
+impl Bounded {
+    fn exact(v: f64) -> Self {
+        Self { v, err: 0.0 }
+    }
+
+    fn sure(self) -> bool {
+        self.v.abs() > self.err && self.v.is_finite()
+    }
+}
+
+// ε = 2^-53 per operation, doubled for safety: bounds that are loose cost an exact recompute,
+// never a wrong answer.
+const EPS: f64 = 2.0 * f64::EPSILON;
+
+fn sub(a: Bounded, b: Bounded) -> Bounded {
+    let v = a.v - b.v;
+    Bounded {
+        v,
+        err: a.err + b.err + EPS * v.abs(),
+    }
+}
+
+fn add(a: Bounded, b: Bounded) -> Bounded {
+    let v = a.v + b.v;
+    Bounded {
+        v,
+        err: a.err + b.err + EPS * v.abs(),
+    }
+}
+
+fn mul(a: Bounded, b: Bounded) -> Bounded {
+    let v = a.v * b.v;
+    Bounded {
+        v,
+        err: a.err * b.v.abs() + b.err * a.v.abs() + a.err * b.err + EPS * v.abs(),
+    }
+}
+
+fn ray_cast_f64(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Filtered {
+    let e = Bounded::exact;
+    let u = tri.map(|p| sub(e(p[0]), mul(e(nx), e(p[3]))));
+    let v = tri.map(|p| sub(e(p[1]), mul(e(ny), e(p[3]))));
+    let n = [
+        sub(mul(u[1], v[2]), mul(u[2], v[1])),
+        sub(mul(u[2], v[0]), mul(u[0], v[2])),
+        sub(mul(u[0], v[1]), mul(u[1], v[0])),
     ];
-    if b.iter().any(|&bi| bi < 0.0 || !bi.is_finite()) {
-        return None;
-    }
-    let at = |k: usize| b[0] * tri[0][k] + b[1] * tri[1][k] + b[2] * tri[2][k];
-    let (z, w) = (at(2), at(3));
-    let near = match state.depth_range {
-        DepthRange::ZeroToOne => z >= 0.0,
-        DepthRange::NegativeOneToOne => z >= -w,
+    let d = add(add(n[0], n[1]), n[2]);
+    let weighted = |k: usize| {
+        add(
+            add(mul(n[0], e(tri[0][k])), mul(n[1], e(tri[1][k]))),
+            mul(n[2], e(tri[2][k])),
+        )
     };
-    if w.is_nan() || w <= 0.0 || !near || (state.clip_far && z > w) {
-        return None;
+    let (nz, nw) = (weighted(2), weighted(3));
+    let near = match state.depth_range {
+        DepthRange::ZeroToOne => nz,
+        DepthRange::NegativeOneToOne => add(nz, nw),
+    };
+    let far = sub(nw, nz);
+    let mut signs = vec![d, n[0], n[1], n[2], nw, near];
+    if state.clip_far {
+        signs.push(far);
     }
+    // A value exactly zero may be decisive (a sample on an edge): let the exact path say.
+    if !signs.iter().all(|s| s.sure()) {
+        return Filtered::Unsure;
+    }
+    let s = d.v.signum();
+    let hit = n.iter().all(|ni| ni.v * s > 0.0)
+        && nw.v * s > 0.0
+        && near.v * s > 0.0
+        && (!state.clip_far || far.v * s > 0.0);
+    if !hit {
+        return Filtered::Sure(None);
+    }
+    let (z, w) = (nz.v / d.v, nw.v / d.v);
     let depth = match state.depth_range {
         DepthRange::ZeroToOne => z / w,
         DepthRange::NegativeOneToOne => (z / w + 1.0) * 0.5,
     };
+    Filtered::Sure(Some(Hit {
+        barycentric: n.map(|ni| ni.v / d.v),
+        depth,
+    }))
+}
+
+fn ray_cast_exact(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Option<Hit> {
+    use num_rational::BigRational;
+    use num_traits::{Signed, ToPrimitive, Zero};
+    // Every f64 is a dyadic rational, so the conversion is exact.
+    let q = |x: f64| BigRational::from_float(x);
+    let (qx, qy) = (q(nx)?, q(ny)?);
+    let p: Vec<[BigRational; 4]> = tri
+        .iter()
+        .map(|v| Some([q(v[0])?, q(v[1])?, q(v[2])?, q(v[3])?]))
+        .collect::<Option<_>>()?;
+    let u: Vec<BigRational> = p.iter().map(|v| &v[0] - &qx * &v[3]).collect();
+    let v: Vec<BigRational> = p.iter().map(|v| &v[1] - &qy * &v[3]).collect();
+    let n = [
+        &u[1] * &v[2] - &u[2] * &v[1],
+        &u[2] * &v[0] - &u[0] * &v[2],
+        &u[0] * &v[1] - &u[1] * &v[0],
+    ];
+    let d = &n[0] + &n[1] + &n[2];
+    if d.is_zero() {
+        return None;
+    }
+    let b: Vec<BigRational> = n.iter().map(|ni| ni / &d).collect();
+    if b.iter().any(Signed::is_negative) {
+        return None;
+    }
+    let at = |k: usize| &b[0] * &p[0][k] + &b[1] * &p[1][k] + &b[2] * &p[2][k];
+    let (z, w) = (at(2), at(3));
+    let near = match state.depth_range {
+        DepthRange::ZeroToOne => !z.is_negative(),
+        DepthRange::NegativeOneToOne => !(&z + &w).is_negative(),
+    };
+    if !w.is_positive() || !near || (state.clip_far && z > w) {
+        return None;
+    }
+    let zw = (&z / &w).to_f64()?;
+    let depth = match state.depth_range {
+        DepthRange::ZeroToOne => zw,
+        DepthRange::NegativeOneToOne => (zw + 1.0) * 0.5,
+    };
     Some(Hit {
-        barycentric: b,
+        barycentric: [b[0].to_f64()?, b[1].to_f64()?, b[2].to_f64()?],
         depth,
     })
 }
@@ -127,15 +245,27 @@ pub fn visible_outline(tri: &[[f64; 4]; 3], width: u32, height: u32, state: &Dra
         .collect()
 }
 
-/// Distance in pixels from `s` to the outline segments for which `keep(edges)` holds, where
-/// `edges` is the set of input edges the segment lies on (0 for a cut by a plane).
+impl OutlinePoint {
+    /// Whether clipping made this point (an input vertex lies on two input edges, a cut on fewer).
+    #[must_use]
+    pub fn is_cut(&self) -> bool {
+        self.edges.count_ones() < 2
+    }
+}
+
+/// Distance in pixels from `s` to the outline segments `a → b` for which `keep(a, b)` holds;
+/// `a.edges & b.edges` is the set of input edges a segment lies on (0 for a cut by a plane).
 #[must_use]
-pub fn distance_to_outline(outline: &[OutlinePoint], s: [f64; 2], keep: impl Fn(u8) -> bool) -> f64 {
+pub fn distance_to_outline(
+    outline: &[OutlinePoint],
+    s: [f64; 2],
+    keep: impl Fn(&OutlinePoint, &OutlinePoint) -> bool,
+) -> f64 {
     let n = outline.len();
     let mut best = f64::INFINITY;
     for i in 0..n {
         let (a, b) = (outline[i], outline[(i + 1) % n]);
-        if !keep(a.edges & b.edges) {
+        if !keep(&a, &b) {
             continue;
         }
         let d = match (a.finite, b.finite) {
@@ -208,5 +338,54 @@ mod tests {
             assert!(ray_cast(&tri, nx, ny, &DrawState::default()).is_none());
         }
         assert!(visible_outline(&tri, 8, 8, &DrawState::default()).is_empty());
+    }
+
+    fn hits(tri: [[f32; 4]; 3], w: u32, h: u32) -> usize {
+        let tri = tri.map(|p| p.map(f64::from));
+        let mut n = 0;
+        for y in 0..h {
+            for x in 0..w {
+                let nx = (f64::from(x) + 0.5) / f64::from(w) * 2.0 - 1.0;
+                let ny = 1.0 - (f64::from(y) + 0.5) / f64::from(h) * 2.0;
+                n += usize::from(ray_cast(&tri, nx, ny, &DrawState::default()).is_some());
+            }
+        }
+        n
+    }
+
+    /// Found by `clip.interior.matches-raycast`: x = −y at every vertex puts the eye in the
+    /// triangle's plane; f64 Cramer divided by rounding noise and "hit" 23 samples.
+    #[test]
+    fn a_triangle_seen_edge_on_covers_nothing() {
+        let tri = [
+            [-57337.19, 57337.19, 2.2714622, -1.9112397],
+            [65148.11, -65148.11, 0.0, 2.1716037],
+            [0.0, 0.0, 0.0, 0.2],
+        ];
+        assert_eq!(hits(tri, 32, 16), 0);
+    }
+
+    /// Found by `clip.interior.matches-raycast`: nearly edge-on, vertices at ±30000·w and w
+    /// crossing 0. Exact rationals give 120 hits; plain f64 gave none.
+    #[test]
+    fn a_nearly_edge_on_triangle_gets_its_exact_hits() {
+        let tri = [
+            [-6000.0, 6000.0, 0.0, 0.2],
+            [0.0, 0.01119828, 0.0, 0.2],
+            [20974.33, -20974.33, 0.0, -0.69914436],
+        ];
+        assert_eq!(hits(tri, 16, 16), 120);
+    }
+
+    /// Found while fixing the above: the hits lie at w ≈ 1.3e-9, close to the horizon but
+    /// genuinely visible; a cutoff on small w wrongly dropped all 256.
+    #[test]
+    fn hits_near_the_horizon_count() {
+        let tri = [
+            [0.2795305, 6000.0, 0.0, 0.2],
+            [-2.0273936, 56659.32, 0.7119076, 1.888644],
+            [0.120680064, -4555.2896, 0.0, -0.15184298],
+        ];
+        assert_eq!(hits(tri, 16, 16), 256);
     }
 }

@@ -113,10 +113,10 @@ fn check_sum_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation>
     for f in fragments(r, scene)? {
         let sum: f32 = f.barycentric.iter().sum();
         if (sum - 1.0).abs() > BARY_EPS {
-            return Err(Violation::new(format!(
-                "fragment {:?} has barycentrics summing to {sum}",
-                (f.x, f.y)
-            )));
+            return Err(Violation::at(
+                (f.x, f.y),
+                format!("fragment {:?} has barycentrics summing to {sum}", (f.x, f.y)),
+            ));
         }
     }
     Ok(())
@@ -127,7 +127,7 @@ fn check_in_range(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation
     let outline = visible_outline(&clip_triangle(scene, 0), scene.width, scene.height, &scene.state);
     for f in fragments(r, scene)? {
         let s = [f64::from(f.x) + 0.5, f64::from(f.y) + 0.5];
-        if distance_to_outline(&outline, s, |_| true) < band {
+        if distance_to_outline(&outline, s, |_, _| true) < band {
             continue;
         }
         if let Some(b) = f
@@ -135,11 +135,14 @@ fn check_in_range(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation
             .iter()
             .find(|&&b| !(-BARY_EPS..=1.0 + BARY_EPS).contains(&b))
         {
-            return Err(Violation::new(format!(
-                "fragment {:?} has barycentric {b} outside [0, 1]: {:?}",
+            return Err(Violation::at(
                 (f.x, f.y),
-                f.barycentric
-            )));
+                format!(
+                    "fragment {:?} has barycentric {b} outside [0, 1]: {:?}",
+                    (f.x, f.y),
+                    f.barycentric
+                ),
+            ));
         }
     }
     Ok(())
@@ -181,12 +184,15 @@ fn check_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Vi
         };
         for k in 0..3 {
             if (f64::from(f.barycentric[k]) - hit.barycentric[k]).abs() > ORACLE_EPS {
-                return Err(Violation::new(format!(
-                    "fragment {:?}: barycentrics {:?}, ray cast {:?}",
+                return Err(Violation::at(
                     (f.x, f.y),
-                    f.barycentric,
-                    hit.barycentric
-                )));
+                    format!(
+                        "fragment {:?}: barycentrics {:?}, ray cast {:?}",
+                        (f.x, f.y),
+                        f.barycentric,
+                        hit.barycentric
+                    ),
+                ));
             }
         }
     }
@@ -211,10 +217,10 @@ fn check_reconstructs(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Viola
         let s = [f64::from(f.x) + 0.5, f64::from(f.y) + 0.5];
         // Weights within ORACLE_EPS each move the point by at most 3·ORACLE_EPS·extent.
         if (at[0] - s[0]).hypot(at[1] - s[1]) > 3.0 * ORACLE_EPS * extent {
-            return Err(Violation::new(format!(
-                "fragment {:?}: screen barycentrics {b:?} give {at:?}",
-                (f.x, f.y)
-            )));
+            return Err(Violation::at(
+                (f.x, f.y),
+                format!("fragment {:?}: screen barycentrics {b:?} give {at:?}", (f.x, f.y)),
+            ));
         }
     }
     Ok(())
@@ -228,12 +234,15 @@ fn check_equal_w(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation>
             ));
         };
         if (0..3).any(|k| f64::from((f.barycentric[k] - s[k]).abs()) > ORACLE_EPS) {
-            return Err(Violation::new(format!(
-                "fragment {:?}: perspective {:?} but screen {:?} with equal w",
+            return Err(Violation::at(
                 (f.x, f.y),
-                f.barycentric,
-                s
-            )));
+                format!(
+                    "fragment {:?}: perspective {:?} but screen {:?} with equal w",
+                    (f.x, f.y),
+                    f.barycentric,
+                    s
+                ),
+            ));
         }
     }
     Ok(())

@@ -121,10 +121,13 @@ fn check_empty(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let frags = fragments(r, scene)?;
     match frags.first() {
         None => Ok(()),
-        Some(f) => Err(Violation::new(format!(
-            "{} fragments drawn from a triangle the eye cannot see, the first at {:?}",
-            frags.len(),
-            (f.x, f.y)
-        ))),
+        Some(f) => Err(Violation::at(
+            (f.x, f.y),
+            format!(
+                "{} fragments drawn from a triangle the eye cannot see, the first at {:?}",
+                frags.len(),
+                (f.x, f.y)
+            ),
+        )),
     }
 }

@@ -119,11 +119,14 @@ fn check_within_vertices(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Vi
         .fold((f32::MAX, f32::MIN), |(l, h), &v| (l.min(v), h.max(v)));
     for f in fragments(r, scene)? {
         if f.depth < lo - BARY_EPS || f.depth > hi + BARY_EPS {
-            return Err(Violation::new(format!(
-                "fragment {:?} has depth {} outside the vertices' [{lo}, {hi}]",
+            return Err(Violation::at(
                 (f.x, f.y),
-                f.depth
-            )));
+                format!(
+                    "fragment {:?} has depth {} outside the vertices' [{lo}, {hi}]",
+                    (f.x, f.y),
+                    f.depth
+                ),
+            ));
         }
     }
     Ok(())
@@ -139,12 +142,15 @@ fn check_depth_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<
             continue;
         };
         if (f64::from(f.depth) - hit.depth.clamp(0.0, 1.0)).abs() > ORACLE_EPS {
-            return Err(Violation::new(format!(
-                "fragment {:?} has depth {}, the ray cast {}",
+            return Err(Violation::at(
                 (f.x, f.y),
-                f.depth,
-                hit.depth
-            )));
+                format!(
+                    "fragment {:?} has depth {}, the ray cast {}",
+                    (f.x, f.y),
+                    f.depth,
+                    hit.depth
+                ),
+            ));
         }
     }
     Ok(())
@@ -180,20 +186,26 @@ fn check_order_independent(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), 
         for (i, &pixel_ties) in ties.iter().enumerate() {
             let (x, y) = (i as u32 % scene.width, i as u32 / scene.width);
             if base.depth[i].to_bits() != other.depth[i].to_bits() {
-                return Err(Violation::new(format!(
-                    "pixel {:?}: depth {} in API order, {} in order {order:?}",
+                return Err(Violation::at(
                     (x, y),
-                    base.depth[i],
-                    other.depth[i]
-                )));
+                    format!(
+                        "pixel {:?}: depth {} in API order, {} in order {order:?}",
+                        (x, y),
+                        base.depth[i],
+                        other.depth[i]
+                    ),
+                ));
             }
             let mapped = other.primitive[i].map(|p| order[p as usize] as u32);
             if pixel_ties <= 1 && mapped != base.primitive[i] {
-                return Err(Violation::new(format!(
-                    "pixel {:?}: primitive {:?} in API order, {mapped:?} in order {order:?}",
+                return Err(Violation::at(
                     (x, y),
-                    base.primitive[i]
-                )));
+                    format!(
+                        "pixel {:?}: primitive {:?} in API order, {mapped:?} in order {order:?}",
+                        (x, y),
+                        base.primitive[i]
+                    ),
+                ));
             }
         }
     }

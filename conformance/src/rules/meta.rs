@@ -6,7 +6,7 @@ use refrast::{CullMode, Fragment, FrontFace, Profile, Rasterizer};
 use super::common::{ORACLE_EPS, compare_sets, coverage_set, fragments};
 use super::{Family, Kind, Rule, always};
 use crate::oracle::brute_force;
-use crate::runner::property;
+use crate::runner::{Case, property};
 use crate::scene::Scene;
 use crate::strategy;
 use crate::violation::Violation;
@@ -22,7 +22,7 @@ pub struct Translated {
     pub dy: i32,
 }
 
-impl crate::runner::Reduce for Translated {
+impl Case for Translated {
     fn reductions(&self) -> Vec<Self> {
         let (dx, dy) = (self.dx, self.dy);
         self.scene
@@ -30,6 +30,10 @@ impl crate::runner::Reduce for Translated {
             .into_iter()
             .map(|scene| Self { scene, dx, dy })
             .collect()
+    }
+
+    fn scene(&self) -> &Scene {
+        &self.scene
     }
 }
 
@@ -151,11 +155,14 @@ fn check_empty(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let frags = fragments(r, scene)?;
     match frags.first() {
         None => Ok(()),
-        Some(f) => Err(Violation::new(format!(
-            "a zero-area triangle drew {} fragments, the first at {:?}",
-            frags.len(),
-            (f.x, f.y)
-        ))),
+        Some(f) => Err(Violation::at(
+            (f.x, f.y),
+            format!(
+                "a zero-area triangle drew {} fragments, the first at {:?}",
+                frags.len(),
+                (f.x, f.y)
+            ),
+        )),
     }
 }
 
@@ -179,21 +186,27 @@ fn compare_permuted(
     base_sorted.sort_by_key(|f| (f.y, f.x));
     for (a, b) in base_sorted.iter().zip(&by_pixel) {
         if a.front_facing == b.front_facing && flip || a.front_facing != b.front_facing && !flip {
-            return Err(Violation::new(format!(
-                "{what}: facing at {:?} is {} then {}",
+            return Err(Violation::at(
                 (a.x, a.y),
-                a.front_facing,
-                b.front_facing
-            )));
+                format!(
+                    "{what}: facing at {:?} is {} then {}",
+                    (a.x, a.y),
+                    a.front_facing,
+                    b.front_facing
+                ),
+            ));
         }
         for (k, &moved_to) in map.iter().enumerate() {
             if unclipped && f64::from((a.barycentric[k] - b.barycentric[moved_to]).abs()) > ORACLE_EPS {
-                return Err(Violation::new(format!(
-                    "{what}: barycentrics at {:?} are {:?} then {:?}",
+                return Err(Violation::at(
                     (a.x, a.y),
-                    a.barycentric,
-                    b.barycentric
-                )));
+                    format!(
+                        "{what}: barycentrics at {:?} are {:?} then {:?}",
+                        (a.x, a.y),
+                        a.barycentric,
+                        b.barycentric
+                    ),
+                ));
             }
         }
     }
@@ -285,12 +298,15 @@ fn check_translation(r: &mut dyn Rasterizer, t: &Translated) -> Result<(), Viola
     for &(x, y) in want.symmetric_difference(&got) {
         if !near_edge(&moved, profile.subpixel_bits, x, y, clip_slack(&profile)) {
             let how = if got.contains(&(x, y)) { "gained" } else { "lost" };
-            return Err(Violation::new(format!(
-                "moved by ({}, {}) px, the triangle {how} sample {:?}, which is away from every edge",
-                t.dx,
-                t.dy,
-                (x, y)
-            )));
+            return Err(Violation::at(
+                (x, y),
+                format!(
+                    "moved by ({}, {}) px, the triangle {how} sample {:?}, which is away from every edge",
+                    t.dx,
+                    t.dy,
+                    (x, y)
+                ),
+            ));
         }
     }
     Ok(())
@@ -335,10 +351,13 @@ fn check_subpixel_translation(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(
             .map(|k| segment_distance(pts[k], pts[(k + 1) % 3], s))
             .fold(f64::INFINITY, f64::min);
         if d > limit + unit {
-            return Err(Violation::new(format!(
-                "moving one subpixel right changed sample {:?}, {d:.4} px from every edge",
-                (x, y)
-            )));
+            return Err(Violation::at(
+                (x, y),
+                format!(
+                    "moving one subpixel right changed sample {:?}, {d:.4} px from every edge",
+                    (x, y)
+                ),
+            ));
         }
     }
     Ok(())
@@ -375,10 +394,13 @@ fn check_viewport_neutral(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), V
     for &(x, y) in small.symmetric_difference(&large) {
         if !near_edge(scene, profile.subpixel_bits, x, y, clip_slack(&profile)) {
             let how = if large.contains(&(x, y)) { "gains" } else { "loses" };
-            return Err(Violation::new(format!(
-                "in a viewport twice as large the triangle {how} sample {:?}, which is away from every edge",
-                (x, y)
-            )));
+            return Err(Violation::at(
+                (x, y),
+                format!(
+                    "in a viewport twice as large the triangle {how} sample {:?}, which is away from every edge",
+                    (x, y)
+                ),
+            ));
         }
     }
     Ok(())

@@ -21,7 +21,7 @@ pub struct Poisoned {
     pub value: f32,
 }
 
-impl crate::runner::Reduce for Poisoned {
+impl crate::runner::Case for Poisoned {
     /// Drops any triangle but the poisoned one (triangle 0).
     fn reductions(&self) -> Vec<Self> {
         (1..self.scene.triangles.len())
@@ -31,6 +31,10 @@ impl crate::runner::Reduce for Poisoned {
                 value: self.value,
             })
             .collect()
+    }
+
+    fn scene(&self) -> &Scene {
+        &self.scene
     }
 }
 
@@ -110,11 +114,14 @@ fn check_poisoned(r: &mut dyn Rasterizer, p: &Poisoned) -> Result<(), Violation>
     bad.positions[vertex][p.at.1] = p.value;
     let got = fragments(r, &bad)?;
     if let Some(f) = got.iter().find(|f| f.primitive == 0) {
-        return Err(Violation::new(format!(
-            "the triangle with a {} coordinate drew at {:?}",
-            p.value,
-            (f.x, f.y)
-        )));
+        return Err(Violation::at(
+            (f.x, f.y),
+            format!(
+                "the triangle with a {} coordinate drew at {:?}",
+                p.value,
+                (f.x, f.y)
+            ),
+        ));
     }
     let others: Vec<Fragment> = clean.into_iter().filter(|f| f.primitive != 0).collect();
     compare_sets(

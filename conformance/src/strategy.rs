@@ -66,8 +66,13 @@ pub fn grid_scene() -> impl Strategy<Value = Scene> {
 /// A scene of one grid triangle whose vertices have their own `w` in [0.1, 4] and depth in
 /// [0, 1]: perspective, but every projected vertex is still exactly on the grid.
 pub fn perspective_grid_scene() -> impl Strategy<Value = Scene> {
+    perspective(grid_triangle())
+}
+
+/// One grid triangle from `triangle` with its own `w` in [0.1, 4] and depth in [0, 1] per vertex.
+fn perspective(triangle: impl Strategy<Value = [(i64, i64); 3]>) -> impl Strategy<Value = Scene> {
     (
-        grid_triangle(),
+        triangle,
         prop::array::uniform3((0.1f32..4.0, 0.0f32..1.0)),
         side(),
         side(),
@@ -101,18 +106,7 @@ pub fn inside_scene() -> impl Strategy<Value = Scene> {
 
 /// One triangle inside the viewport with its own `w` in [0.1, 4] and depth in [0, 1] per vertex.
 pub fn perspective_inside_scene() -> impl Strategy<Value = Scene> {
-    (
-        inside_triangle(),
-        prop::array::uniform3((0.1f32..4.0, 0.0f32..1.0)),
-        side(),
-        side(),
-    )
-        .prop_map(|(t, wz, w, h)| {
-            let positions = (0..3)
-                .map(|i| clip_of(w, h, 8, t[i].0, t[i].1, wz[i].1, wz[i].0))
-                .collect();
-            Scene::new(w, h, positions, vec![[0, 1, 2]])
-        })
+    perspective(inside_triangle())
 }
 
 /// A clip-space triangle anywhere near the view volume, off any grid, with `w` in [0.1, 4].

@@ -280,7 +280,9 @@ pub fn distance_to_outline(
     best
 }
 
-fn segment_distance(a: [f64; 2], b: [f64; 2], s: [f64; 2]) -> f64 {
+/// Distance from `s` to the segment `a b`, in the points' units.
+#[must_use]
+pub fn segment_distance(a: [f64; 2], b: [f64; 2], s: [f64; 2]) -> f64 {
     let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
     let len2 = dx * dx + dy * dy;
     let t = if len2 > 0.0 {

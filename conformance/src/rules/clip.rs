@@ -1,15 +1,14 @@
 //! Clipping: nothing from behind the eye, the interior preserved, shared edges watertight.
 
 use proptest::prelude::*;
-use refrast::{DepthRange, Profile, Rasterizer};
+use refrast::{DepthRange, Profile};
 
-use super::common::fragments;
+use super::common::check_draws_nothing;
 use super::fill::check_exactly_once;
 use super::{Family, Kind, Rule, always};
 use crate::runner::property;
 use crate::scene::Scene;
 use crate::strategy;
-use crate::violation::Violation;
 
 fn needs_far(p: &Profile) -> Result<(), &'static str> {
     if p.features.far_clipping {
@@ -37,7 +36,7 @@ pub(super) fn rules() -> Vec<Rule> {
             source: "MIT 6.837 seed 001 (why clip: w ≤ 0); Vulkan 1.4 §27.4",
             default_cases: 10000,
             applies: always,
-            run: |r, cfg| property(r, cfg, behind_scene(), check_empty),
+            run: |r, cfg| property(r, cfg, behind_scene(), check_draws_nothing),
         },
         Rule {
             id: "clip.interior.matches-raycast",
@@ -115,19 +114,4 @@ fn gl_scene() -> impl Strategy<Value = Scene> {
         s.state.depth_range = DepthRange::NegativeOneToOne;
         s
     })
-}
-
-fn check_empty(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let frags = fragments(r, scene)?;
-    match frags.first() {
-        None => Ok(()),
-        Some(f) => Err(Violation::at(
-            (f.x, f.y),
-            format!(
-                "{} fragments drawn from a triangle the eye cannot see, the first at {:?}",
-                frags.len(),
-                (f.x, f.y)
-            ),
-        )),
-    }
 }

@@ -170,6 +170,22 @@ pub fn check_mesh_coverage(r: &mut dyn Rasterizer, scene: &Scene, what: &str) ->
     compare_coverage(&counts, &expected, scene.width, scene.height, outlines, what)
 }
 
+/// Checks that a scene draws no fragment at all (triangles the eye cannot see, zero area).
+pub fn check_draws_nothing(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let frags = fragments(r, scene)?;
+    match frags.first() {
+        None => Ok(()),
+        Some(f) => Err(Violation::at(
+            (f.x, f.y),
+            format!(
+                "{} fragments drawn where none should be, the first at {:?}",
+                frags.len(),
+                (f.x, f.y)
+            ),
+        )),
+    }
+}
+
 /// Coverage as a sorted list of `(primitive, x, y)`.
 #[must_use]
 pub fn coverage_set(frags: &[Fragment]) -> Vec<(u32, u32, u32)> {

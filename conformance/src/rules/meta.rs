@@ -3,9 +3,10 @@
 use proptest::prelude::*;
 use refrast::{CullMode, Fragment, FrontFace, Profile, Rasterizer};
 
-use super::common::{ORACLE_EPS, compare_sets, coverage_set, fragments};
+use super::common::{ORACLE_EPS, check_draws_nothing, compare_sets, coverage_set, fragments};
 use super::{Family, Kind, Rule, always};
 use crate::oracle::brute_force;
+use crate::oracle::ray_cast::segment_distance;
 use crate::runner::{Case, property};
 use crate::scene::Scene;
 use crate::strategy;
@@ -125,7 +126,7 @@ pub(super) fn rules() -> Vec<Rule> {
             source: "Vulkan 1.4 §28.7.1 (zero area is back-facing); D3D11.3 §15.16",
             default_cases: 10000,
             applies: always,
-            run: |r, cfg| property(r, cfg, degenerate_scene(), check_empty),
+            run: |r, cfg| property(r, cfg, degenerate_scene(), check_draws_nothing),
         },
     ]
 }
@@ -149,21 +150,6 @@ fn degenerate_scene() -> impl Strategy<Value = Scene> {
         };
         Scene::from_subpixels(s, s, 8, &[[a, b, c]], 0.5)
     })
-}
-
-fn check_empty(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let frags = fragments(r, scene)?;
-    match frags.first() {
-        None => Ok(()),
-        Some(f) => Err(Violation::at(
-            (f.x, f.y),
-            format!(
-                "a zero-area triangle drew {} fragments, the first at {:?}",
-                frags.len(),
-                (f.x, f.y)
-            ),
-        )),
-    }
 }
 
 /// Compares two fragment lists of one triangle drawn two ways; `map[k]` is where weight k went.
@@ -361,17 +347,6 @@ fn check_subpixel_translation(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(
         }
     }
     Ok(())
-}
-
-fn segment_distance(a: [f64; 2], b: [f64; 2], s: [f64; 2]) -> f64 {
-    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-    let len2 = dx * dx + dy * dy;
-    let t = if len2 > 0.0 {
-        (((s[0] - a[0]) * dx + (s[1] - a[1]) * dy) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (s[0] - a[0] - t * dx).hypot(s[1] - a[1] - t * dy)
 }
 
 fn check_viewport_neutral(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {

@@ -123,7 +123,7 @@ fn print_rule(r: &RuleReport) {
                 println!("      picture: {}", p.display());
             }
             if let Some(input) = &r.counterexample {
-                println!("      shrunk counterexample (use refrast::*; use refrast_conformance::Scene;):");
+                println!("      shrunk counterexample (after use refrast::*; use refrast_conformance::*;):");
                 for line in input.lines() {
                     println!("        {line}");
                 }

@@ -6,7 +6,7 @@ use refrast::{CullMode, DepthRange, Draw, DrawState, FrontFace, Viewport};
 
 /// One draw call as the rules generate it; `Debug` prints Rust that rebuilds it.
 ///
-/// Paste a counterexample after `use refrast::*; use refrast_conformance::Scene;`.
+/// Paste a counterexample after `use refrast::*; use refrast_conformance::*;`.
 #[derive(Clone, PartialEq)]
 pub struct Scene {
     /// Viewport width in pixels.
@@ -133,7 +133,7 @@ pub fn clip_of(width: u32, height: u32, bits: u8, x: i64, y: i64, z: f32, w: f32
 }
 
 /// A float as Rust source: `1.5`, `-0.0`, `f32::NAN`, `f32::INFINITY`.
-fn rust_f32(v: f32) -> String {
+pub(crate) fn rust_f32(v: f32) -> String {
     if v.is_nan() {
         "f32::NAN".into()
     } else if v.is_infinite() {

@@ -11,7 +11,7 @@ use crate::strategy;
 use crate::violation::Violation;
 
 /// A scene with one coordinate of triangle 0 replaced by a non-finite value.
-#[derive(Clone, Debug)]
+#[derive(Clone)]
 pub struct Poisoned {
     /// The scene before poisoning; its triangles share no vertices.
     pub scene: Scene,
@@ -19,6 +19,17 @@ pub struct Poisoned {
     pub at: (usize, usize),
     /// The bad value.
     pub value: f32,
+}
+
+impl std::fmt::Debug for Poisoned {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let value = crate::scene::rust_f32(self.value);
+        write!(
+            f,
+            "Poisoned {{ scene: {:?}, at: {:?}, value: {value} }}",
+            self.scene, self.at
+        )
+    }
 }
 
 impl crate::runner::Case for Poisoned {

@@ -191,6 +191,9 @@ pub struct Features {
     pub far_clipping: bool,
     /// The OpenGL `−w ≤ z` clip volume is supported.
     pub negative_one_to_one: bool,
+    /// x/y clipping never moves an edge inside the viewport (a guard band), so coverage of a
+    /// triangle reaching outside it can be exact.
+    pub guard_band: bool,
 }
 
 impl Features {
@@ -202,6 +205,7 @@ impl Features {
         depth_test: true,
         far_clipping: true,
         negative_one_to_one: true,
+        guard_band: true,
     };
 }
 

@@ -338,7 +338,10 @@ impl Rasterizer for Reference {
             depth: DepthConvention::ScreenLinearZOverW,
             // Snapping moves an edge by up to √2/2 subpixel from where the float input puts it.
             tolerance_subpixels: 1,
-            features: Features::ALL,
+            features: Features {
+                guard_band: self.config.clip == ClipMode::GuardBand,
+                ..Features::ALL
+            },
         }
     }
 

@@ -4,9 +4,9 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use refrast_conformance::{
-    BuiltIn, Options, Report, RuleReport, Status, builtin, builtins, catalogue, matches,
-};
+use refrast_conformance::{BuiltIn, Options, Report, RuleReport, Status, catalogue, matches};
+
+use crate::{all_builtins, say};
 
 /// Arguments of `refrast certify`.
 #[derive(clap::Args, Debug)]
@@ -34,14 +34,14 @@ pub struct Args {
 /// Runs `refrast certify`: 0 when every applicable rule passes, 1 when one fails, 2 on a usage error.
 pub fn run(args: &Args) -> ExitCode {
     let chosen: Vec<BuiltIn> = if args.impls.is_empty() {
-        builtins().into_iter().filter(|b| b.correct).collect()
+        all_builtins().into_iter().filter(|b| b.correct).collect()
     } else {
         let mut chosen = Vec::new();
         for name in &args.impls {
-            match builtin(name) {
+            match all_builtins().into_iter().find(|b| &b.name == name) {
                 Some(b) => chosen.push(b),
                 None => {
-                    let names: Vec<_> = builtins().iter().map(|b| b.name).collect();
+                    let names: Vec<_> = all_builtins().into_iter().map(|b| b.name).collect();
                     eprintln!(
                         "error: no implementation named '{name}'; the built-ins are: {}",
                         names.join(", ")
@@ -74,7 +74,7 @@ pub fn run(args: &Args) -> ExitCode {
             eprintln!("error: could not write {}: {e}", path.display());
             return ExitCode::from(2);
         }
-        println!("wrote {}", path.display());
+        say(&format!("wrote {}", path.display()));
     }
     if reports.iter().all(Report::passed) {
         ExitCode::SUCCESS
@@ -86,7 +86,7 @@ pub fn run(args: &Args) -> ExitCode {
 fn certify_one(b: &BuiltIn, options: &Options) -> Report {
     let mut rasterizer = (b.make)();
     let p = rasterizer.profile();
-    println!(
+    say(&format!(
         "== {}: {} subpixel bits, {}, depth {:?}, band {} subpixels, seed {}",
         p.name,
         p.subpixel_bits,
@@ -94,38 +94,41 @@ fn certify_one(b: &BuiltIn, options: &Options) -> Report {
         p.depth,
         p.tolerance_subpixels.max(1),
         options.seed
-    );
+    ));
     let start = Instant::now();
     let report = refrast_conformance::certify(rasterizer.as_mut(), options, print_rule);
     let (pass, fail, na) = report.tally();
-    println!(
+    say(&format!(
         "{}: {pass} passed, {fail} failed, {na} not applicable ({:.1} s)\n",
         p.name,
         start.elapsed().as_secs_f64()
-    );
+    ));
     report
 }
 
 fn print_rule(r: &RuleReport) {
-    println!(
+    say(&format!(
         "{:<4}  {:<38} {:<9} {:>6} cases",
         r.status.label(),
         r.id,
         r.kind,
         r.cases
-    );
+    ));
     match r.status {
         Status::Pass => {}
-        Status::NotApplicable => println!("      not applicable: {}", r.message.as_deref().unwrap_or("")),
+        Status::NotApplicable => say(&format!(
+            "      not applicable: {}",
+            r.message.as_deref().unwrap_or("")
+        )),
         Status::Fail => {
-            println!("      {}", r.message.as_deref().unwrap_or(""));
+            say(&format!("      {}", r.message.as_deref().unwrap_or("")));
             if let Some(p) = &r.picture {
-                println!("      picture: {}", p.display());
+                say(&format!("      picture: {}", p.display()));
             }
             if let Some(input) = &r.counterexample {
-                println!("      shrunk counterexample (after use refrast::*; use refrast_conformance::*;):");
+                say("      shrunk counterexample (after use refrast::*; use refrast_conformance::*;):");
                 for line in input.lines() {
-                    println!("        {line}");
+                    say(&format!("        {line}"));
                 }
             }
         }

@@ -7,7 +7,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use refrast::scenes::{self, DEFAULT_SIZE, SCENES};
-use refrast_conformance::{builtins, catalogue};
+use refrast_conformance::{BuiltIn, catalogue};
 
 /// refrast: a reference triangle rasterizer and conformance suite.
 #[derive(Parser, Debug)]
@@ -49,35 +49,35 @@ fn main() -> ExitCode {
         Command::Certify(args) => certify::run(&args),
         Command::Rules => {
             for rule in catalogue() {
-                println!(
+                say(&format!(
                     "{:<38} {:<9} {:<6} [{}] {}",
                     rule.id,
                     rule.kind,
                     rule.family.name(),
                     rule.source,
                     rule.sentence
-                );
+                ));
             }
             ExitCode::SUCCESS
         }
         Command::Impls => {
-            for b in builtins() {
+            for b in all_builtins() {
                 let p = (b.make)().profile();
                 let kind = if b.correct { "correct" } else { "broken on purpose" };
-                println!(
+                say(&format!(
                     "{:<22} {} subpixel bits, {}, band {} subpixels, {kind}: {}",
                     b.name,
                     p.subpixel_bits,
                     p.fill.name(),
                     p.tolerance_subpixels,
                     b.description
-                );
+                ));
             }
             ExitCode::SUCCESS
         }
         Command::Scenes => {
             for scene in SCENES {
-                println!("{:<14} {}", scene.name, scene.description);
+                say(&format!("{:<14} {}", scene.name, scene.description));
             }
             ExitCode::SUCCESS
         }
@@ -88,6 +88,21 @@ fn main() -> ExitCode {
             height,
         } => render(&scene, output, width, height),
     }
+}
+
+/// Prints a line; when stdout is closed (`refrast rules | head`), stops quietly instead of panicking.
+pub(crate) fn say(line: &str) {
+    use std::io::Write;
+    if writeln!(std::io::stdout().lock(), "{line}").is_err() {
+        std::process::exit(0);
+    }
+}
+
+/// The reference's configurations, then the zoo: mutants and course rasterizers.
+pub(crate) fn all_builtins() -> Vec<BuiltIn> {
+    let mut all = refrast_conformance::builtins();
+    all.extend(refrast_zoo::builtins());
+    all
 }
 
 fn render(scene: &str, output: Option<PathBuf>, width: u32, height: u32) -> ExitCode {
@@ -103,6 +118,9 @@ fn render(scene: &str, output: Option<PathBuf>, width: u32, height: u32) -> Exit
         eprintln!("error: could not write {}: {e}", output.display());
         return ExitCode::FAILURE;
     }
-    println!("wrote {} ({width}x{height}, scene {scene})", output.display());
+    say(&format!(
+        "wrote {} ({width}x{height}, scene {scene})",
+        output.display()
+    ));
     ExitCode::SUCCESS
 }

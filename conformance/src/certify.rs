@@ -114,6 +114,7 @@ impl From<&Profile> for ProfileReport {
             (f.depth_test, "depth-test"),
             (f.far_clipping, "far-clipping"),
             (f.negative_one_to_one, "negative-one-to-one"),
+            (f.guard_band, "guard-band"),
         ]
         .iter()
         .filter(|(on, _)| *on)

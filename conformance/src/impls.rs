@@ -5,17 +5,46 @@ use refrast::{
     SubpixelBits,
 };
 
+/// Builds a fresh rasterizer.
+pub type Maker = std::sync::Arc<dyn Fn() -> Box<dyn Rasterizer> + Send + Sync>;
+
 /// A built-in implementation.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone)]
 pub struct BuiltIn {
     /// The name `--impl` takes.
-    pub name: &'static str,
+    pub name: String,
     /// One line on what it is.
-    pub description: &'static str,
+    pub description: String,
     /// Whether it is meant to be correct (certified by default) or broken on purpose.
     pub correct: bool,
     /// Builds it.
-    pub make: fn() -> Box<dyn Rasterizer>,
+    pub make: Maker,
+}
+
+impl BuiltIn {
+    /// A built-in from its parts.
+    pub fn new(
+        name: impl Into<String>,
+        description: impl Into<String>,
+        correct: bool,
+        make: impl Fn() -> Box<dyn Rasterizer> + Send + Sync + 'static,
+    ) -> Self {
+        Self {
+            name: name.into(),
+            description: description.into(),
+            correct,
+            make: std::sync::Arc::new(make),
+        }
+    }
+}
+
+impl std::fmt::Debug for BuiltIn {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("BuiltIn")
+            .field("name", &self.name)
+            .field("correct", &self.correct)
+            .finish_non_exhaustive()
+    }
 }
 
 /// The reference under another name and configuration.
@@ -53,21 +82,21 @@ impl Rasterizer for Named {
     }
 }
 
-/// Every built-in implementation.
+/// Every built-in implementation of this crate: the reference and its configurations.
 #[must_use]
 pub fn builtins() -> Vec<BuiltIn> {
     vec![
-        BuiltIn {
-            name: "reference",
-            description: "the reference: 8 subpixel bits, top-left, guard-band clipping",
-            correct: true,
-            make: || Box::new(Reference::default()),
-        },
-        BuiltIn {
-            name: "reference-full-clip",
-            description: "the reference clipping all six planes (Sutherland–Hodgman, seed 004)",
-            correct: true,
-            make: || {
+        BuiltIn::new(
+            "reference",
+            "the reference: 8 subpixel bits, top-left, guard-band clipping",
+            true,
+            || Box::new(Reference::default()),
+        ),
+        BuiltIn::new(
+            "reference-full-clip",
+            "the reference clipping all six planes (Sutherland–Hodgman, seed 004)",
+            true,
+            || {
                 Box::new(Named::new(
                     "reference-full-clip",
                     ReferenceConfig {
@@ -76,12 +105,12 @@ pub fn builtins() -> Vec<BuiltIn> {
                     },
                 ))
             },
-        },
-        BuiltIn {
-            name: "reference-4bit",
-            description: "the reference snapping to 4 subpixel bits (Vulkan's minimum)",
-            correct: true,
-            make: || {
+        ),
+        BuiltIn::new(
+            "reference-4bit",
+            "the reference snapping to 4 subpixel bits (Vulkan's minimum)",
+            true,
+            || {
                 Box::new(Named::new(
                     "reference-4bit",
                     ReferenceConfig {
@@ -90,12 +119,6 @@ pub fn builtins() -> Vec<BuiltIn> {
                     },
                 ))
             },
-        },
+        ),
     ]
-}
-
-/// The built-in implementation called `name`.
-#[must_use]
-pub fn builtin(name: &str) -> Option<BuiltIn> {
-    builtins().into_iter().find(|b| b.name == name)
 }

@@ -34,7 +34,7 @@ mod violation;
 
 pub use certify::{Options, ProfileReport, Report, RuleReport, Status, certify, matches, run_rule};
 pub use harness::{failure_text, run_as_tests};
-pub use impls::{BuiltIn, Named, builtin, builtins};
+pub use impls::{BuiltIn, Maker, Named, builtins};
 pub use rules::meta::Translated;
 pub use rules::robust::Poisoned;
 pub use rules::{Family, Kind, Rule, catalogue};

@@ -59,6 +59,16 @@ pub(super) fn rules() -> Vec<Rule> {
             run: |r, cfg| property(r, cfg, strategy::clipped_mesh_scene(), check_exactly_once),
         },
         Rule {
+            id: "clip.crossing-quad.watertight",
+            family: Family::Clip,
+            kind: Kind::Invariant,
+            sentence: "A quad with corners at ±30000·w whose shared diagonal crosses the near plane inside the viewport leaves no hole there.",
+            source: "dEQP-GLES3.functional.clipping (±30000·w); design.md (canonical clip intersections)",
+            default_cases: 3000,
+            applies: always,
+            run: |r, cfg| property(r, cfg, crossing_quad_scene(), check_exactly_once),
+        },
+        Rule {
             id: "clip.far.respected",
             family: Family::Clip,
             kind: Kind::Invariant,
@@ -92,6 +102,36 @@ fn behind_scene() -> impl Strategy<Value = Scene> {
         prop_oneof![prop::array::uniform3(behind), prop::array::uniform3(before_near)],
     )
         .prop_map(|(s, v)| Scene::new(s, s, v.to_vec(), vec![[0, 1, 2]]))
+}
+
+/// Two triangles sharing a diagonal from 30000·w behind the near plane to 30000·w in front of
+/// it, crossing the plane at a point inside the viewport; the other corners lie far to either side.
+fn crossing_quad_scene() -> impl Strategy<Value = Scene> {
+    let unit = -0.9f32..0.9;
+    (
+        unit.clone(),
+        unit,
+        0.0f32..std::f32::consts::TAU,
+        0.05f32..0.95,
+        prop::array::uniform4(0.5f32..2.0),
+        strategy::side(),
+    )
+        .prop_map(|(cx, cy, angle, at, w, s)| {
+            let (dy, dx) = angle.sin_cos();
+            let far = 30000.0;
+            // The diagonal P→Q passes through (cx, cy); z runs from −at to 1 − at along it.
+            let corner = |t: f32, side: f32, z: f32, w: f32| {
+                let (x, y) = (cx + far * (t * dx - side * dy), cy + far * (t * dy + side * dx));
+                [x * w, y * w, z * w, w]
+            };
+            let positions = vec![
+                corner(-1.0, 0.0, -at, w[0]),
+                corner(1.0, 0.0, 1.0 - at, w[1]),
+                corner(0.0, 1.0, 0.5, w[2]),
+                corner(0.0, -1.0, 0.5, w[3]),
+            ];
+            Scene::new(s, s, positions, vec![[0, 1, 2], [1, 0, 3]])
+        })
 }
 
 /// Crossing triangles with far clipping on and depths reaching past the far plane.

@@ -73,6 +73,22 @@ pub(super) fn rules() -> Vec<Rule> {
             run: |r, cfg| property(r, cfg, strategy::inside_scene(), check_matches_reference),
         },
         Rule {
+            id: "fill.guard-band.exact",
+            family: Family::Fill,
+            kind: Kind::Exact,
+            sentence: "Coverage of a triangle reaching up to 1500 px outside the viewport equals the brute-force oracle, as a guard band promises.",
+            source: "D3D11.3 §15.4 (guard band); ecosystem.md (32-bit edge overflow, float edges)",
+            default_cases: 5000,
+            applies: |p| {
+                if p.features.guard_band {
+                    Ok(())
+                } else {
+                    Err("x/y clipping may move edges (no guard band)")
+                }
+            },
+            run: |r, cfg| property(r, cfg, strategy::grid_scene(), check_guard_band),
+        },
+        Rule {
             id: "fill.brute-force.exact",
             family: Family::Fill,
             kind: Kind::Exact,
@@ -103,13 +119,30 @@ pub fn check_matches_reference(r: &mut dyn Rasterizer, scene: &Scene) -> Result<
 
 /// Coverage of an unclipped triangle bit-identical to the brute-force oracle.
 pub fn check_matches_brute_force(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let profile = r.profile();
-    let got = fragments(r, scene)?;
     let p = [0, 1, 2].map(|k| scene.positions[scene.triangles[0][k] as usize]);
     // The oracle knows nothing of clipping: triangles leaving the view volume are not judged here.
     if !brute_force::unclipped(&p, scene.state.depth_range, scene.state.clip_far) {
         return Ok(());
     }
+    compare_brute_force(r, scene)
+}
+
+/// Coverage of a triangle inside the guard band (x/y anywhere, z and w inside) equal to the oracle.
+pub fn check_guard_band(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let inside = scene
+        .positions
+        .iter()
+        .all(|&[_, _, z, w]| w > 0.0 && z >= 0.0 && z <= w);
+    if !inside {
+        return Ok(());
+    }
+    compare_brute_force(r, scene)
+}
+
+fn compare_brute_force(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let profile = r.profile();
+    let got = fragments(r, scene)?;
+    let p = [0, 1, 2].map(|k| scene.positions[scene.triangles[0][k] as usize]);
     let bits = profile.subpixel_bits.min(16);
     let Some(t) = p
         .iter()

@@ -119,6 +119,16 @@ pub(super) fn rules() -> Vec<Rule> {
             run: |r, cfg| property(r, cfg, strategy::overlapping_scene(), check_culling),
         },
         Rule {
+            id: "meta.facing.from-winding",
+            family: Family::Meta,
+            kind: Kind::Invariant,
+            sentence: "A fragment is front-facing exactly when its snapped triangle turns on screen the way the front face says.",
+            source: "Vulkan 1.4 §28.7.1 (polygon facing from the signed area); seed 003 (back-face culling)",
+            default_cases: 3000,
+            applies: always,
+            run: |r, cfg| property(r, cfg, facing_scene(), check_facing),
+        },
+        Rule {
             id: "meta.degenerate.empty",
             family: Family::Meta,
             kind: Kind::Invariant,
@@ -133,6 +143,47 @@ pub(super) fn rules() -> Vec<Rule> {
 
 fn translated() -> impl Strategy<Value = Translated> {
     (strategy::grid_scene(), -12i32..12, -12i32..12).prop_map(|(scene, dx, dy)| Translated { scene, dx, dy })
+}
+
+fn facing_scene() -> impl Strategy<Value = Scene> {
+    (strategy::inside_scene(), any::<bool>()).prop_map(|(mut s, cw)| {
+        s.state.front_face = if cw {
+            FrontFace::Clockwise
+        } else {
+            FrontFace::CounterClockwise
+        };
+        s
+    })
+}
+
+fn check_facing(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let bits = r.profile().subpixel_bits.min(16);
+    let snapped: Option<Vec<_>> = scene.triangles[0]
+        .iter()
+        .map(|&i| brute_force::snap(scene.positions[i as usize], scene.width, scene.height, bits))
+        .collect();
+    let Some(v) = snapped else { return Ok(()) };
+    // Positive orient2d with y down is clockwise on screen.
+    let clockwise = brute_force::orient2d(v[0], v[1], v[2]) > 0;
+    let front = clockwise == (scene.state.front_face == FrontFace::Clockwise);
+    for f in fragments(r, scene)? {
+        if f.front_facing != front {
+            return Err(Violation::at(
+                (f.x, f.y),
+                format!(
+                    "the triangle turns {} on screen with {:?} front faces, but its fragment says front_facing = {}",
+                    if clockwise {
+                        "clockwise"
+                    } else {
+                        "counter-clockwise"
+                    },
+                    scene.state.front_face,
+                    f.front_facing
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 fn degenerate_scene() -> impl Strategy<Value = Scene> {

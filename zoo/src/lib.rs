@@ -1,0 +1,20 @@
+//! The zoo: rasterizers that `refrast certify --impl` can run besides the reference.
+//!
+//! | piece | module | what |
+//! |---|---|---|
+//! | mutants | [`mutant`] | the reference pipeline with one classic bug each, and the rule family that must catch it |
+//! | course rasterizers | [`course`] | the algorithms of the lab documents, implemented as they describe them |
+#![forbid(unsafe_code)]
+
+pub mod course;
+pub mod mutant;
+
+use refrast_conformance::BuiltIn;
+
+/// Every zoo implementation, mutants first, as `refrast certify --impl` names them.
+#[must_use]
+pub fn builtins() -> Vec<BuiltIn> {
+    let mut all = mutant::builtins();
+    all.extend(course::builtins());
+    all
+}

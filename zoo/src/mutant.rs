@@ -1,0 +1,464 @@
+//! Mutants: the reference pipeline with one classic bug each, and the rule family that must catch it.
+//!
+//! One small pipeline (clip, project, snap, set up, walk the bounding box, interpolate) written
+//! plainly; each [`Bug`] changes it in one place. With no bug it follows the reference's
+//! conventions, so every failure the suite reports is that bug's doing.
+
+use glam::{DVec3, DVec4};
+use refrast::clip::clip_planes;
+use refrast::{
+    ClipMode, ClipOutcome, ClipPlane, ClipVertex, Draw, DrawError, FillConvention, FixedPoint, Fragment,
+    FrontFace, Profile, Rasterizer, Reference, Resolved, Viewport, clip_triangle, is_top_left,
+};
+use refrast_conformance::BuiltIn;
+
+/// A classic rasterizer bug.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Bug {
+    /// Every edge owns its samples (`E ≥ 0`): shared edges are drawn twice.
+    InclusiveEdges,
+    /// No edge owns its samples (`E > 0`): gaps where shared edges pass through samples.
+    ExclusiveEdges,
+    /// A consistent bottom-right rule, declared as top-left: watertight, wrong owner.
+    BottomRightAsTopLeft,
+    /// Edge functions in f32 on unsnapped coordinates: cracks and order effects at large coordinates.
+    FloatEdges,
+    /// Snaps to 7 subpixel bits while declaring 8.
+    DroppedSubpixelBit,
+    /// Attributes interpolated affinely (screen space) while declaring perspective-correct.
+    AffineAttributes,
+    /// Barycentrics divided by the triangle's area instead of twice it: they sum to 2.
+    WrongArea,
+    /// Depth written without the depth test: the last fragment wins, whatever its depth.
+    DepthWithoutTest,
+    /// Depth interpolated perspective-correctly instead of linearly in screen space.
+    PerspectiveDepth,
+    /// No near-plane clipping: vertices behind the eye are divided by negative w.
+    NoNearClip,
+    /// Clip intersections computed in f32 from the vertex met first: shared edges cut differently.
+    DirectionalClip,
+    /// The bounding box stops one pixel short of its maximum.
+    ExclusiveBboxMax,
+    /// The bounding box is clamped to the viewport size instead of its last pixel.
+    UnclampedBbox,
+    /// Edge functions in 32-bit integers: products overflow at large coordinates.
+    Edge32Bit,
+    /// Only one winding handled: clockwise triangles are lost even with culling off.
+    OneWinding,
+    /// Front and back facing swapped.
+    InvertedFacing,
+    /// Each edge evaluated in f32 from the first vertex: coverage changes when vertices rotate.
+    RotatedEdgeOrigin,
+    /// Zero-area triangles emit the samples on their line.
+    DegenerateFragments,
+}
+
+impl Bug {
+    /// Every bug.
+    pub const ALL: [Bug; 18] = [
+        Self::InclusiveEdges,
+        Self::ExclusiveEdges,
+        Self::BottomRightAsTopLeft,
+        Self::FloatEdges,
+        Self::DroppedSubpixelBit,
+        Self::AffineAttributes,
+        Self::WrongArea,
+        Self::DepthWithoutTest,
+        Self::PerspectiveDepth,
+        Self::NoNearClip,
+        Self::DirectionalClip,
+        Self::ExclusiveBboxMax,
+        Self::UnclampedBbox,
+        Self::Edge32Bit,
+        Self::OneWinding,
+        Self::InvertedFacing,
+        Self::RotatedEdgeOrigin,
+        Self::DegenerateFragments,
+    ];
+
+    /// The name after `mutant:` in `--impl`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::InclusiveEdges => "inclusive-edges",
+            Self::ExclusiveEdges => "exclusive-edges",
+            Self::BottomRightAsTopLeft => "bottom-right-as-top-left",
+            Self::FloatEdges => "float-edges",
+            Self::DroppedSubpixelBit => "dropped-subpixel-bit",
+            Self::AffineAttributes => "affine-attributes",
+            Self::WrongArea => "wrong-area",
+            Self::DepthWithoutTest => "depth-without-test",
+            Self::PerspectiveDepth => "perspective-depth",
+            Self::NoNearClip => "no-near-clip",
+            Self::DirectionalClip => "directional-clip",
+            Self::ExclusiveBboxMax => "exclusive-bbox-max",
+            Self::UnclampedBbox => "unclamped-bbox",
+            Self::Edge32Bit => "edge-32-bit",
+            Self::OneWinding => "one-winding",
+            Self::InvertedFacing => "inverted-facing",
+            Self::RotatedEdgeOrigin => "rotated-edge-origin",
+            Self::DegenerateFragments => "degenerate-fragments",
+        }
+    }
+
+    /// The rule family whose rules must catch it.
+    #[must_use]
+    pub fn caught_by(self) -> &'static str {
+        match self {
+            Self::InclusiveEdges
+            | Self::ExclusiveEdges
+            | Self::BottomRightAsTopLeft
+            | Self::DroppedSubpixelBit => "fill",
+            Self::ExclusiveBboxMax | Self::Edge32Bit => "fill",
+            // Its cracks come from evaluating a shared edge from either end in f32: reversing one
+            // triangle's winding shows the same on a single triangle.
+            Self::FloatEdges => "meta",
+            Self::AffineAttributes | Self::WrongArea => "bary",
+            Self::DepthWithoutTest | Self::PerspectiveDepth => "depth",
+            Self::NoNearClip | Self::DirectionalClip => "clip",
+            Self::OneWinding | Self::InvertedFacing | Self::RotatedEdgeOrigin | Self::DegenerateFragments => {
+                "meta"
+            }
+            Self::UnclampedBbox => "robust",
+        }
+    }
+}
+
+/// The mutant pipeline with one bug.
+#[derive(Clone, Copy, Debug)]
+pub struct Mutant {
+    bug: Bug,
+}
+
+impl Mutant {
+    /// The pipeline with `bug`.
+    #[must_use]
+    pub fn new(bug: Bug) -> Self {
+        Self { bug }
+    }
+}
+
+/// A polygon vertex after projection: raster position, snapped position, depth, 1/w, barycentrics.
+#[derive(Clone, Copy)]
+struct Vert {
+    raster: [f64; 2],
+    fixed: [i64; 2],
+    depth: f64,
+    inv_w: f64,
+    bary: DVec3,
+}
+
+impl Rasterizer for Mutant {
+    fn profile(&self) -> Profile {
+        Profile {
+            name: format!("mutant:{}", self.bug.name()),
+            ..Reference::default().profile()
+        }
+    }
+
+    fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+        draw.validate()?;
+        let state = &draw.state;
+        let planes = clip_planes(
+            ClipMode::GuardBand,
+            draw.viewport,
+            state.clip_far,
+            state.depth_range,
+        );
+        let mut out = Vec::new();
+        for (primitive, t) in draw.triangles.iter().enumerate() {
+            let p = t.map(|i| draw.positions[i as usize]);
+            if p.iter().flatten().any(|c| !c.is_finite()) {
+                continue;
+            }
+            let input = [0, 1, 2].map(|k| ClipVertex {
+                position: DVec4::from(p[k].map(f64::from)),
+                barycentric: DVec3::AXES[k],
+            });
+            let polygon = match self.bug {
+                Bug::NoNearClip => input.to_vec(),
+                Bug::DirectionalClip => clip_walking(&input, &planes),
+                _ => {
+                    let (mut poly, mut scratch) = (Vec::new(), Vec::new());
+                    match clip_triangle(&input, &planes, &mut poly, &mut scratch) {
+                        ClipOutcome::Outside => continue,
+                        ClipOutcome::Inside => input.to_vec(),
+                        ClipOutcome::Clipped => poly,
+                    }
+                }
+            };
+            let Some(verts) = self.project(draw, &polygon) else {
+                continue;
+            };
+            if verts.len() < 3 {
+                continue;
+            }
+            let area: i64 = (1..verts.len() - 1)
+                .map(|i| orient(verts[0].fixed, verts[i].fixed, verts[i + 1].fixed))
+                .sum();
+            if area == 0 && self.bug != Bug::DegenerateFragments {
+                continue;
+            }
+            let clockwise = area > 0;
+            if self.bug == Bug::OneWinding && clockwise {
+                continue;
+            }
+            let mut front = match state.front_face {
+                FrontFace::Clockwise => clockwise,
+                FrontFace::CounterClockwise => !clockwise && area != 0,
+            };
+            if self.bug == Bug::InvertedFacing {
+                front = !front;
+            }
+            if state.cull.culls(front) {
+                continue;
+            }
+            let unclipped = polygon.len() == 3 && polygon == input;
+            for i in 1..verts.len() - 1 {
+                let tri = [verts[0], verts[i], verts[i + 1]];
+                self.walk(draw.viewport, tri, primitive as u32, front, unclipped, &mut out);
+            }
+        }
+        Ok(out)
+    }
+
+    fn resolve(&mut self, draw: &Draw) -> Result<Resolved, DrawError> {
+        let fragments = self.rasterize(draw)?;
+        if self.bug != Bug::DepthWithoutTest {
+            return Ok(Resolved::from_fragments(draw, fragments));
+        }
+        // The bug: every fragment writes, in submission order, whatever its depth.
+        let vp = draw.viewport;
+        let mut resolved = Resolved {
+            viewport: vp,
+            depth: vec![draw.state.depth.clear; vp.pixel_count()],
+            primitive: vec![None; vp.pixel_count()],
+        };
+        for f in fragments.iter().filter(|f| f.x < vp.width() && f.y < vp.height()) {
+            let i = vp.index(f.x, f.y);
+            resolved.depth[i] = f.depth;
+            resolved.primitive[i] = Some(f.primitive);
+        }
+        Ok(resolved)
+    }
+}
+
+impl Mutant {
+    /// Divides by w and snaps; `None` when a vertex has no finite raster position in range.
+    fn project(&self, draw: &Draw, polygon: &[ClipVertex]) -> Option<Vec<Vert>> {
+        // The dropped bit: snap to 1/128 px, kept in 1/256 px units like everything else.
+        let step = if self.bug == Bug::DroppedSubpixelBit {
+            2.0
+        } else {
+            1.0
+        };
+        polygon
+            .iter()
+            .map(|c| {
+                let p = c.position;
+                if p.w == 0.0 || (self.bug != Bug::NoNearClip && p.w < 0.0) {
+                    return None;
+                }
+                let (x, y) = draw.viewport.to_raster(p.x / p.w, p.y / p.w);
+                let snap = |v: f64| {
+                    let s = (v * 256.0 / step).round_ties_even() * step;
+                    (s.is_finite() && s.abs() <= FixedPoint::LIMIT as f64).then_some(s as i64)
+                };
+                Some(Vert {
+                    raster: [x, y],
+                    fixed: [snap(x)?, snap(y)?],
+                    depth: draw.state.depth_range.window_depth(p.z, p.w),
+                    inv_w: 1.0 / p.w,
+                    bary: c.barycentric,
+                })
+            })
+            .collect()
+    }
+
+    /// Walks the bounding box of one triangle of the fan and emits its covered samples.
+    fn walk(
+        &self,
+        vp: Viewport,
+        t: [Vert; 3],
+        primitive: u32,
+        front: bool,
+        unclipped: bool,
+        out: &mut Vec<Fragment>,
+    ) {
+        let [a, b, c] = t.map(|v| v.fixed);
+        let area = orient(a, b, c);
+        let sign = area.signum();
+        let xs = [a[0], b[0], c[0]];
+        let ys = [a[1], b[1], c[1]];
+        let first = |min: i64| (min - 128 + 255).div_euclid(256);
+        let last = |max: i64| (max - 128).div_euclid(256);
+        let (w, h) = (i64::from(vp.width()), i64::from(vp.height()));
+        // The clamp: the last pixel is side − 1 (the bug clamps to the side itself).
+        let top = if self.bug == Bug::UnclampedBbox { 0 } else { 1 };
+        let x0 = first(*xs.iter().min().unwrap_or(&0)).max(0);
+        let y0 = first(*ys.iter().min().unwrap_or(&0)).max(0);
+        let mut x1 = last(*xs.iter().max().unwrap_or(&0)).min(w - top);
+        let mut y1 = last(*ys.iter().max().unwrap_or(&0)).min(h - top);
+        if self.bug == Bug::ExclusiveBboxMax {
+            x1 -= 1;
+            y1 -= 1;
+        }
+        for py in y0..=y1 {
+            for px in x0..=x1 {
+                let s = [px * 256 + 128, py * 256 + 128];
+                let Some(e) = self.edges(t, s, sign) else { continue };
+                let weights = if area == 0 {
+                    [1.0 / 3.0; 3]
+                } else {
+                    let denom = if self.bug == Bug::WrongArea {
+                        area.abs() as f64 / 2.0
+                    } else {
+                        area.abs() as f64
+                    };
+                    e.map(|v| v / denom)
+                };
+                let q = [0, 1, 2].map(|k| weights[k] * t[k].inv_w);
+                let qs: f64 = q.iter().sum();
+                let persp = [0, 1, 2].map(|k| q[k] / qs);
+                let mix = |wt: [f64; 3]| (0..3).map(|k| t[k].bary * wt[k]).sum::<DVec3>();
+                let screen = mix(weights);
+                let bary = if self.bug == Bug::AffineAttributes {
+                    screen
+                } else {
+                    mix(persp)
+                };
+                let dw = if self.bug == Bug::PerspectiveDepth {
+                    persp
+                } else {
+                    weights
+                };
+                let depth = (0..3).map(|k| t[k].depth * dw[k]).sum::<f64>().clamp(0.0, 1.0);
+                out.push(Fragment {
+                    x: px as u32,
+                    y: py as u32,
+                    primitive,
+                    depth: depth as f32,
+                    barycentric: bary.as_vec3().to_array(),
+                    screen_barycentric: unclipped.then(|| screen.as_vec3().to_array()),
+                    front_facing: front,
+                });
+            }
+        }
+    }
+
+    /// The three edge values at sample `s` (oriented so inside is positive), or `None` when the
+    /// fill rule (as this mutant applies it) leaves the sample out.
+    fn edges(&self, t: [Vert; 3], s: [i64; 2], sign: i64) -> Option<[f64; 3]> {
+        let f = t.map(|v| v.fixed);
+        let pairs = [(1, 2), (2, 0), (0, 1)];
+        let values: [f64; 3] = match self.bug {
+            Bug::Edge32Bit => pairs.map(|(i, j)| {
+                let (a, b) = (f[i].map(|v| v as i32), f[j].map(|v| v as i32));
+                let (sx, sy) = (s[0] as i32, s[1] as i32);
+                let e = (b[0].wrapping_sub(a[0]))
+                    .wrapping_mul(sy.wrapping_sub(a[1]))
+                    .wrapping_sub((b[1].wrapping_sub(a[1])).wrapping_mul(sx.wrapping_sub(a[0])));
+                f64::from(e) * sign as f64
+            }),
+            Bug::FloatEdges => {
+                let r = t.map(|v| v.raster.map(|c| c as f32));
+                let p = [s[0] as f32 / 256.0, s[1] as f32 / 256.0];
+                pairs.map(|(i, j)| {
+                    let e = (r[j][0] - r[i][0]) * (p[1] - r[i][1]) - (r[j][1] - r[i][1]) * (p[0] - r[i][0]);
+                    f64::from(e) * sign as f64
+                })
+            }
+            Bug::RotatedEdgeOrigin => {
+                let r = f.map(|v| v.map(|c| c as f32 / 256.0));
+                let p = [s[0] as f32 / 256.0, s[1] as f32 / 256.0];
+                // Each edge's function taken from vertex 0, not from the edge's own start.
+                pairs.map(|(i, j)| {
+                    let d = [r[j][0] - r[i][0], r[j][1] - r[i][1]];
+                    let e = d[0] * (p[1] - r[0][1])
+                        - d[1] * (p[0] - r[0][0])
+                        - (d[0] * (r[i][1] - r[0][1]) - d[1] * (r[i][0] - r[0][0]));
+                    f64::from(e) * sign as f64
+                })
+            }
+            _ if sign == 0 => {
+                // The bug emits a zero-area triangle's samples that lie on its line.
+                let on_line = pairs.iter().all(|&(i, j)| orient(f[i], f[j], s) == 0);
+                return on_line.then_some([0.0; 3]);
+            }
+            _ => pairs.map(|(i, j)| (orient(f[i], f[j], s) * sign) as f64),
+        };
+        let covered = (0..3).all(|k| {
+            let v = values[k];
+            let (i, j) = pairs[k];
+            match self.bug {
+                Bug::InclusiveEdges => v >= 0.0,
+                Bug::ExclusiveEdges => v > 0.0,
+                _ => v > 0.0 || (v == 0.0 && self.owns(f, i, j, sign)),
+            }
+        });
+        covered.then_some(values)
+    }
+
+    /// Whether edge `i → j` owns its samples: top-left on the clockwise-ordered triangle.
+    fn owns(&self, f: [[i64; 2]; 3], i: usize, j: usize, sign: i64) -> bool {
+        let p = |k: usize| FixedPoint::new(f[k][0], f[k][1]).unwrap_or_default();
+        // Inside is where the oriented edge values are positive: walk the edge so it turns clockwise.
+        let (a, b) = if sign >= 0 { (p(i), p(j)) } else { (p(j), p(i)) };
+        match self.bug {
+            Bug::BottomRightAsTopLeft => FillConvention::BottomRight.owns_edge(a, b),
+            _ => is_top_left(a, b),
+        }
+    }
+}
+
+/// Twice the signed area of `a, b, c` on 1/256-pixel coordinates.
+fn orient(a: [i64; 2], b: [i64; 2], c: [i64; 2]) -> i64 {
+    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+}
+
+/// Sutherland–Hodgman with the bug: each intersection computed in f32 from the vertex met
+/// first while walking, so two triangles walking a shared edge opposite ways cut it apart.
+fn clip_walking(input: &[ClipVertex; 3], planes: &[ClipPlane]) -> Vec<ClipVertex> {
+    let mut poly = input.to_vec();
+    for &plane in planes {
+        let mut out = Vec::with_capacity(poly.len() + 1);
+        for i in 0..poly.len() {
+            let (cur, next) = (poly[i], poly[(i + 1) % poly.len()]);
+            let (dc, dn) = (plane.distance(cur.position), plane.distance(next.position));
+            if dc >= 0.0 {
+                out.push(cur);
+            }
+            if (dc >= 0.0) != (dn >= 0.0) {
+                let t = (dc / (dc - dn)) as f32;
+                let lerp = |a: f64, b: f64| f64::from(a as f32 + t * (b as f32 - a as f32));
+                let p = [0, 1, 2, 3].map(|k| lerp(cur.position[k], next.position[k]));
+                let q = [0, 1, 2].map(|k| lerp(cur.barycentric[k], next.barycentric[k]));
+                out.push(ClipVertex {
+                    position: DVec4::from(p),
+                    barycentric: DVec3::from(q),
+                });
+            }
+        }
+        poly = out;
+        if poly.len() < 3 {
+            return Vec::new();
+        }
+    }
+    poly
+}
+
+/// Every mutant as a built-in, named `mutant:NAME`.
+#[must_use]
+pub fn builtins() -> Vec<BuiltIn> {
+    Bug::ALL
+        .iter()
+        .map(|&bug| {
+            BuiltIn::new(
+                format!("mutant:{}", bug.name()),
+                format!("broken on purpose ({} rules must catch it)", bug.caught_by()),
+                false,
+                move || Box::new(Mutant::new(bug)),
+            )
+        })
+        .collect()
+}

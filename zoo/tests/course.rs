@@ -1,0 +1,283 @@
+//! The course rasterizers: seed 002's worked example, the labs' own triangles, and what the
+//! conformance suite tells a student about each lab.
+
+use refrast::{Draw, FrontFace, Rasterizer, Viewport};
+use refrast_conformance::{Options, Report, Status, certify};
+use refrast_zoo::course::lab002::{Pixel, compute_polygon_rows, interpolate};
+use refrast_zoo::course::{self, Lab000, Lab002, Lab004};
+
+/// A draw of one triangle given in NDC (`w = 1`) on a square target.
+fn ndc_triangle(side: u32, v: [[f32; 2]; 3], z: f32) -> Draw {
+    let viewport = Viewport::new(side, side).expect("a valid size");
+    Draw::new(
+        viewport,
+        v.iter().map(|p| [p[0], p[1], z, 1.0]).collect(),
+        vec![[0, 1, 2]],
+    )
+}
+
+#[test]
+fn lab002_interpolate_gives_the_seeds_example() {
+    let got: Vec<(i32, i32)> = interpolate(Pixel::at(4, 2), Pixel::at(1, 8), 4)
+        .map(|p| (p.x, p.y))
+        .collect();
+    assert_eq!(got, [(4, 2), (3, 4), (2, 6), (1, 8)]);
+}
+
+#[test]
+fn lab002_rows_of_the_worked_example() {
+    let vertices = [Pixel::at(10, 5), Pixel::at(5, 10), Pixel::at(15, 15)];
+    let (left, right) = compute_polygon_rows(&vertices);
+    let rows: Vec<((i32, i32), (i32, i32))> = left
+        .iter()
+        .zip(&right)
+        .map(|(l, r)| ((l.x, l.y), (r.x, r.y)))
+        .collect();
+    // Seed 002, section 4: "Start: (10,5). End: (10,5). Start: (9,6). End: (10,6). …"
+    let expected = [
+        ((10, 5), (10, 5)),
+        ((9, 6), (10, 6)),
+        ((8, 7), (11, 7)),
+        ((7, 8), (11, 8)),
+        ((6, 9), (12, 9)),
+        ((5, 10), (12, 10)),
+        ((7, 11), (13, 11)),
+        ((9, 12), (13, 12)),
+        ((11, 13), (14, 13)),
+        ((13, 14), (14, 14)),
+        ((15, 15), (15, 15)),
+    ];
+    assert_eq!(rows, expected);
+}
+
+#[test]
+fn lab002_fills_the_worked_example_row_by_row() {
+    // On a 20×20 target, NDC x·10 + 10 and 10 − y·10 land exactly on the example's pixels.
+    let to_ndc = |x: f32, y: f32| [(x - 10.0) / 10.0, (10.0 - y) / 10.0];
+    let draw = ndc_triangle(
+        20,
+        [to_ndc(10.0, 5.0), to_ndc(5.0, 10.0), to_ndc(15.0, 15.0)],
+        0.5,
+    );
+    let fragments = Lab002.rasterize(&draw).expect("a valid draw");
+    // Rows of widths 1, 2, 4, 5, 7, 8, 7, 5, 4, 2, 1 (right − left + 1 in the example).
+    assert_eq!(fragments.len(), 46);
+    for f in &fragments {
+        let sum: f32 = f.barycentric.iter().sum();
+        assert!((sum - 1.0).abs() < 1e-5, "{f:?}");
+        assert!(
+            (f.depth - 0.5).abs() < 1e-6,
+            "w = 1 everywhere: zinv = 1, depth 1/(1+1)"
+        );
+    }
+}
+
+#[test]
+fn lab000_draws_its_seed_triangle_and_not_the_reversed_one() {
+    // Seed 000, step 1: (0, .5), (.5, −.5), (−.5, −.5), "notice clockwise order".
+    let clockwise = [[0.0, 0.5], [0.5, -0.5], [-0.5, -0.5]];
+    let mut draw = ndc_triangle(32, clockwise, 0.5);
+    draw.state.front_face = FrontFace::Clockwise;
+    let fragments = Lab000.rasterize(&draw).expect("a valid draw");
+    assert!(!fragments.is_empty());
+    assert!(fragments.iter().all(|f| f.front_facing));
+    // The apex sits on pixel corner (16, 8): the lab samples there, so it has weight 1 for V0.
+    let apex = fragments
+        .iter()
+        .find(|f| (f.x, f.y) == (16, 8))
+        .expect("the apex is covered");
+    assert_eq!(apex.barycentric, [1.0, 0.0, 0.0]);
+    let reversed = ndc_triangle(32, [clockwise[0], clockwise[2], clockwise[1]], 0.5);
+    assert!(Lab000.rasterize(&reversed).expect("a valid draw").is_empty());
+}
+
+#[test]
+fn lab000_resolves_with_its_max_float_buffer() {
+    let far = ndc_triangle(8, [[-1.0, 1.0], [1.0, 1.0], [-1.0, -1.0]], 0.5);
+    let resolved = Lab000.resolve(&far).expect("a valid draw");
+    // Covered pixels hold the mapped view depth (w = 1 → ¾), the rest the mapped clear value 1.
+    assert_eq!(resolved.primitive[0], Some(0));
+    assert_eq!(resolved.depth[0], 0.75);
+    assert_eq!(resolved.depth[63], 1.0);
+}
+
+#[test]
+fn lab004_clips_and_draws_only_counter_clockwise() {
+    let ccw = [[-1.0, 1.0], [-1.0, -1.0], [1.0, 1.0]];
+    let draw = ndc_triangle(8, ccw, 0.5);
+    let fragments = Lab004.rasterize(&draw).expect("a valid draw");
+    // Pixel corners (x, y) with x + y ≤ 8 and x, y ≤ 7, the diagonal included: 8 + 8 + 7 + … + 2.
+    assert_eq!(fragments.len(), 43);
+    let cw = ndc_triangle(8, [ccw[0], ccw[2], ccw[1]], 0.5);
+    assert!(Lab004.rasterize(&cw).expect("a valid draw").is_empty());
+    // Entirely behind the eye: the near plane clips it away.
+    let viewport = Viewport::new(8, 8).expect("a valid size");
+    let behind = Draw::new(
+        viewport,
+        vec![
+            [-1.0, 1.0, 0.5, -1.0],
+            [-1.0, -1.0, 0.5, -1.0],
+            [1.0, 1.0, 0.5, -1.0],
+        ],
+        vec![[0, 1, 2]],
+    );
+    assert!(Lab004.rasterize(&behind).expect("a valid draw").is_empty());
+}
+
+#[test]
+fn course_rasterizers_survive_bad_numbers() {
+    let viewport = Viewport::new(16, 16).expect("a valid size");
+    let bad = [
+        f32::NAN,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        0.0,
+        -0.0,
+        f32::MAX,
+        f32::MIN,
+        1e-40,
+        3e4,
+    ];
+    for b in course::builtins() {
+        for &v in &bad {
+            let draw = Draw::new(
+                viewport,
+                vec![
+                    [v, 0.5, 0.5, 1.0],
+                    [0.5, v, 0.5, v],
+                    [-0.5, -0.5, v, 1.0],
+                    [0.0; 4],
+                ],
+                vec![[0, 1, 2], [0, 3, 1], [3, 3, 3], [2, 1, 0]],
+            );
+            let fragments = (b.make)().rasterize(&draw).expect("valid indices");
+            assert!(
+                fragments.iter().all(|f| (0.0..=1.0).contains(&f.depth)),
+                "{}",
+                b.name
+            );
+        }
+        let empty = Draw::new(viewport, Vec::new(), Vec::new());
+        assert!((b.make)().rasterize(&empty).expect("nothing to draw").is_empty());
+        let out_of_range = Draw::new(viewport, vec![[0.0; 4]], vec![[0, 0, 1]]);
+        assert!((b.make)().rasterize(&out_of_range).is_err(), "{}", b.name);
+    }
+}
+
+/// What certification at 200 cases per rule found for one lab, and why, from its seed.
+struct Expected {
+    name: &'static str,
+    first_failure: &'static str,
+    /// Rules it fails: the reasons are in each module's documentation.
+    fail: &'static str,
+    pass: &'static str,
+    not_applicable: &'static str,
+}
+
+const EXPECTED: [Expected; 3] = [
+    Expected {
+        name: "lab000",
+        first_failure: "fill.mesh.exactly-once",
+        // `≥ 0` on every edge (shared edges twice), samples at pixel corners, clockwise only, no clipping.
+        fail: "fill.mesh.exactly-once fill.fan.exactly-once fill.rotated-quad.exactly-once \
+               fill.projected-mesh.exactly-once fill.interior.matches-raycast fill.top-left.exact \
+               fill.guard-band.exact fill.brute-force.exact bary.screen.reconstructs-sample \
+               clip.behind-eye.empty clip.interior.matches-raycast clip.mesh.watertight \
+               clip.crossing-quad.watertight meta.reversal.flips-facing meta.translate.one-subpixel",
+        pass: "meta.rotation.same-coverage meta.translate.whole-pixels meta.viewport.neutral \
+               meta.batch.independent meta.facing.from-winding meta.degenerate.empty \
+               robust.non-finite.discarded robust.bit-patterns.sane-output robust.output.well-formed \
+               robust.bad-index.error",
+        not_applicable: "bary.sum.one bary.range.unit bary.vertex.one bary.perspective.matches-raycast \
+               bary.equal-w.affine depth.range.vertices depth.screen-linear.matches-raycast \
+               depth.order.independent depth.resolve.matches-fragments clip.far.respected \
+               clip.gl-range.matches-raycast meta.cull.by-facing",
+    },
+    Expected {
+        name: "lab002-scanline",
+        first_failure: "fill.mesh.exactly-once",
+        // Both row ends drawn, vertices truncated toward the screen centre, no clipping, ties by edge order.
+        fail: "fill.mesh.exactly-once fill.fan.exactly-once fill.rotated-quad.exactly-once \
+               fill.projected-mesh.exactly-once fill.interior.matches-raycast fill.guard-band.exact \
+               fill.brute-force.exact bary.sum.one bary.range.unit bary.vertex.one \
+               bary.perspective.matches-raycast clip.behind-eye.empty clip.interior.matches-raycast \
+               clip.mesh.watertight clip.crossing-quad.watertight meta.rotation.same-coverage \
+               meta.reversal.flips-facing meta.translate.whole-pixels meta.viewport.neutral \
+               meta.facing.from-winding meta.degenerate.empty",
+        pass: "meta.translate.one-subpixel meta.batch.independent robust.non-finite.discarded \
+               robust.bit-patterns.sane-output robust.output.well-formed robust.bad-index.error",
+        not_applicable: "fill.top-left.exact bary.screen.reconstructs-sample bary.equal-w.affine \
+               depth.range.vertices depth.screen-linear.matches-raycast depth.order.independent \
+               depth.resolve.matches-fragments clip.far.respected clip.gl-range.matches-raycast \
+               meta.cull.by-facing",
+    },
+    Expected {
+        name: "lab004-lineeq",
+        first_failure: "fill.mesh.exactly-once",
+        // Counter-clockwise only, `O_i ≤ 0` owns every edge, pixel corners, far always clipped, nudged cuts.
+        fail: "fill.mesh.exactly-once fill.fan.exactly-once fill.rotated-quad.exactly-once \
+               fill.projected-mesh.exactly-once fill.interior.matches-raycast fill.top-left.exact \
+               fill.brute-force.exact bary.screen.reconstructs-sample depth.screen-linear.matches-raycast \
+               clip.interior.matches-raycast clip.mesh.watertight clip.crossing-quad.watertight \
+               clip.far.respected clip.gl-range.matches-raycast meta.reversal.flips-facing \
+               meta.translate.whole-pixels meta.translate.one-subpixel meta.degenerate.empty",
+        pass: "depth.range.vertices clip.behind-eye.empty meta.rotation.same-coverage meta.viewport.neutral \
+               meta.batch.independent meta.facing.from-winding robust.non-finite.discarded \
+               robust.bit-patterns.sane-output robust.output.well-formed robust.bad-index.error",
+        not_applicable: "fill.guard-band.exact bary.sum.one bary.range.unit bary.vertex.one \
+               bary.perspective.matches-raycast bary.equal-w.affine depth.order.independent \
+               depth.resolve.matches-fragments meta.cull.by-facing",
+    },
+];
+
+/// The first failing rule of a report, in catalogue order.
+fn first_failure(report: &Report) -> Option<&str> {
+    report
+        .rules
+        .iter()
+        .find(|r| r.status == Status::Fail)
+        .map(|r| r.id.as_str())
+}
+
+/// Certifies each lab at 200 cases per rule, prints the README table, and checks every rule
+/// listed in [`EXPECTED`] (rules added to the catalogue later are printed, not judged).
+#[test]
+fn course_rasterizers_certified() {
+    let options = Options {
+        cases: Some(200),
+        ..Options::default()
+    };
+    let builtins = course::builtins();
+    assert_eq!(builtins.len(), EXPECTED.len());
+    println!("| lab | passed | failed | n/a | first failing rule |");
+    println!("|---|---|---|---|---|");
+    for (b, want) in builtins.iter().zip(&EXPECTED) {
+        assert_eq!(b.name, want.name);
+        assert!(!b.correct, "{} is course code, not certified correct", b.name);
+        let report = certify(&mut *(b.make)(), &options, |_| {});
+        let (pass, fail, na) = report.tally();
+        let first = first_failure(&report);
+        println!(
+            "| `{}` | {pass} | {fail} | {na} | `{}` |",
+            b.name,
+            first.unwrap_or("—")
+        );
+        let status_of = |id: &str| report.rules.iter().find(|r| r.id == id).map(|r| r.status);
+        let mut wrong = Vec::new();
+        for (ids, status) in [
+            (want.fail, Status::Fail),
+            (want.pass, Status::Pass),
+            (want.not_applicable, Status::NotApplicable),
+        ] {
+            for id in ids.split_whitespace() {
+                let got = status_of(id);
+                if got != Some(status) {
+                    wrong.push(format!("{id}: expected {}, got {got:?}", status.label()));
+                }
+            }
+        }
+        assert!(wrong.is_empty(), "{}: {wrong:#?}", b.name);
+        assert!(fail >= 1, "{} fails no rule", b.name);
+        assert_eq!(first, Some(want.first_failure), "{}", b.name);
+    }
+}

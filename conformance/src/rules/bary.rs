@@ -109,7 +109,8 @@ fn equal_w_scene() -> impl proptest::strategy::Strategy<Value = Scene> {
     })
 }
 
-fn check_sum_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+/// Every fragment's barycentrics sum to 1 within `BARY_EPS`.
+pub fn check_sum_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     for f in fragments(r, scene)? {
         let sum: f32 = f.barycentric.iter().sum();
         if (sum - 1.0).abs() > BARY_EPS {
@@ -122,7 +123,8 @@ fn check_sum_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation>
     Ok(())
 }
 
-fn check_in_range(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+/// Barycentrics of samples outside the band lie in [0, 1] within `BARY_EPS`.
+pub fn check_in_range(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let band = band_px(&r.profile());
     let outline = visible_outline(&clip_triangle(scene, 0), scene.width, scene.height, &scene.state);
     for f in fragments(r, scene)? {
@@ -148,7 +150,8 @@ fn check_in_range(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation
     Ok(())
 }
 
-fn check_vertex_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+/// A covered sample on a vertex has weight 1 there and 0 elsewhere.
+pub fn check_vertex_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let tri = clip_triangle(scene, 0);
     for f in fragments(r, scene)? {
         let s = [f64::from(f.x) + 0.5, f64::from(f.y) + 0.5];
@@ -172,7 +175,8 @@ fn check_vertex_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violati
     Ok(())
 }
 
-fn check_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+/// Perspective-correct barycentrics equal the ray cast of the snapped triangle.
+pub fn check_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let Some(tri) = snapped_triangle(scene, 0, r.profile().subpixel_bits) else {
         return Ok(());
     };
@@ -199,7 +203,8 @@ fn check_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Vi
     Ok(())
 }
 
-fn check_reconstructs(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+/// Screen-space barycentrics weight the snapped vertices to the sample position.
+pub fn check_reconstructs(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let Some(tri) = snapped_triangle(scene, 0, r.profile().subpixel_bits) else {
         return Ok(());
     };
@@ -226,7 +231,8 @@ fn check_reconstructs(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Viola
     Ok(())
 }
 
-fn check_equal_w(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+/// With equal w, perspective-correct and screen-space barycentrics agree.
+pub fn check_equal_w(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     for f in fragments(r, scene)? {
         let Some(s) = f.screen_barycentric else {
             return Err(Violation::new(

@@ -112,7 +112,8 @@ fn depth_state_scene() -> impl Strategy<Value = Scene> {
         })
 }
 
-fn check_within_vertices(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+/// Depth stays between the vertices' smallest and largest z/w.
+pub fn check_within_vertices(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let z: Vec<f32> = scene.positions.iter().map(|p| p[2] / p[3]).collect();
     let (lo, hi) = z
         .iter()
@@ -132,7 +133,8 @@ fn check_within_vertices(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Vi
     Ok(())
 }
 
-fn check_depth_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+/// Depth equals z/w at the ray-cast hit of the snapped triangle.
+pub fn check_depth_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let Some(tri) = snapped_triangle(scene, 0, r.profile().subpixel_bits) else {
         return Ok(());
     };
@@ -168,7 +170,8 @@ fn resolve(r: &mut dyn Rasterizer, scene: &Scene) -> Result<Resolved, Violation>
         .map_err(|e| Violation::new(format!("resolve returned an error: {e}")))
 }
 
-fn check_order_independent(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+/// The resolved buffers do not depend on submission order (ids where depths differ).
+pub fn check_order_independent(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let n = scene.triangles.len();
     let base = resolve(r, scene)?;
     // Ties: how many fragments reach each pixel's winning depth; with several, either may own it.
@@ -212,7 +215,8 @@ fn check_order_independent(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), 
     Ok(())
 }
 
-fn check_resolve(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+/// `resolve` equals the fragments replayed through the draw's depth state.
+pub fn check_resolve(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let draw = scene.draw();
     let got = resolve(r, scene)?;
     let want = Resolved::from_fragments(&draw, fragments(r, scene)?);

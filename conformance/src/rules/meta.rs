@@ -156,7 +156,8 @@ fn facing_scene() -> impl Strategy<Value = Scene> {
     })
 }
 
-fn check_facing(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+/// `front_facing` follows the snapped winding and the front face.
+pub fn check_facing(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let bits = r.profile().subpixel_bits.min(16);
     let snapped: Option<Vec<_>> = scene.triangles[0]
         .iter()
@@ -250,7 +251,8 @@ fn compare_permuted(
     Ok(())
 }
 
-fn check_rotation(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+/// Rotating the vertex order keeps coverage and rotates barycentrics.
+pub fn check_rotation(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let base = fragments(r, scene)?;
     let mut rotated = scene.clone();
     let [a, b, c] = scene.triangles[0];
@@ -266,7 +268,8 @@ fn check_rotation(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation
     )
 }
 
-fn check_reversal(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+/// Reversing the winding keeps coverage, swaps barycentrics, flips facing.
+pub fn check_reversal(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let base = fragments(r, scene)?;
     let mut reversed = scene.clone();
     let [a, b, c] = scene.triangles[0];
@@ -304,7 +307,8 @@ fn clip_slack(profile: &refrast::Profile) -> f64 {
     2.0 * super::common::band_px(profile)
 }
 
-fn check_translation(r: &mut dyn Rasterizer, t: &Translated) -> Result<(), Violation> {
+/// Moving by whole pixels moves coverage alike, except near an edge.
+pub fn check_translation(r: &mut dyn Rasterizer, t: &Translated) -> Result<(), Violation> {
     let s = &t.scene;
     let profile = r.profile();
     let mut moved = s.clone();
@@ -349,7 +353,8 @@ fn check_translation(r: &mut dyn Rasterizer, t: &Translated) -> Result<(), Viola
     Ok(())
 }
 
-fn check_subpixel_translation(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+/// Moving by one subpixel changes only samples near an edge.
+pub fn check_subpixel_translation(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let profile = r.profile();
     let bits = profile.subpixel_bits.min(16);
     let unit = 1.0 / f64::from(1u32 << bits);
@@ -400,7 +405,8 @@ fn check_subpixel_translation(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(
     Ok(())
 }
 
-fn check_viewport_neutral(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+/// A viewport twice as large changes coverage only near an edge.
+pub fn check_viewport_neutral(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let profile = r.profile();
     let mut big = scene.clone();
     big.width *= 2;
@@ -432,7 +438,8 @@ fn check_viewport_neutral(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), V
     Ok(())
 }
 
-fn check_batch_independent(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+/// Each triangle covers the same samples alone, together, in any order.
+pub fn check_batch_independent(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let together = fragments(r, scene)?;
     for (i, t) in scene.triangles.iter().enumerate() {
         let mut alone = scene.clone();
@@ -458,7 +465,8 @@ fn check_batch_independent(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), 
     compare_sets(scene, &back, &together, "the draw in reverse order")
 }
 
-fn check_culling(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+/// Culling removes exactly the fragments of the culled facing.
+pub fn check_culling(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     for front_face in [FrontFace::CounterClockwise, FrontFace::Clockwise] {
         let mut none = scene.clone();
         none.state.front_face = front_face;

@@ -118,7 +118,8 @@ fn bad_index_scene() -> impl Strategy<Value = Scene> {
     })
 }
 
-fn check_poisoned(r: &mut dyn Rasterizer, p: &Poisoned) -> Result<(), Violation> {
+/// A non-finite coordinate discards its triangle and nothing else.
+pub fn check_poisoned(r: &mut dyn Rasterizer, p: &Poisoned) -> Result<(), Violation> {
     let clean = fragments(r, &p.scene)?;
     let mut bad = p.scene.clone();
     let vertex = p.scene.triangles[0][p.at.0] as usize;
@@ -143,7 +144,8 @@ fn check_poisoned(r: &mut dyn Rasterizer, p: &Poisoned) -> Result<(), Violation>
     )
 }
 
-fn check_well_formed(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+/// Fragments are in the viewport, name real primitives, are unique, have depth in [0, 1].
+pub fn check_well_formed(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let frags = fragments(r, scene)?;
     let mut seen = std::collections::HashSet::new();
     for f in &frags {
@@ -165,7 +167,8 @@ fn check_well_formed(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violat
     Ok(())
 }
 
-fn check_bad_index(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+/// An out-of-range index is an error, not a panic.
+pub fn check_bad_index(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     match r.rasterize(&scene.draw()) {
         Err(_) => Ok(()),
         Ok(frags) => Err(Violation::new(format!(

@@ -2,9 +2,11 @@
 
 use refrast::{Profile, Rasterizer};
 
-use super::common::{BARY_EPS, ORACLE_EPS, band_px, clip_triangle, fragments, sample_ndc, snapped_triangle};
+use super::common::{
+    BARY_EPS, ORACLE_EPS, band_px, clip_triangle, fragments, raycast_fragments, snapped_triangle,
+};
 use super::{Family, Kind, Rule};
-use crate::oracle::ray_cast::{distance_to_outline, ray_cast, visible_outline};
+use crate::oracle::ray_cast::{distance_to_outline, visible_outline};
 use crate::runner::property;
 use crate::scene::Scene;
 use crate::strategy;
@@ -177,15 +179,7 @@ pub fn check_vertex_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Vio
 
 /// Perspective-correct barycentrics equal the ray cast of the snapped triangle.
 pub fn check_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let Some(tri) = snapped_triangle(scene, 0, r.profile().subpixel_bits) else {
-        return Ok(());
-    };
-    for f in fragments(r, scene)? {
-        let (nx, ny) = sample_ndc(scene, f.x, f.y);
-        // A covered sample on an edge may be a hair outside in f64; the ray then misses: skip it.
-        let Some(hit) = ray_cast(&tri, nx, ny, &scene.state) else {
-            continue;
-        };
+    for (f, hit) in raycast_fragments(r, scene)? {
         for k in 0..3 {
             if (f64::from(f.barycentric[k]) - hit.barycentric[k]).abs() > ORACLE_EPS {
                 return Err(Violation::at(

@@ -5,7 +5,7 @@ use std::collections::HashMap;
 use refrast::{Fragment, Profile, Rasterizer, Reference, ReferenceConfig, SubpixelBits};
 
 use crate::oracle::brute_force;
-use crate::oracle::ray_cast::{OutlinePoint, distance_to_outline, ray_cast, visible_outline};
+use crate::oracle::ray_cast::{Hit, OutlinePoint, distance_to_outline, ray_cast, visible_outline};
 use crate::scene::Scene;
 use crate::violation::{Expect, Violation, compare_coverage, count_fragments};
 
@@ -79,6 +79,23 @@ pub fn snapped_triangle(scene: &Scene, t: usize, bits: u8) -> Option<[[f64; 4]; 
         out[k] = [nx * pw, ny * pw, f64::from(p[2]), pw];
     }
     Some(out)
+}
+
+/// Each fragment paired with the ray cast of the snapped triangle 0 at its sample.
+///
+/// Fragments whose ray misses (a covered sample on an edge, a hair outside in f64) are left
+/// out; empty when a vertex has no projection.
+pub fn raycast_fragments(r: &mut dyn Rasterizer, scene: &Scene) -> Result<Vec<(Fragment, Hit)>, Violation> {
+    let Some(tri) = snapped_triangle(scene, 0, r.profile().subpixel_bits) else {
+        return Ok(Vec::new());
+    };
+    Ok(fragments(r, scene)?
+        .into_iter()
+        .filter_map(|f| {
+            let (nx, ny) = sample_ndc(scene, f.x, f.y);
+            ray_cast(&tri, nx, ny, &scene.state).map(|hit| (f, hit))
+        })
+        .collect())
 }
 
 /// NDC of pixel `(x, y)`'s sample.

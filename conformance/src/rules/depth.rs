@@ -3,9 +3,8 @@
 use proptest::prelude::*;
 use refrast::{CompareOp, DepthState, Profile, Rasterizer, Resolved};
 
-use super::common::{BARY_EPS, ORACLE_EPS, fragments, sample_ndc, snapped_triangle};
+use super::common::{BARY_EPS, ORACLE_EPS, fragments, raycast_fragments};
 use super::{Family, Kind, Rule};
-use crate::oracle::ray_cast::ray_cast;
 use crate::runner::property;
 use crate::scene::Scene;
 use crate::strategy;
@@ -135,14 +134,7 @@ pub fn check_within_vertices(r: &mut dyn Rasterizer, scene: &Scene) -> Result<()
 
 /// Depth equals z/w at the ray-cast hit of the snapped triangle.
 pub fn check_depth_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let Some(tri) = snapped_triangle(scene, 0, r.profile().subpixel_bits) else {
-        return Ok(());
-    };
-    for f in fragments(r, scene)? {
-        let (nx, ny) = sample_ndc(scene, f.x, f.y);
-        let Some(hit) = ray_cast(&tri, nx, ny, &scene.state) else {
-            continue;
-        };
+    for (f, hit) in raycast_fragments(r, scene)? {
         if (f64::from(f.depth) - hit.depth.clamp(0.0, 1.0)).abs() > ORACLE_EPS {
             return Err(Violation::at(
                 (f.x, f.y),

@@ -22,12 +22,12 @@ pub struct Hit {
 /// `None` when it misses, the hit is behind the eye or outside the near (or enabled far)
 /// plane, or the triangle is seen edge-on. Every decision is exact: f64 first, with a forward
 /// error bound on each sign; when a sign is within its bound of zero (a sample on an edge, a
-/// triangle nearly edge-on), the same solve runs again in exact rationals.
+/// triangle nearly edge-on), the same solve runs again in exact integers ([`super::exact`]).
 #[must_use]
 pub fn ray_cast(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Option<Hit> {
     match ray_cast_f64(tri, nx, ny, state) {
         Filtered::Sure(hit) => hit,
-        Filtered::Unsure => ray_cast_exact(tri, nx, ny, state),
+        Filtered::Unsure => super::exact::ray_cast_exact(tri, nx, ny, state),
     }
 }
 
@@ -128,51 +128,6 @@ fn ray_cast_f64(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Fil
         barycentric: n.map(|ni| ni.v / d.v),
         depth,
     }))
-}
-
-fn ray_cast_exact(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Option<Hit> {
-    use num_rational::BigRational;
-    use num_traits::{Signed, ToPrimitive, Zero};
-    // Every f64 is a dyadic rational, so the conversion is exact.
-    let q = |x: f64| BigRational::from_float(x);
-    let (qx, qy) = (q(nx)?, q(ny)?);
-    let p: Vec<[BigRational; 4]> = tri
-        .iter()
-        .map(|v| Some([q(v[0])?, q(v[1])?, q(v[2])?, q(v[3])?]))
-        .collect::<Option<_>>()?;
-    let u: Vec<BigRational> = p.iter().map(|v| &v[0] - &qx * &v[3]).collect();
-    let v: Vec<BigRational> = p.iter().map(|v| &v[1] - &qy * &v[3]).collect();
-    let n = [
-        &u[1] * &v[2] - &u[2] * &v[1],
-        &u[2] * &v[0] - &u[0] * &v[2],
-        &u[0] * &v[1] - &u[1] * &v[0],
-    ];
-    let d = &n[0] + &n[1] + &n[2];
-    if d.is_zero() {
-        return None;
-    }
-    let b: Vec<BigRational> = n.iter().map(|ni| ni / &d).collect();
-    if b.iter().any(Signed::is_negative) {
-        return None;
-    }
-    let at = |k: usize| &b[0] * &p[0][k] + &b[1] * &p[1][k] + &b[2] * &p[2][k];
-    let (z, w) = (at(2), at(3));
-    let near = match state.depth_range {
-        DepthRange::ZeroToOne => !z.is_negative(),
-        DepthRange::NegativeOneToOne => !(&z + &w).is_negative(),
-    };
-    if !w.is_positive() || !near || (state.clip_far && z > w) {
-        return None;
-    }
-    let zw = (&z / &w).to_f64()?;
-    let depth = match state.depth_range {
-        DepthRange::ZeroToOne => zw,
-        DepthRange::NegativeOneToOne => (zw + 1.0) * 0.5,
-    };
-    Some(Hit {
-        barycentric: [b[0].to_f64()?, b[1].to_f64()?, b[2].to_f64()?],
-        depth,
-    })
 }
 
 /// A clip plane as a signed distance: a point is kept when it is `≥ 0`.
@@ -368,7 +323,7 @@ mod tests {
     }
 
     /// Found by `clip.interior.matches-raycast`: nearly edge-on, vertices at ±30000·w and w
-    /// crossing 0. Exact rationals give 120 hits; plain f64 gave none.
+    /// crossing 0. The exact solve gives 120 hits; plain f64 gave none.
     #[test]
     fn a_nearly_edge_on_triangle_gets_its_exact_hits() {
         let tri = [

@@ -1,0 +1,199 @@
+//! The ray cast in exact integers: the fallback when f64 cannot be sure of a sign.
+//!
+//! Every finite f64 is `m·2^e` with an integer `m`, so scaling a set of them by one power of two
+//! makes them all integers. The homogeneous solve is then additions and products of big
+//! integers with no division and no gcd; only the final ratios become floats (correctly
+//! rounded). Common positive factors change neither a sign nor a ratio, so every decision is
+//! the one exact rationals would make, about twenty times faster.
+
+use num_bigint::{BigInt, Sign};
+use num_rational::BigRational;
+use num_traits::{Float, ToPrimitive, Zero};
+use refrast::{DepthRange, DrawState};
+
+use super::ray_cast::Hit;
+
+/// `xs` times one power of two `2^-e`, with `e ≤ 0` the smallest exponent among them, so that
+/// all are integers; `None` if any is not finite.
+fn common_scale(xs: &[f64]) -> Option<(Vec<BigInt>, u32)> {
+    if xs.iter().any(|x| !x.is_finite()) {
+        return None;
+    }
+    let parts: Vec<(BigInt, i32)> = xs
+        .iter()
+        .map(|&x| {
+            let (mantissa, exponent, sign) = Float::integer_decode(x);
+            (BigInt::from(sign) * BigInt::from(mantissa), i32::from(exponent))
+        })
+        .collect();
+    let e = parts
+        .iter()
+        .filter(|(m, _)| !m.is_zero())
+        .map(|&(_, e)| e)
+        .min()
+        .unwrap_or(0)
+        .min(0);
+    let scaled = parts
+        .into_iter()
+        .map(|(m, k)| if m.is_zero() { m } else { m << (k - e) as usize })
+        .collect();
+    Some((scaled, e.unsigned_abs()))
+}
+
+/// `n / d` as the nearest f64 (`None` for 0/0).
+fn ratio(n: &BigInt, d: &BigInt) -> Option<f64> {
+    BigRational::new_raw(n.clone(), d.clone()).to_f64()
+}
+
+/// [`super::ray_cast::ray_cast`] decided exactly; `None` for non-finite input.
+pub(super) fn ray_cast_exact(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Option<Hit> {
+    let flat: Vec<f64> = tri.iter().flatten().copied().collect();
+    let (p, _) = common_scale(&flat)?;
+    let (q, shift) = common_scale(&[nx, ny])?;
+    let c = |i: usize, k: usize| &p[4 * i + k];
+    // u = x − nx·w and v = y − ny·w, all times 2^(shift − e_tri): (X << shift) − NX·W.
+    let u: [BigInt; 3] = std::array::from_fn(|i| (c(i, 0) << shift) - &q[0] * c(i, 3));
+    let v: [BigInt; 3] = std::array::from_fn(|i| (c(i, 1) << shift) - &q[1] * c(i, 3));
+    let n = [
+        &u[1] * &v[2] - &u[2] * &v[1],
+        &u[2] * &v[0] - &u[0] * &v[2],
+        &u[0] * &v[1] - &u[1] * &v[0],
+    ];
+    let d = &n[0] + &n[1] + &n[2];
+    let sign = d.sign();
+    if sign == Sign::NoSign {
+        return None;
+    }
+    // x / d > 0 and x / d ≥ 0, without dividing.
+    let positive = |x: &BigInt| x.sign() == sign;
+    let non_negative = |x: &BigInt| x.is_zero() || positive(x);
+    let weighted = |k: usize| &n[0] * c(0, k) + &n[1] * c(1, k) + &n[2] * c(2, k);
+    let (z, w) = (weighted(2), weighted(3));
+    let near = match state.depth_range {
+        DepthRange::ZeroToOne => non_negative(&z),
+        DepthRange::NegativeOneToOne => non_negative(&(&z + &w)),
+    };
+    let beyond_far = state.clip_far && positive(&(&z - &w));
+    if !n.iter().all(non_negative) || !positive(&w) || !near || beyond_far {
+        return None;
+    }
+    let zw = ratio(&z, &w)?;
+    let depth = match state.depth_range {
+        DepthRange::ZeroToOne => zw,
+        DepthRange::NegativeOneToOne => (zw + 1.0) * 0.5,
+    };
+    Some(Hit {
+        barycentric: [ratio(&n[0], &d)?, ratio(&n[1], &d)?, ratio(&n[2], &d)?],
+        depth,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use num_traits::Signed;
+    use proptest::prelude::*;
+
+    use super::*;
+
+    /// The same solve in reduced rationals, written plainly: the integer path must agree.
+    fn ray_cast_rational(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Option<Hit> {
+        let q = |x: f64| BigRational::from_float(x);
+        let (qx, qy) = (q(nx)?, q(ny)?);
+        let p: Vec<[BigRational; 4]> = tri
+            .iter()
+            .map(|v| Some([q(v[0])?, q(v[1])?, q(v[2])?, q(v[3])?]))
+            .collect::<Option<_>>()?;
+        let u: Vec<BigRational> = p.iter().map(|v| &v[0] - &qx * &v[3]).collect();
+        let v: Vec<BigRational> = p.iter().map(|v| &v[1] - &qy * &v[3]).collect();
+        let n = [
+            &u[1] * &v[2] - &u[2] * &v[1],
+            &u[2] * &v[0] - &u[0] * &v[2],
+            &u[0] * &v[1] - &u[1] * &v[0],
+        ];
+        let d = &n[0] + &n[1] + &n[2];
+        if d.is_zero() {
+            return None;
+        }
+        let b: Vec<BigRational> = n.iter().map(|ni| ni / &d).collect();
+        if b.iter().any(Signed::is_negative) {
+            return None;
+        }
+        let at = |k: usize| &b[0] * &p[0][k] + &b[1] * &p[1][k] + &b[2] * &p[2][k];
+        let (z, w) = (at(2), at(3));
+        let near = match state.depth_range {
+            DepthRange::ZeroToOne => !z.is_negative(),
+            DepthRange::NegativeOneToOne => !(&z + &w).is_negative(),
+        };
+        if !w.is_positive() || !near || (state.clip_far && z > w) {
+            return None;
+        }
+        let zw = (&z / &w).to_f64()?;
+        let depth = match state.depth_range {
+            DepthRange::ZeroToOne => zw,
+            DepthRange::NegativeOneToOne => (zw + 1.0) * 0.5,
+        };
+        Some(Hit {
+            barycentric: [b[0].to_f64()?, b[1].to_f64()?, b[2].to_f64()?],
+            depth,
+        })
+    }
+
+    /// Coordinates that make exact decisions matter: integers, halves, tiny and huge values,
+    /// and zeros, so rays graze edges and vertices and triangles turn edge-on.
+    fn coordinate() -> impl Strategy<Value = f64> {
+        prop_oneof![
+            (-4i32..=4).prop_map(|k| f64::from(k) * 0.5),
+            -2.0f64..2.0,
+            (-30000.0f64..30000.0),
+            prop_oneof![Just(1e-300), Just(-3e-310), Just(1e300), Just(0.0), Just(-0.0)],
+        ]
+    }
+
+    fn state() -> impl Strategy<Value = DrawState> {
+        (any::<bool>(), any::<bool>()).prop_map(|(gl, clip_far)| DrawState {
+            depth_range: if gl {
+                DepthRange::NegativeOneToOne
+            } else {
+                DepthRange::ZeroToOne
+            },
+            clip_far,
+            ..DrawState::default()
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(1500))]
+
+        #[test]
+        fn integers_decide_as_rationals_do(
+            tri in prop::array::uniform3(prop::array::uniform4(coordinate())),
+            nx in coordinate(),
+            ny in coordinate(),
+            state in state(),
+        ) {
+            prop_assert_eq!(ray_cast_exact(&tri, nx, ny, &state), ray_cast_rational(&tri, nx, ny, &state));
+        }
+    }
+
+    #[test]
+    fn a_ray_through_a_shared_vertex_hits_it() {
+        let tri = [[0.0, 0.0, 0.25, 1.0], [1.0, 0.0, 0.5, 1.0], [0.0, 1.0, 0.75, 1.0]];
+        let hit = ray_cast_exact(&tri, 0.0, 0.0, &DrawState::default()).expect("a vertex is inside");
+        assert_eq!(
+            hit,
+            Hit {
+                barycentric: [1.0, 0.0, 0.0],
+                depth: 0.25
+            }
+        );
+        assert_eq!(
+            ray_cast_exact(&tri, 0.5, 0.5, &DrawState::default()).map(|h| h.barycentric),
+            Some([0.0, 0.5, 0.5])
+        );
+        assert_eq!(
+            ray_cast_exact(&tri, 0.5, 0.5 + 1e-16, &DrawState::default()),
+            None
+        );
+        assert_eq!(ray_cast_exact(&tri, f64::NAN, 0.0, &DrawState::default()), None);
+    }
+}

@@ -9,6 +9,7 @@
 //! | verdicts | `violation` | [`Violation`], [`Counts`], [`Picture`] |
 //! | pictures | [`picture`] | the zoomed sample grid: missing purple, unexpected red, double blue, don't-care yellow |
 //! | running | `runner`, `certify` | [`certify`], [`Options`], [`Report`] |
+//! | fuzzing | [`fuzz`] | the cargo-fuzz targets as functions on any rasterizer, and the corpus decoder `cargo test` replays with |
 //! | `cargo test` | `harness` | [`run_as_tests`]: one test per rule in your own crate |
 //! | built-ins | `impls` | [`builtins`]: the implementations `refrast certify --impl` knows |
 //!
@@ -22,6 +23,7 @@
 #![forbid(unsafe_code)]
 
 mod certify;
+pub mod fuzz;
 mod harness;
 mod impls;
 pub mod oracle;

@@ -1,18 +1,12 @@
-//! Overlapping grid triangles with their own depths: the depth buffer is order independent.
+//! Overlapping, intersecting grid triangles: the depth buffer is the same in any draw order.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
 use refrast::Reference;
-use refrast_conformance::rules::depth::check_order_independent;
-use refrast_fuzz::GridTriangles;
+use refrast_conformance::fuzz::{self, Overlapping};
 
-fuzz_target!(|input: (GridTriangles, [u8; 18])| {
-    let Some(mut scene) = input.0.scene() else { return };
-    // Depth per vertex from the bytes, so triangles intersect.
-    for (p, z) in scene.positions.iter_mut().zip(input.1.iter().cycle()) {
-        p[2] = f32::from(*z) / 255.0;
-    }
-    if let Err(v) = check_order_independent(&mut Reference::default(), &scene) {
-        panic!("{v}\n{scene:?}");
+fuzz_target!(|input: Overlapping| {
+    if let Err(failure) = fuzz::depth_order(&mut Reference::default(), &input) {
+        panic!("{failure}");
     }
 });

@@ -1,17 +1,12 @@
-//! Any bit patterns through the reference: no panic, well-formed fragments, resolve works.
+//! Any f32 bit patterns and indices: no panic, well-formed fragments, resolve works.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use refrast::{Rasterizer, Reference};
-use refrast_conformance::rules::robust::check_well_formed;
-use refrast_fuzz::RawDraw;
+use refrast::Reference;
+use refrast_conformance::fuzz::{self, RawDraw};
 
 fuzz_target!(|input: RawDraw| {
-    let Some(scene) = input.scene() else { return };
-    let mut r = Reference::default();
-    if let Err(v) = check_well_formed(&mut r, &scene) {
-        panic!("{v}\n{scene:?}");
+    if let Err(failure) = fuzz::robustness(&mut Reference::default(), &input) {
+        panic!("{failure}");
     }
-    r.resolve(&scene.draw())
-        .expect("indices are in range by construction");
 });

@@ -3,12 +3,10 @@
 
 use libfuzzer_sys::fuzz_target;
 use refrast::Reference;
-use refrast_conformance::rules::fill::check_exactly_once;
-use refrast_fuzz::Points;
+use refrast_conformance::fuzz::{self, Points};
 
 fuzz_target!(|input: Points| {
-    let scene = input.scene();
-    if let Err(v) = check_exactly_once(&mut Reference::default(), &scene) {
-        panic!("{v}\n{scene:?}");
+    if let Err(failure) = fuzz::watertight(&mut Reference::default(), &input) {
+        panic!("{failure}");
     }
 });

@@ -1,0 +1,250 @@
+//! Fuzz inputs: raw bytes decoded by `arbitrary` into [`Scene`]s, each printing as Rust.
+//!
+//! Every input maps bytes onto a bounded, valid-by-construction scene, so the fuzzer spends its
+//! time on geometry rather than on rejected inputs. `Debug` prints the scene it stands for.
+
+use std::fmt;
+
+use arbitrary::Arbitrary;
+
+use crate::scene::{Scene, rust_f32};
+use crate::strategy::{GRID, triangulate};
+
+/// Square viewport sides 16, 32 or 64 from a byte: small enough for exact oracles per sample.
+fn square_side(b: u8) -> u32 {
+    16 << (b % 3)
+}
+
+/// Any draw: raw f32 bit patterns (NaN, Inf, subnormals, huge, w = 0) and any indices.
+#[derive(Arbitrary)]
+pub struct RawDraw {
+    width: u8,
+    height: u8,
+    vertices: Vec<[u32; 4]>,
+    triangles: Vec<[u8; 3]>,
+}
+
+impl RawDraw {
+    /// The scene: sides 1..=64, at most 16 vertices and 16 triangles, indices wrapped onto the
+    /// vertices; `None` without vertices.
+    #[must_use]
+    pub fn scene(&self) -> Option<Scene> {
+        let positions: Vec<[f32; 4]> = self
+            .vertices
+            .iter()
+            .take(16)
+            .map(|v| v.map(f32::from_bits))
+            .collect();
+        let n = positions.len() as u32;
+        if n == 0 {
+            return None;
+        }
+        let triangles = self
+            .triangles
+            .iter()
+            .take(16)
+            .map(|t| t.map(|i| u32::from(i) % n))
+            .collect();
+        let side = |b: u8| u32::from(b % 64) + 1;
+        Some(Scene::new(
+            side(self.width),
+            side(self.height),
+            positions,
+            triangles,
+        ))
+    }
+}
+
+/// A [`RawDraw`] through the reference's whole pipeline: a model-view-projection matrix of any
+/// bit patterns (identity when absent), the triangles as a mesh, their edges as lines, the
+/// vertices as points.
+#[derive(Arbitrary)]
+pub struct RawPipeline {
+    /// The draw: positions' x, y, z are model space, their fourth component the vertex grey.
+    pub draw: RawDraw,
+    /// Column-major matrix bits.
+    pub matrix: Option<[u32; 16]>,
+}
+
+impl RawPipeline {
+    /// The matrix as floats, column-major.
+    #[must_use]
+    pub fn matrix(&self) -> [f32; 16] {
+        match self.matrix {
+            Some(bits) => bits.map(f32::from_bits),
+            None => std::array::from_fn(|i| if i % 5 == 0 { 1.0 } else { 0.0 }),
+        }
+    }
+}
+
+/// Grid triangles: vertices on the 1/256-pixel grid anywhere within ±2048 px.
+#[derive(Arbitrary)]
+pub struct GridTriangles {
+    side: u8,
+    triangles: Vec<[(i16, i16); 3]>,
+}
+
+impl GridTriangles {
+    /// The scene at depth ½, up to 6 triangles; `None` without any.
+    #[must_use]
+    pub fn scene(&self) -> Option<Scene> {
+        let s = square_side(self.side);
+        // Each i16 step is 1/16 px: ±2048 px reach well past the viewport on every side.
+        let tris: Vec<[(i64, i64); 3]> = self
+            .triangles
+            .iter()
+            .take(6)
+            .map(|t| t.map(|(x, y)| (i64::from(x) * GRID / 16, i64::from(y) * GRID / 16)))
+            .collect();
+        (!tris.is_empty()).then(|| Scene::from_subpixels(s, s, 8, &tris, 0.5))
+    }
+}
+
+/// Grid triangles with a depth per vertex from bytes, so that they overlap and intersect.
+#[derive(Arbitrary)]
+pub struct Overlapping {
+    triangles: GridTriangles,
+    depths: [u8; 18],
+}
+
+impl Overlapping {
+    /// The scene, depths in [0, 1] in steps of 1/255; `None` without triangles.
+    #[must_use]
+    pub fn scene(&self) -> Option<Scene> {
+        let mut scene = self.triangles.scene()?;
+        for (p, z) in scene.positions.iter_mut().zip(self.depths.iter().cycle()) {
+            p[2] = f32::from(*z) / 255.0;
+        }
+        Some(scene)
+    }
+}
+
+/// A point set on the grid of a square viewport, triangulated by spade with its corners.
+#[derive(Arbitrary)]
+pub struct Points {
+    side: u8,
+    points: Vec<(u16, u16)>,
+    w: Vec<u8>,
+}
+
+impl Points {
+    /// The spade mesh covering the viewport, w per vertex in [0.25, 4.2], depth ½.
+    #[must_use]
+    pub fn scene(&self) -> Scene {
+        self.mesh(&[0.5])
+    }
+
+    /// The spade mesh with depths `zs` cycled over its vertices.
+    fn mesh(&self, zs: &[f32]) -> Scene {
+        let s = square_side(self.side);
+        let max = i64::from(s) * GRID;
+        let points: Vec<(i64, i64)> = self
+            .points
+            .iter()
+            .take(32)
+            .map(|&(x, y)| (i64::from(x) % (max + 1), i64::from(y) % (max + 1)))
+            .collect();
+        let ws: Vec<f32> = self
+            .w
+            .iter()
+            .take(8)
+            .map(|&b| 0.25 + f32::from(b) / 64.0)
+            .collect();
+        triangulate(s, s, &points, if ws.is_empty() { &[1.0] } else { &ws }, zs)
+    }
+}
+
+/// A triangle or a mesh across the clip planes.
+#[derive(Arbitrary)]
+pub enum Clipping {
+    /// One triangle: coordinates up to ±30000·w, w of either sign, z across 0.
+    Triangle {
+        /// Viewport side selector.
+        side: u8,
+        /// x, y in units of 30000/32767, z in units of 1/64, w in units of 1/32 (0 → 0.01).
+        vertices: [(i16, i16, i8, i8); 3],
+    },
+    /// A spade mesh whose vertex depths straddle the near plane, so shared edges get clipped.
+    Mesh {
+        /// The mesh.
+        points: Points,
+        /// Depths in [−1, 1] in steps of 1/64, cycled over the vertices.
+        depths: Vec<i8>,
+    },
+}
+
+impl Clipping {
+    /// The scene.
+    #[must_use]
+    pub fn scene(&self) -> Scene {
+        match self {
+            Self::Triangle { side, vertices } => {
+                let s = square_side(*side);
+                let positions = vertices
+                    .iter()
+                    .map(|&(x, y, z, w)| {
+                        let w = if w == 0 { 0.01 } else { f32::from(w) / 32.0 };
+                        let (x, y) = (f32::from(x) / 32767.0 * 30000.0, f32::from(y) / 32767.0 * 30000.0);
+                        [x * w.abs(), y * w.abs(), f32::from(z) / 64.0 * w.abs(), w]
+                    })
+                    .collect();
+                Scene::new(s, s, positions, vec![[0, 1, 2]])
+            }
+            Self::Mesh { points, depths } => {
+                let zs: Vec<f32> = depths
+                    .iter()
+                    .take(8)
+                    .map(|&z| (f32::from(z) / 64.0).clamp(-1.0, 1.0))
+                    .collect();
+                points.mesh(if zs.is_empty() { &[-0.5, 0.5] } else { &zs })
+            }
+        }
+    }
+}
+
+/// Prints `scene` or, when there is none, says so.
+fn write_scene(f: &mut fmt::Formatter<'_>, scene: Option<Scene>) -> fmt::Result {
+    match scene {
+        Some(s) => write!(f, "{s:?}"),
+        None => write!(f, "/* no scene: the input decodes to nothing to draw */"),
+    }
+}
+
+impl fmt::Debug for RawDraw {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write_scene(f, self.scene())
+    }
+}
+
+impl fmt::Debug for RawPipeline {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let m: Vec<String> = self.matrix().iter().map(|&v| rust_f32(v)).collect();
+        writeln!(f, "// model-view-projection, column-major:")?;
+        writeln!(f, "Mat4::from_cols_array(&[{}]),", m.join(", "))?;
+        write_scene(f, self.draw.scene())
+    }
+}
+
+impl fmt::Debug for GridTriangles {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write_scene(f, self.scene())
+    }
+}
+
+impl fmt::Debug for Overlapping {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write_scene(f, self.scene())
+    }
+}
+
+impl fmt::Debug for Points {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write_scene(f, Some(self.scene()))
+    }
+}
+
+impl fmt::Debug for Clipping {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write_scene(f, Some(self.scene()))
+    }
+}

@@ -1,0 +1,215 @@
+//! Fuzz targets as library functions: the same `check_*` the proptests run, fed by `arbitrary`.
+//!
+//! `fuzz/` at the repository root holds one thin `fuzz_target!` per [`Target`]; `cargo test`
+//! replays the committed corpus through [`Target::run`], which decodes bytes exactly as
+//! `fuzz_target!` does ([`decode`]). A third-party rasterizer is fuzzed by calling the same
+//! functions with its own [`Rasterizer`] (see the README).
+
+mod input;
+
+use std::fmt;
+
+use arbitrary::{Arbitrary, Unstructured};
+use glam::{Mat4, Vec3};
+use refrast::{Framebuffer, Mesh, Rasterizer, Renderer, Vertex};
+
+pub use input::{Clipping, GridTriangles, Overlapping, Points, RawDraw, RawPipeline};
+
+use crate::rules::depth::check_order_independent;
+use crate::rules::fill::{check_exactly_once, check_guard_band};
+use crate::rules::robust::check_well_formed;
+use crate::violation::Violation;
+
+/// A check that failed on a fuzz input.
+#[derive(Clone, Debug)]
+pub struct Failure {
+    /// What the check found.
+    pub violation: Violation,
+    /// The input as Rust (its `Debug`): paste it into a regression test.
+    pub input: String,
+}
+
+impl fmt::Display for Failure {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}\ninput:\n{}", self.violation, self.input)
+    }
+}
+
+impl std::error::Error for Failure {}
+
+/// Runs `check` and attaches the input's `Debug` to a violation.
+fn judged(input: &impl fmt::Debug, check: impl FnOnce() -> Result<(), Violation>) -> Result<(), Failure> {
+    check().map_err(|violation| Failure {
+        violation,
+        input: format!("{input:?}"),
+    })
+}
+
+/// Any bit patterns: no panic, only well-formed fragments, and `resolve` works.
+pub fn robustness(r: &mut dyn Rasterizer, input: &RawDraw) -> Result<(), Failure> {
+    let Some(scene) = input.scene() else { return Ok(()) };
+    judged(input, || {
+        check_well_formed(r, &scene)?;
+        r.resolve(&scene.draw())
+            .map(drop)
+            .map_err(|e| Violation::new(format!("resolve returned an error on in-range indices: {e}")))
+    })
+}
+
+/// Each grid triangle alone against the brute-force oracle, bit for bit.
+pub fn differential(r: &mut dyn Rasterizer, input: &GridTriangles) -> Result<(), Failure> {
+    let Some(scene) = input.scene() else { return Ok(()) };
+    for t in 0..scene.triangles.len() {
+        let mut one = scene.clone();
+        one.triangles = vec![scene.triangles[t]];
+        let one = one.compact();
+        judged(&one, || check_guard_band(r, &one))?;
+    }
+    Ok(())
+}
+
+/// A spade mesh of the points covers every sample exactly once.
+pub fn watertight(r: &mut dyn Rasterizer, input: &Points) -> Result<(), Failure> {
+    judged(input, || check_exactly_once(r, &input.scene()))
+}
+
+/// Triangles and meshes across the clip planes agree with the ray cast outside the band.
+pub fn clipping(r: &mut dyn Rasterizer, input: &Clipping) -> Result<(), Failure> {
+    judged(input, || check_exactly_once(r, &input.scene()))
+}
+
+/// Overlapping triangles leave the same depth buffer in any draw order.
+pub fn depth_order(r: &mut dyn Rasterizer, input: &Overlapping) -> Result<(), Failure> {
+    let Some(scene) = input.scene() else { return Ok(()) };
+    judged(input, || check_order_independent(r, &scene))
+}
+
+/// The reference's whole pipeline (mesh with a shading hook, lines, points) on any bit
+/// patterns: no panic, no error on in-range indices, and every depth left in [0, 1].
+pub fn pipeline(input: &RawPipeline) -> Result<(), Failure> {
+    let Some(scene) = input.draw.scene() else {
+        return Ok(());
+    };
+    judged(input, || {
+        let mut target = Framebuffer::new(scene.width, scene.height)
+            .map_err(|e| Violation::new(format!("the scene's viewport was refused: {e}")))?;
+        target.clear([0, 0, 0, 255], 1.0);
+        let vertices: Vec<Vertex> = scene
+            .positions
+            .iter()
+            .map(|p| Vertex::colored(Vec3::new(p[0], p[1], p[2]), Vec3::splat(p[3])))
+            .collect();
+        let mesh = Mesh {
+            vertices,
+            triangles: scene.triangles.clone(),
+        };
+        let mvp = Mat4::from_cols_array(&input.matrix());
+        let renderer = Renderer::default();
+        renderer
+            .draw_mesh(&mut target, &mesh, Mat4::IDENTITY, mvp, |s| Some(s.color))
+            .map_err(|e| Violation::new(format!("draw_mesh returned an error on in-range indices: {e}")))?;
+        let segments: Vec<[u32; 2]> = mesh
+            .triangles
+            .iter()
+            .flat_map(|&[a, b, c]| [[a, b], [b, c], [c, a]])
+            .collect();
+        renderer.draw_lines(&mut target, &mesh.vertices, &segments, mvp);
+        renderer.draw_points(&mut target, &mesh.vertices, mvp);
+        let width = scene.width as usize;
+        match target.depth().iter().position(|d| !(0.0..=1.0).contains(d)) {
+            None => Ok(()),
+            Some(i) => Err(Violation::at(
+                ((i % width) as u32, (i / width) as u32),
+                format!("depth {} left in the buffer, outside [0, 1]", target.depth()[i]),
+            )),
+        }
+    })
+}
+
+/// Decodes `bytes` as `fuzz_target!` does: too short for `T`'s size hint, or not decodable, is `None`.
+#[must_use]
+pub fn decode<'a, T: Arbitrary<'a>>(bytes: &'a [u8]) -> Option<T> {
+    if bytes.len() < T::size_hint(0).0 {
+        return None;
+    }
+    T::arbitrary_take_rest(Unstructured::new(bytes)).ok()
+}
+
+/// What one fuzz input did.
+#[derive(Debug)]
+pub enum Outcome {
+    /// The bytes do not decode to an input (libFuzzer rejects them too).
+    Skipped,
+    /// The check held.
+    Passed,
+    /// The check failed.
+    Failed(Failure),
+}
+
+/// A fuzz target: its name in `fuzz/fuzz_targets/` and the check it runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Target {
+    /// [`robustness`] on [`RawDraw`].
+    Robustness,
+    /// [`differential`] on [`GridTriangles`].
+    Differential,
+    /// [`watertight`] on [`Points`].
+    Watertight,
+    /// [`clipping`] on [`Clipping`].
+    Clipping,
+    /// [`depth_order`] on [`Overlapping`].
+    DepthOrder,
+    /// [`pipeline`] on [`RawPipeline`]: refrast's own renderer, whatever rasterizer is passed.
+    Pipeline,
+}
+
+impl Target {
+    /// Every target, in the order `fuzz/nightly.sh` runs them.
+    pub const ALL: [Self; 6] = [
+        Self::Robustness,
+        Self::Differential,
+        Self::Watertight,
+        Self::Clipping,
+        Self::DepthOrder,
+        Self::Pipeline,
+    ];
+
+    /// The targets that judge the rasterizer they are given (all but [`Target::Pipeline`]).
+    pub const FOR_ANY_RASTERIZER: [Self; 5] = [
+        Self::Robustness,
+        Self::Differential,
+        Self::Watertight,
+        Self::Clipping,
+        Self::DepthOrder,
+    ];
+
+    /// The name of the fuzz target binary and of its corpus folder.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Robustness => "robustness",
+            Self::Differential => "differential",
+            Self::Watertight => "watertight",
+            Self::Clipping => "clipping",
+            Self::DepthOrder => "depth_order",
+            Self::Pipeline => "pipeline",
+        }
+    }
+
+    /// Decodes `bytes` as this target's `fuzz_target!` does and runs its check on `r`.
+    pub fn run(self, r: &mut dyn Rasterizer, bytes: &[u8]) -> Outcome {
+        let result = match self {
+            Self::Robustness => decode(bytes).map(|i| robustness(r, &i)),
+            Self::Differential => decode(bytes).map(|i| differential(r, &i)),
+            Self::Watertight => decode(bytes).map(|i| watertight(r, &i)),
+            Self::Clipping => decode(bytes).map(|i| clipping(r, &i)),
+            Self::DepthOrder => decode(bytes).map(|i| depth_order(r, &i)),
+            Self::Pipeline => decode(bytes).map(|i| pipeline(&i)),
+        };
+        match result {
+            None => Outcome::Skipped,
+            Some(Ok(())) => Outcome::Passed,
+            Some(Err(f)) => Outcome::Failed(f),
+        }
+    }
+}

@@ -20,7 +20,7 @@
 set -uo pipefail
 cd "$(dirname "$0")"
 
-all_targets=(robustness differential watertight clipping depth_order pipeline)
+all_targets=(robustness differential watertight clipping depth_order interpolation pipeline)
 seconds=${1:-600}
 if ! [[ $seconds =~ ^[0-9]+$ ]] || ((seconds == 0)); then
   echo "usage: fuzz/nightly.sh [SECONDS_PER_TARGET] [TARGET...]; SECONDS must be a positive integer, got '$seconds'" >&2
@@ -122,6 +122,7 @@ echo
 echo "== summary ($(date -u +%Y-%m-%dT%H:%MZ), ${fuzz[*]} ${sanitizer[*]})"
 printf '%-13s %10s %12s %10s %9s %9s %8s\n' target time executions exec/s corpus minimised crashes
 printf '%s\n' "${summary[@]}"
+echo "(corpus: fuzz/corpus/<target> after the run, before and after cmin; seeds and reproducers not counted)"
 if ((crashed)); then
   echo "crashes are in fuzz/artifacts/<target>/; reproduce with: cargo fuzz run <target> <file>" >&2
   echo "then copy the file to fuzz/regressions/<target>/<what-it-shows> so that cargo test replays it" >&2

@@ -77,6 +77,11 @@ fn depth_order_seeds_and_regressions() {
 }
 
 #[test]
+fn interpolation_seeds_and_regressions() {
+    replay(Target::Interpolation);
+}
+
+#[test]
 fn pipeline_seeds_and_regressions() {
     replay(Target::Pipeline);
 }

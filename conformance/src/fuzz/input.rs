@@ -7,7 +7,7 @@ use std::fmt;
 
 use arbitrary::Arbitrary;
 
-use crate::scene::{Scene, rust_f32};
+use crate::scene::{Scene, clip_of, rust_f32};
 use crate::strategy::{GRID, triangulate};
 
 /// Square viewport sides 16, 32 or 64 from a byte: small enough for exact oracles per sample.
@@ -81,20 +81,26 @@ impl RawPipeline {
 #[derive(Arbitrary)]
 pub struct GridTriangles {
     side: u8,
-    triangles: Vec<[(i16, i16); 3]>,
+    triangles: Vec<[(i32, i32); 3]>,
 }
+
+/// ±2048 px in 1/256 px: well past the viewport on every side, inside the guard band.
+const REACH: i64 = 2048 * GRID;
 
 impl GridTriangles {
     /// The scene at depth ½, up to 6 triangles; `None` without any.
+    ///
+    /// Every bit of a coordinate's 1/256 px counts (wrapped into ±2048 px, not divided), so an
+    /// implementation that drops a subpixel bit differs from the oracle.
     #[must_use]
     pub fn scene(&self) -> Option<Scene> {
         let s = square_side(self.side);
-        // Each i16 step is 1/16 px: ±2048 px reach well past the viewport on every side.
+        let wrap = |c: i32| (i64::from(c) + REACH).rem_euclid(2 * REACH + 1) - REACH;
         let tris: Vec<[(i64, i64); 3]> = self
             .triangles
             .iter()
             .take(6)
-            .map(|t| t.map(|(x, y)| (i64::from(x) * GRID / 16, i64::from(y) * GRID / 16)))
+            .map(|t| t.map(|(x, y)| (wrap(x), wrap(y))))
             .collect();
         (!tris.is_empty()).then(|| Scene::from_subpixels(s, s, 8, &tris, 0.5))
     }
@@ -116,6 +122,32 @@ impl Overlapping {
             p[2] = f32::from(*z) / 255.0;
         }
         Some(scene)
+    }
+}
+
+/// One triangle inside the top-left 16 × 16 pixels with its own w and depth per vertex.
+#[derive(Arbitrary)]
+pub struct Perspective {
+    side: u8,
+    /// x and y in 1/256 px (wrapped into 0..=16 px), w and z from bytes.
+    vertices: [(u16, u16, u8, u8); 3],
+}
+
+impl Perspective {
+    /// The scene: needs no clipping, w in [0.1, 4] and z in [0, 1] per vertex.
+    #[must_use]
+    pub fn scene(&self) -> Scene {
+        let s = square_side(self.side);
+        let inside = |c: u16| i64::from(c) % (16 * GRID + 1);
+        let positions = self
+            .vertices
+            .iter()
+            .map(|&(x, y, w, z)| {
+                let w = 0.1 + f32::from(w) / 255.0 * 3.9;
+                clip_of(s, s, 8, inside(x), inside(y), f32::from(z) / 255.0, w)
+            })
+            .collect();
+        Scene::new(s, s, positions, vec![[0, 1, 2]])
     }
 }
 
@@ -234,6 +266,12 @@ impl fmt::Debug for GridTriangles {
 impl fmt::Debug for Overlapping {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write_scene(f, self.scene())
+    }
+}
+
+impl fmt::Debug for Perspective {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write_scene(f, Some(self.scene()))
     }
 }
 

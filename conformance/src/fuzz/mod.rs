@@ -11,11 +11,12 @@ use std::fmt;
 
 use arbitrary::{Arbitrary, Unstructured};
 use glam::{Mat4, Vec3};
-use refrast::{Framebuffer, Mesh, Rasterizer, Renderer, Vertex};
+use refrast::{DepthConvention, Framebuffer, Mesh, Rasterizer, Renderer, Vertex};
 
-pub use input::{Clipping, GridTriangles, Overlapping, Points, RawDraw, RawPipeline};
+pub use input::{Clipping, GridTriangles, Overlapping, Perspective, Points, RawDraw, RawPipeline};
 
-use crate::rules::depth::check_order_independent;
+use crate::rules::bary::{check_matches_raycast, check_sum_one};
+use crate::rules::depth::{check_depth_matches_raycast, check_order_independent};
 use crate::rules::fill::{check_exactly_once, check_guard_band};
 use crate::rules::robust::check_well_formed;
 use crate::violation::Violation;
@@ -82,6 +83,23 @@ pub fn clipping(r: &mut dyn Rasterizer, input: &Clipping) -> Result<(), Failure>
 pub fn depth_order(r: &mut dyn Rasterizer, input: &Overlapping) -> Result<(), Failure> {
     let Some(scene) = input.scene() else { return Ok(()) };
     judged(input, || check_order_independent(r, &scene))
+}
+
+/// Barycentrics sum to one and, where the profile declares them, perspective-correct
+/// barycentrics and z/w depth equal the ray cast's within 2^-18.
+pub fn interpolation(r: &mut dyn Rasterizer, input: &Perspective) -> Result<(), Failure> {
+    let scene = input.scene();
+    let profile = r.profile();
+    judged(input, || {
+        check_sum_one(r, &scene)?;
+        if profile.features.perspective_barycentrics {
+            check_matches_raycast(r, &scene)?;
+        }
+        if profile.depth == DepthConvention::ScreenLinearZOverW {
+            check_depth_matches_raycast(r, &scene)?;
+        }
+        Ok(())
+    })
 }
 
 /// The reference's whole pipeline (mesh with a shading hook, lines, points) on any bit
@@ -159,28 +177,32 @@ pub enum Target {
     Clipping,
     /// [`depth_order`] on [`Overlapping`].
     DepthOrder,
+    /// [`interpolation`] on [`Perspective`].
+    Interpolation,
     /// [`pipeline`] on [`RawPipeline`]: refrast's own renderer, whatever rasterizer is passed.
     Pipeline,
 }
 
 impl Target {
     /// Every target, in the order `fuzz/nightly.sh` runs them.
-    pub const ALL: [Self; 6] = [
+    pub const ALL: [Self; 7] = [
         Self::Robustness,
         Self::Differential,
         Self::Watertight,
         Self::Clipping,
         Self::DepthOrder,
+        Self::Interpolation,
         Self::Pipeline,
     ];
 
     /// The targets that judge the rasterizer they are given (all but [`Target::Pipeline`]).
-    pub const FOR_ANY_RASTERIZER: [Self; 5] = [
+    pub const FOR_ANY_RASTERIZER: [Self; 6] = [
         Self::Robustness,
         Self::Differential,
         Self::Watertight,
         Self::Clipping,
         Self::DepthOrder,
+        Self::Interpolation,
     ];
 
     /// The name of the fuzz target binary and of its corpus folder.
@@ -192,8 +214,15 @@ impl Target {
             Self::Watertight => "watertight",
             Self::Clipping => "clipping",
             Self::DepthOrder => "depth_order",
+            Self::Interpolation => "interpolation",
             Self::Pipeline => "pipeline",
         }
+    }
+
+    /// The target called `name` (as in [`Target::name`]).
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|t| t.name() == name)
     }
 
     /// Decodes `bytes` as this target's `fuzz_target!` does and runs its check on `r`.
@@ -204,6 +233,7 @@ impl Target {
             Self::Watertight => decode(bytes).map(|i| watertight(r, &i)),
             Self::Clipping => decode(bytes).map(|i| clipping(r, &i)),
             Self::DepthOrder => decode(bytes).map(|i| depth_order(r, &i)),
+            Self::Interpolation => decode(bytes).map(|i| interpolation(r, &i)),
             Self::Pipeline => decode(bytes).map(|i| pipeline(&i)),
         };
         match result {

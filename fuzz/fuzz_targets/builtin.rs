@@ -1,0 +1,55 @@
+//! Any built-in implementation (`refrast impls`: the reference variants, the mutants, the course
+//! rasterizers) under any target's check but `pipeline`, chosen by the environment:
+//! `REFRAST_FUZZ_IMPL` (default `reference`) and `REFRAST_FUZZ_TARGET` (default `watertight`).
+//! Bytes decode exactly as that target's own `fuzz_target!` decodes them, so corpora are shared.
+#![no_main]
+
+use std::sync::OnceLock;
+
+use libfuzzer_sys::fuzz_target;
+use refrast_conformance::BuiltIn;
+use refrast_conformance::fuzz::{Outcome, Target};
+
+/// The target and implementation named by the environment; exits 2 naming the choices if unknown.
+fn chosen() -> &'static (Target, BuiltIn) {
+    static CHOSEN: OnceLock<(Target, BuiltIn)> = OnceLock::new();
+    CHOSEN.get_or_init(|| {
+        let var = |name: &str, default: &str| std::env::var(name).unwrap_or_else(|_| default.into());
+        let (impl_name, target_name) = (
+            var("REFRAST_FUZZ_IMPL", "reference"),
+            var("REFRAST_FUZZ_TARGET", "watertight"),
+        );
+        let mut all = refrast_conformance::builtins();
+        all.extend(refrast_zoo::builtins());
+        let names: Vec<String> = all.iter().map(|b| b.name.clone()).collect();
+        let Some(built_in) = all.into_iter().find(|b| b.name == impl_name) else {
+            eprintln!(
+                "REFRAST_FUZZ_IMPL={impl_name} is not a built-in; choose one of: {}",
+                names.join(", ")
+            );
+            std::process::exit(2);
+        };
+        let Some(target) = Target::from_name(&target_name).filter(|t| *t != Target::Pipeline) else {
+            let targets: Vec<&str> = Target::FOR_ANY_RASTERIZER.iter().map(|t| t.name()).collect();
+            eprintln!(
+                "REFRAST_FUZZ_TARGET={target_name} is not a target for any rasterizer; choose one of: {}",
+                targets.join(", ")
+            );
+            std::process::exit(2);
+        };
+        (target, built_in)
+    })
+}
+
+fuzz_target!(
+    init: {
+        let (target, built_in) = chosen();
+        eprintln!("fuzzing {} with the {} target", built_in.name, target.name());
+    },
+    |data: &[u8]| {
+        let (target, built_in) = chosen();
+        if let Outcome::Failed(failure) = target.run(&mut *(built_in.make)(), data) {
+            panic!("{} fails the {} target: {failure}", built_in.name, target.name());
+        }
+    }
+);

@@ -29,8 +29,12 @@ fn chosen() -> &'static (Target, BuiltIn) {
             );
             std::process::exit(2);
         };
-        let Some(target) = Target::from_name(&target_name).filter(|t| *t != Target::Pipeline) else {
-            let targets: Vec<&str> = Target::FOR_ANY_RASTERIZER.iter().map(|t| t.name()).collect();
+        let Some(target) = Target::from_name(&target_name).filter(|t| t.judges_rasterizer()) else {
+            let targets: Vec<&str> = Target::ALL
+                .iter()
+                .filter(|t| t.judges_rasterizer())
+                .map(|t| t.name())
+                .collect();
             eprintln!(
                 "REFRAST_FUZZ_TARGET={target_name} is not a target for any rasterizer; choose one of: {}",
                 targets.join(", ")

@@ -11,12 +11,12 @@ use std::fmt;
 
 use arbitrary::{Arbitrary, Unstructured};
 use glam::{Mat4, Vec3};
-use refrast::{DepthConvention, Framebuffer, Mesh, Rasterizer, Renderer, Vertex};
+use refrast::{Framebuffer, Mesh, Rasterizer, Renderer, Vertex};
 
 pub use input::{Clipping, GridTriangles, Overlapping, Perspective, Points, RawDraw, RawPipeline};
 
-use crate::rules::bary::{check_matches_raycast, check_sum_one};
-use crate::rules::depth::{check_depth_matches_raycast, check_order_independent};
+use crate::rules::bary::{check_matches_raycast, check_sum_one, needs_perspective};
+use crate::rules::depth::{check_depth_matches_raycast, check_order_independent, needs_z_over_w};
 use crate::rules::fill::{check_exactly_once, check_guard_band};
 use crate::rules::robust::check_well_formed;
 use crate::violation::Violation;
@@ -92,10 +92,10 @@ pub fn interpolation(r: &mut dyn Rasterizer, input: &Perspective) -> Result<(), 
     let profile = r.profile();
     judged(input, || {
         check_sum_one(r, &scene)?;
-        if profile.features.perspective_barycentrics {
+        if needs_perspective(&profile).is_ok() {
             check_matches_raycast(r, &scene)?;
         }
-        if profile.depth == DepthConvention::ScreenLinearZOverW {
+        if needs_z_over_w(&profile).is_ok() {
             check_depth_matches_raycast(r, &scene)?;
         }
         Ok(())
@@ -195,15 +195,12 @@ impl Target {
         Self::Pipeline,
     ];
 
-    /// The targets that judge the rasterizer they are given (all but [`Target::Pipeline`]).
-    pub const FOR_ANY_RASTERIZER: [Self; 6] = [
-        Self::Robustness,
-        Self::Differential,
-        Self::Watertight,
-        Self::Clipping,
-        Self::DepthOrder,
-        Self::Interpolation,
-    ];
+    /// Whether the check judges the rasterizer it is given (all but [`Target::Pipeline`], which
+    /// drives refrast's own renderer).
+    #[must_use]
+    pub fn judges_rasterizer(self) -> bool {
+        self != Self::Pipeline
+    }
 
     /// The name of the fuzz target binary and of its corpus folder.
     #[must_use]

@@ -12,7 +12,8 @@ use crate::scene::Scene;
 use crate::strategy;
 use crate::violation::Violation;
 
-fn needs_perspective(p: &Profile) -> Result<(), &'static str> {
+/// The rule applies when the profile declares perspective-correct barycentrics.
+pub(crate) fn needs_perspective(p: &Profile) -> Result<(), &'static str> {
     if p.features.perspective_barycentrics {
         Ok(())
     } else {

@@ -10,7 +10,8 @@ use crate::scene::Scene;
 use crate::strategy;
 use crate::violation::Violation;
 
-fn needs_z_over_w(p: &Profile) -> Result<(), &'static str> {
+/// The rule applies when the profile declares depth z/w linear in screen space.
+pub(crate) fn needs_z_over_w(p: &Profile) -> Result<(), &'static str> {
     match p.depth {
         refrast::DepthConvention::ScreenLinearZOverW => Ok(()),
         refrast::DepthConvention::Other => Err("depth is not z/w linear in screen space"),

@@ -10,7 +10,7 @@ use std::hint::black_box;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use glam::{Mat4, Vec3, Vec4};
-use refrast::{Framebuffer, Mesh, Renderer, Vertex};
+use refrast::pipeline::{Framebuffer, Mesh, Renderer, Vertex};
 
 const WIDTH: u32 = 1920;
 const HEIGHT: u32 = 1080;

@@ -1,4 +1,5 @@
-//! Homogeneous clipping (Sutherland–Hodgman) with canonical edge intersections.
+//! Homogeneous clipping (Sutherland–Hodgman) with canonical edge intersections, for triangles
+//! and line segments.
 
 use glam::{DVec3, DVec4};
 
@@ -12,6 +13,30 @@ pub struct ClipVertex {
     pub position: DVec4,
     /// Barycentrics in the input triangle; linear in clip space, so perspective-correct.
     pub barycentric: DVec3,
+}
+
+impl ClipVertex {
+    /// Vertex `k` of an input triangle at clip-space `position`: its barycentrics are unit vector `k`.
+    #[must_use]
+    pub fn corner(position: [f32; 4], k: usize) -> Self {
+        Self {
+            position: DVec4::from(position.map(f64::from)),
+            barycentric: DVec3::AXES[k],
+        }
+    }
+}
+
+/// Primitive assembly: triangle `indices` of `positions` as clip vertices; `None` when a
+/// coordinate is NaN or infinite (such a triangle is discarded) or an index is out of range
+/// (a validated [`Draw`](crate::Draw) has none).
+#[must_use]
+pub fn assemble(positions: &[[f32; 4]], indices: [u32; 3]) -> Option<[ClipVertex; 3]> {
+    let [a, b, c] = indices.map(|i| positions.get(i as usize).copied());
+    let p = [a?, b?, c?];
+    if p.iter().flatten().any(|c| !c.is_finite()) {
+        return None;
+    }
+    Some([0, 1, 2].map(|k| ClipVertex::corner(p[k], k)))
 }
 
 /// How x and y are clipped; z is always clipped at the near plane (and far when enabled).
@@ -145,4 +170,26 @@ pub fn clip_triangle(
         }
     }
     ClipOutcome::Clipped
+}
+
+/// Clips segment `a → b` against `planes`, keeping `w > 0`; `None` when nothing is left.
+///
+/// Each cut is made from the end inside the plane ([`intersect`]), as for triangles.
+#[must_use]
+pub fn clip_segment(
+    mut a: ClipVertex,
+    mut b: ClipVertex,
+    planes: &[ClipPlane],
+) -> Option<(ClipVertex, ClipVertex)> {
+    for &plane in planes {
+        let (da, db) = (plane.distance(a.position), plane.distance(b.position));
+        match (da >= 0.0, db >= 0.0) {
+            (true, true) => {}
+            (false, false) => return None,
+            (true, false) => b = intersect(&a, &b, da, db),
+            (false, true) => a = intersect(&b, &a, db, da),
+        }
+    }
+    (a.position.w > 0.0 && b.position.w > 0.0 && a.position.is_finite() && b.position.is_finite())
+        .then_some((a, b))
 }

@@ -41,8 +41,6 @@ pub fn fragment_depth(interpolated: f64) -> f32 {
     interpolated.clamp(0.0, 1.0) as f32
 }
 
-impl DepthRange {}
-
 /// How an incoming depth is compared with the stored one; the fragment passes when true.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub enum CompareOp {

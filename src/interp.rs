@@ -2,19 +2,22 @@
 
 use glam::DVec3;
 
-use crate::fixed::FixedPoint;
-
-/// A vertex of the polygon being drawn, after projection and snapping.
+/// What a vertex carries to the fragments between it and its neighbours.
+///
+/// Window depth and screen barycentrics are linear in screen space; `1/w` and the barycentrics
+/// in the input primitive are what makes interpolation perspective-correct. A vertex made by
+/// clipping carries its own values, so interpolation never needs to know what clipping did.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct RasterVertex {
-    /// Snapped raster position.
-    pub position: FixedPoint,
+pub struct Varyings {
     /// Window depth (linear in screen space).
     pub depth: f64,
     /// `1/w`, the weight that makes interpolation perspective-correct.
     pub inv_w: f64,
-    /// Barycentrics in the input triangle (perspective-correct ones).
+    /// Barycentrics in the input primitive (linear in clip space, so perspective-correct).
     pub barycentric: DVec3,
+    /// Screen-space barycentrics in the input triangle, when its vertices all have `w > 0`
+    /// (behind-the-eye vertices have no screen position).
+    pub screen: Option<DVec3>,
 }
 
 /// Barycentrics of a covered sample in the input triangle.
@@ -44,41 +47,32 @@ pub fn screen_weights(values: [i64; 3], area2: i64) -> [f64; 3] {
 /// the result is within a few f64 ulps of the exact value, far below f32 resolution.
 #[must_use]
 #[inline]
-pub fn interpolate_depth(corners: [&RasterVertex; 3], values: [i64; 3], area2: i64) -> f64 {
+pub fn interpolate_depth(corners: [&Varyings; 3], values: [i64; 3], area2: i64) -> f64 {
     let [a, b, c] = values.map(|v| v as f64);
     (corners[0].depth * a + corners[1].depth * b + corners[2].depth * c) / area2 as f64
 }
 
-/// Barycentrics in the input triangle at a sample with screen weights `s` over `corners`.
+/// Barycentrics in the input primitive at a point with screen weights `s` over `corners` (the
+/// three corners of a triangle, or the two ends of a line segment).
 ///
 /// Perspective-correct weights are `(sᵢ/wᵢ) / Σ sⱼ/wⱼ`; they map the corners' own barycentrics
-/// back to the input triangle. Screen-space barycentrics in the input triangle follow from
-/// `bᵢ·wᵢ` normalised, which needs every input `w` positive (`input_w`): behind-the-eye vertices
-/// have no screen position. Unclipped (`clipped == false`), the screen weights are used directly.
+/// back to the input primitive. Screen-space barycentrics are linear on screen, so they are the
+/// screen weights of the corners' own; at the input triangle's vertices that is `s` itself.
 #[must_use]
 #[inline]
-pub fn interpolate(
-    corners: [&RasterVertex; 3],
-    s: [f64; 3],
-    input_w: Option<[f64; 3]>,
-    clipped: bool,
-) -> Barycentrics {
-    let q = [0, 1, 2].map(|i| s[i] * corners[i].inv_w);
+pub fn interpolate<const N: usize>(corners: [&Varyings; N], s: [f64; N]) -> Barycentrics {
+    let q: [f64; N] = std::array::from_fn(|i| s[i] * corners[i].inv_w);
     let q_sum: f64 = q.iter().sum();
     let perspective: DVec3 = corners
         .iter()
         .zip(q)
         .map(|(c, qi)| c.barycentric * (qi / q_sum))
         .sum();
-    let screen = if clipped {
-        input_w.map(|w| {
-            let scaled = perspective * DVec3::from(w);
-            scaled / scaled.element_sum()
-        })
-    } else {
-        // Unclipped corners are the input vertices: the screen weights are the answer, unrounded.
-        Some(corners.iter().zip(s).map(|(c, si)| c.barycentric * si).sum())
-    };
+    let screen = corners
+        .iter()
+        .zip(s)
+        .map(|(c, si)| c.screen.map(|b| b * si))
+        .sum();
     Barycentrics { perspective, screen }
 }
 
@@ -86,12 +80,13 @@ pub fn interpolate(
 mod tests {
     use super::*;
 
-    fn vertex(depth: f64, w: f64, barycentric: DVec3) -> RasterVertex {
-        RasterVertex {
-            position: FixedPoint::default(),
+    /// An input vertex: its screen barycentrics are its own unit vector.
+    fn vertex(depth: f64, w: f64, barycentric: DVec3) -> Varyings {
+        Varyings {
             depth,
             inv_w: 1.0 / w,
             barycentric,
+            screen: Some(barycentric),
         }
     }
 
@@ -101,7 +96,7 @@ mod tests {
         let b = vertex(0.5, 2.0, DVec3::Y);
         let c = vertex(0.9, 2.0, DVec3::Z);
         let s = [0.25, 0.25, 0.5];
-        let out = interpolate([&a, &b, &c], s, Some([2.0; 3]), true);
+        let out = interpolate([&a, &b, &c], s);
         approx::assert_relative_eq!(out.perspective, DVec3::from(s), epsilon = 1e-15);
         approx::assert_relative_eq!(out.screen.unwrap(), DVec3::from(s), epsilon = 1e-15);
         let depth = interpolate_depth([&a, &b, &c], [1, 1, 2], 4);
@@ -115,7 +110,7 @@ mod tests {
         let a = vertex(0.0, 1.0, DVec3::X);
         let b = vertex(0.0, 3.0, DVec3::Y);
         let c = vertex(0.0, 3.0, DVec3::Z);
-        let out = interpolate([&a, &b, &c], [0.5, 0.5, 0.0], Some([1.0, 3.0, 3.0]), true);
+        let out = interpolate([&a, &b, &c], [0.5, 0.5, 0.0]);
         approx::assert_relative_eq!(out.perspective.x, 0.75, epsilon = 1e-15);
         approx::assert_relative_eq!(out.screen.unwrap().x, 0.5, epsilon = 1e-15);
     }

@@ -6,27 +6,40 @@
 //!
 //! # Pipeline
 //!
+//! [`Reference::draw_samples`] takes each triangle through these stages, one call each:
+//!
 //! ```text
-//! clip space ─ clip (near, far, guard band) ─ project ─ viewport ─ snap ─ setup (facing, cull)
-//!            ─ traverse (bounding box × edge functions) ─ interpolate ─ fragments ─ depth test
+//! assemble ─ snap before clipping (zero area?) ─ clip (near, far, guard band) ─ project and snap
+//!          ─ facing, cull ─ fan ─ traverse (bounding box × edge functions) ─ interpolate ─ depth
 //! ```
 //!
-//! | stage | module | key items |
+//! # The map
+//!
+//! The root holds the contract, the reference and the conventions. The stages' own types and
+//! functions are in [`stage`], for code that must reproduce the reference bit for bit; the lab
+//! programs built on it are in [`camera`], [`pipeline`] and [`scenes`].
+//!
+//! | what | where | key items |
 //! |---|---|---|
-//! | fixed point | `fixed` | [`SubpixelBits`], [`FixedPoint`], [`snap`], [`COORD_LIMIT`] |
-//! | viewport | `viewport` | [`Viewport`], [`MAX_VIEWPORT`], [`GUARD_BAND`] |
-//! | edge functions | `edge` | [`orient2d`], [`is_top_left`], [`FillConvention`] |
-//! | clipping | `clip` | [`clip_triangle`], [`ClipMode`], [`ClipPlane`] |
-//! | setup | `setup` | [`TriangleSetup`], [`Winding`], [`PixelRect`] |
-//! | traversal | `traverse` | [`traverse`], [`FanTriangle`] |
-//! | interpolation | `interp` | [`screen_weights`], [`interpolate_depth`], [`interpolate`] |
-//! | depth | `depth` | [`DepthRange`], [`CompareOp`], [`DepthState`], [`fragment_depth`] |
-//! | the contract | `rasterizer` | [`Rasterizer`], [`Draw`], [`Fragment`], [`Profile`], [`Resolved`] |
-//! | the reference | `reference` | [`Reference`], [`ReferenceConfig`], [`Sample`] |
-//! | lines, points | `line` | [`rasterize_line`], [`rasterize_point`] |
-//! | camera, projection | `camera` | [`Camera`], [`Projection`] |
-//! | pipeline | `pipeline` | [`Renderer`], [`Mesh`], [`Vertex`], [`Framebuffer`] |
-//! | lab scenes | `scenes` | [`scenes::SCENES`], [`scenes::render`] |
+//! | the contract | `rasterizer.rs` | [`Rasterizer`], [`Draw`], [`DrawState`], [`Fragment`], [`Resolved`], [`Profile`], [`Features`] |
+//! | state | `setup.rs`, `depth.rs` | [`CullMode`], [`FrontFace`], [`DepthState`], [`CompareOp`], [`DepthRange`] |
+//! | the reference | `reference.rs` | [`Reference`], [`ReferenceConfig`], [`Traversal`], [`ClipMode`], [`DrawStats`], [`Sample`] |
+//! | fixed point | `fixed.rs` | [`SubpixelBits`], [`FixedPoint`], [`snap`], [`COORD_LIMIT`] |
+//! | viewport | `viewport.rs` | [`Viewport`], [`MAX_VIEWPORT`] |
+//! | edge functions, fill rule | `edge.rs` | [`orient2d`], [`is_top_left`], [`FillConvention`] |
+//! | errors | `error.rs` | [`DrawError`], [`ConfigError`] |
+//! | clipping | `clip.rs` | [`stage::assemble`], [`stage::clip_triangle`], [`stage::clip_segment`], [`stage::clip_planes`] |
+//! | projection | `project.rs` | [`stage::ViewportTransform`], [`stage::RasterVertex`] |
+//! | setup, facing | `setup.rs` | [`stage::snap_before_clipping`], [`stage::clipped_winding`], [`Winding`], [`stage::TriangleSetup`] |
+//! | traversal | `traverse.rs` | [`stage::build_fan`], [`stage::traverse`], [`stage::PixelRect`] |
+//! | interpolation | `interp.rs` | [`stage::Varyings`], [`stage::interpolate`], [`stage::interpolate_depth`] |
+//! | lines, points | `line.rs` | [`stage::rasterize_line`], [`stage::rasterize_point`] |
+//! | camera, projection | `camera.rs` | [`camera::Camera`], [`camera::Projection`] |
+//! | mesh pipeline, PNG | `pipeline.rs` | [`pipeline::Renderer`], [`pipeline::Mesh`], [`pipeline::Framebuffer`] |
+//! | lab scenes | `scenes.rs` | [`scenes::SCENES`], [`scenes::render`] |
+//!
+//! PNG output uses the `image` crate behind the default feature `png`; a crate that needs only
+//! the contract and the reference can depend on refrast with `default-features = false`.
 //!
 //! # Conventions
 //!
@@ -42,21 +55,33 @@
 //! - **Fill rule**: top-left (D3D11 §3.4): a sample exactly on an edge is covered only if the
 //!   edge is a top edge (horizontal, above the triangle) or a left edge; on a vertex, only if
 //!   both edges are ([`FillConvention::owns_edge`], [`is_top_left`]). Other conventions are options.
-//! - **Facing**: from the sign of the snapped polygon's area; front face CCW by default, CW
-//!   optional; zero-area triangles are back-facing and draw nothing ([`Winding::from_area2`]).
+//! - **Zero area**: a triangle whose snapped signed area is zero covers nothing, decided on the
+//!   input before clipping when every vertex projects ([`Winding::from_area2`], used by
+//!   [`stage::snap_before_clipping`]).
+//! - **Facing**: a triangle that needs no clipping turns as its snapped signed area says; a
+//!   clipped one as `−sign(det[x y w])` of its clip-space vertices says (Olano–Greer; the sign of
+//!   the visible part whatever the signs of `w`), falling back to the snapped polygon's area
+//!   when the determinant is too close to zero to be sure ([`stage::clipped_winding`]). Front
+//!   face CCW by default, CW optional ([`FrontFace::is_front`]); culling by facing
+//!   ([`CullMode::culls`]).
 //! - **Clip volume**: `−w ≤ x, y ≤ w`, `0 ≤ z ≤ w` (or `−w ≤ z`, [`DepthRange`]). Near is always
-//!   clipped, far when enabled, x/y at the guard band ([`GUARD_BAND`]) and clamped by traversal,
-//!   or at the viewport with [`ClipMode::Full`]. Intersections are canonical ([`clip::intersect`]).
-//! - **Depth**: window depth `z/w` interpolated linearly in screen space ([`interpolate_depth`]),
-//!   then clamped to `[0, 1]` ([`fragment_depth`]; depth clamping when far clipping is off).
-//! - **Attributes**: perspective-correct, `Σ sᵢ fᵢ/wᵢ / Σ sᵢ/wᵢ`; screen-space weights also given.
+//!   clipped, far when enabled, x/y at the guard band ([`stage::GUARD_BAND`]) and clamped by
+//!   traversal, or at the viewport with [`ClipMode::Full`]. Intersections are canonical
+//!   ([`stage::intersect`]).
+//! - **Coverage of a clipped polygon**: its snapped fan's winding number
+//!   ([`stage::traverse`]), so a sliver turned over by snapping neither doubles nor leaks.
+//! - **Depth**: window depth `z/w` interpolated linearly in screen space
+//!   ([`stage::interpolate_depth`]), then clamped to `[0, 1]` ([`stage::fragment_depth`]; depth
+//!   clamping when far clipping is off).
+//! - **Attributes**: perspective-correct, `Σ sᵢ fᵢ/wᵢ / Σ sᵢ/wᵢ`, for triangles and lines alike
+//!   ([`stage::interpolate`]); screen-space barycentrics also given.
 //! - **Bad numbers**: a triangle with a NaN or infinite coordinate is discarded and counted
 //!   ([`DrawStats::non_finite`]); an out-of-range viewport or subpixel count is a
 //!   [`ConfigError`]; a bad index is a [`DrawError`]. Nothing panics.
 #![forbid(unsafe_code)]
 
 pub mod camera;
-pub mod clip;
+mod clip;
 mod depth;
 mod edge;
 mod error;
@@ -64,26 +89,21 @@ mod fixed;
 mod interp;
 mod line;
 pub mod pipeline;
+mod project;
 mod rasterizer;
 mod reference;
 pub mod scenes;
 mod setup;
+pub mod stage;
 mod traverse;
 mod viewport;
 
-pub use camera::{Camera, Projection};
-pub use clip::{ClipMode, ClipOutcome, ClipPlane, ClipVertex, clip_triangle};
-pub use depth::{CompareOp, DepthRange, DepthState, fragment_depth};
-pub use edge::{EdgeFunction, FillConvention, is_top_left, orient2d};
+pub use clip::ClipMode;
+pub use depth::{CompareOp, DepthRange, DepthState};
+pub use edge::{FillConvention, is_top_left, orient2d};
 pub use error::{ConfigError, DrawError};
 pub use fixed::{COORD_LIMIT, FixedPoint, SubpixelBits, snap};
-pub use interp::{Barycentrics, RasterVertex, interpolate, interpolate_depth, screen_weights};
-pub use line::{LineFragment, LineVertex, rasterize_line, rasterize_point};
-pub use pipeline::{Framebuffer, Mesh, Renderer, ShadeInput, Vertex};
-pub use rasterizer::{
-    CullMode, DepthConvention, Draw, DrawState, Features, Fragment, FrontFace, Profile, Rasterizer, Resolved,
-};
+pub use rasterizer::{DepthConvention, Draw, DrawState, Features, Fragment, Profile, Rasterizer, Resolved};
 pub use reference::{DrawStats, Reference, ReferenceConfig, Sample, Traversal};
-pub use setup::{PixelRect, TriangleSetup, Winding};
-pub use traverse::{FanTriangle, Hit, traverse};
-pub use viewport::{GUARD_BAND, MAX_VIEWPORT, Viewport};
+pub use setup::{CullMode, FrontFace, Winding};
+pub use viewport::{MAX_VIEWPORT, Viewport};

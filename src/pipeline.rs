@@ -1,13 +1,12 @@
 //! The pipeline on top of the reference: vertices with attributes, model-view-projection,
 //! a fragment-shading hook, a framebuffer with RGBA8 colour and f32 depth, PNG output.
 
-use std::path::Path;
-
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
-use crate::clip::{ClipMode, ClipPlane, ClipVertex, clip_planes, intersect};
+use crate::clip::{ClipMode, ClipVertex, clip_planes, clip_segment};
 use crate::depth::fragment_depth;
 use crate::error::{ConfigError, DrawError};
+use crate::interp::{Varyings, interpolate};
 use crate::line::{LineVertex, rasterize_line, rasterize_point};
 use crate::rasterizer::{Draw, DrawState};
 use crate::reference::{DrawStats, Reference};
@@ -132,7 +131,8 @@ impl Framebuffer {
         &mut self.depth
     }
 
-    /// The colour buffer as an image.
+    /// The colour buffer as an image (feature `png`, on by default).
+    #[cfg(feature = "png")]
     #[must_use]
     pub fn to_image(&self) -> image::RgbaImage {
         let raw = self.color.iter().flatten().copied().collect();
@@ -140,8 +140,9 @@ impl Framebuffer {
             .expect("the buffer holds width × height RGBA pixels by construction")
     }
 
-    /// Writes the colour buffer as a PNG.
-    pub fn save_png(&self, path: impl AsRef<Path>) -> Result<(), image::ImageError> {
+    /// Writes the colour buffer as a PNG (feature `png`, on by default).
+    #[cfg(feature = "png")]
+    pub fn save_png(&self, path: impl AsRef<std::path::Path>) -> Result<(), image::ImageError> {
         self.to_image().save_with_format(path, image::ImageFormat::Png)
     }
 }
@@ -302,28 +303,30 @@ impl Renderer {
             let Some((ca, cb)) = clip_segment(end(va, 0.0), end(vb, 1.0), &planes) else {
                 continue;
             };
-            let project = |c: &ClipVertex| {
+            // Each visible end on screen, and what it carries: where it lies on the segment
+            // (linear in clip space) and its 1/w.
+            let depth_range = self.state.depth_range;
+            let [(a_px, a), (b_px, b)] = [ca, cb].map(|c| {
                 let p = c.position;
                 let (x, y) = viewport.to_raster(p.x / p.w, p.y / p.w);
-                LineVertex {
-                    x,
-                    y,
-                    depth: self.state.depth_range.window_depth(p.z, p.w),
-                }
-            };
-            // Where the visible ends lie on the segment (linear in clip space) and their 1/w.
-            let (ta, tb) = (ca.barycentric.y, cb.barycentric.y);
-            let (qa, qb) = (1.0 / ca.position.w, 1.0 / cb.position.w);
-            rasterize_line(project(&ca), project(&cb), viewport, |f| {
+                let depth = depth_range.window_depth(p.z, p.w);
+                let varyings = Varyings {
+                    depth,
+                    inv_w: 1.0 / p.w,
+                    barycentric: c.barycentric,
+                    screen: None,
+                };
+                (LineVertex { x, y, depth }, varyings)
+            });
+            rasterize_line(a_px, b_px, viewport, |f| {
                 let i = viewport.index(f.x, f.y);
                 if self
                     .state
                     .depth
                     .test_and_write(fragment_depth(f.depth), &mut target.depth[i])
                 {
-                    // Perspective-correct, as for triangles: t/w and 1/w are linear on screen.
-                    let s = f.t;
-                    let t = ((ta * qa * (1.0 - s) + tb * qb * s) / (qa * (1.0 - s) + qb * s)) as f32;
+                    // Perspective-correct, as for triangles: the segment's t at this pixel.
+                    let t = interpolate([&a, &b], [1.0 - f.t, f.t]).perspective.y as f32;
                     target.color[i] = to_rgba8(va.color.lerp(vb.color, t));
                     written += 1;
                 }
@@ -331,23 +334,4 @@ impl Renderer {
         }
         written
     }
-}
-
-/// Clips segment `a → b` against `planes`, keeping `w > 0`; `None` when nothing is left.
-fn clip_segment(
-    mut a: ClipVertex,
-    mut b: ClipVertex,
-    planes: &[ClipPlane],
-) -> Option<(ClipVertex, ClipVertex)> {
-    for &plane in planes {
-        let (da, db) = (plane.distance(a.position), plane.distance(b.position));
-        match (da >= 0.0, db >= 0.0) {
-            (true, true) => {}
-            (false, false) => return None,
-            (true, false) => b = intersect(&a, &b, da, db),
-            (false, true) => a = intersect(&b, &a, db, da),
-        }
-    }
-    (a.position.w > 0.0 && b.position.w > 0.0 && a.position.is_finite() && b.position.is_finite())
-        .then_some((a, b))
 }

@@ -3,55 +3,8 @@
 use crate::depth::{DepthRange, DepthState};
 use crate::edge::FillConvention;
 use crate::error::DrawError;
-use crate::setup::Winding;
+use crate::setup::{CullMode, FrontFace};
 use crate::viewport::Viewport;
-
-/// Which facing a draw discards.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
-pub enum CullMode {
-    /// Draw both facings.
-    #[default]
-    None,
-    /// Discard front-facing triangles.
-    Front,
-    /// Discard back-facing triangles (zero-area ones are back-facing and never drawn anyway).
-    Back,
-}
-
-impl CullMode {
-    /// Whether a triangle of the given facing is discarded.
-    #[must_use]
-    pub fn culls(self, front_facing: bool) -> bool {
-        match self {
-            Self::None => false,
-            Self::Front => front_facing,
-            Self::Back => !front_facing,
-        }
-    }
-}
-
-/// Which on-screen winding is front-facing.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
-pub enum FrontFace {
-    /// Counter-clockwise as seen on screen (Vulkan's and OpenGL's default).
-    #[default]
-    CounterClockwise,
-    /// Clockwise as seen on screen (D3D's default).
-    Clockwise,
-}
-
-impl FrontFace {
-    /// Whether a triangle of this winding faces the viewer; `None` for zero area, which
-    /// draws nothing (it counts as back-facing in Vulkan and D3D).
-    #[must_use]
-    pub fn is_front(self, winding: Winding) -> Option<bool> {
-        match (winding, self) {
-            (Winding::Degenerate, _) => None,
-            (w, Self::Clockwise) => Some(w == Winding::Clockwise),
-            (w, Self::CounterClockwise) => Some(w == Winding::CounterClockwise),
-        }
-    }
-}
 
 /// Everything about a draw besides its geometry.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]

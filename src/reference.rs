@@ -1,16 +1,15 @@
 //! The reference rasterizer: clip, project, snap, set up, traverse, interpolate — nothing clever.
 
-use glam::{DVec3, DVec4};
-
-use crate::clip::{ClipMode, ClipOutcome, ClipVertex, clip_planes, clip_triangle};
+use crate::clip::{ClipMode, ClipOutcome, ClipPlane, ClipVertex, assemble, clip_planes, clip_triangle};
 use crate::depth::fragment_depth;
-use crate::edge::{FillConvention, orient2d};
+use crate::edge::FillConvention;
 use crate::error::DrawError;
-use crate::fixed::{FixedPoint, SubpixelBits};
-use crate::interp::{RasterVertex, interpolate, interpolate_depth, screen_weights};
+use crate::fixed::SubpixelBits;
+use crate::interp::{Varyings, interpolate, interpolate_depth, screen_weights};
+use crate::project::{RasterVertex, ViewportTransform, input_w};
 use crate::rasterizer::{DepthConvention, Draw, Features, Fragment, Profile, Rasterizer};
-use crate::setup::{PixelRect, TriangleSetup, Winding};
-use crate::traverse::{FanTriangle, traverse};
+use crate::setup::{PixelRect, SnappedTriangle, Winding, ZeroArea, clipped_winding, snap_before_clipping};
+use crate::traverse::{FanTriangle, Hit, build_fan, traverse};
 
 /// Which pixels are tested against a triangle; both give identical output.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -56,10 +55,44 @@ pub struct DrawStats {
     pub fragments: usize,
 }
 
+/// Why a triangle drew nothing; each reason has its counter in [`DrawStats`].
+enum Discard {
+    NonFinite,
+    ClippedAway,
+    Degenerate,
+    Culled,
+    OffScreen,
+}
+
+impl From<ZeroArea> for Discard {
+    fn from(_: ZeroArea) -> Self {
+        Self::Degenerate
+    }
+}
+
+impl DrawStats {
+    fn count(&mut self, discard: Discard) {
+        *match discard {
+            Discard::NonFinite => &mut self.non_finite,
+            Discard::ClippedAway => &mut self.clipped_away,
+            Discard::Degenerate => &mut self.degenerate,
+            Discard::Culled => &mut self.culled,
+            Discard::OffScreen => &mut self.off_screen,
+        } += 1;
+    }
+}
+
 /// The reference rasterizer: exact coverage on snapped coordinates, the definition of correct.
 #[derive(Clone, Debug, Default)]
 pub struct Reference {
     config: ReferenceConfig,
+}
+
+/// What every triangle of one draw shares: its clip planes and its viewport transform.
+struct DrawSetup<'d> {
+    draw: &'d Draw,
+    planes: Vec<ClipPlane>,
+    transform: ViewportTransform,
 }
 
 /// Buffers reused across the triangles of one draw.
@@ -70,7 +103,6 @@ struct Scratch {
     raster: Vec<RasterVertex>,
     fan: Vec<FanTriangle>,
     row: Vec<[i64; 3]>,
-    points: Vec<FixedPoint>,
 }
 
 impl Reference {
@@ -101,149 +133,122 @@ impl Reference {
         mut visit: impl FnMut(&Sample<'_>),
     ) -> Result<DrawStats, DrawError> {
         draw.validate()?;
-        let state = &draw.state;
-        let planes = clip_planes(self.config.clip, draw.viewport, state.clip_far, state.depth_range);
+        let setup = DrawSetup {
+            draw,
+            planes: clip_planes(
+                self.config.clip,
+                draw.viewport,
+                draw.state.clip_far,
+                draw.state.depth_range,
+            ),
+            transform: ViewportTransform {
+                viewport: draw.viewport,
+                bits: self.config.subpixel_bits,
+                depth_range: draw.state.depth_range,
+            },
+        };
         let mut scratch = Scratch::default();
-        let mut stats = DrawStats::default();
-        for (primitive, indices) in draw.triangles.iter().enumerate() {
-            stats.triangles += 1;
-            let positions = indices.map(|i| draw.positions[i as usize]);
-            if positions.iter().flatten().any(|c| !c.is_finite()) {
-                stats.non_finite += 1;
-                continue;
-            }
-            let input: [ClipVertex; 3] = [0, 1, 2].map(|k| ClipVertex {
-                position: DVec4::from(positions[k].map(f64::from)),
-                barycentric: DVec3::AXES[k],
-            });
-            if self.is_degenerate_before_clipping(draw, &input) {
-                stats.degenerate += 1;
-                continue;
-            }
-            let outcome = clip_triangle(&input, &planes, &mut scratch.polygon, &mut scratch.clip);
-            let polygon: &[ClipVertex] = match outcome {
-                ClipOutcome::Outside => {
-                    stats.clipped_away += 1;
-                    continue;
+        let mut stats = DrawStats {
+            triangles: draw.triangles.len(),
+            ..DrawStats::default()
+        };
+        for primitive in 0..draw.triangles.len() {
+            match self.draw_triangle(&setup, primitive, &mut scratch, &mut visit) {
+                Ok(fragments) => {
+                    stats.traversed += 1;
+                    stats.fragments += fragments;
                 }
-                ClipOutcome::Inside => &input,
-                ClipOutcome::Clipped => &scratch.polygon,
-            };
-            if !self.project(draw, polygon, &mut scratch.raster) {
-                stats.degenerate += 1;
-                continue;
+                Err(discard) => stats.count(discard),
             }
-            let raster = &scratch.raster;
-            let winding = match outcome {
-                ClipOutcome::Clipped => clipped_winding(&input, raster),
-                _ => Winding::from_area2(fan_area2(raster)),
-            };
-            let Some(front_facing) = state.front_face.is_front(winding) else {
-                stats.degenerate += 1;
-                continue;
-            };
-            if state.cull.culls(front_facing) {
-                stats.culled += 1;
-                continue;
-            }
-            self.build_fan(raster, winding, &mut scratch.fan);
-            let bits = self.config.subpixel_bits;
-            scratch.points.clear();
-            scratch.points.extend(raster.iter().map(|v| v.position));
-            let rect = match self.config.traversal {
-                Traversal::BoundingBox => PixelRect::bounding(&scratch.points, bits, draw.viewport),
-                Traversal::Viewport => Some(PixelRect::of_viewport(draw.viewport)),
-            };
-            let Some(rect) = rect else {
-                stats.off_screen += 1;
-                continue;
-            };
-            stats.traversed += 1;
-            let input_w = positions_w(&input);
-            let clipped = outcome == ClipOutcome::Clipped;
-            let fan = &scratch.fan;
-            traverse(fan, rect, bits, &mut scratch.row, |hit| {
-                let t = &fan[hit.triangle];
-                let corners = t.setup.order.map(|k| &raster[t.corners[k]]);
-                stats.fragments += 1;
-                visit(&Sample {
-                    x: hit.x,
-                    y: hit.y,
-                    primitive: primitive as u32,
-                    depth: fragment_depth(interpolate_depth(corners, hit.values, t.setup.area2)),
-                    front_facing,
-                    values: hit.values,
-                    area2: t.setup.area2,
-                    corners,
-                    input_w,
-                    clipped,
-                });
-            });
         }
         Ok(stats)
     }
 
-    /// Whether the input triangle, snapped as it is, has zero area.
-    ///
-    /// Clipping a zero-area triangle makes new vertices on its line that snap off it, which
-    /// would leave a sliver able to cover a sample; deciding on the input first draws nothing,
-    /// as a zero-area triangle must. Only decidable when every vertex projects into the valid
-    /// range (`w > 0`); other triangles are judged by their clipped, snapped polygon.
-    fn is_degenerate_before_clipping(&self, draw: &Draw, input: &[ClipVertex; 3]) -> bool {
-        let snapped = input.map(|v| {
-            let p = v.position;
-            if p.w <= 0.0 {
-                return None;
+    /// One triangle through the stages; the number of samples it covered, or why it drew nothing.
+    fn draw_triangle(
+        &self,
+        setup: &DrawSetup<'_>,
+        primitive: usize,
+        scratch: &mut Scratch,
+        visit: &mut impl FnMut(&Sample<'_>),
+    ) -> Result<usize, Discard> {
+        let state = &setup.draw.state;
+        let input =
+            assemble(&setup.draw.positions, setup.draw.triangles[primitive]).ok_or(Discard::NonFinite)?;
+        let snapped = snap_before_clipping(&input, &setup.transform, self.config.fill)?;
+        let winding = self.clip_and_fan(&input, snapped, setup, scratch)?;
+        let front_facing = state.front_face.is_front(winding).ok_or(Discard::Degenerate)?;
+        if state.cull.culls(front_facing) {
+            return Err(Discard::Culled);
+        }
+        let rect = self
+            .pixel_rect(&scratch.raster, setup.transform)
+            .ok_or(Discard::OffScreen)?;
+        let (raster, fan) = (&scratch.raster, &scratch.fan);
+        let mut covered = 0;
+        traverse(
+            fan,
+            winding,
+            rect,
+            self.config.subpixel_bits,
+            &mut scratch.row,
+            |hit| {
+                covered += 1;
+                visit(&Sample::new(primitive as u32, front_facing, hit, fan, raster));
+            },
+        );
+        Ok(covered)
+    }
+
+    /// Clips the input and leaves what is drawn in `scratch`: the snapped polygon and its fan.
+    /// Returns the winding the polygon is drawn with.
+    fn clip_and_fan(
+        &self,
+        input: &[ClipVertex; 3],
+        snapped: Option<SnappedTriangle>,
+        setup: &DrawSetup<'_>,
+        scratch: &mut Scratch,
+    ) -> Result<Winding, Discard> {
+        match clip_triangle(input, &setup.planes, &mut scratch.polygon, &mut scratch.clip) {
+            ClipOutcome::Outside => Err(Discard::ClippedAway),
+            // Drawn as it is: snapped and set up once, before clipping.
+            ClipOutcome::Inside => {
+                let triangle = snapped.ok_or(Discard::Degenerate)?;
+                set(&mut scratch.raster, &triangle.vertices);
+                set(&mut scratch.fan, &[FanTriangle::whole(triangle.setup)]);
+                Ok(triangle.setup.winding())
             }
-            let (x, y) = draw.viewport.to_raster(p.x / p.w, p.y / p.w);
-            FixedPoint::snap(x, y, self.config.subpixel_bits)
-        });
-        match snapped {
-            [Some(a), Some(b), Some(c)] => orient2d(a, b, c) == 0,
-            _ => false,
+            ClipOutcome::Clipped => {
+                let (transform, raster) = (&setup.transform, &mut scratch.raster);
+                if !transform.project_polygon(&scratch.polygon, input_w(input), raster) {
+                    return Err(Discard::Degenerate);
+                }
+                build_fan(raster, self.config.fill, &mut scratch.fan);
+                let fan = &scratch.fan;
+                Ok(clipped_winding(input, || {
+                    fan.iter().map(|t| t.setup.signed_area2()).sum()
+                }))
+            }
         }
     }
 
-    /// Projects and snaps a clipped polygon; `false` when a vertex has no finite raster position.
-    fn project(&self, draw: &Draw, polygon: &[ClipVertex], out: &mut Vec<RasterVertex>) -> bool {
-        out.clear();
-        for v in polygon {
-            let p = v.position;
-            // After clipping w ≥ 0; a vertex with w = 0 (x = y = 0, any z ≥ 0) is a point at
-            // infinity with no raster position: such a triangle projects to a segment at most.
-            if p.w <= 0.0 {
-                return false;
-            }
-            let (x, y) = draw.viewport.to_raster(p.x / p.w, p.y / p.w);
-            let Some(position) = FixedPoint::snap(x, y, self.config.subpixel_bits) else {
-                return false;
-            };
-            out.push(RasterVertex {
-                position,
-                depth: draw.state.depth_range.window_depth(p.z, p.w),
-                inv_w: 1.0 / p.w,
-                barycentric: v.barycentric,
-            });
+    /// The pixels traversal visits: the polygon's bounding box, or the whole viewport.
+    fn pixel_rect(&self, raster: &[RasterVertex], transform: ViewportTransform) -> Option<PixelRect> {
+        match self.config.traversal {
+            Traversal::BoundingBox => PixelRect::bounding(
+                raster.iter().map(|v| v.position),
+                transform.bits,
+                transform.viewport,
+            ),
+            Traversal::Viewport => Some(PixelRect::of_viewport(transform.viewport)),
         }
-        true
     }
+}
 
-    /// Fans the snapped polygon from its first vertex, marking slivers that snapping turned over.
-    fn build_fan(&self, raster: &[RasterVertex], winding: Winding, fan: &mut Vec<FanTriangle>) {
-        fan.clear();
-        for i in 1..raster.len() - 1 {
-            let corners = [0, i, i + 1];
-            let v = corners.map(|c| raster[c].position);
-            if let Some(setup) = TriangleSetup::new(v, self.config.fill) {
-                let agrees = Winding::from_area2(orient2d(v[0], v[1], v[2])) == winding;
-                fan.push(FanTriangle {
-                    setup,
-                    agrees,
-                    corners,
-                });
-            }
-        }
-    }
+/// Replaces a scratch buffer's contents.
+fn set<T: Copy>(buffer: &mut Vec<T>, items: &[T]) {
+    buffer.clear();
+    buffer.extend_from_slice(items);
 }
 
 /// A covered sample with its depth; [`fragment`](Sample::fragment) adds the barycentrics.
@@ -261,18 +266,38 @@ pub struct Sample<'a> {
     pub front_facing: bool,
     values: [i64; 3],
     area2: i64,
-    corners: [&'a RasterVertex; 3],
-    input_w: Option<[f64; 3]>,
-    clipped: bool,
+    corners: [&'a Varyings; 3],
 }
 
-impl Sample<'_> {
+impl<'a> Sample<'a> {
+    /// The sample at `hit` of triangle `primitive`, its depth interpolated (screen-linear).
+    fn new(
+        primitive: u32,
+        front_facing: bool,
+        hit: Hit,
+        fan: &[FanTriangle],
+        raster: &'a [RasterVertex],
+    ) -> Self {
+        let t = &fan[hit.triangle];
+        // The corners in the setup's clockwise order, the order of the edge values.
+        let corners = t.setup.order().map(|k| &raster[t.corners[k]].varyings);
+        Self {
+            x: hit.x,
+            y: hit.y,
+            primitive,
+            depth: fragment_depth(interpolate_depth(corners, hit.values, t.setup.area2())),
+            front_facing,
+            values: hit.values,
+            area2: t.setup.area2(),
+            corners,
+        }
+    }
+
     /// The full fragment: the sample plus its perspective-correct and screen-space barycentrics.
     #[must_use]
     #[inline]
     pub fn fragment(&self) -> Fragment {
-        let weights = screen_weights(self.values, self.area2);
-        let b = interpolate(self.corners, weights, self.input_w, self.clipped);
+        let b = interpolate(self.corners, screen_weights(self.values, self.area2));
         Fragment {
             x: self.x,
             y: self.y,
@@ -283,50 +308,6 @@ impl Sample<'_> {
             front_facing: self.front_facing,
         }
     }
-}
-
-/// Twice the signed area of a snapped polygon, summed over its fan (exact).
-fn fan_area2(raster: &[RasterVertex]) -> i64 {
-    (1..raster.len() - 1)
-        .map(|i| orient2d(raster[0].position, raster[i].position, raster[i + 1].position))
-        .sum()
-}
-
-/// The on-screen winding of a clipped triangle, from its unclipped vertices.
-///
-/// The visible (`w > 0`) part of a triangle turns on screen as `−sign(det[x y w])` says, for
-/// any signs of `w` (Olano–Greer 1997; raster y points down, hence the minus). Taking it from
-/// the input rather than the snapped, clipped polygon keeps a sliver that snapping folds across
-/// a shared edge from counting as a polygon of its own: its winding cancels instead of drawing
-/// twice. When the determinant is too close to zero for its sign to be sure in f64, the
-/// snapped polygon's area decides.
-fn clipped_winding(input: &[ClipVertex; 3], raster: &[RasterVertex]) -> Winding {
-    let [a, b, c] = input.map(|v| v.position);
-    let terms = [
-        a.x * (b.y * c.w - c.y * b.w),
-        -a.y * (b.x * c.w - c.x * b.w),
-        a.w * (b.x * c.y - c.x * b.y),
-    ];
-    let det: f64 = terms.iter().sum();
-    let scale = a.x.abs() * (b.y * c.w).abs().max((c.y * b.w).abs())
-        + a.y.abs() * (b.x * c.w).abs().max((c.x * b.w).abs())
-        + a.w.abs() * (b.x * c.y).abs().max((c.x * b.y).abs());
-    // f64 rounding in a 3×3 determinant stays far below 1e-10 of the terms' size.
-    if det.abs() > 1e-10 * scale {
-        if det < 0.0 {
-            Winding::Clockwise
-        } else {
-            Winding::CounterClockwise
-        }
-    } else {
-        Winding::from_area2(fan_area2(raster))
-    }
-}
-
-/// The input triangle's `w`s when all are positive: only then does it have a screen-space shape.
-fn positions_w(input: &[ClipVertex; 3]) -> Option<[f64; 3]> {
-    let w = input.map(|v| v.position.w);
-    w.iter().all(|&w| w > 0.0).then_some(w)
 }
 
 impl Rasterizer for Reference {

@@ -1,7 +1,15 @@
-//! Triangle setup: orientation, edge functions and the pixel bounds worth visiting.
+//! Triangle setup: facing (winding, front face, culling), edge functions, the pixels worth visiting.
+//!
+//! Facing is decided here and nowhere else: an unclipped triangle turns as its snapped signed
+//! area says ([`Winding::from_area2`]), a clipped one as the determinant of its clip-space
+//! vertices says ([`clipped_winding`]); [`FrontFace::is_front`] and [`CullMode::culls`] do the rest.
 
+use glam::DVec4;
+
+use crate::clip::ClipVertex;
 use crate::edge::{EdgeFunction, FillConvention, orient2d};
 use crate::fixed::{FixedPoint, SubpixelBits};
+use crate::project::{RasterVertex, ViewportTransform, input_w};
 use crate::viewport::Viewport;
 
 /// Which way a triangle turns as seen on screen, from the sign of its snapped [`orient2d`].
@@ -16,7 +24,8 @@ pub enum Winding {
 }
 
 impl Winding {
-    /// The winding of a triangle with doubled signed area `area2`.
+    /// The winding of a triangle with doubled signed area `area2`: the one place where "zero
+    /// area" is decided.
     #[must_use]
     pub fn from_area2(area2: i64) -> Self {
         match area2.signum() {
@@ -25,6 +34,121 @@ impl Winding {
             _ => Self::Degenerate,
         }
     }
+}
+
+/// Which on-screen winding is front-facing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum FrontFace {
+    /// Counter-clockwise as seen on screen (Vulkan's and OpenGL's default).
+    #[default]
+    CounterClockwise,
+    /// Clockwise as seen on screen (D3D's default).
+    Clockwise,
+}
+
+impl FrontFace {
+    /// Whether a triangle of this winding faces the viewer; `None` for zero area, which
+    /// draws nothing (it counts as back-facing in Vulkan and D3D).
+    #[must_use]
+    pub fn is_front(self, winding: Winding) -> Option<bool> {
+        match (winding, self) {
+            (Winding::Degenerate, _) => None,
+            (w, Self::Clockwise) => Some(w == Winding::Clockwise),
+            (w, Self::CounterClockwise) => Some(w == Winding::CounterClockwise),
+        }
+    }
+}
+
+/// Which facing a draw discards.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum CullMode {
+    /// Draw both facings.
+    #[default]
+    None,
+    /// Discard front-facing triangles.
+    Front,
+    /// Discard back-facing triangles (zero-area ones are back-facing and never drawn anyway).
+    Back,
+}
+
+impl CullMode {
+    /// Whether a triangle of the given facing is discarded.
+    #[must_use]
+    pub fn culls(self, front_facing: bool) -> bool {
+        match self {
+            Self::None => false,
+            Self::Front => front_facing,
+            Self::Back => !front_facing,
+        }
+    }
+}
+
+/// The on-screen winding of a clipped triangle, from its unclipped vertices.
+///
+/// The visible (`w > 0`) part of a triangle turns on screen as `−sign(det[x y w])` says, for
+/// any signs of `w` (Olano–Greer 1997; raster y points down, hence the minus). Taking it from
+/// the input rather than the snapped, clipped polygon keeps a sliver that snapping folds across
+/// a shared edge from counting as a polygon of its own: its winding cancels instead of drawing
+/// twice. When the determinant is too close to zero for its sign to be sure in f64, the snapped
+/// polygon's doubled signed area (`snapped_area2`, the sum over its fan) decides.
+#[must_use]
+pub fn clipped_winding(input: &[ClipVertex; 3], snapped_area2: impl FnOnce() -> i64) -> Winding {
+    let [a, b, c]: [DVec4; 3] = input.map(|v| v.position);
+    let terms = [
+        a.x * (b.y * c.w - c.y * b.w),
+        -a.y * (b.x * c.w - c.x * b.w),
+        a.w * (b.x * c.y - c.x * b.y),
+    ];
+    let det: f64 = terms.iter().sum();
+    let scale = a.x.abs() * (b.y * c.w).abs().max((c.y * b.w).abs())
+        + a.y.abs() * (b.x * c.w).abs().max((c.x * b.w).abs())
+        + a.w.abs() * (b.x * c.y).abs().max((c.x * b.y).abs());
+    // f64 rounding in a 3×3 determinant stays far below 1e-10 of the terms' size.
+    if det.abs() > 1e-10 * scale {
+        if det < 0.0 {
+            Winding::Clockwise
+        } else {
+            Winding::CounterClockwise
+        }
+    } else {
+        Winding::from_area2(snapped_area2())
+    }
+}
+
+/// An input triangle projected and snapped as it was given, before clipping, with nonzero area.
+#[derive(Clone, Copy, Debug)]
+pub struct SnappedTriangle {
+    /// The projected vertices, in input order.
+    pub vertices: [RasterVertex; 3],
+    /// Its setup, which holds its signed area, computed once.
+    pub setup: TriangleSetup,
+}
+
+/// The zero-area test, made before clipping.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ZeroArea;
+
+/// Projects, snaps and sets up the input triangle as it is, before clipping: `Ok(None)` when a
+/// vertex has no raster position, `Err(ZeroArea)` when the snapped triangle has zero area.
+///
+/// Clipping a zero-area triangle makes new vertices on its line that snap off it, which would
+/// leave a sliver able to cover a sample; deciding on the input first draws nothing, as a
+/// zero-area triangle must. Only decidable when every vertex projects into the valid range
+/// (`w > 0`); other triangles are judged by their clipped, snapped polygon. A triangle that
+/// needs no clipping is drawn from this, so its vertices are snapped, and its area computed, once.
+pub fn snap_before_clipping(
+    input: &[ClipVertex; 3],
+    transform: &ViewportTransform,
+    fill: FillConvention,
+) -> Result<Option<SnappedTriangle>, ZeroArea> {
+    let w = input_w(input);
+    let [a, b, c] = input.map(|v| transform.project(&v, w));
+    let (Some(a), Some(b), Some(c)) = (a, b, c) else {
+        return Ok(None);
+    };
+    let vertices = [a, b, c];
+    let setup = TriangleSetup::new(vertices.map(|v| v.position), fill).ok_or(ZeroArea)?;
+    Ok(Some(SnappedTriangle { vertices, setup }))
 }
 
 /// A half-open rectangle of pixels, `x0..x1 × y0..y1`, always inside a viewport.
@@ -58,12 +182,17 @@ impl PixelRect {
     ///
     /// `None` when no sample of the viewport lies in the box.
     #[must_use]
-    pub fn bounding(points: &[FixedPoint], bits: SubpixelBits, viewport: Viewport) -> Option<Self> {
+    pub fn bounding(
+        points: impl IntoIterator<Item = FixedPoint>,
+        bits: SubpixelBits,
+        viewport: Viewport,
+    ) -> Option<Self> {
         let (one, half) = (bits.one(), bits.one() / 2);
-        let min_x = points.iter().map(|p| p.x).min()?;
-        let max_x = points.iter().map(|p| p.x).max()?;
-        let min_y = points.iter().map(|p| p.y).min()?;
-        let max_y = points.iter().map(|p| p.y).max()?;
+        let mut points = points.into_iter();
+        let p = points.next()?;
+        let ((min_x, min_y), (max_x, max_y)) = points.fold(((p.x, p.y), (p.x, p.y)), |(lo, hi), p| {
+            ((lo.0.min(p.x), lo.1.min(p.y)), (hi.0.max(p.x), hi.1.max(p.y)))
+        });
         // Pixel px has its sample at px·one + half: the first with sample ≥ min, the last with sample ≤ max.
         let first = |min: i64| (min - half + one - 1).div_euclid(one);
         let last = |max: i64| (max - half).div_euclid(one);
@@ -100,14 +229,17 @@ pub struct TriangleSetup {
     pub(crate) edges: [EdgeFunction; 3],
     /// Twice the (positive) area, the sum of the three edge values at any point.
     pub(crate) area2: i64,
+    /// How the input turned on screen, before reordering.
+    pub(crate) winding: Winding,
 }
 
 impl TriangleSetup {
-    /// Sets up `v` under `fill`; `None` for a zero-area triangle.
+    /// Sets up `v` under `fill`, computing its signed area once; `None` for a zero-area triangle.
     #[must_use]
     pub fn new(v: [FixedPoint; 3], fill: FillConvention) -> Option<Self> {
         let area2 = orient2d(v[0], v[1], v[2]);
-        let order = match Winding::from_area2(area2) {
+        let winding = Winding::from_area2(area2);
+        let order = match winding {
             Winding::Clockwise => [0, 1, 2],
             Winding::CounterClockwise => [0, 2, 1],
             Winding::Degenerate => return None,
@@ -122,6 +254,7 @@ impl TriangleSetup {
                 EdgeFunction::new(a, b, fill),
             ],
             area2: area2.abs(),
+            winding,
         })
     }
 
@@ -141,6 +274,21 @@ impl TriangleSetup {
     #[must_use]
     pub fn area2(&self) -> i64 {
         self.area2
+    }
+
+    /// How the input vertices turned on screen (never [`Winding::Degenerate`]).
+    #[must_use]
+    pub fn winding(&self) -> Winding {
+        self.winding
+    }
+
+    /// Twice the signed area of the input vertices: positive when they turn clockwise.
+    #[must_use]
+    pub fn signed_area2(&self) -> i64 {
+        match self.winding {
+            Winding::Clockwise => self.area2,
+            _ => -self.area2,
+        }
     }
 
     /// The three edge values at `p` (exact), whether or not `p` is inside.

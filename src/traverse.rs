@@ -1,21 +1,44 @@
-//! Traversal: visit the pixels of a bounding box and keep the samples a polygon's fan covers.
+//! Traversal: fan a snapped polygon, visit the pixels of a rectangle, keep the samples it covers.
 
+use crate::edge::FillConvention;
 use crate::fixed::{FixedPoint, SubpixelBits};
-use crate::setup::{PixelRect, TriangleSetup};
+use crate::project::RasterVertex;
+use crate::setup::{PixelRect, TriangleSetup, Winding};
 
-/// One triangle of a convex polygon's fan, with its turn relative to the whole polygon.
+/// One triangle of a convex polygon's fan.
 ///
-/// Snapping can make a sliver of a clipped polygon's fan turn the other way. Counting such a
-/// sliver as −1 makes coverage the winding number of the snapped outline, so a fan never
-/// covers a sample twice nor one outside its outline.
+/// Snapping can make a sliver of a clipped polygon's fan turn the other way from the polygon.
+/// Counting such a sliver as −1 makes coverage the winding number of the snapped outline, so a
+/// fan never covers a sample twice nor one outside its outline.
 #[derive(Clone, Copy, Debug)]
 pub struct FanTriangle {
-    /// The set-up triangle.
+    /// The set-up triangle, with its own winding.
     pub setup: TriangleSetup,
-    /// `true` when it turns the same way as the polygon.
-    pub agrees: bool,
     /// The polygon vertex indices of the triangle's input vertices.
     pub corners: [usize; 3],
+}
+
+impl FanTriangle {
+    /// The fan of a triangle drawn whole: the triangle itself.
+    #[must_use]
+    pub fn whole(setup: TriangleSetup) -> Self {
+        Self {
+            setup,
+            corners: [0, 1, 2],
+        }
+    }
+}
+
+/// Fans the snapped polygon `raster` from its first vertex into `fan`, leaving out the
+/// zero-area triangles (they cover nothing).
+pub fn build_fan(raster: &[RasterVertex], fill: FillConvention, fan: &mut Vec<FanTriangle>) {
+    fan.clear();
+    for i in 1..raster.len().saturating_sub(1) {
+        let corners = [0, i, i + 1];
+        if let Some(setup) = TriangleSetup::new(corners.map(|c| raster[c].position), fill) {
+            fan.push(FanTriangle { setup, corners });
+        }
+    }
 }
 
 /// A covered sample and the fan triangle that covers it.
@@ -31,21 +54,24 @@ pub struct Hit {
     pub values: [i64; 3],
 }
 
-/// Visits every sample in `rect` whose winding number in the fan is one.
+/// Visits every sample in `rect` whose winding number in the fan is one, for a polygon that
+/// turns as `winding` says (fan triangles turning the other way count −1).
 ///
 /// Edge values are stepped incrementally along each row, started exactly at each row's first
 /// sample, so every value is the exact `orient2d` of that sample.
 pub fn traverse(
     fan: &[FanTriangle],
+    winding: Winding,
     rect: PixelRect,
     bits: SubpixelBits,
     row: &mut Vec<[i64; 3]>,
     mut visit: impl FnMut(Hit),
 ) {
     let one = bits.one();
+    let agrees = |t: &FanTriangle| t.setup.winding() == winding;
     if let [single] = fan {
         // Alone, a triangle turned over by snapping has winding −1 everywhere: it draws nothing.
-        if single.agrees {
+        if agrees(single) {
             traverse_triangle(single, rect, bits, visit);
         }
         return;
@@ -55,17 +81,18 @@ pub fn traverse(
         row.clear();
         row.extend(fan.iter().map(|t| t.setup.edge_values(start)));
         for x in rect.x0..rect.x1 {
-            let mut winding = 0;
+            let mut count = 0;
             let mut first = None;
             for (i, (t, values)) in fan.iter().zip(row.iter()).enumerate() {
                 if t.setup.is_inside(*values) {
-                    winding += if t.agrees { 1 } else { -1 };
-                    if t.agrees && first.is_none() {
+                    let agrees = agrees(t);
+                    count += if agrees { 1 } else { -1 };
+                    if agrees && first.is_none() {
                         first = Some(i);
                     }
                 }
             }
-            if let (1, Some(triangle)) = (winding, first) {
+            if let (1, Some(triangle)) = (count, first) {
                 visit(Hit {
                     x,
                     y,

@@ -2,10 +2,8 @@
 
 mod support;
 
-use refrast::{
-    ClipMode, ClipOutcome, ClipPlane, ClipVertex, DepthRange, Draw, Rasterizer, Reference, ReferenceConfig,
-    Viewport, clip_triangle,
-};
+use refrast::stage::{ClipOutcome, ClipPlane, ClipVertex, clip_planes, clip_polygon, clip_triangle};
+use refrast::{ClipMode, DepthRange, Draw, Rasterizer, Reference, ReferenceConfig, Viewport};
 use refrast_conformance::oracle::brute_force;
 use refrast_conformance::oracle::ray_cast::ray_cast;
 
@@ -102,7 +100,7 @@ fn crossing_all_six_planes_leaves_the_slab_between_near_and_far() {
         position: glam::DVec4::from(draw.positions[i].map(f64::from)),
         barycentric: glam::DVec3::AXES[i],
     });
-    let planes = refrast::clip::clip_planes(ClipMode::Full, draw.viewport, true, DepthRange::ZeroToOne);
+    let planes = clip_planes(ClipMode::Full, draw.viewport, true, DepthRange::ZeroToOne);
     let (mut polygon, mut scratch) = (Vec::new(), Vec::new());
     assert_eq!(
         clip_triangle(&tri, &planes, &mut polygon, &mut scratch),
@@ -132,8 +130,8 @@ fn intersections_do_not_depend_on_walking_direction() {
     );
     let plane = ClipPlane::Near(DepthRange::ZeroToOne);
     let (mut forward, mut backward) = (Vec::new(), Vec::new());
-    refrast::clip::clip_polygon(&[a, b, c], plane, &mut forward);
-    refrast::clip::clip_polygon(&[c, b, a], plane, &mut backward);
+    clip_polygon(&[a, b, c], plane, &mut forward);
+    clip_polygon(&[c, b, a], plane, &mut backward);
     let new_point = |poly: &[ClipVertex]| {
         let on_ab: Vec<_> = poly
             .iter()

@@ -1,8 +1,8 @@
 //! Lines and points through the pipeline (labs 002 and 004): clipping, depth, colour along `t`.
 
 use glam::{Mat4, Vec3, Vec4};
-use refrast::pipeline::to_rgba8;
-use refrast::{CompareOp, Framebuffer, Renderer, Vertex};
+use refrast::CompareOp;
+use refrast::pipeline::{Framebuffer, Renderer, Vertex, to_rgba8};
 
 const CLEAR: [u8; 4] = [0, 0, 0, 255];
 

@@ -5,9 +5,10 @@
 mod support;
 
 use proptest::prelude::*;
+use refrast::stage::{FanTriangle, PixelRect, TriangleSetup, traverse};
 use refrast::{
-    COORD_LIMIT, Draw, FillConvention, FixedPoint, PixelRect, Rasterizer, Reference, ReferenceConfig,
-    SubpixelBits, Traversal, TriangleSetup, Viewport, snap, traverse,
+    COORD_LIMIT, Draw, FillConvention, FixedPoint, Rasterizer, Reference, ReferenceConfig, SubpixelBits,
+    Traversal, Viewport, snap,
 };
 use refrast_conformance::oracle::brute_force;
 
@@ -118,14 +119,14 @@ proptest! {
         let points = t.map(|(x, y)| FixedPoint::new(x, y).unwrap());
         let mut got = Vec::new();
         if let (Some(setup), Some(rect)) = (
-            TriangleSetup::new(points, refrast::FillConvention::TopLeft),
-            PixelRect::bounding(&points, bits, viewport),
+            TriangleSetup::new(points, FillConvention::TopLeft),
+            PixelRect::bounding(points, bits, viewport),
         ) {
-            let fan = [refrast::FanTriangle { setup, agrees: true, corners: [0, 1, 2] }];
-            traverse(&fan, rect, bits, &mut Vec::new(), |hit| got.push((hit.x, hit.y)));
+            let fan = [FanTriangle::whole(setup)];
+            traverse(&fan, setup.winding(), rect, bits, &mut Vec::new(), |hit| got.push((hit.x, hit.y)));
         }
         got.sort_unstable_by_key(|&(x, y)| (y, x));
-        prop_assert_eq!(got, brute_force::coverage(widen(t), 64, 64, 8, refrast::FillConvention::TopLeft));
+        prop_assert_eq!(got, brute_force::coverage(widen(t), 64, 64, 8, FillConvention::TopLeft));
     }
 }
 

@@ -6,7 +6,8 @@
 use std::path::Path;
 
 use image::{Rgba, RgbaImage};
-use refrast::{LineVertex, Viewport, rasterize_line};
+use refrast::Viewport;
+use refrast::stage::{LineVertex, rasterize_line};
 
 use crate::violation::{Class, Picture};
 

@@ -5,10 +5,10 @@
 //! conventions, so every failure the suite reports is that bug's doing.
 
 use glam::{DVec3, DVec4};
-use refrast::clip::clip_planes;
+use refrast::stage::{ClipOutcome, ClipPlane, ClipVertex, clip_planes, clip_triangle};
 use refrast::{
-    ClipMode, ClipOutcome, ClipPlane, ClipVertex, Draw, DrawError, FillConvention, FixedPoint, Fragment,
-    FrontFace, Profile, Rasterizer, Reference, Resolved, Viewport, clip_triangle, is_top_left,
+    ClipMode, Draw, DrawError, FillConvention, FixedPoint, Fragment, FrontFace, Profile, Rasterizer,
+    Reference, Resolved, Viewport, is_top_left,
 };
 use refrast_conformance::BuiltIn;
 

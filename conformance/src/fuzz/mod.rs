@@ -11,7 +11,8 @@ use std::fmt;
 
 use arbitrary::{Arbitrary, Unstructured};
 use glam::{Mat4, Vec3};
-use refrast::{Framebuffer, Mesh, Rasterizer, Renderer, Vertex};
+use refrast::Rasterizer;
+use refrast::pipeline::{Framebuffer, Mesh, Renderer, Vertex};
 
 pub use input::{Clipping, GridTriangles, Overlapping, Perspective, Points, RawDraw, RawPipeline};
 

@@ -1,0 +1,36 @@
+//! The reference's stages, for code that must reproduce it bit for bit.
+//!
+//! A fast implementation, a mutant in the zoo or a test of an oracle needs the same pieces the
+//! reference uses, in the order it uses them ([`Reference::draw_samples`](crate::Reference::draw_samples)):
+//!
+//! 1. **assemble** the triangle's clip vertices, discarding non-finite ones ([`assemble`]);
+//! 2. **snap before clipping**: project and snap the input as it is and set it up; zero area
+//!    draws nothing ([`snap_before_clipping`], [`ViewportTransform::project`]);
+//! 3. **clip** against the near (and far) plane and the guard band or viewport ([`clip_planes`],
+//!    [`clip_triangle`]), then project and snap the polygon left ([`ViewportTransform::project_polygon`]);
+//! 4. **fan** a clipped polygon ([`build_fan`]) and take its winding from the input
+//!    ([`clipped_winding`]); an unclipped triangle is its own fan ([`FanTriangle::whole`]);
+//! 5. **face and cull** ([`FrontFace::is_front`](crate::FrontFace::is_front),
+//!    [`CullMode::culls`](crate::CullMode::culls));
+//! 6. **traverse** the bounding box ([`PixelRect::bounding`], [`traverse`]), edge values stepped
+//!    exactly ([`EdgeFunction`], [`TriangleSetup`]);
+//! 7. **interpolate** depth ([`interpolate_depth`], [`fragment_depth`]) and barycentrics
+//!    ([`screen_weights`], [`interpolate`]) from what the corners carry ([`Varyings`]).
+//!
+//! Lines and points have stages of their own: [`clip_segment`], [`rasterize_line`],
+//! [`rasterize_point`].
+
+pub use crate::clip::{
+    ClipOutcome, ClipPlane, ClipVertex, assemble, clip_planes, clip_polygon, clip_segment, clip_triangle,
+    intersect,
+};
+pub use crate::depth::fragment_depth;
+pub use crate::edge::EdgeFunction;
+pub use crate::interp::{Barycentrics, Varyings, interpolate, interpolate_depth, screen_weights};
+pub use crate::line::{LineFragment, LineVertex, rasterize_line, rasterize_point};
+pub use crate::project::{RasterVertex, ViewportTransform, input_w};
+pub use crate::setup::{
+    PixelRect, SnappedTriangle, TriangleSetup, ZeroArea, clipped_winding, snap_before_clipping,
+};
+pub use crate::traverse::{FanTriangle, Hit, build_fan, traverse};
+pub use crate::viewport::GUARD_BAND;

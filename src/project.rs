@@ -130,8 +130,17 @@ mod tests {
     #[test]
     fn no_raster_position_without_positive_w_or_in_range() {
         let t = transform();
-        assert!(t.project(&ClipVertex::corner([0.0, 0.0, 0.0, 0.0], 0), None).is_none());
-        assert!(t.project(&ClipVertex::corner([1.0, 1.0, 0.5, -1.0], 0), None).is_none());
-        assert!(t.project(&ClipVertex::corner([1e9, 0.0, 0.5, 1.0], 0), None).is_none());
+        assert!(
+            t.project(&ClipVertex::corner([0.0, 0.0, 0.0, 0.0], 0), None)
+                .is_none()
+        );
+        assert!(
+            t.project(&ClipVertex::corner([1.0, 1.0, 0.5, -1.0], 0), None)
+                .is_none()
+        );
+        assert!(
+            t.project(&ClipVertex::corner([1e9, 0.0, 0.5, 1.0], 0), None)
+                .is_none()
+        );
     }
 }

@@ -307,3 +307,80 @@ impl TriangleSetup {
         a | b | c >= 0
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::cell::Cell;
+
+    use super::*;
+    use crate::depth::DepthRange;
+
+    fn transform() -> ViewportTransform {
+        ViewportTransform {
+            viewport: Viewport::new(8, 8).expect("8×8 is a valid viewport"),
+            bits: SubpixelBits::DEFAULT,
+            depth_range: DepthRange::ZeroToOne,
+        }
+    }
+
+    fn triangle(p: [[f32; 4]; 3]) -> [ClipVertex; 3] {
+        [0, 1, 2].map(|k| ClipVertex::corner(p[k], k))
+    }
+
+    #[test]
+    fn zero_area_is_decided_before_clipping_when_every_vertex_projects() {
+        let fill = FillConvention::TopLeft;
+        // Collinear, reaching far outside the viewport: clipping would cut it into a sliver.
+        let line = triangle([[-3.0, -3.0, 0.5, 1.0], [0.0, 0.0, 0.5, 1.0], [3.0, 3.0, 0.5, 1.0]]);
+        assert_eq!(
+            snap_before_clipping(&line, &transform(), fill).err(),
+            Some(ZeroArea)
+        );
+        // A vertex behind the eye has no raster position: decided after clipping instead.
+        let behind = triangle([
+            [-0.5, -0.5, 0.5, 1.0],
+            [0.5, -0.5, 0.5, 1.0],
+            [0.0, 0.5, 0.5, -1.0],
+        ]);
+        assert!(matches!(
+            snap_before_clipping(&behind, &transform(), fill),
+            Ok(None)
+        ));
+        // Left, right, top in NDC: counter-clockwise on screen, its area computed once.
+        let ccw = triangle([
+            [-0.5, -0.5, 0.5, 1.0],
+            [0.5, -0.5, 0.5, 1.0],
+            [0.0, 0.5, 0.5, 1.0],
+        ]);
+        let snapped = snap_before_clipping(&ccw, &transform(), fill).unwrap().unwrap();
+        assert_eq!(snapped.setup.winding(), Winding::CounterClockwise);
+        assert!(snapped.setup.signed_area2() < 0);
+    }
+
+    #[test]
+    fn a_clipped_triangle_turns_as_its_homogeneous_determinant_says() {
+        let asked = Cell::new(false);
+        let fallback = || {
+            asked.set(true);
+            0
+        };
+        let ccw = triangle([
+            [-0.5, -0.5, 0.5, 1.0],
+            [0.5, -0.5, 0.5, 1.0],
+            [0.0, 0.5, 0.5, 1.0],
+        ]);
+        assert_eq!(clipped_winding(&ccw, fallback), Winding::CounterClockwise);
+        // The top vertex behind the eye: the visible part is the wedge below a → b, clockwise.
+        let behind = triangle([
+            [-0.5, -0.5, 0.5, 1.0],
+            [0.5, -0.5, 0.5, 1.0],
+            [0.0, -0.5, 0.5, -1.0],
+        ]);
+        assert_eq!(clipped_winding(&behind, fallback), Winding::Clockwise);
+        assert!(!asked.get(), "a sure determinant needs no snapped polygon");
+        // Seen edge-on (every vertex on the plane x = 0 through the eye): the polygon decides.
+        let edge_on = triangle([[0.0, -0.5, 0.5, 1.0], [0.0, 0.5, 0.5, 1.0], [0.0, 0.0, 0.5, 2.0]]);
+        assert_eq!(clipped_winding(&edge_on, fallback), Winding::Degenerate);
+        assert!(asked.get());
+    }
+}

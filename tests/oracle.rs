@@ -10,7 +10,7 @@ use refrast::{
     COORD_LIMIT, Draw, FillConvention, FixedPoint, Rasterizer, Reference, ReferenceConfig, SubpixelBits,
     Traversal, Viewport, snap,
 };
-use refrast_conformance::oracle::brute_force;
+use refrast_conformance::oracle::{brute_force, raster};
 
 fn config() -> ProptestConfig {
     let cases = std::env::var("PROPTEST_CASES")
@@ -72,7 +72,7 @@ fn reference_coverage(reference: &mut Reference, draw: &Draw) -> Vec<(u32, u32)>
     pixels
 }
 
-fn widen(t: [(i64, i64); 3]) -> [brute_force::Point; 3] {
+fn widen(t: [(i64, i64); 3]) -> [raster::Point; 3] {
     t.map(|(x, y)| (i128::from(x), i128::from(y)))
 }
 

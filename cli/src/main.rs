@@ -22,7 +22,11 @@ enum Command {
     /// Certify rasterizers against the rule catalogue.
     Certify(certify::Args),
     /// List the rules: ID, kind, family, source, sentence.
-    Rules,
+    Rules {
+        /// Print the README's table instead: `| rule | kind | sentence |`.
+        #[arg(long)]
+        markdown: bool,
+    },
     /// List the built-in implementations and their profiles.
     Impls,
     /// Render a built-in scene to a PNG with the reference rasterizer.
@@ -47,7 +51,11 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         Command::Certify(args) => certify::run(&args),
-        Command::Rules => {
+        Command::Rules { markdown: true } => {
+            say(&refrast_conformance::markdown_table());
+            ExitCode::SUCCESS
+        }
+        Command::Rules { markdown: false } => {
             for rule in catalogue() {
                 say(&format!(
                     "{:<38} {:<9} {:<6} [{}] {}",

@@ -203,7 +203,7 @@ pub fn run_rule(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options)
         counterexample: None,
         picture: None,
     };
-    if let Err(reason) = (rule.applies)(&profile) {
+    if let Err(reason) = rule.applies(&profile) {
         report.status = Status::NotApplicable;
         report.message = Some(reason.to_owned());
         return report;

@@ -48,9 +48,10 @@ where
     let trials = catalogue()
         .into_iter()
         .map(|rule| {
-            let ignored = (rule.applies)(&profile).is_err();
+            let ignored = rule.applies(&profile).is_err();
+            let (id, family) = (rule.id, rule.family);
             let (make, options) = (Arc::clone(&make), Arc::clone(&options));
-            Trial::test(rule.id, move || {
+            Trial::test(id, move || {
                 let mut r = make();
                 let report = run_rule(&rule, &mut r, &options);
                 match report.status {
@@ -58,7 +59,7 @@ where
                     Status::Fail => Err(Failed::from(failure_text(&report))),
                 }
             })
-            .with_kind(rule.family.name())
+            .with_kind(family.name())
             .with_ignored_flag(ignored)
         })
         .collect();

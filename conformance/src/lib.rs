@@ -1,17 +1,19 @@
 //! The refrast conformance suite: a catalogue of rules that certifies any [`refrast::Rasterizer`].
 //!
-//! | piece | module | what |
+//! The modules form layers, each using only those above it (`tests/layers.rs` checks it):
+//!
+//! | layer | module | what |
 //! |---|---|---|
-//! | the rules | `rules` | [`catalogue`], [`Rule`], [`Family`], [`Kind`] — six families, each rule a proptest property |
-//! | input | `scene` | [`Scene`]: a draw whose `Debug` is pasteable Rust |
-//! | generators | [`strategy`] | free functions that build valid scenes: grid triangles, spade meshes, fans, quads, clip crossings |
-//! | oracles | [`oracle`] | brute force (i128 `orient2d`) and ray casting (f64, clip space), sharing no code with the reference |
-//! | verdicts | `violation` | [`Violation`], [`Counts`], [`Picture`] |
-//! | pictures | [`picture`] | the zoomed sample grid: missing purple, unexpected red, double blue, don't-care yellow |
-//! | running | `runner`, `certify` | [`certify`], [`Options`], [`Report`] |
-//! | fuzzing | [`fuzz`] | the cargo-fuzz targets as functions on any rasterizer, and the corpus decoder `cargo test` replays with |
-//! | `cargo test` | `harness` | [`run_as_tests`]: one test per rule in your own crate |
-//! | built-ins | `impls` | [`builtins`]: the implementations `refrast certify --impl` knows |
+//! | 0 | [`oracle`] | the conventions' geometry ([`oracle::raster`]), brute force (i128 `orient2d`), ray casting (f64 with exact fallback, clip space), visible outlines; no code shared with the reference |
+//! | 1 | `scene` | [`Scene`]: a draw whose `Debug` is pasteable Rust; [`Case`]: what a rule's input is |
+//! | 2 | `violation` | [`Violation`], [`Counts`], [`Expect`], [`Picture`] |
+//! | 3 | [`picture`] | the zoomed sample grid: missing purple, unexpected red, double blue, don't-care yellow; outlines |
+//! | 4 | [`strategy`] | free functions that build valid scenes: grid triangles, spade meshes, fans, quads, clip crossings |
+//! | 5 | `runner` | [`property`]: one rule's property, seeded, shrunk, panics caught |
+//! | 6 | [`rules`] | [`catalogue`], [`Rule`], [`Family`], [`Kind`], [`Need`]: six families, each rule a proptest property |
+//! | 7 | `certify` | [`certify`], [`Options`], [`Report`] |
+//! | 8 | `harness`, [`fuzz`] | [`run_as_tests`]: one test per rule in your own crate; the cargo-fuzz targets as functions on any rasterizer |
+//! | — | `impls` | [`builtins`]: the implementations `refrast certify --impl` knows (refrast only) |
 //!
 //! # Kinds and tolerance
 //!
@@ -39,7 +41,7 @@ pub use harness::{failure_text, run_as_tests};
 pub use impls::{BuiltIn, Maker, Named, builtins};
 pub use rules::meta::Translated;
 pub use rules::robust::Poisoned;
-pub use rules::{Family, Kind, Rule, catalogue};
-pub use runner::{Case, DEFAULT_SEED, RunConfig, Verdict, property};
-pub use scene::{Scene, clip_of};
+pub use rules::{Family, Kind, Need, Rule, RuleDraft, catalogue, markdown_table, needs};
+pub use runner::{DEFAULT_SEED, RunConfig, Verdict, property};
+pub use scene::{Case, Scene, clip_of};
 pub use violation::{Class, Counts, Expect, Picture, Violation, compare_coverage, count_fragments};

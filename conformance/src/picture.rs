@@ -6,10 +6,12 @@
 use std::path::Path;
 
 use image::{Rgba, RgbaImage};
-use refrast::Viewport;
 use refrast::stage::{LineVertex, rasterize_line};
+use refrast::{Fragment, Viewport};
 
-use crate::violation::{Class, Picture};
+use crate::oracle::outline::{OutlinePoint, visible_outline};
+use crate::scene::Scene;
+use crate::violation::{Class, Picture, count_fragments};
 
 /// Colour of a sample class.
 #[must_use]
@@ -21,6 +23,53 @@ pub fn colour(class: Class) -> [u8; 4] {
         Class::Unexpected => [230, 30, 30, 255],
         Class::Double => [40, 90, 255, 255],
         Class::DontCare => [240, 220, 40, 255],
+    }
+}
+
+/// The finite part of each outline, in raster space: what a picture draws.
+#[must_use]
+pub fn finite_outlines(outlines: &[Vec<OutlinePoint>]) -> Vec<Vec<[f64; 2]>> {
+    outlines
+        .iter()
+        .map(|o| o.iter().filter(|p| p.finite).map(|p| p.position).collect())
+        .collect()
+}
+
+/// The visible outline of every triangle of `scene` whose indices are in range.
+#[must_use]
+pub fn scene_outlines(scene: &Scene) -> Vec<Vec<[f64; 2]>> {
+    let outlines: Vec<Vec<OutlinePoint>> = (0..scene.triangles.len())
+        .filter(|&t| {
+            scene.triangles[t]
+                .iter()
+                .all(|&i| (i as usize) < scene.positions.len())
+        })
+        .map(|t| visible_outline(&scene.positions_of(t), scene.width, scene.height, &scene.state))
+        .collect();
+    finite_outlines(&outlines)
+}
+
+/// A picture of `fragments` of `scene`: covered once grey, more often blue, `sample` (the one a
+/// failure is about) red, with the triangles' outlines.
+#[must_use]
+pub fn of_fragments(scene: &Scene, fragments: &[Fragment], sample: Option<(u32, u32)>) -> Picture {
+    let (w, h) = (scene.width, scene.height);
+    let mut classes: Vec<Class> = count_fragments(fragments, w, h)
+        .iter()
+        .map(|&n| match n {
+            0 => Class::Empty,
+            1 => Class::Covered,
+            _ => Class::Double,
+        })
+        .collect();
+    if let Some((x, y)) = sample.filter(|&(x, y)| x < w && y < h) {
+        classes[y as usize * w as usize + x as usize] = Class::Unexpected;
+    }
+    Picture {
+        width: w,
+        height: h,
+        classes,
+        outlines: scene_outlines(scene),
     }
 }
 

@@ -8,10 +8,9 @@ use proptest::strategy::Strategy;
 use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestError, TestRng, TestRunner};
 use refrast::Rasterizer;
 
-use crate::oracle::ray_cast::visible_outline;
-use crate::rules::common::{clip_triangle, picture_outlines};
-use crate::scene::Scene;
-use crate::violation::{Class, Picture, Violation, count_fragments};
+use crate::picture;
+use crate::scene::{Case, Scene};
+use crate::violation::{Picture, Violation};
 
 /// The seed used when none is given, so that every run tries the same cases.
 pub const DEFAULT_SEED: u64 = 0x5eed_2026_0001;
@@ -41,19 +40,6 @@ pub enum Verdict {
 
 /// A check: the rasterizer under test against one input.
 pub type Check<T> = fn(&mut dyn Rasterizer, &T) -> Result<(), Violation>;
-
-/// A rule's input: it shows as a scene and can be made smaller after proptest has shrunk it.
-///
-/// Proptest shrinks each part of an input in one greedy pass; a failing mesh may keep a vertex
-/// it does not need. Dropping whole triangles while the check still fails (as lyon's reducer
-/// does) leaves the fewest triangles that show the failure.
-pub trait Case: Sized {
-    /// Candidate inputs one step smaller; empty when there is none.
-    fn reductions(&self) -> Vec<Self>;
-
-    /// The scene drawn, for the counterexample picture.
-    fn scene(&self) -> &Scene;
-}
 
 /// Runs `check` on `cfg.cases` inputs drawn from `strategy`, shrinking the first failure.
 pub fn property<T, S>(
@@ -123,36 +109,11 @@ fn reduce<T: Case>(r: &mut dyn Rasterizer, check: Check<T>, mut input: T) -> T {
 
 /// The rasterizer's coverage of `scene` with the outlines, `sample` marked as wrong (red).
 fn coverage_picture(r: &mut dyn Rasterizer, scene: &Scene, sample: Option<(u32, u32)>) -> Picture {
-    let (w, h) = (scene.width, scene.height);
     let fragments = catch_unwind(AssertUnwindSafe(|| r.rasterize(&scene.draw())))
         .ok()
         .and_then(Result::ok)
         .unwrap_or_default();
-    let mut classes: Vec<Class> = count_fragments(&fragments, w, h)
-        .iter()
-        .map(|&n| match n {
-            0 => Class::Empty,
-            1 => Class::Covered,
-            _ => Class::Double,
-        })
-        .collect();
-    if let Some((x, y)) = sample.filter(|&(x, y)| x < w && y < h) {
-        classes[y as usize * w as usize + x as usize] = Class::Unexpected;
-    }
-    let outlines = (0..scene.triangles.len())
-        .filter(|&t| {
-            scene.triangles[t]
-                .iter()
-                .all(|&i| (i as usize) < scene.positions.len())
-        })
-        .map(|t| visible_outline(&clip_triangle(scene, t), w, h, &scene.state))
-        .collect::<Vec<_>>();
-    Picture {
-        width: w,
-        height: h,
-        classes,
-        outlines: picture_outlines(&outlines),
-    }
+    picture::of_fragments(scene, &fragments, sample)
 }
 
 /// Runs one check, turning a panic of the rasterizer into a violation.

@@ -4,6 +4,21 @@ use std::fmt;
 
 use refrast::{CullMode, DepthRange, Draw, DrawState, FrontFace, Viewport};
 
+use crate::oracle::raster::to_ndc;
+
+/// A rule's input: it shows as a scene and can be made smaller after proptest has shrunk it.
+///
+/// Proptest shrinks each part of an input in one greedy pass; a failing mesh may keep a vertex
+/// it does not need. Dropping whole triangles while the check still fails (as lyon's reducer
+/// does) leaves the fewest triangles that show the failure.
+pub trait Case: Sized {
+    /// Candidate inputs one step smaller; empty when there is none.
+    fn reductions(&self) -> Vec<Self>;
+
+    /// The scene drawn, for the counterexample picture.
+    fn scene(&self) -> &Scene;
+}
+
 /// One draw call as the rules generate it; `Debug` prints Rust that rebuilds it.
 ///
 /// Paste a counterexample after `use refrast::*; use refrast_conformance::*;`.
@@ -72,6 +87,12 @@ impl Scene {
 }
 
 impl Scene {
+    /// The clip-space positions of triangle `t`'s vertices, widened to f64 (indices must be in range).
+    #[must_use]
+    pub fn positions_of(&self, t: usize) -> [[f64; 4]; 3] {
+        self.triangles[t].map(|i| self.positions[i as usize].map(f64::from))
+    }
+
     /// The scene without triangle `t`, its unused vertices dropped.
     #[must_use]
     pub fn without(&self, t: usize) -> Self {
@@ -108,7 +129,7 @@ impl Scene {
     }
 }
 
-impl crate::runner::Case for Scene {
+impl Case for Scene {
     /// Every way of dropping one triangle (a scene keeps at least one).
     fn reductions(&self) -> Vec<Self> {
         if self.triangles.len() < 2 {
@@ -126,8 +147,7 @@ impl crate::runner::Case for Scene {
 #[must_use]
 pub fn clip_of(width: u32, height: u32, bits: u8, x: i64, y: i64, z: f32, w: f32) -> [f32; 4] {
     let one = f64::from(1u32 << bits);
-    let nx = x as f64 / one / f64::from(width) * 2.0 - 1.0;
-    let ny = 1.0 - y as f64 / one / f64::from(height) * 2.0;
+    let (nx, ny) = to_ndc(width, height, x as f64 / one, y as f64 / one);
     let w64 = f64::from(w);
     [(nx * w64) as f32, (ny * w64) as f32, z * w, w]
 }

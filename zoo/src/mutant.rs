@@ -10,7 +10,7 @@ use refrast::{
     ClipMode, Draw, DrawError, FillConvention, FixedPoint, Fragment, FrontFace, Profile, Rasterizer,
     Reference, Resolved, Viewport, is_top_left,
 };
-use refrast_conformance::BuiltIn;
+use refrast_conformance::{BuiltIn, Family};
 
 /// A classic rasterizer bug.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -103,23 +103,23 @@ impl Bug {
 
     /// The rule family whose rules must catch it.
     #[must_use]
-    pub fn caught_by(self) -> &'static str {
+    pub fn caught_by(self) -> Family {
         match self {
             Self::InclusiveEdges
             | Self::ExclusiveEdges
             | Self::BottomRightAsTopLeft
-            | Self::DroppedSubpixelBit => "fill",
-            Self::ExclusiveBboxMax | Self::Edge32Bit => "fill",
+            | Self::DroppedSubpixelBit => Family::Fill,
+            Self::ExclusiveBboxMax | Self::Edge32Bit => Family::Fill,
             // Its cracks come from evaluating a shared edge from either end in f32: reversing one
             // triangle's winding shows the same on a single triangle.
-            Self::FloatEdges => "meta",
-            Self::AffineAttributes | Self::WrongArea => "bary",
-            Self::DepthWithoutTest | Self::PerspectiveDepth => "depth",
-            Self::NoNearClip | Self::DirectionalClip => "clip",
+            Self::FloatEdges => Family::Meta,
+            Self::AffineAttributes | Self::WrongArea => Family::Bary,
+            Self::DepthWithoutTest | Self::PerspectiveDepth => Family::Depth,
+            Self::NoNearClip | Self::DirectionalClip => Family::Clip,
             Self::OneWinding | Self::InvertedFacing | Self::RotatedEdgeOrigin | Self::DegenerateFragments => {
-                "meta"
+                Family::Meta
             }
-            Self::UnclampedBbox => "robust",
+            Self::UnclampedBbox => Family::Robust,
         }
     }
 }
@@ -455,7 +455,10 @@ pub fn builtins() -> Vec<BuiltIn> {
         .map(|&bug| {
             BuiltIn::new(
                 format!("mutant:{}", bug.name()),
-                format!("broken on purpose ({} rules must catch it)", bug.caught_by()),
+                format!(
+                    "broken on purpose ({} rules must catch it)",
+                    bug.caught_by().name()
+                ),
                 false,
                 move || Box::new(Mutant::new(bug)),
             )

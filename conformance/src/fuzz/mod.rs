@@ -16,10 +16,11 @@ use refrast::pipeline::{Framebuffer, Mesh, Renderer, Vertex};
 
 pub use input::{Clipping, GridTriangles, Overlapping, Perspective, Points, RawDraw, RawPipeline};
 
-use crate::rules::bary::{check_matches_raycast, check_sum_one, needs_perspective};
-use crate::rules::depth::{check_depth_matches_raycast, check_order_independent, needs_z_over_w};
+use crate::rules::bary::{check_matches_raycast, check_sum_one};
+use crate::rules::depth::{check_depth_matches_raycast, check_order_independent};
 use crate::rules::fill::{check_exactly_once, check_guard_band};
 use crate::rules::robust::check_well_formed;
+use crate::rules::{PERSPECTIVE_BARYCENTRICS, Z_OVER_W_DEPTH};
 use crate::violation::Violation;
 
 /// A check that failed on a fuzz input.
@@ -93,10 +94,10 @@ pub fn interpolation(r: &mut dyn Rasterizer, input: &Perspective) -> Result<(), 
     let profile = r.profile();
     judged(input, || {
         check_sum_one(r, &scene)?;
-        if needs_perspective(&profile).is_ok() {
+        if PERSPECTIVE_BARYCENTRICS.check(&profile).is_ok() {
             check_matches_raycast(r, &scene)?;
         }
-        if needs_z_over_w(&profile).is_ok() {
+        if Z_OVER_W_DEPTH.check(&profile).is_ok() {
             check_depth_matches_raycast(r, &scene)?;
         }
         Ok(())

@@ -4,10 +4,9 @@
 //! it (a top edge is horizontal with the third vertex below it; a left edge has the third vertex
 //! to its right), nothing is reordered, nothing is stepped.
 
-use refrast::{DepthRange, FillConvention};
+use refrast::FillConvention;
 
-/// A point in subpixel units.
-pub type Point = (i128, i128);
+use super::raster::Point;
 
 /// Twice the signed area of `a, b, c`.
 #[must_use]
@@ -64,32 +63,6 @@ pub fn coverage(t: [Point; 3], width: u32, height: u32, bits: u8, fill: FillConv
         }
     }
     out
-}
-
-/// Snaps a clip-space position (`w > 0`) to the subpixel grid: viewport transform, then round
-/// half to even. `None` when it does not project to a finite point.
-#[must_use]
-pub fn snap(p: [f32; 4], width: u32, height: u32, bits: u8) -> Option<Point> {
-    let [x, y, _, w] = p.map(f64::from);
-    if w.is_nan() || w <= 0.0 {
-        return None;
-    }
-    let scale = f64::from(1u32 << bits);
-    let rx = (x / w + 1.0) * 0.5 * f64::from(width) * scale;
-    let ry = (1.0 - y / w) * 0.5 * f64::from(height) * scale;
-    (rx.is_finite() && ry.is_finite()).then(|| (rx.round_ties_even() as i128, ry.round_ties_even() as i128))
-}
-
-/// Whether every vertex lies inside the clip volume, so that no clipping is involved.
-#[must_use]
-pub fn unclipped(p: &[[f32; 4]; 3], range: DepthRange, far: bool) -> bool {
-    p.iter().all(|&[x, y, z, w]| {
-        let near = match range {
-            DepthRange::ZeroToOne => z >= 0.0,
-            DepthRange::NegativeOneToOne => z >= -w,
-        };
-        w > 0.0 && near && (!far || z <= w) && x.abs() <= w && y.abs() <= w
-    })
 }
 
 #[cfg(test)]

@@ -1,12 +1,17 @@
 //! Oracles that decide the right answer without the reference's code path.
 //!
+//! - [`raster`]: the conventions' geometry (viewport transform, pixel centres, snapping, near
+//!   plane, window depth), written once for the whole suite.
 //! - [`brute_force`]: every pixel of the viewport, exact `orient2d` in i128, explicit fill-rule
 //!   bias, on snapped coordinates. Decides coverage exactly.
 //! - [`ray_cast`]: the ray through each sample centre against the triangle in clip space, in
-//!   f64 with an error bound on every sign, and in exact big integers (`exact`) when a sign is
-//!   unsure. Decides coverage and gives the true perspective-correct barycentrics and depth,
-//!   whatever the clipping.
+//!   f64 with an error bound on every sign, and in exact big integers when a sign is unsure.
+//!   Decides coverage and facing, and gives the true perspective-correct barycentrics and
+//!   depth, whatever the clipping.
+//! - [`outline`]: a triangle's visible outline in raster space and distances to it, for the
+//!   tolerance band and for pictures.
 
 pub mod brute_force;
-mod exact;
+pub mod outline;
+pub mod raster;
 pub mod ray_cast;

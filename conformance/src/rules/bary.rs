@@ -1,103 +1,62 @@
 //! Barycentrics: they sum to one, stay in range, are one at their vertex, and equal the ray cast.
 
-use refrast::{Profile, Rasterizer};
+use refrast::Rasterizer;
 
-use super::common::{
-    BARY_EPS, ORACLE_EPS, band_px, clip_triangle, fragments, raycast_fragments, snapped_triangle,
-};
-use super::{Family, Kind, Rule};
-use crate::oracle::ray_cast::{distance_to_outline, visible_outline};
+use super::common::{BARY_EPS, ORACLE_EPS, band_px, fragments, raycast_fragments, snapped_triangle};
+use super::{Family, PERSPECTIVE_BARYCENTRICS, Rule, SCREEN_BARYCENTRICS};
+use crate::oracle::outline::{distance_to_outline, visible_outline};
+use crate::oracle::raster::{project, sample_centre};
 use crate::runner::property;
 use crate::scene::Scene;
 use crate::strategy;
 use crate::violation::Violation;
 
-/// The rule applies when the profile declares perspective-correct barycentrics.
-pub(crate) fn needs_perspective(p: &Profile) -> Result<(), &'static str> {
-    if p.features.perspective_barycentrics {
-        Ok(())
-    } else {
-        Err("no perspective-correct barycentrics")
-    }
-}
-
-fn needs_screen(p: &Profile) -> Result<(), &'static str> {
-    if p.features.screen_barycentrics {
-        Ok(())
-    } else {
-        Err("no screen-space barycentrics")
-    }
-}
-
 pub(super) fn rules() -> Vec<Rule> {
     vec![
-        Rule {
-            id: "bary.sum.one",
-            family: Family::Bary,
-            kind: Kind::Invariant,
-            sentence: "Every fragment's barycentrics sum to 1 within 2^-20.",
-            source: "Vulkan 1.4 §28.7.5 (a + b + c = 1)",
-            default_cases: 5000,
-            applies: needs_perspective,
-            run: |r, cfg| property(r, cfg, strategy::float_scene(), check_sum_one),
-        },
-        Rule {
-            id: "bary.range.unit",
-            family: Family::Bary,
-            kind: Kind::Invariant,
-            sentence: "Barycentrics of samples outside the tolerance band lie in [0, 1] within 2^-20.",
-            source: "Vulkan 1.4 §28.7.5 (clipped polygons: convex combinations)",
-            default_cases: 5000,
-            applies: needs_perspective,
-            run: |r, cfg| property(r, cfg, strategy::crossing_scene(), check_in_range),
-        },
-        Rule {
-            id: "bary.vertex.one",
-            family: Family::Bary,
-            kind: Kind::Invariant,
-            sentence: "A covered sample exactly on a vertex has weight 1 for that vertex and 0 for the others.",
-            source: "Vulkan 1.4 §28.7.5 (aᵢ = 1 at vertex i)",
-            default_cases: 10000,
-            applies: needs_perspective,
-            run: |r, cfg| property(r, cfg, strategy::perspective_inside_scene(), check_vertex_one),
-        },
-        Rule {
-            id: "bary.perspective.matches-raycast",
-            family: Family::Bary,
-            kind: Kind::Invariant,
-            sentence: "Perspective-correct barycentrics equal those of the ray-cast hit within 2^-18.",
-            source: "seed 002 (q/z interpolation); Vulkan 1.4 §28.7.5",
-            default_cases: 5000,
-            applies: needs_perspective,
-            run: |r, cfg| {
+        Rule::invariant(Family::Bary, "bary.sum.one")
+            .sentence("Every fragment's barycentrics sum to 1 within 2^-20.")
+            .source("Vulkan 1.4 §28.7.5 (a + b + c = 1)")
+            .cases(5000)
+            .needs(PERSPECTIVE_BARYCENTRICS)
+            .run(|r, cfg| property(r, cfg, strategy::float_scene(), check_sum_one)),
+        Rule::invariant(Family::Bary, "bary.range.unit")
+            .sentence("Barycentrics of samples outside the tolerance band lie in [0, 1] within 2^-20.")
+            .source("Vulkan 1.4 §28.7.5 (clipped polygons: convex combinations)")
+            .cases(5000)
+            .needs(PERSPECTIVE_BARYCENTRICS)
+            .run(|r, cfg| property(r, cfg, strategy::crossing_scene(), check_in_range)),
+        Rule::invariant(Family::Bary, "bary.vertex.one")
+            .sentence("A covered sample exactly on a vertex has weight 1 for that vertex and 0 for the others.")
+            .source("Vulkan 1.4 §28.7.5 (aᵢ = 1 at vertex i)")
+            .cases(10000)
+            .needs(PERSPECTIVE_BARYCENTRICS)
+            .run(|r, cfg| property(r, cfg, strategy::perspective_inside_scene(), check_vertex_one)),
+        Rule::invariant(Family::Bary, "bary.perspective.matches-raycast")
+            .sentence("Perspective-correct barycentrics equal those of the ray-cast hit within 2^-18.")
+            .source("seed 002 (q/z interpolation); Vulkan 1.4 §28.7.5")
+            .cases(5000)
+            .needs(PERSPECTIVE_BARYCENTRICS)
+            .run(|r, cfg| {
                 property(
                     r,
                     cfg,
                     strategy::perspective_inside_scene(),
                     check_matches_raycast,
                 )
-            },
-        },
-        Rule {
-            id: "bary.screen.reconstructs-sample",
-            family: Family::Bary,
-            kind: Kind::Invariant,
-            sentence: "Screen-space barycentrics weight the projected vertices to the sample position.",
-            source: "seed 000 (P = W0·V0 + W1·V1 + W2·V2)",
-            default_cases: 5000,
-            applies: needs_screen,
-            run: |r, cfg| property(r, cfg, strategy::perspective_inside_scene(), check_reconstructs),
-        },
-        Rule {
-            id: "bary.equal-w.affine",
-            family: Family::Bary,
-            kind: Kind::Invariant,
-            sentence: "With equal w at every vertex, perspective-correct and screen-space barycentrics agree within 2^-18.",
-            source: "conformance-anchors (d5: perspective equals linear when all w are equal)",
-            default_cases: 5000,
-            applies: |p| needs_screen(p).and(needs_perspective(p)),
-            run: |r, cfg| property(r, cfg, equal_w_scene(), check_equal_w),
-        },
+            }),
+        Rule::invariant(Family::Bary, "bary.screen.reconstructs-sample")
+            .sentence("Screen-space barycentrics weight the projected vertices to the sample position.")
+            .source("seed 000 (P = W0·V0 + W1·V1 + W2·V2)")
+            .cases(5000)
+            .needs(SCREEN_BARYCENTRICS)
+            .run(|r, cfg| property(r, cfg, strategy::perspective_inside_scene(), check_reconstructs)),
+        Rule::invariant(Family::Bary, "bary.equal-w.affine")
+            .sentence("With equal w at every vertex, perspective-correct and screen-space barycentrics agree within 2^-18.")
+            .source("conformance-anchors (d5: perspective equals linear when all w are equal)")
+            .cases(5000)
+            .needs(SCREEN_BARYCENTRICS)
+            .needs(PERSPECTIVE_BARYCENTRICS)
+            .run(|r, cfg| property(r, cfg, equal_w_scene(), check_equal_w)),
     ]
 }
 
@@ -129,9 +88,9 @@ pub fn check_sum_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violat
 /// Barycentrics of samples outside the band lie in [0, 1] within `BARY_EPS`.
 pub fn check_in_range(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let band = band_px(&r.profile());
-    let outline = visible_outline(&clip_triangle(scene, 0), scene.width, scene.height, &scene.state);
+    let outline = visible_outline(&scene.positions_of(0), scene.width, scene.height, &scene.state);
     for f in fragments(r, scene)? {
-        let s = [f64::from(f.x) + 0.5, f64::from(f.y) + 0.5];
+        let s = sample_centre(f.x, f.y);
         if distance_to_outline(&outline, s, |_, _| true) < band {
             continue;
         }
@@ -155,14 +114,11 @@ pub fn check_in_range(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Viola
 
 /// A covered sample on a vertex has weight 1 there and 0 elsewhere.
 pub fn check_vertex_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let tri = clip_triangle(scene, 0);
+    let tri = scene.positions_of(0);
     for f in fragments(r, scene)? {
-        let s = [f64::from(f.x) + 0.5, f64::from(f.y) + 0.5];
+        let s = sample_centre(f.x, f.y);
         for (k, v) in tri.iter().enumerate() {
-            let p = [
-                (v[0] / v[3] + 1.0) * 0.5 * f64::from(scene.width),
-                (1.0 - v[1] / v[3]) * 0.5 * f64::from(scene.height),
-            ];
+            let p = project(scene.width, scene.height, *v);
             // Grid vertices are exact to f32 rounding of x·w: well within 1e-3 px of a sample.
             if (p[0] - s[0]).abs() < 1e-3 && (p[1] - s[1]).abs() < 1e-3 {
                 let b = f.barycentric;
@@ -203,8 +159,7 @@ pub fn check_reconstructs(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), V
     let Some(tri) = snapped_triangle(scene, 0, r.profile().subpixel_bits) else {
         return Ok(());
     };
-    let (w, h) = (f64::from(scene.width), f64::from(scene.height));
-    let p = tri.map(|v| [(v[0] / v[3] + 1.0) * 0.5 * w, (1.0 - v[1] / v[3]) * 0.5 * h]);
+    let p = tri.map(|v| project(scene.width, scene.height, v));
     let extent = p.iter().flatten().fold(1.0f64, |m, c| m.max(c.abs()));
     for f in fragments(r, scene)? {
         let Some(b) = f.screen_barycentric else {
@@ -214,7 +169,7 @@ pub fn check_reconstructs(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), V
         };
         let b = b.map(f64::from);
         let at = [0, 1].map(|c| b[0] * p[0][c] + b[1] * p[1][c] + b[2] * p[2][c]);
-        let s = [f64::from(f.x) + 0.5, f64::from(f.y) + 0.5];
+        let s = sample_centre(f.x, f.y);
         // Weights within ORACLE_EPS each move the point by at most 3·ORACLE_EPS·extent.
         if (at[0] - s[0]).hypot(at[1] - s[1]) > 3.0 * ORACLE_EPS * extent {
             return Err(Violation::at(

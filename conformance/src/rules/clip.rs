@@ -1,93 +1,49 @@
 //! Clipping: nothing from behind the eye, the interior preserved, shared edges watertight.
 
 use proptest::prelude::*;
-use refrast::{DepthRange, Profile};
+use refrast::DepthRange;
 
 use super::common::check_draws_nothing;
 use super::fill::check_exactly_once;
-use super::{Family, Kind, Rule, always};
+use super::{FAR_CLIPPING, Family, GL_DEPTH_RANGE, Rule};
 use crate::runner::property;
 use crate::scene::Scene;
 use crate::strategy;
 
-fn needs_far(p: &Profile) -> Result<(), &'static str> {
-    if p.features.far_clipping {
-        Ok(())
-    } else {
-        Err("no far-plane clipping")
-    }
-}
-
-fn needs_gl_range(p: &Profile) -> Result<(), &'static str> {
-    if p.features.negative_one_to_one {
-        Ok(())
-    } else {
-        Err("no −w ≤ z clip volume")
-    }
-}
-
 pub(super) fn rules() -> Vec<Rule> {
     vec![
-        Rule {
-            id: "clip.behind-eye.empty",
-            family: Family::Clip,
-            kind: Kind::Invariant,
-            sentence: "A triangle wholly behind the eye (w < 0) or wholly before the near plane draws nothing.",
-            source: "MIT 6.837 seed 001 (why clip: w ≤ 0); Vulkan 1.4 §27.4",
-            default_cases: 10000,
-            applies: always,
-            run: |r, cfg| property(r, cfg, behind_scene(), check_draws_nothing),
-        },
-        Rule {
-            id: "clip.interior.matches-raycast",
-            family: Family::Clip,
-            kind: Kind::Invariant,
-            sentence: "A triangle crossing clip planes, w = 0, or reaching ±30000·w covers exactly the samples its ray cast hits, outside the tolerance band.",
-            source: "dEQP-GLES3.functional.clipping.*; conformance-anchors d4",
-            default_cases: 5000,
-            applies: always,
-            run: |r, cfg| property(r, cfg, strategy::crossing_scene(), check_exactly_once),
-        },
-        Rule {
-            id: "clip.mesh.watertight",
-            family: Family::Clip,
-            kind: Kind::Invariant,
-            sentence: "A viewport-covering mesh whose shared edges cross the near plane covers each visible sample exactly once.",
-            source: "dEQP fill_rules.clipped_*; nvdiffrast #225; seed 004 (Sutherland–Hodgman)",
-            default_cases: 1500,
-            applies: always,
-            run: |r, cfg| property(r, cfg, strategy::clipped_mesh_scene(), check_exactly_once),
-        },
-        Rule {
-            id: "clip.crossing-quad.watertight",
-            family: Family::Clip,
-            kind: Kind::Invariant,
-            sentence: "A quad with corners at ±30000·w whose shared diagonal crosses the near plane inside the viewport leaves no hole there.",
-            source: "dEQP-GLES3.functional.clipping (±30000·w); design.md (canonical clip intersections)",
-            default_cases: 3000,
-            applies: always,
-            run: |r, cfg| property(r, cfg, crossing_quad_scene(), check_exactly_once),
-        },
-        Rule {
-            id: "clip.far.respected",
-            family: Family::Clip,
-            kind: Kind::Invariant,
-            sentence: "With far clipping on, samples whose hit lies beyond z = w are not covered, the rest as the ray cast says.",
-            source: "Vulkan 1.4 §27.4 (z ≤ w); seed 004 (six planes)",
-            default_cases: 3000,
-            applies: needs_far,
-            run: |r, cfg| property(r, cfg, far_scene(), check_exactly_once),
-        },
-        Rule {
-            id: "clip.gl-range.matches-raycast",
-            family: Family::Clip,
-            kind: Kind::Invariant,
-            sentence: "Under the −w ≤ z ≤ w clip volume, coverage matches the ray cast against that volume.",
-            source: "OpenGL 4.6 §13.7; Vulkan VK_EXT_depth_clip_control",
-            default_cases: 3000,
-            applies: needs_gl_range,
-            run: |r, cfg| property(r, cfg, gl_scene(), check_exactly_once),
-        },
+        Rule::invariant(Family::Clip, "clip.behind-eye.empty")
+            .sentence("A triangle wholly behind the eye (w < 0) or wholly before the near plane draws nothing.")
+            .source("MIT 6.837 seed 001 (why clip: w ≤ 0); Vulkan 1.4 §27.4")
+            .cases(10000)
+            .run(|r, cfg| property(r, cfg, behind_scene(), check_draws_nothing)),
+        Rule::invariant(Family::Clip, "clip.interior.matches-raycast")
+            .sentence("A triangle crossing clip planes, w = 0, or reaching ±30000·w covers exactly the samples its ray cast hits, outside the tolerance band.")
+            .source("dEQP-GLES3.functional.clipping.*; conformance-anchors d4")
+            .cases(5000)
+            .run(|r, cfg| property(r, cfg, strategy::crossing_scene(), check_exactly_once)),
+        Rule::invariant(Family::Clip, "clip.mesh.watertight")
+            .sentence("A viewport-covering mesh whose shared edges cross the near plane covers each visible sample exactly once.")
+            .source("dEQP fill_rules.clipped_*; nvdiffrast #225; seed 004 (Sutherland–Hodgman)")
+            .cases(1500)
+            .run(|r, cfg| property(r, cfg, strategy::clipped_mesh_scene(), check_exactly_once)),
+        Rule::invariant(Family::Clip, "clip.crossing-quad.watertight")
+            .sentence("A quad with corners at ±30000·w whose shared diagonal crosses the near plane inside the viewport leaves no hole there.")
+            .source("dEQP-GLES3.functional.clipping (±30000·w); design.md (canonical clip intersections)")
+            .cases(3000)
+            .run(|r, cfg| property(r, cfg, crossing_quad_scene(), check_exactly_once)),
+        Rule::invariant(Family::Clip, "clip.far.respected")
+            .sentence("With far clipping on, samples whose hit lies beyond z = w are not covered, the rest as the ray cast says.")
+            .source("Vulkan 1.4 §27.4 (z ≤ w); seed 004 (six planes)")
+            .cases(3000)
+            .needs(FAR_CLIPPING)
+            .run(|r, cfg| property(r, cfg, far_scene(), check_exactly_once)),
+        Rule::invariant(Family::Clip, "clip.gl-range.matches-raycast")
+            .sentence("Under the −w ≤ z ≤ w clip volume, coverage matches the ray cast against that volume.")
+            .source("OpenGL 4.6 §13.7; Vulkan VK_EXT_depth_clip_control")
+            .cases(3000)
+            .needs(GL_DEPTH_RANGE)
+            .run(|r, cfg| property(r, cfg, gl_scene(), check_exactly_once)),
     ]
 }
 

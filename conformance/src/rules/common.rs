@@ -4,8 +4,10 @@ use std::collections::HashMap;
 
 use refrast::{Fragment, Profile, Rasterizer, Reference, ReferenceConfig, SubpixelBits};
 
-use crate::oracle::brute_force;
-use crate::oracle::ray_cast::{Hit, OutlinePoint, distance_to_outline, ray_cast, visible_outline};
+use crate::oracle::outline::{OutlinePoint, distance_to_outline, visible_outline};
+use crate::oracle::raster::{sample_centre, sample_ndc, snap, to_ndc};
+use crate::oracle::ray_cast::{Hit, ray_cast};
+use crate::picture::{finite_outlines, scene_outlines};
 use crate::scene::Scene;
 use crate::violation::{Expect, Violation, compare_coverage, count_fragments};
 
@@ -45,21 +47,6 @@ pub fn reference_for(profile: &Profile) -> Option<Reference> {
     }))
 }
 
-/// Exact rules apply only where the reference can reproduce the profile.
-pub fn reference_can_match(profile: &Profile) -> Result<(), &'static str> {
-    if SubpixelBits::new(profile.subpixel_bits).is_ok() {
-        Ok(())
-    } else {
-        Err("the reference supports 1..=8 subpixel bits only")
-    }
-}
-
-/// The clip-space vertices of triangle `t` in f64.
-#[must_use]
-pub fn clip_triangle(scene: &Scene, t: usize) -> [[f64; 4]; 3] {
-    scene.triangles[t].map(|i| scene.positions[i as usize].map(f64::from))
-}
-
 /// Triangle `t` as the rasterizer draws it: each vertex snapped to the profile's grid, then put
 /// back into clip space at its own `w` and `z`. `None` unless every `w > 0`.
 ///
@@ -69,12 +56,11 @@ pub fn clip_triangle(scene: &Scene, t: usize) -> [[f64; 4]; 3] {
 pub fn snapped_triangle(scene: &Scene, t: usize, bits: u8) -> Option<[[f64; 4]; 3]> {
     let bits = bits.min(16);
     let one = f64::from(1u32 << bits);
-    let (w, h) = (f64::from(scene.width), f64::from(scene.height));
     let mut out = [[0.0; 4]; 3];
     for (k, &i) in scene.triangles[t].iter().enumerate() {
         let p = scene.positions[i as usize];
-        let (x, y) = brute_force::snap(p, scene.width, scene.height, bits)?;
-        let (nx, ny) = (x as f64 / one / w * 2.0 - 1.0, 1.0 - y as f64 / one / h * 2.0);
+        let (x, y) = snap(p, scene.width, scene.height, bits)?;
+        let (nx, ny) = to_ndc(scene.width, scene.height, x as f64 / one, y as f64 / one);
         let pw = f64::from(p[3]);
         out[k] = [nx * pw, ny * pw, f64::from(p[2]), pw];
     }
@@ -92,28 +78,10 @@ pub fn raycast_fragments(r: &mut dyn Rasterizer, scene: &Scene) -> Result<Vec<(F
     Ok(fragments(r, scene)?
         .into_iter()
         .filter_map(|f| {
-            let (nx, ny) = sample_ndc(scene, f.x, f.y);
+            let (nx, ny) = sample_ndc(scene.width, scene.height, f.x, f.y);
             ray_cast(&tri, nx, ny, &scene.state).map(|hit| (f, hit))
         })
         .collect())
-}
-
-/// NDC of pixel `(x, y)`'s sample.
-#[must_use]
-pub fn sample_ndc(scene: &Scene, x: u32, y: u32) -> (f64, f64) {
-    (
-        (f64::from(x) + 0.5) / f64::from(scene.width) * 2.0 - 1.0,
-        1.0 - (f64::from(y) + 0.5) / f64::from(scene.height) * 2.0,
-    )
-}
-
-/// The finite part of each triangle's visible outline, for pictures.
-#[must_use]
-pub fn picture_outlines(outlines: &[Vec<OutlinePoint>]) -> Vec<Vec<[f64; 2]>> {
-    outlines
-        .iter()
-        .map(|o| o.iter().filter(|p| p.finite).map(|p| p.position).collect())
-        .collect()
 }
 
 /// Ray-cast expectations for a scene whose triangles do not overlap (one triangle, or a mesh).
@@ -139,7 +107,7 @@ pub fn mesh_expectation(scene: &Scene, band: f64) -> (Vec<Expect>, Vec<Vec<[f64;
         }
     }
     let tris: Vec<[[f64; 4]; 3]> = (0..scene.triangles.len())
-        .map(|t| clip_triangle(scene, t))
+        .map(|t| scene.positions_of(t))
         .collect();
     let outlines: Vec<Vec<OutlinePoint>> = tris
         .iter()
@@ -157,8 +125,8 @@ pub fn mesh_expectation(scene: &Scene, band: f64) -> (Vec<Expect>, Vec<Vec<[f64;
     let mut expected = Vec::with_capacity(scene.width as usize * scene.height as usize);
     for y in 0..scene.height {
         for x in 0..scene.width {
-            let (nx, ny) = sample_ndc(scene, x, y);
-            let s = [f64::from(x) + 0.5, f64::from(y) + 0.5];
+            let (nx, ny) = sample_ndc(scene.width, scene.height, x, y);
+            let s = sample_centre(x, y);
             let near_boundary = outlines.iter().zip(&shared).any(|(o, &sh)| {
                 // Segments not lying on a shared input edge: the boundary and the cuts.
                 distance_to_outline(o, s, |a, b| a.edges & b.edges & sh == 0) < band
@@ -175,7 +143,7 @@ pub fn mesh_expectation(scene: &Scene, band: f64) -> (Vec<Expect>, Vec<Vec<[f64;
             });
         }
     }
-    (expected, picture_outlines(&outlines))
+    (expected, finite_outlines(&outlines))
 }
 
 /// Checks a scene's coverage against [`mesh_expectation`].
@@ -222,19 +190,12 @@ pub fn compare_sets(scene: &Scene, got: &[Fragment], want: &[Fragment], what: &s
         .iter()
         .map(|&n| if n == 0 { Expect::Zero } else { Expect::One })
         .collect();
-    let tris: Vec<_> = (0..scene.triangles.len())
-        .map(|t| clip_triangle(scene, t))
-        .collect();
-    let outlines: Vec<_> = tris
-        .iter()
-        .map(|t| visible_outline(t, scene.width, scene.height, &scene.state))
-        .collect();
     match compare_coverage(
         &counts,
         &expected,
         scene.width,
         scene.height,
-        picture_outlines(&outlines),
+        scene_outlines(scene),
         what,
     ) {
         Err(v) => Err(v),

@@ -1,87 +1,55 @@
 //! Depth: within the vertices' range, equal to the ray cast, independent of draw order.
 
 use proptest::prelude::*;
-use refrast::{CompareOp, DepthState, Profile, Rasterizer, Resolved};
+use refrast::{CompareOp, DepthState, Rasterizer, Resolved};
 
 use super::common::{BARY_EPS, ORACLE_EPS, fragments, raycast_fragments};
-use super::{Family, Kind, Rule};
+use super::{DEPTH_TEST, Family, Rule, Z_OVER_W_DEPTH};
 use crate::runner::property;
 use crate::scene::Scene;
 use crate::strategy;
 use crate::violation::Violation;
 
-/// The rule applies when the profile declares depth z/w linear in screen space.
-pub(crate) fn needs_z_over_w(p: &Profile) -> Result<(), &'static str> {
-    match p.depth {
-        refrast::DepthConvention::ScreenLinearZOverW => Ok(()),
-        refrast::DepthConvention::Other => Err("depth is not z/w linear in screen space"),
-    }
-}
-
-fn needs_depth_test(p: &Profile) -> Result<(), &'static str> {
-    if p.features.depth_test {
-        Ok(())
-    } else {
-        Err("no depth test")
-    }
-}
-
 pub(super) fn rules() -> Vec<Rule> {
     vec![
-        Rule {
-            id: "depth.range.vertices",
-            family: Family::Depth,
-            kind: Kind::Invariant,
-            sentence: "The depth of an unclipped triangle's fragment lies between its vertices' smallest and largest z/w.",
-            source: "Vulkan 1.4 §28.7.5 (depth is linearly interpolated); seed 000",
-            default_cases: 5000,
-            applies: needs_z_over_w,
-            run: |r, cfg| {
+        Rule::invariant(Family::Depth, "depth.range.vertices")
+            .sentence("The depth of an unclipped triangle's fragment lies between its vertices' smallest and largest z/w.")
+            .source("Vulkan 1.4 §28.7.5 (depth is linearly interpolated); seed 000")
+            .cases(5000)
+            .needs(Z_OVER_W_DEPTH)
+            .run(|r, cfg| {
                 property(
                     r,
                     cfg,
                     strategy::perspective_inside_scene(),
                     check_within_vertices,
                 )
-            },
-        },
-        Rule {
-            id: "depth.screen-linear.matches-raycast",
-            family: Family::Depth,
-            kind: Kind::Invariant,
-            sentence: "Fragment depth equals z/w at the ray-cast hit within 2^-18.",
-            source: "Vulkan 1.4 §28.7.5; D3D11.3 §15.6",
-            default_cases: 5000,
-            applies: needs_z_over_w,
-            run: |r, cfg| {
+            }),
+        Rule::invariant(Family::Depth, "depth.screen-linear.matches-raycast")
+            .sentence("Fragment depth equals z/w at the ray-cast hit within 2^-18.")
+            .source("Vulkan 1.4 §28.7.5; D3D11.3 §15.6")
+            .cases(5000)
+            .needs(Z_OVER_W_DEPTH)
+            .run(|r, cfg| {
                 property(
                     r,
                     cfg,
                     strategy::perspective_inside_scene(),
                     check_depth_matches_raycast,
                 )
-            },
-        },
-        Rule {
-            id: "depth.order.independent",
-            family: Family::Depth,
-            kind: Kind::Invariant,
-            sentence: "After a LESS depth test the depth buffer is identical under every submission order, and the primitive ids too where depths differ.",
-            source: "seed 000 (depth buffer); conformance-anchors d5",
-            default_cases: 3000,
-            applies: needs_depth_test,
-            run: |r, cfg| property(r, cfg, strategy::overlapping_scene(), check_order_independent),
-        },
-        Rule {
-            id: "depth.resolve.matches-fragments",
-            family: Family::Depth,
-            kind: Kind::Invariant,
-            sentence: "The resolved depth and id buffers are the fragments replayed in primitive order through the draw's compare op and write mask.",
-            source: "Vulkan 1.4 §29.8 (depth test); seed 000",
-            default_cases: 3000,
-            applies: needs_depth_test,
-            run: |r, cfg| property(r, cfg, depth_state_scene(), check_resolve),
-        },
+            }),
+        Rule::invariant(Family::Depth, "depth.order.independent")
+            .sentence("After a LESS depth test the depth buffer is identical under every submission order, and the primitive ids too where depths differ.")
+            .source("seed 000 (depth buffer); conformance-anchors d5")
+            .cases(3000)
+            .needs(DEPTH_TEST)
+            .run(|r, cfg| property(r, cfg, strategy::overlapping_scene(), check_order_independent)),
+        Rule::invariant(Family::Depth, "depth.resolve.matches-fragments")
+            .sentence("The resolved depth and id buffers are the fragments replayed in primitive order through the draw's compare op and write mask.")
+            .source("Vulkan 1.4 §29.8 (depth test); seed 000")
+            .cases(3000)
+            .needs(DEPTH_TEST)
+            .run(|r, cfg| property(r, cfg, depth_state_scene(), check_resolve)),
     ]
 }
 

@@ -2,9 +2,9 @@
 
 use refrast::{Fragment, Rasterizer};
 
-use super::common::{check_mesh_coverage, compare_sets, fragments, reference_can_match, reference_for};
-use super::{Family, Kind, Rule, always};
-use crate::oracle::brute_force;
+use super::common::{check_mesh_coverage, compare_sets, fragments, reference_for};
+use super::{Family, GUARD_BAND, REFERENCE_BITS, Rule};
+use crate::oracle::{brute_force, raster};
 use crate::runner::property;
 use crate::scene::Scene;
 use crate::strategy;
@@ -12,92 +12,48 @@ use crate::violation::Violation;
 
 pub(super) fn rules() -> Vec<Rule> {
     vec![
-        Rule {
-            id: "fill.mesh.exactly-once",
-            family: Family::Fill,
-            kind: Kind::Invariant,
-            sentence: "A spade triangulation of grid points and the viewport corners covers every sample exactly once.",
-            source: "Vulkan 1.4 §28.7.1 (shared edges covered by exactly one polygon); design.md",
-            default_cases: 2000,
-            applies: always,
-            run: |r, cfg| property(r, cfg, strategy::mesh_scene(), check_exactly_once),
-        },
-        Rule {
-            id: "fill.fan.exactly-once",
-            family: Family::Fill,
-            kind: Kind::Invariant,
-            sentence: "A fan around an interior vertex on a sample centre covers its interior samples exactly once.",
-            source: "piglit triangle-rasterization-overdraw; design.md",
-            default_cases: 3000,
-            applies: always,
-            run: |r, cfg| property(r, cfg, strategy::fan_scene(), check_exactly_once),
-        },
-        Rule {
-            id: "fill.rotated-quad.exactly-once",
-            family: Family::Fill,
-            kind: Kind::Invariant,
-            sentence: "A rotated quad split on either diagonal covers its interior samples exactly once.",
-            source: "dEQP-VK.rasterization.fill_rules.basic_quad*",
-            default_cases: 3000,
-            applies: always,
-            run: |r, cfg| property(r, cfg, strategy::rotated_quad_scene(), check_exactly_once),
-        },
-        Rule {
-            id: "fill.projected-mesh.exactly-once",
-            family: Family::Fill,
-            kind: Kind::Invariant,
-            sentence: "A viewport-covering mesh with w in [0.1, 4] per vertex covers every sample exactly once.",
-            source: "dEQP-VK.rasterization.fill_rules.projected",
-            default_cases: 2000,
-            applies: always,
-            run: |r, cfg| property(r, cfg, strategy::projected_mesh_scene(), check_exactly_once),
-        },
-        Rule {
-            id: "fill.interior.matches-raycast",
-            family: Family::Fill,
-            kind: Kind::Invariant,
-            sentence: "Samples farther than the tolerance band from every edge are covered exactly when the ray through them hits the triangle.",
-            source: "seed 000 (rasterization and ray casting answer one question); dEQP triangle verifier",
-            default_cases: 5000,
-            applies: always,
-            run: |r, cfg| property(r, cfg, strategy::float_scene(), check_exactly_once),
-        },
-        Rule {
-            id: "fill.top-left.exact",
-            family: Family::Fill,
-            kind: Kind::Exact,
-            sentence: "Coverage of a triangle needing no clipping equals the reference's under the same subpixel bits and fill convention.",
-            source: "D3D11.3 §3.4 (top-left rule), §3.2.4.1 (16.8 snapping)",
-            default_cases: 20000,
-            applies: reference_can_match,
-            run: |r, cfg| property(r, cfg, strategy::inside_scene(), check_matches_reference),
-        },
-        Rule {
-            id: "fill.guard-band.exact",
-            family: Family::Fill,
-            kind: Kind::Exact,
-            sentence: "Coverage of a triangle reaching up to 1500 px outside the viewport equals the brute-force oracle, as a guard band promises.",
-            source: "D3D11.3 §15.4 (guard band); ecosystem.md (32-bit edge overflow, float edges)",
-            default_cases: 5000,
-            applies: |p| {
-                if p.features.guard_band {
-                    Ok(())
-                } else {
-                    Err("x/y clipping may move edges (no guard band)")
-                }
-            },
-            run: |r, cfg| property(r, cfg, strategy::grid_scene(), check_guard_band),
-        },
-        Rule {
-            id: "fill.brute-force.exact",
-            family: Family::Fill,
-            kind: Kind::Exact,
-            sentence: "Coverage of an unclipped triangle equals the brute-force oracle (i128 orient2d, explicit fill bias) at every pixel.",
-            source: "Giesen, Triangle rasterization in practice; piglit triangle-rasterization",
-            default_cases: 20000,
-            applies: always,
-            run: |r, cfg| property(r, cfg, strategy::inside_scene(), check_matches_brute_force),
-        },
+        Rule::invariant(Family::Fill, "fill.mesh.exactly-once")
+            .sentence("A spade triangulation of grid points and the viewport corners covers every sample exactly once.")
+            .source("Vulkan 1.4 §28.7.1 (shared edges covered by exactly one polygon); design.md")
+            .cases(2000)
+            .run(|r, cfg| property(r, cfg, strategy::mesh_scene(), check_exactly_once)),
+        Rule::invariant(Family::Fill, "fill.fan.exactly-once")
+            .sentence("A fan around an interior vertex on a sample centre covers its interior samples exactly once.")
+            .source("piglit triangle-rasterization-overdraw; design.md")
+            .cases(3000)
+            .run(|r, cfg| property(r, cfg, strategy::fan_scene(), check_exactly_once)),
+        Rule::invariant(Family::Fill, "fill.rotated-quad.exactly-once")
+            .sentence("A rotated quad split on either diagonal covers its interior samples exactly once.")
+            .source("dEQP-VK.rasterization.fill_rules.basic_quad*")
+            .cases(3000)
+            .run(|r, cfg| property(r, cfg, strategy::rotated_quad_scene(), check_exactly_once)),
+        Rule::invariant(Family::Fill, "fill.projected-mesh.exactly-once")
+            .sentence("A viewport-covering mesh with w in [0.1, 4] per vertex covers every sample exactly once.")
+            .source("dEQP-VK.rasterization.fill_rules.projected")
+            .cases(2000)
+            .run(|r, cfg| property(r, cfg, strategy::projected_mesh_scene(), check_exactly_once)),
+        Rule::invariant(Family::Fill, "fill.interior.matches-raycast")
+            .sentence("Samples farther than the tolerance band from every edge are covered exactly when the ray through them hits the triangle.")
+            .source("seed 000 (rasterization and ray casting answer one question); dEQP triangle verifier")
+            .cases(5000)
+            .run(|r, cfg| property(r, cfg, strategy::float_scene(), check_exactly_once)),
+        Rule::exact(Family::Fill, "fill.top-left.exact")
+            .sentence("Coverage of a triangle needing no clipping equals the reference's under the same subpixel bits and fill convention.")
+            .source("D3D11.3 §3.4 (top-left rule), §3.2.4.1 (16.8 snapping)")
+            .cases(20000)
+            .needs(REFERENCE_BITS)
+            .run(|r, cfg| property(r, cfg, strategy::inside_scene(), check_matches_reference)),
+        Rule::exact(Family::Fill, "fill.guard-band.exact")
+            .sentence("Coverage of a triangle reaching up to 1500 px outside the viewport equals the brute-force oracle, as a guard band promises.")
+            .source("D3D11.3 §15.4 (guard band); ecosystem.md (32-bit edge overflow, float edges)")
+            .cases(5000)
+            .needs(GUARD_BAND)
+            .run(|r, cfg| property(r, cfg, strategy::grid_scene(), check_guard_band)),
+        Rule::exact(Family::Fill, "fill.brute-force.exact")
+            .sentence("Coverage of an unclipped triangle equals the brute-force oracle (i128 orient2d, explicit fill bias) at every pixel.")
+            .source("Giesen, Triangle rasterization in practice; piglit triangle-rasterization")
+            .cases(20000)
+            .run(|r, cfg| property(r, cfg, strategy::inside_scene(), check_matches_brute_force)),
     ]
 }
 
@@ -121,7 +77,7 @@ pub fn check_matches_reference(r: &mut dyn Rasterizer, scene: &Scene) -> Result<
 pub fn check_matches_brute_force(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let p = [0, 1, 2].map(|k| scene.positions[scene.triangles[0][k] as usize]);
     // The oracle knows nothing of clipping: triangles leaving the view volume are not judged here.
-    if !brute_force::unclipped(&p, scene.state.depth_range, scene.state.clip_far) {
+    if !raster::unclipped(&p, scene.state.depth_range, scene.state.clip_far) {
         return Ok(());
     }
     compare_brute_force(r, scene)
@@ -129,10 +85,11 @@ pub fn check_matches_brute_force(r: &mut dyn Rasterizer, scene: &Scene) -> Resul
 
 /// Coverage of a triangle inside the guard band (x/y anywhere, z and w inside) equal to the oracle.
 pub fn check_guard_band(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let range = scene.state.depth_range;
     let inside = scene
         .positions
         .iter()
-        .all(|&[_, _, z, w]| w > 0.0 && z >= 0.0 && z <= w);
+        .all(|&[_, _, z, w]| w > 0.0 && raster::near_distance(range, z, w) >= 0.0 && z <= w);
     if !inside {
         return Ok(());
     }
@@ -146,7 +103,7 @@ fn compare_brute_force(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Viol
     let bits = profile.subpixel_bits.min(16);
     let Some(t) = p
         .iter()
-        .map(|&v| brute_force::snap(v, scene.width, scene.height, bits))
+        .map(|&v| raster::snap(v, scene.width, scene.height, bits))
         .collect::<Option<Vec<_>>>()
     else {
         return Ok(());

@@ -1,14 +1,16 @@
 //! Metamorphic relations: changes to the input that must leave coverage alone, or move it predictably.
 
 use proptest::prelude::*;
-use refrast::{CullMode, Fragment, FrontFace, Profile, Rasterizer};
+use refrast::{CullMode, Fragment, FrontFace, Rasterizer};
 
-use super::common::{ORACLE_EPS, check_draws_nothing, compare_sets, coverage_set, fragments};
-use super::{Family, Kind, Rule, always};
+use super::common::{ORACLE_EPS, band_px, check_draws_nothing, compare_sets, coverage_set, fragments};
+use super::{CULLING, Family, Rule};
 use crate::oracle::brute_force;
-use crate::oracle::ray_cast::segment_distance;
-use crate::runner::{Case, property};
-use crate::scene::Scene;
+use crate::oracle::outline::{distance_to_outline, segment_distance, visible_outline};
+use crate::oracle::raster::{self, sample_centre, sample_ndc};
+use crate::oracle::ray_cast::ray_cast;
+use crate::runner::property;
+use crate::scene::{Case, Scene};
 use crate::strategy;
 use crate::violation::Violation;
 
@@ -38,106 +40,54 @@ impl Case for Translated {
     }
 }
 
-fn needs_culling(p: &Profile) -> Result<(), &'static str> {
-    if p.features.culling {
-        Ok(())
-    } else {
-        Err("no culling")
-    }
-}
-
 pub(super) fn rules() -> Vec<Rule> {
     vec![
-        Rule {
-            id: "meta.rotation.same-coverage",
-            family: Family::Meta,
-            kind: Kind::Invariant,
-            sentence: "Rotating a triangle's vertex order leaves its coverage unchanged and rotates its barycentrics.",
-            source: "conformance-anchors d3 (llvmpipe attributes change under rotation); DRTK #9",
-            default_cases: 10000,
-            applies: always,
-            run: |r, cfg| property(r, cfg, strategy::perspective_grid_scene(), check_rotation),
-        },
-        Rule {
-            id: "meta.reversal.flips-facing",
-            family: Family::Meta,
-            kind: Kind::Invariant,
-            sentence: "Reversing a triangle's winding keeps its coverage, swaps two barycentrics and flips its facing.",
-            source: "conformance-anchors d3; Vulkan 1.4 §28.7.1",
-            default_cases: 10000,
-            applies: always,
-            run: |r, cfg| property(r, cfg, strategy::perspective_grid_scene(), check_reversal),
-        },
-        Rule {
-            id: "meta.translate.whole-pixels",
-            family: Family::Meta,
-            kind: Kind::Invariant,
-            sentence: "Moving a triangle by whole pixels moves its coverage by the same pixels (near an edge, clipping may differ by the band).",
-            source: "OpenGL 4.6 §14.5 (invariance under integer translation); conformance-anchors d3",
-            default_cases: 10000,
-            applies: always,
-            run: |r, cfg| property(r, cfg, translated(), check_translation),
-        },
-        Rule {
-            id: "meta.translate.one-subpixel",
-            family: Family::Meta,
-            kind: Kind::Invariant,
-            sentence: "Moving a triangle by one subpixel unit changes only samples within one unit (plus the band) of an edge.",
-            source: "conformance-anchors d3 (translation by 2^-bits)",
-            default_cases: 10000,
-            applies: always,
-            run: |r, cfg| property(r, cfg, strategy::grid_scene(), check_subpixel_translation),
-        },
-        Rule {
-            id: "meta.viewport.neutral",
-            family: Family::Meta,
-            kind: Kind::Invariant,
-            sentence: "A triangle at the same raster position in a viewport twice as large covers the same samples (near an edge, clipping may differ by the band).",
-            source: "Vulkan 1.4 (invariance: scissor and viewport have no side effects); conformance-anchors d3",
-            default_cases: 5000,
-            applies: always,
-            run: |r, cfg| property(r, cfg, strategy::grid_scene(), check_viewport_neutral),
-        },
-        Rule {
-            id: "meta.batch.independent",
-            family: Family::Meta,
-            kind: Kind::Invariant,
-            sentence: "Each triangle of a draw covers the same samples as when drawn alone, in any submission order.",
-            source: "conformance-anchors d3 (tile, thread and traversal-order independence); piglit quad-invariance",
-            default_cases: 3000,
-            applies: always,
-            run: |r, cfg| property(r, cfg, strategy::overlapping_scene(), check_batch_independent),
-        },
-        Rule {
-            id: "meta.cull.by-facing",
-            family: Family::Meta,
-            kind: Kind::Invariant,
-            sentence: "Culling removes exactly the fragments of triangles with the culled facing, under either front face.",
-            source: "dEQP-VK.rasterization.culling.*; seed 003 (back-face culling)",
-            default_cases: 3000,
-            applies: needs_culling,
-            run: |r, cfg| property(r, cfg, strategy::overlapping_scene(), check_culling),
-        },
-        Rule {
-            id: "meta.facing.from-winding",
-            family: Family::Meta,
-            kind: Kind::Invariant,
-            sentence: "A fragment is front-facing exactly when its snapped triangle turns on screen the way the front face says.",
-            source: "Vulkan 1.4 §28.7.1 (polygon facing from the signed area); seed 003 (back-face culling)",
-            default_cases: 3000,
-            applies: always,
-            run: |r, cfg| property(r, cfg, facing_scene(), check_facing),
-        },
-        Rule {
-            id: "meta.degenerate.empty",
-            family: Family::Meta,
-            kind: Kind::Invariant,
-            sentence: "Zero-area triangles (collinear or repeated vertices, on sample centres too) draw nothing.",
-            source: "Vulkan 1.4 §28.7.1 (zero area is back-facing); D3D11.3 §15.16",
-            default_cases: 10000,
-            applies: always,
-            run: |r, cfg| property(r, cfg, degenerate_scene(), check_draws_nothing),
-        },
+        Rule::invariant(Family::Meta, "meta.rotation.same-coverage")
+            .sentence("Rotating a triangle's vertex order leaves its coverage unchanged and rotates its barycentrics.")
+            .source("conformance-anchors d3 (llvmpipe attributes change under rotation); DRTK #9")
+            .cases(10000)
+            .run(|r, cfg| property(r, cfg, strategy::perspective_grid_scene(), check_rotation)),
+        Rule::invariant(Family::Meta, "meta.reversal.flips-facing")
+            .sentence("Reversing a triangle's winding keeps its coverage, swaps two barycentrics and flips its facing.")
+            .source("conformance-anchors d3; Vulkan 1.4 §28.7.1")
+            .cases(10000)
+            .run(|r, cfg| property(r, cfg, strategy::perspective_grid_scene(), check_reversal)),
+        Rule::invariant(Family::Meta, "meta.translate.whole-pixels")
+            .sentence("Moving a triangle by whole pixels moves its coverage by the same pixels (near an edge, clipping may differ by the band).")
+            .source("OpenGL 4.6 §14.5 (invariance under integer translation); conformance-anchors d3")
+            .cases(10000)
+            .run(|r, cfg| property(r, cfg, translated(), check_translation)),
+        Rule::invariant(Family::Meta, "meta.translate.one-subpixel")
+            .sentence("Moving a triangle by one subpixel unit changes only samples within one unit (plus the band) of an edge.")
+            .source("conformance-anchors d3 (translation by 2^-bits)")
+            .cases(10000)
+            .run(|r, cfg| property(r, cfg, strategy::grid_scene(), check_subpixel_translation)),
+        Rule::invariant(Family::Meta, "meta.viewport.neutral")
+            .sentence("A triangle at the same raster position in a viewport twice as large covers the same samples (near an edge, clipping may differ by the band).")
+            .source("Vulkan 1.4 (invariance: scissor and viewport have no side effects); conformance-anchors d3")
+            .cases(5000)
+            .run(|r, cfg| property(r, cfg, strategy::grid_scene(), check_viewport_neutral)),
+        Rule::invariant(Family::Meta, "meta.batch.independent")
+            .sentence("Each triangle of a draw covers the same samples as when drawn alone, in any submission order.")
+            .source("conformance-anchors d3 (tile, thread and traversal-order independence); piglit quad-invariance")
+            .cases(3000)
+            .run(|r, cfg| property(r, cfg, strategy::overlapping_scene(), check_batch_independent)),
+        Rule::invariant(Family::Meta, "meta.cull.by-facing")
+            .sentence("Culling removes exactly the fragments of triangles with the culled facing, under either front face.")
+            .source("dEQP-VK.rasterization.culling.*; seed 003 (back-face culling)")
+            .cases(3000)
+            .needs(CULLING)
+            .run(|r, cfg| property(r, cfg, strategy::overlapping_scene(), check_culling)),
+        Rule::invariant(Family::Meta, "meta.facing.from-winding")
+            .sentence("A fragment is front-facing exactly when its triangle turns on screen the way the front face says: by its snapped signed area, or by the sign of det[x y w] when it is clipped.")
+            .source("Vulkan 1.4 §28.7.1 (polygon facing from the signed area); Olano and Greer 1997 (facing of clipped triangles); seed 003 (back-face culling)")
+            .cases(3000)
+            .run(|r, cfg| property(r, cfg, facing_scene(), check_facing)),
+        Rule::invariant(Family::Meta, "meta.degenerate.empty")
+            .sentence("Zero-area triangles (collinear or repeated vertices, on sample centres too) draw nothing.")
+            .source("Vulkan 1.4 §28.7.1 (zero area is back-facing); D3D11.3 §15.16")
+            .cases(10000)
+            .run(|r, cfg| property(r, cfg, degenerate_scene(), check_draws_nothing)),
     ]
 }
 
@@ -145,8 +95,11 @@ fn translated() -> impl Strategy<Value = Translated> {
     (strategy::grid_scene(), -12i32..12, -12i32..12).prop_map(|(scene, dx, dy)| Translated { scene, dx, dy })
 }
 
+/// Unclipped grid triangles, and triangles across clip planes with `w` of either sign, under
+/// either front face.
 fn facing_scene() -> impl Strategy<Value = Scene> {
-    (strategy::inside_scene(), any::<bool>()).prop_map(|(mut s, cw)| {
+    let scene = prop_oneof![strategy::inside_scene(), strategy::crossing_scene()];
+    (scene, any::<bool>()).prop_map(|(mut s, cw)| {
         s.state.front_face = if cw {
             FrontFace::Clockwise
         } else {
@@ -156,31 +109,66 @@ fn facing_scene() -> impl Strategy<Value = Scene> {
     })
 }
 
-/// `front_facing` follows the snapped winding and the front face.
+/// `front_facing` follows the winding and the front face: the snapped signed area for a
+/// triangle that needs no clipping, `−sign(det[x y w])` for one that does.
 pub fn check_facing(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let bits = r.profile().subpixel_bits.min(16);
-    let snapped: Option<Vec<_>> = scene.triangles[0]
-        .iter()
-        .map(|&i| brute_force::snap(scene.positions[i as usize], scene.width, scene.height, bits))
-        .collect();
-    let Some(v) = snapped else { return Ok(()) };
-    // Positive orient2d with y down is clockwise on screen.
-    let clockwise = brute_force::orient2d(v[0], v[1], v[2]) > 0;
-    let front = clockwise == (scene.state.front_face == FrontFace::Clockwise);
-    for f in fragments(r, scene)? {
-        if f.front_facing != front {
-            return Err(Violation::at(
+    let profile = r.profile();
+    let front_is_cw = scene.state.front_face == FrontFace::Clockwise;
+    let p = [0, 1, 2].map(|k| scene.positions[scene.triangles[0][k] as usize]);
+    let frags = fragments(r, scene)?;
+    let wrong = |f: &Fragment, clockwise: bool, how: &str| {
+        Violation::at(
+            (f.x, f.y),
+            format!(
+                "the triangle turns {} on screen ({how}) with {:?} front faces, but its fragment at {:?} says front_facing = {}",
+                if clockwise {
+                    "clockwise"
+                } else {
+                    "counter-clockwise"
+                },
+                scene.state.front_face,
                 (f.x, f.y),
-                format!(
-                    "the triangle turns {} on screen with {:?} front faces, but its fragment says front_facing = {}",
-                    if clockwise {
-                        "clockwise"
-                    } else {
-                        "counter-clockwise"
-                    },
-                    scene.state.front_face,
-                    f.front_facing
-                ),
+                f.front_facing
+            ),
+        )
+    };
+    if raster::unclipped(&p, scene.state.depth_range, scene.state.clip_far) {
+        let bits = profile.subpixel_bits.min(16);
+        let snapped: Option<Vec<_>> = p
+            .iter()
+            .map(|&v| raster::snap(v, scene.width, scene.height, bits))
+            .collect();
+        let Some(v) = snapped else { return Ok(()) };
+        // Positive orient2d with y down is clockwise on screen.
+        let clockwise = brute_force::orient2d(v[0], v[1], v[2]) > 0;
+        return match frags
+            .iter()
+            .find(|f| f.front_facing != (clockwise == front_is_cw))
+        {
+            Some(f) => Err(wrong(f, clockwise, "its snapped signed area")),
+            None => Ok(()),
+        };
+    }
+    // Clipped: the visible part turns as det[x y w] says, whatever the signs of w (Olano–Greer),
+    // and the ray cast decides that sign exactly at each sample it hits. Snapping the clipped
+    // polygon moves each vertex by less than the band, so only a polygon thinner than that
+    // can turn over: samples within twice the band of the visible outline are not judged.
+    let tri = scene.positions_of(0);
+    let outline = visible_outline(&tri, scene.width, scene.height, &scene.state);
+    let band = band_px(&profile);
+    for f in &frags {
+        if distance_to_outline(&outline, sample_centre(f.x, f.y), |_, _| true) <= 2.0 * band {
+            continue;
+        }
+        let (nx, ny) = sample_ndc(scene.width, scene.height, f.x, f.y);
+        let Some(hit) = ray_cast(&tri, nx, ny, &scene.state) else {
+            continue;
+        };
+        if f.front_facing != (hit.clockwise == front_is_cw) {
+            return Err(wrong(
+                f,
+                hit.clockwise,
+                "the sign of det[x y w] of its visible part",
             ));
         }
     }
@@ -217,7 +205,7 @@ fn compare_permuted(
     // A clipped triangle is drawn as a fan that starts at another vertex once rotated, and its
     // new vertices snap differently: only unclipped barycentrics must match within ORACLE_EPS.
     let p = scene.triangles[0].map(|i| scene.positions[i as usize]);
-    let unclipped = brute_force::unclipped(&p, scene.state.depth_range, scene.state.clip_far);
+    let unclipped = raster::unclipped(&p, scene.state.depth_range, scene.state.clip_far);
     let mut by_pixel: Vec<&Fragment> = other.iter().collect();
     by_pixel.sort_by_key(|f| (f.y, f.x));
     let mut base_sorted: Vec<&Fragment> = base.iter().collect();
@@ -292,19 +280,19 @@ fn near_edge(scene: &Scene, bits: u8, x: u32, y: u32, limit: f64) -> bool {
     let snapped: Option<Vec<[f64; 2]>> = scene.triangles[0]
         .iter()
         .map(|&i| {
-            let (px, py) = brute_force::snap(scene.positions[i as usize], scene.width, scene.height, bits)?;
+            let (px, py) = raster::snap(scene.positions[i as usize], scene.width, scene.height, bits)?;
             Some([px as f64 * unit, py as f64 * unit])
         })
         .collect();
     let Some(p) = snapped else { return true };
-    let s = [f64::from(x) + 0.5, f64::from(y) + 0.5];
+    let s = sample_centre(x, y);
     (0..3).any(|k| segment_distance(p[k], p[(k + 1) % 3], s) <= limit)
 }
 
 /// How far from an edge two correct drawings of one triangle may differ: clipping at a
 /// different viewport border snaps new vertices, moving an edge by up to the band, on either side.
 fn clip_slack(profile: &refrast::Profile) -> f64 {
-    2.0 * super::common::band_px(profile)
+    2.0 * band_px(profile)
 }
 
 /// Moving by whole pixels moves coverage alike, except near an edge.
@@ -371,7 +359,7 @@ pub fn check_subpixel_translation(r: &mut dyn Rasterizer, scene: &Scene) -> Resu
         .chain(sb.iter().filter(|p| !sa.contains(p)));
     let Some(t) = (0..3)
         .map(|k| {
-            brute_force::snap(
+            raster::snap(
                 scene.positions[scene.triangles[0][k] as usize],
                 scene.width,
                 scene.height,
@@ -386,9 +374,9 @@ pub fn check_subpixel_translation(r: &mut dyn Rasterizer, scene: &Scene) -> Resu
         .iter()
         .map(|&(x, y)| [x as f64 * unit, y as f64 * unit])
         .collect();
-    let limit = unit + super::common::band_px(&profile);
+    let limit = unit + band_px(&profile);
     for &(_, x, y) in changed {
-        let s = [f64::from(x) + 0.5, f64::from(y) + 0.5];
+        let s = sample_centre(x, y);
         let d = (0..3)
             .map(|k| segment_distance(pts[k], pts[(k + 1) % 3], s))
             .fold(f64::INFINITY, f64::min);

@@ -10,7 +10,7 @@ pub mod robust;
 
 use std::fmt;
 
-use refrast::{Profile, Rasterizer};
+use refrast::{DepthConvention, Profile, Rasterizer, SubpixelBits};
 
 use crate::runner::{RunConfig, Verdict};
 
@@ -66,8 +66,11 @@ impl fmt::Display for Kind {
     }
 }
 
-/// One rule of the catalogue.
-#[derive(Clone, Copy)]
+/// The property a rule runs against a rasterizer.
+pub type Run = fn(&mut dyn Rasterizer, &RunConfig) -> Verdict;
+
+/// One rule of the catalogue; built with [`Rule::invariant`] or [`Rule::exact`].
+#[derive(Clone)]
 pub struct Rule {
     /// Stable ID, `family.subject.property`.
     pub id: &'static str,
@@ -81,10 +84,29 @@ pub struct Rule {
     pub source: &'static str,
     /// Cases tried by default (the cost of one case varies by rule).
     pub default_cases: u32,
-    /// `Err(reason)` when the rule does not apply to a profile.
-    pub applies: fn(&Profile) -> Result<(), &'static str>,
+    /// What a profile must declare for the rule to apply; none for every profile.
+    pub needs: Vec<Need>,
     /// Runs the rule's property against a rasterizer.
-    pub run: fn(&mut dyn Rasterizer, &RunConfig) -> Verdict,
+    pub run: Run,
+}
+
+impl Rule {
+    /// An invariant rule of `family` called `id`; finish it with [`RuleDraft::run`].
+    #[must_use]
+    pub fn invariant(family: Family, id: &'static str) -> RuleDraft {
+        RuleDraft::new(family, Kind::Invariant, id)
+    }
+
+    /// An exact rule of `family` called `id`; finish it with [`RuleDraft::run`].
+    #[must_use]
+    pub fn exact(family: Family, id: &'static str) -> RuleDraft {
+        RuleDraft::new(family, Kind::Exact, id)
+    }
+
+    /// `Err(reason)` when the rule does not apply to `profile`: the first need it lacks.
+    pub fn applies(&self, profile: &Profile) -> Result<(), &'static str> {
+        self.needs.iter().try_for_each(|need| need.check(profile))
+    }
 }
 
 impl fmt::Debug for Rule {
@@ -96,10 +118,143 @@ impl fmt::Debug for Rule {
     }
 }
 
-/// Applies to every profile.
-pub(crate) fn always(_: &Profile) -> Result<(), &'static str> {
-    Ok(())
+/// A rule being built: everything but its property, which [`RuleDraft::run`] adds.
+#[derive(Clone, Debug)]
+pub struct RuleDraft {
+    id: &'static str,
+    family: Family,
+    kind: Kind,
+    sentence: &'static str,
+    source: &'static str,
+    default_cases: u32,
+    needs: Vec<Need>,
 }
+
+impl RuleDraft {
+    fn new(family: Family, kind: Kind, id: &'static str) -> Self {
+        Self {
+            id,
+            family,
+            kind,
+            sentence: "",
+            source: "",
+            default_cases: 1000,
+            needs: Vec::new(),
+        }
+    }
+
+    /// The rule in one sentence.
+    #[must_use]
+    pub fn sentence(self, sentence: &'static str) -> Self {
+        Self { sentence, ..self }
+    }
+
+    /// Where it comes from.
+    #[must_use]
+    pub fn source(self, source: &'static str) -> Self {
+        Self { source, ..self }
+    }
+
+    /// Cases tried by default (1 000 unless set).
+    #[must_use]
+    pub fn cases(self, default_cases: u32) -> Self {
+        Self {
+            default_cases,
+            ..self
+        }
+    }
+
+    /// Adds something the profile must declare; the rule is n/a without it.
+    #[must_use]
+    pub fn needs(mut self, need: Need) -> Self {
+        self.needs.push(need);
+        self
+    }
+
+    /// The rule, with the property it runs.
+    #[must_use]
+    pub fn run(self, run: Run) -> Rule {
+        Rule {
+            id: self.id,
+            family: self.family,
+            kind: self.kind,
+            sentence: self.sentence,
+            source: self.source,
+            default_cases: self.default_cases,
+            needs: self.needs,
+            run,
+        }
+    }
+}
+
+/// Something a rule needs a profile to declare; without it the rule is n/a, with the reason.
+#[derive(Clone, Copy)]
+pub struct Need {
+    has: fn(&Profile) -> bool,
+    lacking: &'static str,
+}
+
+impl Need {
+    /// `Err(reason)` when `profile` lacks it.
+    pub fn check(&self, profile: &Profile) -> Result<(), &'static str> {
+        if (self.has)(profile) {
+            Ok(())
+        } else {
+            Err(self.lacking)
+        }
+    }
+
+    /// Why a rule needing it does not apply to a profile without it.
+    #[must_use]
+    pub fn lacking(&self) -> &'static str {
+        self.lacking
+    }
+}
+
+impl fmt::Debug for Need {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_tuple("Need").field(&self.lacking).finish()
+    }
+}
+
+/// The one way to say what a rule needs: `has` tells whether a profile declares it, `lacking`
+/// is the reason the rule is n/a when it does not.
+#[must_use]
+pub const fn needs(has: fn(&Profile) -> bool, lacking: &'static str) -> Need {
+    Need { has, lacking }
+}
+
+/// Fragments carry perspective-correct barycentrics.
+pub const PERSPECTIVE_BARYCENTRICS: Need = needs(
+    |p| p.features.perspective_barycentrics,
+    "no perspective-correct barycentrics",
+);
+/// Fragments carry screen-space barycentrics.
+pub const SCREEN_BARYCENTRICS: Need =
+    needs(|p| p.features.screen_barycentrics, "no screen-space barycentrics");
+/// Depth is z/w interpolated linearly in screen space.
+pub const Z_OVER_W_DEPTH: Need = needs(
+    |p| p.depth == DepthConvention::ScreenLinearZOverW,
+    "depth is not z/w linear in screen space",
+);
+/// The depth test is implemented.
+pub const DEPTH_TEST: Need = needs(|p| p.features.depth_test, "no depth test");
+/// Culling by facing is implemented.
+pub const CULLING: Need = needs(|p| p.features.culling, "no culling");
+/// Far-plane clipping can be switched on.
+pub const FAR_CLIPPING: Need = needs(|p| p.features.far_clipping, "no far-plane clipping");
+/// The OpenGL `−w ≤ z` clip volume is supported.
+pub const GL_DEPTH_RANGE: Need = needs(|p| p.features.negative_one_to_one, "no −w ≤ z clip volume");
+/// x/y clipping never moves an edge inside the viewport.
+pub const GUARD_BAND: Need = needs(
+    |p| p.features.guard_band,
+    "x/y clipping may move edges (no guard band)",
+);
+/// Subpixel bits the reference can reproduce, for exact rules.
+pub const REFERENCE_BITS: Need = needs(
+    |p| SubpixelBits::new(p.subpixel_bits).is_ok(),
+    "the reference supports 1..=8 subpixel bits only",
+);
 
 /// Every rule, in catalogue order.
 #[must_use]
@@ -112,4 +267,17 @@ pub fn catalogue() -> Vec<Rule> {
     rules.extend(meta::rules());
     rules.extend(robust::rules());
     rules
+}
+
+/// The catalogue as the README's Markdown table: `| rule | kind | sentence |`, one row per rule.
+#[must_use]
+pub fn markdown_table() -> String {
+    let mut table = String::from("| rule | kind | sentence |\n|---|---|---|");
+    for rule in catalogue() {
+        table.push_str(&format!(
+            "\n| `{}` | {} | {} |",
+            rule.id, rule.kind, rule.sentence
+        ));
+    }
+    table
 }

@@ -4,7 +4,7 @@ use proptest::prelude::*;
 use refrast::{Fragment, Rasterizer};
 
 use super::common::{compare_sets, fragments};
-use super::{Family, Kind, Rule, always};
+use super::{Family, Rule};
 use crate::runner::property;
 use crate::scene::Scene;
 use crate::strategy;
@@ -32,7 +32,7 @@ impl std::fmt::Debug for Poisoned {
     }
 }
 
-impl crate::runner::Case for Poisoned {
+impl crate::scene::Case for Poisoned {
     /// Drops any triangle but the poisoned one (triangle 0).
     fn reductions(&self) -> Vec<Self> {
         (1..self.scene.triangles.len())
@@ -51,46 +51,26 @@ impl crate::runner::Case for Poisoned {
 
 pub(super) fn rules() -> Vec<Rule> {
     vec![
-        Rule {
-            id: "robust.non-finite.discarded",
-            family: Family::Robust,
-            kind: Kind::Invariant,
-            sentence: "A NaN or infinite coordinate discards its triangle and nothing else, without an error.",
-            source: "D3D11.3 §3.3.1 (NaN positions are discarded); design.md",
-            default_cases: 3000,
-            applies: always,
-            run: |r, cfg| property(r, cfg, poisoned(), check_poisoned),
-        },
-        Rule {
-            id: "robust.bit-patterns.sane-output",
-            family: Family::Robust,
-            kind: Kind::Invariant,
-            sentence: "Arbitrary f32 bit patterns (NaN, Inf, subnormal, huge, w = 0) give no panic, no error, and only well-formed fragments.",
-            source: "zeno #1, raqote #107, tiny-skia #112 (ecosystem.md); D3D11.3 §3.3.1",
-            default_cases: 20000,
-            applies: always,
-            run: |r, cfg| property(r, cfg, bit_pattern_scene(), check_well_formed),
-        },
-        Rule {
-            id: "robust.output.well-formed",
-            family: Family::Robust,
-            kind: Kind::Invariant,
-            sentence: "Fragments lie in the viewport, name a real primitive, cover a pixel at most once per primitive, and have depth in [0, 1].",
-            source: "design.md (what must be observable)",
-            default_cases: 5000,
-            applies: always,
-            run: |r, cfg| property(r, cfg, strategy::crossing_scene(), check_well_formed),
-        },
-        Rule {
-            id: "robust.bad-index.error",
-            family: Family::Robust,
-            kind: Kind::Invariant,
-            sentence: "A triangle naming a vertex that does not exist makes the draw fail with an error, not a panic.",
-            source: "design.md (bad input gets a clear error)",
-            default_cases: 1000,
-            applies: always,
-            run: |r, cfg| property(r, cfg, bad_index_scene(), check_bad_index),
-        },
+        Rule::invariant(Family::Robust, "robust.non-finite.discarded")
+            .sentence("A NaN or infinite coordinate discards its triangle and nothing else, without an error.")
+            .source("D3D11.3 §3.3.1 (NaN positions are discarded); design.md")
+            .cases(3000)
+            .run(|r, cfg| property(r, cfg, poisoned(), check_poisoned)),
+        Rule::invariant(Family::Robust, "robust.bit-patterns.sane-output")
+            .sentence("Arbitrary f32 bit patterns (NaN, Inf, subnormal, huge, w = 0) give no panic, no error, and only well-formed fragments.")
+            .source("zeno #1, raqote #107, tiny-skia #112 (ecosystem.md); D3D11.3 §3.3.1")
+            .cases(20000)
+            .run(|r, cfg| property(r, cfg, bit_pattern_scene(), check_well_formed)),
+        Rule::invariant(Family::Robust, "robust.output.well-formed")
+            .sentence("Fragments lie in the viewport, name a real primitive, cover a pixel at most once per primitive, and have depth in [0, 1].")
+            .source("design.md (what must be observable)")
+            .cases(5000)
+            .run(|r, cfg| property(r, cfg, strategy::crossing_scene(), check_well_formed)),
+        Rule::invariant(Family::Robust, "robust.bad-index.error")
+            .sentence("A triangle naming a vertex that does not exist makes the draw fail with an error, not a panic.")
+            .source("design.md (bad input gets a clear error)")
+            .cases(1000)
+            .run(|r, cfg| property(r, cfg, bad_index_scene(), check_bad_index)),
     ]
 }
 

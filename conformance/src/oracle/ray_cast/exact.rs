@@ -9,9 +9,10 @@
 use num_bigint::{BigInt, Sign};
 use num_rational::BigRational;
 use num_traits::{Float, ToPrimitive, Zero};
-use refrast::{DepthRange, DrawState};
+use refrast::DrawState;
 
-use super::ray_cast::Hit;
+use super::Hit;
+use crate::oracle::raster::{near_distance, window_depth};
 
 /// `xs` times one power of two `2^-e`, with `e ≤ 0` the smallest exponent among them, so that
 /// all are integers; `None` if any is not finite.
@@ -45,7 +46,7 @@ fn ratio(n: &BigInt, d: &BigInt) -> Option<f64> {
     BigRational::new_raw(n.clone(), d.clone()).to_f64()
 }
 
-/// [`super::ray_cast::ray_cast`] decided exactly; `None` for non-finite input.
+/// [`super::ray_cast`] decided exactly; `None` for non-finite input.
 pub(super) fn ray_cast_exact(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Option<Hit> {
     let flat: Vec<f64> = tri.iter().flatten().copied().collect();
     let (p, _) = common_scale(&flat)?;
@@ -69,22 +70,17 @@ pub(super) fn ray_cast_exact(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &Draw
     let non_negative = |x: &BigInt| x.is_zero() || positive(x);
     let weighted = |k: usize| &n[0] * c(0, k) + &n[1] * c(1, k) + &n[2] * c(2, k);
     let (z, w) = (weighted(2), weighted(3));
-    let near = match state.depth_range {
-        DepthRange::ZeroToOne => non_negative(&z),
-        DepthRange::NegativeOneToOne => non_negative(&(&z + &w)),
-    };
+    let near = non_negative(&near_distance(state.depth_range, z.clone(), w.clone()));
     let beyond_far = state.clip_far && positive(&(&z - &w));
     if !n.iter().all(non_negative) || !positive(&w) || !near || beyond_far {
         return None;
     }
     let zw = ratio(&z, &w)?;
-    let depth = match state.depth_range {
-        DepthRange::ZeroToOne => zw,
-        DepthRange::NegativeOneToOne => (zw + 1.0) * 0.5,
-    };
+    let depth = window_depth(state.depth_range, zw);
     Some(Hit {
         barycentric: [ratio(&n[0], &d)?, ratio(&n[1], &d)?, ratio(&n[2], &d)?],
         depth,
+        clockwise: sign == Sign::Minus,
     })
 }
 
@@ -92,6 +88,7 @@ pub(super) fn ray_cast_exact(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &Draw
 mod tests {
     use num_traits::Signed;
     use proptest::prelude::*;
+    use refrast::DepthRange;
 
     use super::*;
 
@@ -120,21 +117,16 @@ mod tests {
         }
         let at = |k: usize| &b[0] * &p[0][k] + &b[1] * &p[1][k] + &b[2] * &p[2][k];
         let (z, w) = (at(2), at(3));
-        let near = match state.depth_range {
-            DepthRange::ZeroToOne => !z.is_negative(),
-            DepthRange::NegativeOneToOne => !(&z + &w).is_negative(),
-        };
+        let near = !near_distance(state.depth_range, z.clone(), w.clone()).is_negative();
         if !w.is_positive() || !near || (state.clip_far && z > w) {
             return None;
         }
         let zw = (&z / &w).to_f64()?;
-        let depth = match state.depth_range {
-            DepthRange::ZeroToOne => zw,
-            DepthRange::NegativeOneToOne => (zw + 1.0) * 0.5,
-        };
+        let depth = window_depth(state.depth_range, zw);
         Some(Hit {
             barycentric: [b[0].to_f64()?, b[1].to_f64()?, b[2].to_f64()?],
             depth,
+            clockwise: d.is_negative(),
         })
     }
 
@@ -183,7 +175,9 @@ mod tests {
             hit,
             Hit {
                 barycentric: [1.0, 0.0, 0.0],
-                depth: 0.25
+                depth: 0.25,
+                // Counter-clockwise in NDC with y up, so counter-clockwise on screen too.
+                clockwise: false,
             }
         );
         assert_eq!(

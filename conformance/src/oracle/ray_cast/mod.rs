@@ -6,7 +6,11 @@
 //! `bᵢ ≥ 0`, `w > 0` and it lies inside the near (and far) plane. No clipping is involved, so
 //! this works for triangles crossing `w = 0` as it does for any other.
 
-use refrast::{DepthRange, DrawState};
+mod exact;
+
+use refrast::DrawState;
+
+use super::raster::{near_distance, window_depth};
 
 /// Where the ray through a sample meets a triangle.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -15,6 +19,9 @@ pub struct Hit {
     pub barycentric: [f64; 3],
     /// Window depth of the hit point, unclamped.
     pub depth: f64,
+    /// Whether the triangle's visible part turns clockwise on screen: `det[x y w] < 0`, which
+    /// the hit decides exactly (the solve's denominator has that determinant's sign).
+    pub clockwise: bool,
 }
 
 /// Casts the ray through NDC point `(nx, ny)` at the clip-space triangle `tri`.
@@ -22,12 +29,12 @@ pub struct Hit {
 /// `None` when it misses, the hit is behind the eye or outside the near (or enabled far)
 /// plane, or the triangle is seen edge-on. Every decision is exact: f64 first, with a forward
 /// error bound on each sign; when a sign is within its bound of zero (a sample on an edge, a
-/// triangle nearly edge-on), the same solve runs again in exact integers ([`super::exact`]).
+/// triangle nearly edge-on), the same solve runs again in exact integers.
 #[must_use]
 pub fn ray_cast(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Option<Hit> {
     match ray_cast_f64(tri, nx, ny, state) {
         Filtered::Sure(hit) => hit,
-        Filtered::Unsure => super::exact::ray_cast_exact(tri, nx, ny, state),
+        Filtered::Unsure => exact::ray_cast_exact(tri, nx, ny, state),
     }
 }
 
@@ -73,6 +80,14 @@ fn add(a: Bounded, b: Bounded) -> Bounded {
     }
 }
 
+impl std::ops::Add for Bounded {
+    type Output = Self;
+
+    fn add(self, other: Self) -> Self {
+        add(self, other)
+    }
+}
+
 fn mul(a: Bounded, b: Bounded) -> Bounded {
     let v = a.v * b.v;
     Bounded {
@@ -98,10 +113,7 @@ fn ray_cast_f64(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Fil
         )
     };
     let (nz, nw) = (weighted(2), weighted(3));
-    let near = match state.depth_range {
-        DepthRange::ZeroToOne => nz,
-        DepthRange::NegativeOneToOne => add(nz, nw),
-    };
+    let near = near_distance(state.depth_range, nz, nw);
     let far = sub(nw, nz);
     let mut signs = vec![d, n[0], n[1], n[2], nw, near];
     if state.clip_far {
@@ -120,146 +132,18 @@ fn ray_cast_f64(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Fil
         return Filtered::Sure(None);
     }
     let (z, w) = (nz.v / d.v, nw.v / d.v);
-    let depth = match state.depth_range {
-        DepthRange::ZeroToOne => z / w,
-        DepthRange::NegativeOneToOne => (z / w + 1.0) * 0.5,
-    };
+    let depth = window_depth(state.depth_range, z / w);
     Filtered::Sure(Some(Hit {
         barycentric: n.map(|ni| ni.v / d.v),
         depth,
+        clockwise: d.v < 0.0,
     }))
-}
-
-/// A clip plane as a signed distance: a point is kept when it is `≥ 0`.
-type PlaneDistance<'a> = Box<dyn Fn(&[f64; 4]) -> f64 + 'a>;
-
-/// A vertex of a triangle's visible outline in raster space.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct OutlinePoint {
-    /// Raster position, or a raster direction when the point lies at infinity (`w` ≈ 0).
-    pub position: [f64; 2],
-    /// Whether `position` is a point (true) or a direction (false).
-    pub finite: bool,
-    /// Bit k set when the point lies on the triangle's edge k (from vertex k to vertex k+1).
-    pub edges: u8,
-}
-
-/// The visible part of `tri` in raster space: clipped at `w > 0`, the near and (when enabled)
-/// far planes, then projected. Each point records which triangle edges it lies on, so an
-/// outline segment is known to be part of an input edge or a cut made by a plane.
-#[must_use]
-pub fn visible_outline(tri: &[[f64; 4]; 3], width: u32, height: u32, state: &DrawState) -> Vec<OutlinePoint> {
-    // Vertex k lies on edges k and k−1.
-    let mut poly: Vec<([f64; 4], u8)> = (0..3)
-        .map(|k| (tri[k], (1 << k) | (1 << ((k + 2) % 3))))
-        .collect();
-    let near = |p: &[f64; 4]| match state.depth_range {
-        DepthRange::ZeroToOne => p[2],
-        DepthRange::NegativeOneToOne => p[2] + p[3],
-    };
-    let mut planes: Vec<PlaneDistance<'_>> = vec![Box::new(|p: &[f64; 4]| p[3]), Box::new(near)];
-    if state.clip_far {
-        planes.push(Box::new(|p: &[f64; 4]| p[3] - p[2]));
-    }
-    for plane in &planes {
-        let mut out = Vec::with_capacity(poly.len() + 1);
-        for i in 0..poly.len() {
-            let ((a, ea), (b, eb)) = (poly[i], poly[(i + 1) % poly.len()]);
-            let (da, db) = (plane(&a), plane(&b));
-            if da >= 0.0 {
-                out.push((a, ea));
-            }
-            if (da >= 0.0) != (db >= 0.0) {
-                let t = da / (da - db);
-                // A cut point lies on whatever input edge the cut segment lies on.
-                out.push(([0, 1, 2, 3].map(|k| a[k] + (b[k] - a[k]) * t), ea & eb));
-            }
-        }
-        poly = out;
-        if poly.is_empty() {
-            return Vec::new();
-        }
-    }
-    let (w, h) = (f64::from(width), f64::from(height));
-    let scale = poly.iter().map(|(p, _)| p[3].abs()).fold(0.0, f64::max);
-    poly.iter()
-        .map(|&(p, edges)| {
-            let finite = p[3] > 1e-12 * scale;
-            let position = if finite {
-                [(p[0] / p[3] + 1.0) * 0.5 * w, (1.0 - p[1] / p[3]) * 0.5 * h]
-            } else {
-                // A point at infinity: keep its direction in raster orientation.
-                [p[0] * w, -p[1] * h]
-            };
-            OutlinePoint {
-                position,
-                finite,
-                edges,
-            }
-        })
-        .collect()
-}
-
-impl OutlinePoint {
-    /// Whether clipping made this point (an input vertex lies on two input edges, a cut on fewer).
-    #[must_use]
-    pub fn is_cut(&self) -> bool {
-        self.edges.count_ones() < 2
-    }
-}
-
-/// Distance in pixels from `s` to the outline segments `a → b` for which `keep(a, b)` holds;
-/// `a.edges & b.edges` is the set of input edges a segment lies on (0 for a cut by a plane).
-#[must_use]
-pub fn distance_to_outline(
-    outline: &[OutlinePoint],
-    s: [f64; 2],
-    keep: impl Fn(&OutlinePoint, &OutlinePoint) -> bool,
-) -> f64 {
-    let n = outline.len();
-    let mut best = f64::INFINITY;
-    for i in 0..n {
-        let (a, b) = (outline[i], outline[(i + 1) % n]);
-        if !keep(&a, &b) {
-            continue;
-        }
-        let d = match (a.finite, b.finite) {
-            (true, true) => segment_distance(a.position, b.position, s),
-            // From a finite point towards infinity: the ray a + t·dir.
-            (true, false) => ray_distance(a.position, b.position, s),
-            (false, true) => ray_distance(b.position, a.position, s),
-            (false, false) => f64::INFINITY,
-        };
-        best = best.min(d);
-    }
-    best
-}
-
-/// Distance from `s` to the segment `a b`, in the points' units.
-#[must_use]
-pub fn segment_distance(a: [f64; 2], b: [f64; 2], s: [f64; 2]) -> f64 {
-    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-    let len2 = dx * dx + dy * dy;
-    let t = if len2 > 0.0 {
-        (((s[0] - a[0]) * dx + (s[1] - a[1]) * dy) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (s[0] - a[0] - t * dx).hypot(s[1] - a[1] - t * dy)
-}
-
-fn ray_distance(a: [f64; 2], dir: [f64; 2], s: [f64; 2]) -> f64 {
-    let len2 = dir[0] * dir[0] + dir[1] * dir[1];
-    if len2 == 0.0 {
-        return (s[0] - a[0]).hypot(s[1] - a[1]);
-    }
-    let t = (((s[0] - a[0]) * dir[0] + (s[1] - a[1]) * dir[1]) / len2).max(0.0);
-    (s[0] - a[0] - t * dir[0]).hypot(s[1] - a[1] - t * dir[1])
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::oracle::raster::sample_ndc;
 
     #[test]
     fn a_ray_through_the_centroid_has_equal_barycentrics_when_w_is_equal() {
@@ -285,6 +169,27 @@ mod tests {
     }
 
     #[test]
+    fn the_hit_knows_which_way_the_triangle_turns_for_any_signs_of_w() {
+        // Left, right, top in NDC: counter-clockwise on screen. Reversed: clockwise.
+        let ccw = [
+            [-0.5, -0.5, 0.5, 1.0],
+            [0.5, -0.5, 0.5, 1.0],
+            [0.0, 0.5, 0.5, 1.0],
+        ];
+        let cw = [ccw[0], ccw[2], ccw[1]];
+        let state = DrawState::default();
+        assert!(!ray_cast(&ccw, 0.0, 0.0, &state).unwrap().clockwise);
+        assert!(ray_cast(&cw, 0.0, 0.0, &state).unwrap().clockwise);
+        // With the top vertex behind the eye (w < 0), the visible part is the wedge from a → b
+        // down to infinity: a, b, then down, which turns clockwise on screen.
+        let mut behind = ccw;
+        behind[2] = [0.0, -0.5, 0.5, -1.0];
+        let hit = ray_cast(&behind, 0.0, -0.9, &state).expect("the wedge holds this sample");
+        assert!(hit.clockwise);
+        assert!(ray_cast(&behind, 0.0, 0.0, &state).is_none());
+    }
+
+    #[test]
     fn triangles_behind_the_eye_are_missed() {
         let tri = [
             [0.5, 0.5, 0.5, -1.0],
@@ -294,7 +199,6 @@ mod tests {
         for (nx, ny) in [(0.0, 0.0), (-0.5, -0.2), (0.3, 0.1)] {
             assert!(ray_cast(&tri, nx, ny, &DrawState::default()).is_none());
         }
-        assert!(visible_outline(&tri, 8, 8, &DrawState::default()).is_empty());
     }
 
     fn hits(tri: [[f32; 4]; 3], w: u32, h: u32) -> usize {
@@ -302,8 +206,7 @@ mod tests {
         let mut n = 0;
         for y in 0..h {
             for x in 0..w {
-                let nx = (f64::from(x) + 0.5) / f64::from(w) * 2.0 - 1.0;
-                let ny = 1.0 - (f64::from(y) + 0.5) / f64::from(h) * 2.0;
+                let (nx, ny) = sample_ndc(w, h, x, y);
                 n += usize::from(ray_cast(&tri, nx, ny, &DrawState::default()).is_some());
             }
         }

@@ -1,0 +1,163 @@
+//! A triangle's visible outline in raster space, and distances to it.
+//!
+//! The outline is what the tolerance band is measured from (boundary edges and cuts made by
+//! clip planes) and what pictures draw. It is clipped at `w > 0` and the near (and far) plane,
+//! never at the viewport, and every point knows which input edges it lies on.
+
+use refrast::DrawState;
+
+use super::raster::{near_distance, project};
+
+/// A clip plane as a signed distance: a point is kept when it is `≥ 0`.
+type PlaneDistance<'a> = Box<dyn Fn(&[f64; 4]) -> f64 + 'a>;
+
+/// A vertex of a triangle's visible outline in raster space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OutlinePoint {
+    /// Raster position, or a raster direction when the point lies at infinity (`w` ≈ 0).
+    pub position: [f64; 2],
+    /// Whether `position` is a point (true) or a direction (false).
+    pub finite: bool,
+    /// Bit k set when the point lies on the triangle's edge k (from vertex k to vertex k+1).
+    pub edges: u8,
+}
+
+/// The visible part of `tri` in raster space: clipped at `w > 0`, the near and (when enabled)
+/// far planes, then projected. Each point records which triangle edges it lies on, so an
+/// outline segment is known to be part of an input edge or a cut made by a plane.
+#[must_use]
+pub fn visible_outline(tri: &[[f64; 4]; 3], width: u32, height: u32, state: &DrawState) -> Vec<OutlinePoint> {
+    // Vertex k lies on edges k and k−1.
+    let mut poly: Vec<([f64; 4], u8)> = (0..3)
+        .map(|k| (tri[k], (1 << k) | (1 << ((k + 2) % 3))))
+        .collect();
+    let near = |p: &[f64; 4]| near_distance(state.depth_range, p[2], p[3]);
+    let mut planes: Vec<PlaneDistance<'_>> = vec![Box::new(|p: &[f64; 4]| p[3]), Box::new(near)];
+    if state.clip_far {
+        planes.push(Box::new(|p: &[f64; 4]| p[3] - p[2]));
+    }
+    for plane in &planes {
+        let mut out = Vec::with_capacity(poly.len() + 1);
+        for i in 0..poly.len() {
+            let ((a, ea), (b, eb)) = (poly[i], poly[(i + 1) % poly.len()]);
+            let (da, db) = (plane(&a), plane(&b));
+            if da >= 0.0 {
+                out.push((a, ea));
+            }
+            if (da >= 0.0) != (db >= 0.0) {
+                let t = da / (da - db);
+                // A cut point lies on whatever input edge the cut segment lies on.
+                out.push(([0, 1, 2, 3].map(|k| a[k] + (b[k] - a[k]) * t), ea & eb));
+            }
+        }
+        poly = out;
+        if poly.is_empty() {
+            return Vec::new();
+        }
+    }
+    let (w, h) = (f64::from(width), f64::from(height));
+    let scale = poly.iter().map(|(p, _)| p[3].abs()).fold(0.0, f64::max);
+    poly.iter()
+        .map(|&(p, edges)| {
+            let finite = p[3] > 1e-12 * scale;
+            let position = if finite {
+                project(width, height, p)
+            } else {
+                // A point at infinity: keep its direction in raster orientation.
+                [p[0] * w, -p[1] * h]
+            };
+            OutlinePoint {
+                position,
+                finite,
+                edges,
+            }
+        })
+        .collect()
+}
+
+impl OutlinePoint {
+    /// Whether clipping made this point (an input vertex lies on two input edges, a cut on fewer).
+    #[must_use]
+    pub fn is_cut(&self) -> bool {
+        self.edges.count_ones() < 2
+    }
+}
+
+/// Distance in pixels from `s` to the outline segments `a → b` for which `keep(a, b)` holds;
+/// `a.edges & b.edges` is the set of input edges a segment lies on (0 for a cut by a plane).
+#[must_use]
+pub fn distance_to_outline(
+    outline: &[OutlinePoint],
+    s: [f64; 2],
+    keep: impl Fn(&OutlinePoint, &OutlinePoint) -> bool,
+) -> f64 {
+    let n = outline.len();
+    let mut best = f64::INFINITY;
+    for i in 0..n {
+        let (a, b) = (outline[i], outline[(i + 1) % n]);
+        if !keep(&a, &b) {
+            continue;
+        }
+        let d = match (a.finite, b.finite) {
+            (true, true) => segment_distance(a.position, b.position, s),
+            // From a finite point towards infinity: the ray a + t·dir.
+            (true, false) => ray_distance(a.position, b.position, s),
+            (false, true) => ray_distance(b.position, a.position, s),
+            (false, false) => f64::INFINITY,
+        };
+        best = best.min(d);
+    }
+    best
+}
+
+/// Distance from `s` to the segment `a b`, in the points' units.
+#[must_use]
+pub fn segment_distance(a: [f64; 2], b: [f64; 2], s: [f64; 2]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let len2 = dx * dx + dy * dy;
+    let t = if len2 > 0.0 {
+        (((s[0] - a[0]) * dx + (s[1] - a[1]) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (s[0] - a[0] - t * dx).hypot(s[1] - a[1] - t * dy)
+}
+
+fn ray_distance(a: [f64; 2], dir: [f64; 2], s: [f64; 2]) -> f64 {
+    let len2 = dir[0] * dir[0] + dir[1] * dir[1];
+    if len2 == 0.0 {
+        return (s[0] - a[0]).hypot(s[1] - a[1]);
+    }
+    let t = (((s[0] - a[0]) * dir[0] + (s[1] - a[1]) * dir[1]) / len2).max(0.0);
+    (s[0] - a[0] - t * dir[0]).hypot(s[1] - a[1] - t * dir[1])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_triangle_behind_the_eye_has_no_visible_outline() {
+        let tri = [
+            [0.5, 0.5, 0.5, -1.0],
+            [-0.5, 0.5, 0.5, -1.0],
+            [0.0, -0.5, 0.5, -1.0],
+        ];
+        assert!(visible_outline(&tri, 8, 8, &DrawState::default()).is_empty());
+    }
+
+    #[test]
+    fn a_cut_by_the_near_plane_lies_on_fewer_than_two_input_edges() {
+        // Vertex 2 before the near plane (z < 0): edges 1 (1→2) and 2 (2→0) are cut.
+        let tri = [
+            [-0.5, -0.5, 0.5, 1.0],
+            [0.5, -0.5, 0.5, 1.0],
+            [0.0, 0.5, -0.5, 1.0],
+        ];
+        let outline = visible_outline(&tri, 8, 8, &DrawState::default());
+        assert_eq!(outline.len(), 4);
+        assert_eq!(outline.iter().filter(|p| p.is_cut()).count(), 2);
+        // The cut runs along y = 0 in NDC, raster row 4: a sample on it is 0 px away.
+        assert!(distance_to_outline(&outline, [4.0, 4.0], |a, b| a.is_cut() && b.is_cut()) < 1e-12);
+    }
+}

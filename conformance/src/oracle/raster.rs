@@ -1,0 +1,134 @@
+//! Raster-space geometry for the oracles and the rules, written apart from the reference.
+//!
+//! The viewport transform and its inverse, pixel centres, snapping, the near plane and window
+//! depth, each once. They restate refrast's conventions (`src/lib.rs`) without calling its code,
+//! so that a slip in the reference cannot hide in its own oracle.
+
+use std::ops::Add;
+
+use refrast::DepthRange;
+
+/// A point in subpixel units.
+pub type Point = (i128, i128);
+
+/// NDC to raster space: `x = (x_ndc + 1)/2 · W`, `y = (1 − y_ndc)/2 · H` (y points down).
+#[must_use]
+pub fn to_raster(width: u32, height: u32, nx: f64, ny: f64) -> [f64; 2] {
+    [
+        (nx + 1.0) * 0.5 * f64::from(width),
+        (1.0 - ny) * 0.5 * f64::from(height),
+    ]
+}
+
+/// Raster space to NDC, the inverse of [`to_raster`].
+#[must_use]
+pub fn to_ndc(width: u32, height: u32, x: f64, y: f64) -> (f64, f64) {
+    (
+        x / f64::from(width) * 2.0 - 1.0,
+        1.0 - y / f64::from(height) * 2.0,
+    )
+}
+
+/// A clip-space point projected to raster space (divided by its `w`, which must not be 0).
+#[must_use]
+pub fn project(width: u32, height: u32, p: [f64; 4]) -> [f64; 2] {
+    to_raster(width, height, p[0] / p[3], p[1] / p[3])
+}
+
+/// The sample of pixel `(x, y)`: its centre, `(x + ½, y + ½)`.
+#[must_use]
+pub fn sample_centre(x: u32, y: u32) -> [f64; 2] {
+    [f64::from(x) + 0.5, f64::from(y) + 0.5]
+}
+
+/// NDC of pixel `(x, y)`'s sample.
+#[must_use]
+pub fn sample_ndc(width: u32, height: u32, x: u32, y: u32) -> (f64, f64) {
+    let [sx, sy] = sample_centre(x, y);
+    to_ndc(width, height, sx, sy)
+}
+
+/// Snaps a clip-space position (`w > 0`) to the grid of `2^-bits` pixel, rounding half to even;
+/// `None` when it does not project to a finite point.
+#[must_use]
+pub fn snap(p: [f32; 4], width: u32, height: u32, bits: u8) -> Option<Point> {
+    let [x, y, _, w] = p.map(f64::from);
+    if w.is_nan() || w <= 0.0 {
+        return None;
+    }
+    let scale = f64::from(1u32 << bits);
+    let [rx, ry] = to_raster(width, height, x / w, y / w).map(|c| c * scale);
+    (rx.is_finite() && ry.is_finite()).then(|| (rx.round_ties_even() as i128, ry.round_ties_even() as i128))
+}
+
+/// The signed distance to the near plane, inside when `≥ 0`: `z`, or `z + w` for the
+/// OpenGL `−w ≤ z` volume. Generic, so the f64, error-bounded and exact oracles share it.
+#[must_use]
+pub fn near_distance<T: Add<Output = T>>(range: DepthRange, z: T, w: T) -> T {
+    match range {
+        DepthRange::ZeroToOne => z,
+        DepthRange::NegativeOneToOne => z + w,
+    }
+}
+
+/// Window depth from `z/w`: itself, or `(z/w + 1)/2` for the OpenGL range.
+#[must_use]
+pub fn window_depth(range: DepthRange, z_over_w: f64) -> f64 {
+    match range {
+        DepthRange::ZeroToOne => z_over_w,
+        DepthRange::NegativeOneToOne => (z_over_w + 1.0) * 0.5,
+    }
+}
+
+/// Whether every vertex lies inside the clip volume (`w > 0`, near, far when enabled, and
+/// `|x|, |y| ≤ w`), so that no implementation clips the triangle.
+#[must_use]
+pub fn unclipped(p: &[[f32; 4]; 3], range: DepthRange, far: bool) -> bool {
+    p.iter().all(|&[x, y, z, w]| {
+        w > 0.0 && near_distance(range, z, w) >= 0.0 && (!far || z <= w) && x.abs() <= w && y.abs() <= w
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_transform_and_its_inverse_agree_on_sample_centres() {
+        for (w, h) in [(16, 16), (7, 13), (64, 32)] {
+            for (x, y) in [(0, 0), (3, 5), (w - 1, h - 1)] {
+                let (nx, ny) = sample_ndc(w, h, x, y);
+                let [rx, ry] = to_raster(w, h, nx, ny);
+                let [sx, sy] = sample_centre(x, y);
+                // Exact on power-of-two sides; a rounding or two otherwise.
+                assert!(
+                    (rx - sx).abs() < 1e-12 && (ry - sy).abs() < 1e-12,
+                    "{w}×{h} ({x}, {y})"
+                );
+                if w.is_power_of_two() && h.is_power_of_two() {
+                    assert_eq!([rx, ry], [sx, sy]);
+                }
+            }
+        }
+        // NDC (−1, 1) is the top-left corner, (1, −1) the bottom-right.
+        assert_eq!(to_raster(8, 4, -1.0, 1.0), [0.0, 0.0]);
+        assert_eq!(to_raster(8, 4, 1.0, -1.0), [8.0, 4.0]);
+    }
+
+    #[test]
+    fn snapping_rounds_half_to_even_and_needs_positive_w() {
+        // Raster x = 0.5 + 1/512 px lies halfway between 1/256 px steps 128 and 129.
+        let nx = ((0.5 + 1.0 / 512.0) / 8.0 * 2.0 - 1.0) as f32;
+        assert_eq!(snap([nx, 1.0, 0.0, 1.0], 8, 8, 8), Some((128, 0)));
+        assert_eq!(snap([0.0, 0.0, 0.0, 0.0], 8, 8, 8), None);
+        assert_eq!(snap([0.0, 0.0, 0.0, -1.0], 8, 8, 8), None);
+    }
+
+    #[test]
+    fn the_gl_range_moves_the_near_plane_to_minus_w() {
+        assert_eq!(near_distance(DepthRange::ZeroToOne, -0.5, 1.0), -0.5);
+        assert_eq!(near_distance(DepthRange::NegativeOneToOne, -0.5, 1.0), 0.5);
+        assert_eq!(window_depth(DepthRange::NegativeOneToOne, -1.0), 0.0);
+        assert_eq!(window_depth(DepthRange::ZeroToOne, 0.25), 0.25);
+    }
+}

@@ -1,0 +1,52 @@
+//! `meta.facing.from-winding` judges clipped triangles too: facing taken from the triangle's
+//! vertices divided by `w`, even a negative one, is wrong once a vertex is behind the eye.
+
+use refrast::{Draw, DrawError, Fragment, FrontFace, Profile, Rasterizer, Reference};
+use refrast_conformance::{Options, Status, certify};
+
+/// The reference, except that facing comes from the projected input vertices, a negative `w`
+/// included: the visible part of a triangle with a vertex behind the eye gets the wrong facing.
+struct FacingByDivision;
+
+impl Rasterizer for FacingByDivision {
+    fn profile(&self) -> Profile {
+        Profile {
+            name: "facing-by-division".into(),
+            ..Reference::default().profile()
+        }
+    }
+
+    fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+        let mut fragments = Reference::default().rasterize(draw)?;
+        for f in &mut fragments {
+            let p = draw.triangles[f.primitive as usize].map(|i| draw.positions[i as usize].map(f64::from));
+            let [a, b, c] = p.map(|v| [v[0] / v[3], v[1] / v[3]]);
+            // Positive in NDC (y up) is counter-clockwise on screen.
+            let ccw = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]) > 0.0;
+            f.front_facing = ccw == (draw.state.front_face == FrontFace::CounterClockwise);
+        }
+        Ok(fragments)
+    }
+}
+
+#[test]
+fn facing_of_a_triangle_reaching_behind_the_eye_is_judged() {
+    let options = Options {
+        rule: Some("meta.facing.from-winding".into()),
+        ..Options::default()
+    };
+    let report = certify(&mut FacingByDivision, &options, |_| {});
+    let rule = &report.rules[0];
+    assert_eq!(rule.status, Status::Fail, "{rule:#?}");
+    let input = rule.counterexample.as_deref().unwrap_or("");
+    // Position lines read `[x, y, z, w],`: one of them has w < 0.
+    let behind = input
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix('[')?.strip_suffix("],"))
+        .filter_map(|l| l.rsplit(", ").next()?.parse::<f32>().ok())
+        .any(|w| w < 0.0);
+    assert!(behind, "the counterexample has a vertex behind the eye:\n{input}");
+    // The same rule passes the reference, whose clipped triangles take det[x y w]'s sign.
+    let report = certify(&mut Reference::default(), &options, |_| {});
+    assert!(report.passed(), "{report:#?}");
+}

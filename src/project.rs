@@ -90,12 +90,13 @@ pub fn input_w(input: &[ClipVertex; 3]) -> Option<DVec3> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use glam::DVec4;
 
     use super::*;
 
-    fn transform() -> ViewportTransform {
+    /// An 8×8 viewport, 8 subpixel bits, Vulkan depth: the stages' unit tests share it.
+    pub(crate) fn transform() -> ViewportTransform {
         ViewportTransform {
             viewport: Viewport::new(8, 8).expect("8×8 is a valid viewport"),
             bits: SubpixelBits::DEFAULT,

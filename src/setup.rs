@@ -313,15 +313,7 @@ mod tests {
     use std::cell::Cell;
 
     use super::*;
-    use crate::depth::DepthRange;
-
-    fn transform() -> ViewportTransform {
-        ViewportTransform {
-            viewport: Viewport::new(8, 8).expect("8×8 is a valid viewport"),
-            bits: SubpixelBits::DEFAULT,
-            depth_range: DepthRange::ZeroToOne,
-        }
-    }
+    use crate::project::tests::transform;
 
     fn triangle(p: [[f32; 4]; 3]) -> [ClipVertex; 3] {
         [0, 1, 2].map(|k| ClipVertex::corner(p[k], k))

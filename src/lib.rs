@@ -10,7 +10,7 @@
 //!
 //! ```text
 //! assemble ─ snap before clipping (zero area?) ─ clip (near, far, guard band) ─ project and snap
-//!          ─ facing, cull ─ fan ─ traverse (bounding box × edge functions) ─ interpolate ─ depth
+//!          ─ fan ─ facing, cull ─ traverse (bounding box × edge functions) ─ interpolate ─ depth
 //! ```
 //!
 //! # The map
@@ -30,7 +30,7 @@
 //! | errors | `error.rs` | [`DrawError`], [`ConfigError`] |
 //! | clipping | `clip.rs` | [`stage::assemble`], [`stage::clip_triangle`], [`stage::clip_segment`], [`stage::clip_planes`] |
 //! | projection | `project.rs` | [`stage::ViewportTransform`], [`stage::RasterVertex`] |
-//! | setup, facing | `setup.rs` | [`stage::snap_before_clipping`], [`stage::clipped_winding`], [`Winding`], [`stage::TriangleSetup`] |
+//! | setup, facing | `setup.rs` | [`stage::snap_before_clipping`], [`stage::drawn_winding`], [`stage::clipped_winding`], [`Winding`], [`stage::TriangleSetup`] |
 //! | traversal | `traverse.rs` | [`stage::build_fan`], [`stage::traverse`], [`stage::PixelRect`] |
 //! | interpolation | `interp.rs` | [`stage::Varyings`], [`stage::interpolate`], [`stage::interpolate_depth`] |
 //! | lines, points | `line.rs` | [`stage::rasterize_line`], [`stage::rasterize_point`] |
@@ -38,8 +38,11 @@
 //! | mesh pipeline, PNG | `pipeline.rs` | [`pipeline::Renderer`], [`pipeline::Mesh`], [`pipeline::Framebuffer`] |
 //! | lab scenes | `scenes.rs` | [`scenes::SCENES`], [`scenes::render`] |
 //!
-//! PNG output uses the `image` crate behind the default feature `png`; a crate that needs only
-//! the contract and the reference can depend on refrast with `default-features = false`.
+//! The lab programs stay in this crate: they are the reference's own users and its executable
+//! spec (the golden scenes run through them), they need nothing but `glam`, and a crate of their
+//! own would only move the `image` dependency, which the suite needs anyway for its pictures.
+//! PNG output uses `image` behind the default feature `png`; a crate that needs only the
+//! contract and the reference depends on refrast with `default-features = false`.
 //!
 //! # Conventions
 //!
@@ -61,7 +64,8 @@
 //! - **Facing**: a triangle that needs no clipping turns as its snapped signed area says; a
 //!   clipped one as `−sign(det[x y w])` of its clip-space vertices says (Olano–Greer; the sign of
 //!   the visible part whatever the signs of `w`), falling back to the snapped polygon's area
-//!   when the determinant is too close to zero to be sure ([`stage::clipped_winding`]). Front
+//!   when the determinant is too close to zero to be sure ([`stage::drawn_winding`],
+//!   [`stage::clipped_winding`]). Front
 //!   face CCW by default, CW optional ([`FrontFace::is_front`]); culling by facing
 //!   ([`CullMode::culls`]).
 //! - **Clip volume**: `−w ≤ x, y ≤ w`, `0 ≤ z ≤ w` (or `−w ≤ z`, [`DepthRange`]). Near is always

@@ -8,7 +8,7 @@ use crate::fixed::SubpixelBits;
 use crate::interp::{Varyings, interpolate, interpolate_depth, screen_weights};
 use crate::project::{RasterVertex, ViewportTransform, input_w};
 use crate::rasterizer::{DepthConvention, Draw, Features, Fragment, Profile, Rasterizer};
-use crate::setup::{PixelRect, SnappedTriangle, Winding, ZeroArea, clipped_winding, snap_before_clipping};
+use crate::setup::{PixelRect, SnappedTriangle, ZeroArea, drawn_winding, snap_before_clipping};
 use crate::traverse::{FanTriangle, Hit, build_fan, traverse};
 
 /// Which pixels are tested against a triangle; both give identical output.
@@ -176,7 +176,8 @@ impl Reference {
         let input =
             assemble(&setup.draw.positions, setup.draw.triangles[primitive]).ok_or(Discard::NonFinite)?;
         let snapped = snap_before_clipping(&input, &setup.transform, self.config.fill)?;
-        let winding = self.clip_and_fan(&input, snapped, setup, scratch)?;
+        let clipped = self.clip_and_fan(&input, snapped, setup, scratch)?;
+        let winding = drawn_winding(&input, clipped, scratch.fan.iter().map(|t| &t.setup));
         let front_facing = state.front_face.is_front(winding).ok_or(Discard::Degenerate)?;
         if state.cull.culls(front_facing) {
             return Err(Discard::Culled);
@@ -201,14 +202,14 @@ impl Reference {
     }
 
     /// Clips the input and leaves what is drawn in `scratch`: the snapped polygon and its fan.
-    /// Returns the winding the polygon is drawn with.
+    /// Returns whether clipping cut it.
     fn clip_and_fan(
         &self,
         input: &[ClipVertex; 3],
         snapped: Option<SnappedTriangle>,
         setup: &DrawSetup<'_>,
         scratch: &mut Scratch,
-    ) -> Result<Winding, Discard> {
+    ) -> Result<bool, Discard> {
         match clip_triangle(input, &setup.planes, &mut scratch.polygon, &mut scratch.clip) {
             ClipOutcome::Outside => Err(Discard::ClippedAway),
             // Drawn as it is: snapped and set up once, before clipping.
@@ -216,7 +217,7 @@ impl Reference {
                 let triangle = snapped.ok_or(Discard::Degenerate)?;
                 set(&mut scratch.raster, &triangle.vertices);
                 set(&mut scratch.fan, &[FanTriangle::whole(triangle.setup)]);
-                Ok(triangle.setup.winding())
+                Ok(false)
             }
             ClipOutcome::Clipped => {
                 let (transform, raster) = (&setup.transform, &mut scratch.raster);
@@ -224,10 +225,7 @@ impl Reference {
                     return Err(Discard::Degenerate);
                 }
                 build_fan(raster, self.config.fill, &mut scratch.fan);
-                let fan = &scratch.fan;
-                Ok(clipped_winding(input, || {
-                    fan.iter().map(|t| t.setup.signed_area2()).sum()
-                }))
+                Ok(true)
             }
         }
     }

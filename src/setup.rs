@@ -12,7 +12,8 @@ use crate::fixed::{FixedPoint, SubpixelBits};
 use crate::project::{RasterVertex, ViewportTransform, input_w};
 use crate::viewport::Viewport;
 
-/// Which way a triangle turns as seen on screen, from the sign of its snapped [`orient2d`].
+/// Which way a triangle turns as seen on screen: the sign of its snapped [`orient2d`], or of
+/// `det[x y w]` when it is clipped ([`clipped_winding`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Winding {
     /// Clockwise on screen (positive `orient2d` with y down).
@@ -80,6 +81,23 @@ impl CullMode {
             Self::Front => front_facing,
             Self::Back => !front_facing,
         }
+    }
+}
+
+/// The winding a triangle is drawn with, given the setups of the fan it is drawn as: the one
+/// facing rule. Unclipped, the fan is the triangle itself, turning as its snapped area says;
+/// clipped, [`clipped_winding`] decides.
+pub fn drawn_winding<'a>(
+    input: &[ClipVertex; 3],
+    clipped: bool,
+    fan: impl Iterator<Item = &'a TriangleSetup>,
+) -> Winding {
+    if clipped {
+        clipped_winding(input, || fan.map(TriangleSetup::signed_area2).sum())
+    } else {
+        fan.map(TriangleSetup::winding)
+            .next()
+            .unwrap_or(Winding::Degenerate)
     }
 }
 

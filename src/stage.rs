@@ -8,8 +8,9 @@
 //!    draws nothing ([`snap_before_clipping`], [`ViewportTransform::project`]);
 //! 3. **clip** against the near (and far) plane and the guard band or viewport ([`clip_planes`],
 //!    [`clip_triangle`]), then project and snap the polygon left ([`ViewportTransform::project_polygon`]);
-//! 4. **fan** a clipped polygon ([`build_fan`]) and take its winding from the input
-//!    ([`clipped_winding`]); an unclipped triangle is its own fan ([`FanTriangle::whole`]);
+//! 4. **fan** a clipped polygon ([`build_fan`]); an unclipped triangle is its own fan
+//!    ([`FanTriangle::whole`]); the winding it is drawn with comes from one rule
+//!    ([`drawn_winding`]: the snapped area, or [`clipped_winding`] when clipped);
 //! 5. **face and cull** ([`FrontFace::is_front`](crate::FrontFace::is_front),
 //!    [`CullMode::culls`](crate::CullMode::culls));
 //! 6. **traverse** the bounding box ([`PixelRect::bounding`], [`traverse`]), edge values stepped
@@ -30,7 +31,7 @@ pub use crate::interp::{Barycentrics, Varyings, interpolate, interpolate_depth, 
 pub use crate::line::{LineFragment, LineVertex, rasterize_line, rasterize_point};
 pub use crate::project::{RasterVertex, ViewportTransform, input_w};
 pub use crate::setup::{
-    PixelRect, SnappedTriangle, TriangleSetup, ZeroArea, clipped_winding, snap_before_clipping,
+    PixelRect, SnappedTriangle, TriangleSetup, ZeroArea, clipped_winding, drawn_winding, snap_before_clipping,
 };
 pub use crate::traverse::{FanTriangle, Hit, build_fan, traverse};
 pub use crate::viewport::GUARD_BAND;

@@ -4,8 +4,8 @@ mod support;
 
 use refrast::stage::{ClipOutcome, ClipPlane, ClipVertex, clip_planes, clip_polygon, clip_triangle};
 use refrast::{ClipMode, DepthRange, Draw, Rasterizer, Reference, ReferenceConfig, Viewport};
-use refrast_conformance::oracle::brute_force;
 use refrast_conformance::oracle::ray_cast::ray_cast;
+use refrast_conformance::oracle::{brute_force, raster};
 
 fn viewport(size: u32) -> Viewport {
     Viewport::new(size, size).unwrap()
@@ -70,7 +70,7 @@ fn crossing_the_near_plane_keeps_exactly_the_part_in_front() {
     assert_eq!(got, want);
     for f in reference.rasterize(&draw).unwrap() {
         // Depth is z/w = x_ndc at the sample, linear in screen space.
-        let x_ndc = (f64::from(f.x) + 0.5) / 32.0 - 1.0;
+        let [x_ndc, _] = raster::sample_ndc(64, 64, f.x, f.y);
         assert!((f64::from(f.depth) - x_ndc).abs() < 1e-6, "{f:?}");
     }
 }
@@ -96,10 +96,7 @@ fn crossing_all_six_planes_leaves_the_slab_between_near_and_far() {
         assert_eq!(covered(&mut reference, &draw), want, "{clip:?}");
     }
     // The clipper itself: every vertex it leaves is inside all six planes, its barycentrics convex.
-    let tri = [0, 1, 2].map(|i| ClipVertex {
-        position: glam::DVec4::from(draw.positions[i].map(f64::from)),
-        barycentric: glam::DVec3::AXES[i],
-    });
+    let tri = [0, 1, 2].map(|i| ClipVertex::corner(draw.positions[i], i));
     let planes = clip_planes(ClipMode::Full, draw.viewport, true, DepthRange::ZeroToOne);
     let (mut polygon, mut scratch) = (Vec::new(), Vec::new());
     assert_eq!(
@@ -194,8 +191,7 @@ fn ray_cast_count(draw: &Draw) -> usize {
     let mut count = 0;
     for y in 0..h {
         for x in 0..w {
-            let nx = (f64::from(x) + 0.5) / f64::from(w) * 2.0 - 1.0;
-            let ny = 1.0 - (f64::from(y) + 0.5) / f64::from(h) * 2.0;
+            let [nx, ny] = raster::sample_ndc(w, h, x, y);
             let hits = tris
                 .iter()
                 .filter(|t| ray_cast(t, nx, ny, &draw.state).is_some())

@@ -10,6 +10,7 @@ use approx::assert_abs_diff_eq;
 use glam::{DVec2, Vec3};
 use refrast::scenes::{self, CLEAR};
 use refrast::{Rasterizer, Viewport};
+use refrast_conformance::oracle::raster;
 
 fn golden_path(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -76,8 +77,13 @@ fn check_png(test: &str, scene: &str) {
 fn lab_project(p: Vec3, width: f64, height: f64) -> DVec2 {
     let tan = 30f64.to_radians().tan();
     let (x, y, z) = (f64::from(p.x), f64::from(p.y), f64::from(p.z) + 10.0);
-    let ndc = DVec2::new(x / (width / height * tan * z), y / (tan * z));
-    DVec2::new((ndc.x + 1.0) / 2.0 * width, (1.0 - ndc.y) / 2.0 * height)
+    let (w, h) = (width as u32, height as u32);
+    DVec2::from(raster::to_raster(
+        w,
+        h,
+        x / (width / height * tan * z),
+        y / (tan * z),
+    ))
 }
 
 #[test]
@@ -164,7 +170,7 @@ fn rgb_colours_follow_the_barycentrics() {
     let mut checked = 0;
     for y in (0..480).step_by(5) {
         for x in (0..640).step_by(5) {
-            let p = DVec2::new(f64::from(x) + 0.5, f64::from(y) + 0.5);
+            let p = DVec2::from(raster::sample_centre(x, y));
             let weights =
                 [cross(v[1], v[2], p), cross(v[2], v[0], p), cross(v[0], v[1], p)].map(|e| e / area);
             let pixel = target.pixel(x, y).unwrap();

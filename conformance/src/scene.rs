@@ -147,7 +147,7 @@ impl Case for Scene {
 #[must_use]
 pub fn clip_of(width: u32, height: u32, bits: u8, x: i64, y: i64, z: f32, w: f32) -> [f32; 4] {
     let one = f64::from(1u32 << bits);
-    let (nx, ny) = to_ndc(width, height, x as f64 / one, y as f64 / one);
+    let [nx, ny] = to_ndc(width, height, x as f64 / one, y as f64 / one);
     let w64 = f64::from(w);
     [(nx * w64) as f32, (ny * w64) as f32, z * w, w]
 }

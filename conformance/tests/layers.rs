@@ -1,7 +1,9 @@
 //! The suite's modules form layers: each uses only modules of lower layers (and itself).
 //!
-//! The layers are listed in `src/lib.rs`. A `crate::…` path (in a `use` or in code) to a module
-//! of the same or a higher layer is a circle in the making and fails here.
+//! The layers are listed in `src/lib.rs`. Every path to an item of the crate (`use` trees,
+//! `crate::…`, `super::…` and `self::…` in code) is resolved from the module it is written in;
+//! one that reaches a module of the same or a higher layer is a circle in the making and fails
+//! here. Test modules (from `#[cfg(test)]` to the end of a file) and comments are left out.
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -19,8 +21,19 @@ const LAYERS: &[&[&str]] = &[
     &["harness", "fuzz"],
 ];
 
-/// Inside `oracle`: the geometry first, then the oracles that use it.
-const ORACLE_LAYERS: &[&[&str]] = &[&["raster"], &["brute_force", "outline", "ray_cast"]];
+/// Inside a top-level module, the layers of its child modules; a child may also use its
+/// parent's own items, and the parent its children.
+const INNER_LAYERS: &[(&str, &[&[&str]])] = &[
+    ("oracle", &[&["raster"], &["brute_force", "outline", "ray_cast"]]),
+    (
+        "rules",
+        &[
+            &["common"],
+            &["fill"],
+            &["bary", "clip", "depth", "meta", "robust"],
+        ],
+    ),
+];
 
 fn layer(layers: &[&[&str]], module: &str) -> Option<usize> {
     layers.iter().position(|l| l.contains(&module))
@@ -37,39 +50,170 @@ fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
-/// Every `crate::a::b` path in `text` (comments included: a doc link is a dependency too),
-/// as `(a, b)`; `use crate::{a, b::c}` groups count once per module.
-fn crate_paths(text: &str) -> Vec<(String, String)> {
-    let mut out = Vec::new();
-    let word = |s: &str| -> String {
-        s.chars()
-            .take_while(|c| c.is_alphanumeric() || *c == '_')
-            .collect()
-    };
-    for (i, _) in text.match_indices("crate::") {
-        let rest = &text[i + "crate::".len()..];
-        if let Some(group) = rest.strip_prefix('{') {
-            let inner = &group[..group.find('}').unwrap_or(group.len())];
-            for part in inner.split(',') {
-                let part = part.trim();
-                let first = word(part);
-                let second = part
-                    .strip_prefix(first.as_str())
-                    .and_then(|r| r.strip_prefix("::"))
-                    .map(word)
-                    .unwrap_or_default();
-                out.push((first, second));
+/// The module a file defines: `a/b.rs` and `a/b/mod.rs` are `[a, b]`, `lib.rs` is `[]`.
+fn module_of(rel: &Path) -> Vec<String> {
+    let mut parts: Vec<String> = rel.iter().map(|p| p.to_string_lossy().into_owned()).collect();
+    let last = parts.pop().unwrap_or_default();
+    let stem = last.trim_end_matches(".rs");
+    if stem != "mod" && stem != "lib" {
+        parts.push(stem.to_owned());
+    }
+    parts
+}
+
+/// The code of a file without its test module and its comments.
+fn code(text: &str) -> String {
+    let text = text.split("#[cfg(test)]").next().unwrap_or("");
+    text.lines()
+        .map(|l| l.split("//").next().unwrap_or(""))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// Splits `s` at commas that are not inside braces.
+fn split_top(s: &str) -> Vec<&str> {
+    let (mut depth, mut start, mut out) = (0, 0, Vec::new());
+    for (i, c) in s.char_indices() {
+        match c {
+            '{' => depth += 1,
+            '}' => depth -= 1,
+            ',' if depth == 0 => {
+                out.push(&s[start..i]);
+                start = i + 1;
             }
-        } else {
-            let first = word(rest);
-            let second = rest[first.len()..]
-                .strip_prefix("::")
-                .map(word)
-                .unwrap_or_default();
-            out.push((first, second));
+            _ => {}
+        }
+    }
+    out.push(&s[start..]);
+    out
+}
+
+/// The paths a use tree names, each as its segments: `a::{b, c::{d, e}}` is `a::b`, `a::c::d`, `a::c::e`.
+fn use_paths(tree: &str, prefix: &[String], out: &mut Vec<Vec<String>>) {
+    let tree = tree.trim();
+    if tree.is_empty() {
+        return;
+    }
+    match tree.find('{') {
+        Some(open) => {
+            let close = tree.rfind('}').unwrap_or(tree.len());
+            let mut path = prefix.to_vec();
+            path.extend(segments(tree[..open].trim_end_matches("::")));
+            for part in split_top(&tree[open + 1..close]) {
+                use_paths(part, &path, out);
+            }
+        }
+        None => {
+            let mut path = prefix.to_vec();
+            path.extend(segments(tree.split(" as ").next().unwrap_or(tree)));
+            out.push(path);
+        }
+    }
+}
+
+fn segments(path: &str) -> Vec<String> {
+    path.split("::")
+        .map(str::trim)
+        .filter(|s| !s.is_empty())
+        .map(str::to_owned)
+        .collect()
+}
+
+/// Every path in `code` that starts at `crate`, `super` or `self`, as written.
+fn written_paths(code: &str) -> Vec<Vec<String>> {
+    let mut out = Vec::new();
+    let mut rest = code.to_owned();
+    // Use trees first (they may hold braces), then cut them out.
+    while let Some(start) = find_word(&rest, "use ") {
+        let Some(len) = rest[start..].find(';') else { break };
+        let tree = rest[start + 4..start + len]
+            .trim()
+            .trim_start_matches("pub ")
+            .to_owned();
+        use_paths(&tree, &[], &mut out);
+        rest.replace_range(start..start + len + 1, "");
+    }
+    let bytes: Vec<char> = rest.chars().collect();
+    let text: String = bytes.iter().collect();
+    for root in ["crate::", "super::", "self::"] {
+        for (i, _) in text.match_indices(root) {
+            let before = text[..i].chars().last();
+            if before.is_some_and(|c| c.is_alphanumeric() || c == '_' || c == ':') {
+                continue;
+            }
+            let path: String = text[i..]
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_' || *c == ':')
+                .collect();
+            out.push(segments(&path));
         }
     }
     out
+}
+
+/// The byte index of `word` where it starts a word.
+fn find_word(s: &str, word: &str) -> Option<usize> {
+    s.match_indices(word).map(|(i, _)| i).find(|&i| {
+        !s[..i]
+            .chars()
+            .last()
+            .is_some_and(|c| c.is_alphanumeric() || c == '_')
+    })
+}
+
+/// Resolves a written path against the module it is written in; `None` for other crates.
+fn resolve(module: &[String], path: &[String]) -> Option<Vec<String>> {
+    let mut at: Vec<String> = module.to_vec();
+    let mut rest = path;
+    match rest.first().map(String::as_str) {
+        Some("crate") => {
+            at.clear();
+            rest = &rest[1..];
+        }
+        Some("self") => rest = &rest[1..],
+        Some("super") => {
+            while rest.first().map(String::as_str) == Some("super") {
+                at.pop()?;
+                rest = &rest[1..];
+            }
+        }
+        _ => return None,
+    }
+    at.extend(rest.iter().cloned());
+    Some(at)
+}
+
+/// Checks one resolved edge; a problem when it points sideways or up.
+fn check_edge(from: &[String], to: &[String]) -> Result<(), String> {
+    let (Some(a), Some(b)) = (from.first(), to.first()) else {
+        return Ok(());
+    };
+    if a != b {
+        let (la, lb) = (layer(LAYERS, a), layer(LAYERS, b));
+        return match (la, lb) {
+            (Some(la), Some(lb)) if lb < la => Ok(()),
+            _ => Err(format!(
+                "`{a}` uses `{}`, which is not in a lower layer",
+                to.join("::")
+            )),
+        };
+    }
+    let Some((_, inner)) = INNER_LAYERS.iter().find(|(m, _)| m == a) else {
+        return Ok(());
+    };
+    let (Some(ca), Some(cb)) = (from.get(1), to.get(1)) else {
+        return Ok(());
+    };
+    match (layer(inner, ca), layer(inner, cb)) {
+        _ if ca == cb => Ok(()),
+        // One of them is not a child module (an item of the parent): parent and child may meet.
+        (None, _) | (_, None) => Ok(()),
+        (Some(la), Some(lb)) if lb < la => Ok(()),
+        _ => Err(format!(
+            "`{a}::{ca}` uses `{}`, which is not in a lower layer",
+            to.join("::")
+        )),
+    }
 }
 
 #[test]
@@ -81,47 +225,30 @@ fn modules_use_only_lower_layers() {
     let mut problems = Vec::new();
     for file in &files {
         let rel = file.strip_prefix(&src).expect("under src");
-        let parts: Vec<String> = rel
-            .iter()
-            .map(|p| p.to_string_lossy().trim_end_matches(".rs").to_owned())
-            .collect();
-        if parts[0] == "lib" {
+        let module = module_of(rel);
+        if module.is_empty() {
             continue;
         }
-        let module = parts[0].clone();
-        let Some(from) = layer(LAYERS, &module) else {
+        if layer(LAYERS, &module[0]).is_none() {
             problems.push(format!(
-                "{}: module `{module}` has no layer in LAYERS",
-                rel.display()
+                "{}: module `{}` has no layer in LAYERS",
+                rel.display(),
+                module[0]
             ));
             continue;
-        };
-        let text = std::fs::read_to_string(file).expect("source is readable");
-        let inner = (module == "oracle" && parts.len() > 1).then(|| parts[1].clone());
-        let mut paths = crate_paths(&text);
-        if inner.is_some() && parts.len() == 2 {
-            // `super::x` in `oracle/y.rs` is `crate::oracle::x`.
-            let siblings = crate_paths(&text.replace("super::", "crate::oracle::"));
-            paths.extend(siblings.into_iter().filter(|(t, _)| t == "oracle"));
         }
-        for (target, sub) in paths {
-            if target == module {
-                // Inside `oracle`, the geometry sits below the oracles.
-                if let (Some(inner), false) = (&inner, sub.is_empty()) {
-                    let (a, b) = (layer(ORACLE_LAYERS, inner), layer(ORACLE_LAYERS, &sub));
-                    if sub != *inner && !matches!((a, b), (Some(a), Some(b)) if b < a) {
-                        problems.push(format!("{}: oracle::{inner} uses oracle::{sub}", rel.display()));
-                    }
-                }
+        let text = std::fs::read_to_string(file).expect("source is readable");
+        for path in written_paths(&code(&text)) {
+            let Some(to) = resolve(&module, &path) else {
                 continue;
+            };
+            if let Err(problem) = check_edge(&module, &to) {
+                problems.push(format!("{}: {problem}", rel.display()));
             }
-            edges.insert((module.clone(), target.clone()));
-            match layer(LAYERS, &target) {
-                Some(to) if to < from => {}
-                _ => problems.push(format!(
-                    "{}: `{module}` (layer {from}) uses `crate::{target}`, which is not in a lower layer",
-                    rel.display()
-                )),
+            if let (Some(a), Some(b)) = (module.first(), to.first())
+                && a != b
+            {
+                edges.insert((a.clone(), b.clone()));
             }
         }
     }
@@ -132,4 +259,25 @@ fn modules_use_only_lower_layers() {
     // The check sees the suite: these edges exist today.
     assert!(edges.contains(&("rules".into(), "oracle".into())));
     assert!(edges.contains(&("runner".into(), "picture".into())));
+}
+
+#[test]
+fn the_parser_sees_nested_trees_and_relative_paths() {
+    let mut paths = Vec::new();
+    use_paths("crate::{scene::{Case, Scene}, certify::Options}", &[], &mut paths);
+    let module = vec!["runner".to_owned()];
+    let resolved: Vec<_> = paths.iter().filter_map(|p| resolve(&module, p)).collect();
+    assert!(resolved.contains(&vec!["certify".to_owned(), "Options".to_owned()]));
+    assert!(resolved.contains(&vec!["scene".to_owned(), "Case".to_owned()]));
+    // `super::` from a top-level module is the crate root.
+    let to = resolve(&module, &segments("super::certify::run_rule")).unwrap();
+    assert!(check_edge(&module, &to).is_err());
+    // Siblings inside a layered module.
+    let ray_cast = vec!["oracle".to_owned(), "ray_cast".to_owned()];
+    let to = resolve(&ray_cast, &segments("super::outline::visible_outline")).unwrap();
+    assert!(check_edge(&ray_cast, &to).is_err());
+    let to = resolve(&ray_cast, &segments("super::raster::snap")).unwrap();
+    assert!(check_edge(&ray_cast, &to).is_ok());
+    let written = written_paths("use crate::{scene::Scene, certify::Options};\nfn f() { super::x::y(); }");
+    assert_eq!(written.len(), 3, "{written:?}");
 }

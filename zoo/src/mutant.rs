@@ -171,10 +171,7 @@ impl Rasterizer for Mutant {
             if p.iter().flatten().any(|c| !c.is_finite()) {
                 continue;
             }
-            let input = [0, 1, 2].map(|k| ClipVertex {
-                position: DVec4::from(p[k].map(f64::from)),
-                barycentric: DVec3::AXES[k],
-            });
+            let input = [0, 1, 2].map(|k| ClipVertex::corner(p[k], k));
             let polygon = match self.bug {
                 Bug::NoNearClip => input.to_vec(),
                 Bug::DirectionalClip => clip_walking(&input, &planes),

@@ -22,11 +22,17 @@ pub fn to_raster(width: u32, height: u32, nx: f64, ny: f64) -> [f64; 2] {
 
 /// Raster space to NDC, the inverse of [`to_raster`].
 #[must_use]
-pub fn to_ndc(width: u32, height: u32, x: f64, y: f64) -> (f64, f64) {
-    (
+pub fn to_ndc(width: u32, height: u32, x: f64, y: f64) -> [f64; 2] {
+    [
         x / f64::from(width) * 2.0 - 1.0,
         1.0 - y / f64::from(height) * 2.0,
-    )
+    ]
+}
+
+/// The NDC displacement of a raster displacement `(dx, dy)` in pixels (y flips).
+#[must_use]
+pub fn ndc_offset(width: u32, height: u32, dx: f64, dy: f64) -> [f64; 2] {
+    [2.0 * dx / f64::from(width), -2.0 * dy / f64::from(height)]
 }
 
 /// A clip-space point projected to raster space (divided by its `w`, which must not be 0).
@@ -43,20 +49,20 @@ pub fn sample_centre(x: u32, y: u32) -> [f64; 2] {
 
 /// NDC of pixel `(x, y)`'s sample.
 #[must_use]
-pub fn sample_ndc(width: u32, height: u32, x: u32, y: u32) -> (f64, f64) {
+pub fn sample_ndc(width: u32, height: u32, x: u32, y: u32) -> [f64; 2] {
     let [sx, sy] = sample_centre(x, y);
     to_ndc(width, height, sx, sy)
 }
 
-/// Snaps a clip-space position (`w > 0`) to the grid of `2^-bits` pixel, rounding half to even;
-/// `None` when it does not project to a finite point.
+/// Snaps a clip-space position (`w > 0`) to the grid of `2^-bits` pixel (bits up to 16),
+/// rounding half to even; `None` when it does not project to a finite point.
 #[must_use]
 pub fn snap(p: [f32; 4], width: u32, height: u32, bits: u8) -> Option<Point> {
     let [x, y, _, w] = p.map(f64::from);
     if w.is_nan() || w <= 0.0 {
         return None;
     }
-    let scale = f64::from(1u32 << bits);
+    let scale = f64::from(1u32 << bits.min(16));
     let [rx, ry] = to_raster(width, height, x / w, y / w).map(|c| c * scale);
     (rx.is_finite() && ry.is_finite()).then(|| (rx.round_ties_even() as i128, ry.round_ties_even() as i128))
 }
@@ -97,7 +103,7 @@ mod tests {
     fn the_transform_and_its_inverse_agree_on_sample_centres() {
         for (w, h) in [(16, 16), (7, 13), (64, 32)] {
             for (x, y) in [(0, 0), (3, 5), (w - 1, h - 1)] {
-                let (nx, ny) = sample_ndc(w, h, x, y);
+                let [nx, ny] = sample_ndc(w, h, x, y);
                 let [rx, ry] = to_raster(w, h, nx, ny);
                 let [sx, sy] = sample_centre(x, y);
                 // Exact on power-of-two sides; a rounding or two otherwise.

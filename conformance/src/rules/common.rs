@@ -60,7 +60,7 @@ pub fn snapped_triangle(scene: &Scene, t: usize, bits: u8) -> Option<[[f64; 4]; 
     for (k, &i) in scene.triangles[t].iter().enumerate() {
         let p = scene.positions[i as usize];
         let (x, y) = snap(p, scene.width, scene.height, bits)?;
-        let (nx, ny) = to_ndc(scene.width, scene.height, x as f64 / one, y as f64 / one);
+        let [nx, ny] = to_ndc(scene.width, scene.height, x as f64 / one, y as f64 / one);
         let pw = f64::from(p[3]);
         out[k] = [nx * pw, ny * pw, f64::from(p[2]), pw];
     }
@@ -78,7 +78,7 @@ pub fn raycast_fragments(r: &mut dyn Rasterizer, scene: &Scene) -> Result<Vec<(F
     Ok(fragments(r, scene)?
         .into_iter()
         .filter_map(|f| {
-            let (nx, ny) = sample_ndc(scene.width, scene.height, f.x, f.y);
+            let [nx, ny] = sample_ndc(scene.width, scene.height, f.x, f.y);
             ray_cast(&tri, nx, ny, &scene.state).map(|hit| (f, hit))
         })
         .collect())
@@ -125,7 +125,7 @@ pub fn mesh_expectation(scene: &Scene, band: f64) -> (Vec<Expect>, Vec<Vec<[f64;
     let mut expected = Vec::with_capacity(scene.width as usize * scene.height as usize);
     for y in 0..scene.height {
         for x in 0..scene.width {
-            let (nx, ny) = sample_ndc(scene.width, scene.height, x, y);
+            let [nx, ny] = sample_ndc(scene.width, scene.height, x, y);
             let s = sample_centre(x, y);
             let near_boundary = outlines.iter().zip(&shared).any(|(o, &sh)| {
                 // Segments not lying on a shared input edge: the boundary and the cuts.

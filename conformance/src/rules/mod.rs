@@ -281,3 +281,28 @@ pub fn markdown_table() -> String {
     }
     table
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_rule_is_complete_and_named_after_its_family() {
+        let rules = catalogue();
+        let mut ids: Vec<&str> = rules.iter().map(|r| r.id).collect();
+        for rule in &rules {
+            assert!(
+                rule.id.starts_with(&format!("{}.", rule.family.name())),
+                "{} is not in family {}",
+                rule.id,
+                rule.family.name()
+            );
+            assert!(!rule.sentence.is_empty(), "{} has no sentence", rule.id);
+            assert!(!rule.source.is_empty(), "{} has no source", rule.id);
+            assert!(rule.default_cases > 0, "{} runs no case", rule.id);
+        }
+        ids.sort_unstable();
+        ids.dedup();
+        assert_eq!(ids.len(), rules.len(), "rule IDs are unique");
+    }
+}

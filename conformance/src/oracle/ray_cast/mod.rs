@@ -19,8 +19,9 @@ pub struct Hit {
     pub barycentric: [f64; 3],
     /// Window depth of the hit point, unclamped.
     pub depth: f64,
-    /// Whether the triangle's visible part turns clockwise on screen: `det[x y w] < 0`, which
-    /// the hit decides exactly (the solve's denominator has that determinant's sign).
+    /// Whether the triangle's visible part turns clockwise on screen: `det[x y w] < 0`. At a
+    /// visible hit `w = det[x y w] / d > 0`, so the solve's denominator `d` has that
+    /// determinant's sign, and the hit decides it exactly.
     pub clockwise: bool,
 }
 
@@ -206,7 +207,7 @@ mod tests {
         let mut n = 0;
         for y in 0..h {
             for x in 0..w {
-                let (nx, ny) = sample_ndc(w, h, x, y);
+                let [nx, ny] = sample_ndc(w, h, x, y);
                 n += usize::from(ray_cast(&tri, nx, ny, &DrawState::default()).is_some());
             }
         }

@@ -1,0 +1,197 @@
+//! Moves that must leave coverage alone away from edges: whole pixels, one subpixel, a larger
+//! viewport.
+
+use std::collections::HashSet;
+
+use proptest::prelude::*;
+use refrast::{Profile, Rasterizer};
+
+use crate::oracle::outline::segment_distance;
+use crate::oracle::raster::{self, sample_centre};
+use crate::rules::common::{band_px, coverage_set, fragments};
+use crate::scene::{Case, Scene};
+use crate::strategy;
+use crate::violation::Violation;
+
+/// A scene and a translation in whole pixels.
+#[derive(Clone, Debug)]
+pub struct Translated {
+    /// The scene (`w = 1`).
+    pub scene: Scene,
+    /// Pixels right.
+    pub dx: i32,
+    /// Pixels down.
+    pub dy: i32,
+}
+
+impl Case for Translated {
+    fn reductions(&self) -> Vec<Self> {
+        let (dx, dy) = (self.dx, self.dy);
+        self.scene
+            .reductions()
+            .into_iter()
+            .map(|scene| Self { scene, dx, dy })
+            .collect()
+    }
+
+    fn scene(&self) -> &Scene {
+        &self.scene
+    }
+}
+
+pub(super) fn translated() -> impl Strategy<Value = Translated> {
+    (strategy::grid_scene(), -12i32..12, -12i32..12).prop_map(|(scene, dx, dy)| Translated { scene, dx, dy })
+}
+
+/// Whether sample `(x, y)` lies within `limit` pixels of an edge of triangle 0 as snapped to
+/// `bits`; true when a vertex has no projection (the triangle is then judged elsewhere).
+fn near_edge(scene: &Scene, bits: u8, x: u32, y: u32, limit: f64) -> bool {
+    let bits = bits.min(16);
+    let unit = 1.0 / f64::from(1u32 << bits);
+    let snapped: Option<Vec<[f64; 2]>> = scene.triangles[0]
+        .iter()
+        .map(|&i| {
+            let (px, py) = raster::snap(scene.positions[i as usize], scene.width, scene.height, bits)?;
+            Some([px as f64 * unit, py as f64 * unit])
+        })
+        .collect();
+    let Some(p) = snapped else { return true };
+    let s = sample_centre(x, y);
+    (0..3).any(|k| segment_distance(p[k], p[(k + 1) % 3], s) <= limit)
+}
+
+/// How far from an edge two correct drawings of one triangle may differ: clipping at a
+/// different viewport border snaps new vertices, moving an edge by up to the band, on either side.
+fn clip_slack(profile: &Profile) -> f64 {
+    2.0 * band_px(profile)
+}
+
+/// Moving by whole pixels moves coverage alike, except near an edge.
+pub fn check_translation(r: &mut dyn Rasterizer, t: &Translated) -> Result<(), Violation> {
+    let s = &t.scene;
+    let profile = r.profile();
+    let mut moved = s.clone();
+    // Exact in f32: short dyadic fractions on power-of-two viewports, and w = 1.
+    let [ox, oy] = raster::ndc_offset(s.width, s.height, f64::from(t.dx), f64::from(t.dy)).map(|c| c as f32);
+    for p in &mut moved.positions {
+        p[0] += ox * p[3];
+        p[1] += oy * p[3];
+    }
+    let shift = |x: u32, y: u32, dx: i32, dy: i32| -> Option<(u32, u32)> {
+        let (x, y) = (i64::from(x) + i64::from(dx), i64::from(y) + i64::from(dy));
+        (x >= 0 && y >= 0 && x < i64::from(s.width) && y < i64::from(s.height))
+            .then_some((x as u32, y as u32))
+    };
+    let want: HashSet<(u32, u32)> = fragments(r, s)?
+        .iter()
+        .filter_map(|f| shift(f.x, f.y, t.dx, t.dy))
+        .collect();
+    // Only samples whose pre-image is inside the viewport can be compared.
+    let got: HashSet<(u32, u32)> = fragments(r, &moved)?
+        .iter()
+        .filter(|f| shift(f.x, f.y, -t.dx, -t.dy).is_some())
+        .map(|f| (f.x, f.y))
+        .collect();
+    for &(x, y) in want.symmetric_difference(&got) {
+        if !near_edge(&moved, profile.subpixel_bits, x, y, clip_slack(&profile)) {
+            let how = if got.contains(&(x, y)) { "gained" } else { "lost" };
+            return Err(Violation::at(
+                (x, y),
+                format!(
+                    "moved by ({}, {}) px, the triangle {how} sample {:?}, which is away from every edge",
+                    t.dx,
+                    t.dy,
+                    (x, y)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Moving by one subpixel changes only samples near an edge.
+pub fn check_subpixel_translation(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let profile = r.profile();
+    let bits = profile.subpixel_bits.min(16);
+    let unit = 1.0 / f64::from(1u32 << bits);
+    let mut moved = scene.clone();
+    let step = raster::ndc_offset(scene.width, scene.height, unit, 0.0)[0] as f32;
+    for p in &mut moved.positions {
+        p[0] += step * p[3];
+    }
+    let (a, b) = (fragments(r, scene)?, fragments(r, &moved)?);
+    let (sa, sb) = (coverage_set(&a), coverage_set(&b));
+    let changed = sa
+        .iter()
+        .filter(|p| !sb.contains(p))
+        .chain(sb.iter().filter(|p| !sa.contains(p)));
+    let Some(t) = (0..3)
+        .map(|k| {
+            raster::snap(
+                scene.positions[scene.triangles[0][k] as usize],
+                scene.width,
+                scene.height,
+                bits,
+            )
+        })
+        .collect::<Option<Vec<_>>>()
+    else {
+        return Ok(());
+    };
+    let pts: Vec<[f64; 2]> = t
+        .iter()
+        .map(|&(x, y)| [x as f64 * unit, y as f64 * unit])
+        .collect();
+    let limit = unit + band_px(&profile);
+    for &(_, x, y) in changed {
+        let s = sample_centre(x, y);
+        let d = (0..3)
+            .map(|k| segment_distance(pts[k], pts[(k + 1) % 3], s))
+            .fold(f64::INFINITY, f64::min);
+        if d > limit + unit {
+            return Err(Violation::at(
+                (x, y),
+                format!(
+                    "moving one subpixel right changed sample {:?}, {d:.4} px from every edge",
+                    (x, y)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A viewport twice as large changes coverage only near an edge.
+pub fn check_viewport_neutral(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let profile = r.profile();
+    let mut big = scene.clone();
+    big.width *= 2;
+    big.height *= 2;
+    for p in &mut big.positions {
+        // The same raster position in a viewport twice as large.
+        let [x, y, _, w] = p.map(f64::from);
+        let [rx, ry] = raster::to_raster(scene.width, scene.height, x / w, y / w);
+        let [nx, ny] = raster::to_ndc(big.width, big.height, rx, ry);
+        p[0] = (nx * w) as f32;
+        p[1] = (ny * w) as f32;
+    }
+    let small: HashSet<(u32, u32)> = fragments(r, scene)?.iter().map(|f| (f.x, f.y)).collect();
+    let large: HashSet<(u32, u32)> = fragments(r, &big)?
+        .iter()
+        .filter(|f| f.x < scene.width && f.y < scene.height)
+        .map(|f| (f.x, f.y))
+        .collect();
+    for &(x, y) in small.symmetric_difference(&large) {
+        if !near_edge(scene, profile.subpixel_bits, x, y, clip_slack(&profile)) {
+            let how = if large.contains(&(x, y)) { "gains" } else { "loses" };
+            return Err(Violation::at(
+                (x, y),
+                format!(
+                    "in a viewport twice as large the triangle {how} sample {:?}, which is away from every edge",
+                    (x, y)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}

@@ -21,7 +21,8 @@
 //!
 //! | what | where | key items |
 //! |---|---|---|
-//! | the contract | `rasterizer.rs` | [`Rasterizer`], [`Draw`], [`DrawState`], [`Fragment`], [`Resolved`], [`Profile`], [`Features`] |
+//! | the contract | `rasterizer.rs` | [`Rasterizer`], [`Draw`], [`DrawState`], [`Fragment`], [`Resolved`] |
+//! | what an implementation declares | `profile.rs` | [`Profile`], [`Snapping`], [`Features`], [`Supported`] |
 //! | state | `setup.rs`, `depth.rs` | [`CullMode`], [`FrontFace`], [`DepthState`], [`CompareOp`], [`DepthRange`] |
 //! | the reference | `reference.rs` | [`Reference`], [`ReferenceConfig`], [`Traversal`], [`ClipMode`], [`DrawStats`], [`Sample`] |
 //! | fixed point | `fixed.rs` | [`SubpixelBits`], [`FixedPoint`], [`snap`], [`COORD_LIMIT`] |
@@ -93,6 +94,7 @@ mod fixed;
 mod interp;
 mod line;
 pub mod pipeline;
+mod profile;
 mod project;
 mod rasterizer;
 mod reference;
@@ -107,7 +109,8 @@ pub use depth::{CompareOp, DepthRange, DepthState};
 pub use edge::{FillConvention, is_top_left, orient2d};
 pub use error::{ConfigError, DrawError};
 pub use fixed::{COORD_LIMIT, FixedPoint, SubpixelBits, snap};
-pub use rasterizer::{DepthConvention, Draw, DrawState, Features, Fragment, Profile, Rasterizer, Resolved};
+pub use profile::{DepthConvention, Features, Profile, Setting, Snapping, Supported};
+pub use rasterizer::{Draw, DrawState, Fragment, Rasterizer, Resolved};
 pub use reference::{DrawStats, Reference, ReferenceConfig, Sample, Traversal};
 pub use setup::{CullMode, FrontFace, Winding};
 pub use viewport::{MAX_VIEWPORT, Viewport};

@@ -1,8 +1,8 @@
 //! The `Rasterizer` trait: the contract the conformance suite certifies, and its data types.
 
 use crate::depth::{DepthRange, DepthState};
-use crate::edge::FillConvention;
 use crate::error::DrawError;
+use crate::profile::Profile;
 use crate::setup::{CullMode, FrontFace};
 use crate::viewport::Viewport;
 
@@ -117,66 +117,6 @@ impl Resolved {
         }
         resolved
     }
-}
-
-/// How depth values are produced, as declared by an implementation.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
-pub enum DepthConvention {
-    /// z/w interpolated linearly in screen space (Vulkan, D3D, the reference).
-    #[default]
-    ScreenLinearZOverW,
-    /// Anything else (view-space z, 1/z, …): depth rules that need z/w do not apply.
-    Other,
-}
-
-/// Optional abilities; a rule needing one that is absent is "not applicable", never "passed".
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct Features {
-    /// Fragments carry perspective-correct barycentrics.
-    pub perspective_barycentrics: bool,
-    /// Fragments carry screen-space barycentrics.
-    pub screen_barycentrics: bool,
-    /// Culling by facing is implemented.
-    pub culling: bool,
-    /// The depth test is implemented (compare ops and write masking).
-    pub depth_test: bool,
-    /// Far-plane clipping can be switched on.
-    pub far_clipping: bool,
-    /// The OpenGL `−w ≤ z` clip volume is supported.
-    pub negative_one_to_one: bool,
-    /// x/y clipping never moves an edge inside the viewport (a guard band), so coverage of a
-    /// triangle reaching outside it can be exact.
-    pub guard_band: bool,
-}
-
-impl Features {
-    /// Everything the reference does.
-    pub const ALL: Features = Features {
-        perspective_barycentrics: true,
-        screen_barycentrics: true,
-        culling: true,
-        depth_test: true,
-        far_clipping: true,
-        negative_one_to_one: true,
-        guard_band: true,
-    };
-}
-
-/// What an implementation declares about itself; the suite checks it against this.
-#[derive(Clone, Debug, PartialEq, Eq, Hash)]
-pub struct Profile {
-    /// A short name, as `--impl` takes it.
-    pub name: String,
-    /// Fractional bits of its subpixel grid.
-    pub subpixel_bits: u8,
-    /// Which edges own samples lying exactly on them.
-    pub fill: FillConvention,
-    /// How depth is interpolated.
-    pub depth: DepthConvention,
-    /// Half-width in subpixels of the band around edges where invariant rules don't care.
-    pub tolerance_subpixels: u32,
-    /// Optional abilities.
-    pub features: Features,
 }
 
 /// A triangle rasterizer that the conformance suite can certify.

@@ -6,8 +6,9 @@ use crate::edge::FillConvention;
 use crate::error::DrawError;
 use crate::fixed::SubpixelBits;
 use crate::interp::{Varyings, interpolate, interpolate_depth, screen_weights};
+use crate::profile::{DepthConvention, Features, Profile, Snapping};
 use crate::project::{RasterVertex, ViewportTransform, input_w};
-use crate::rasterizer::{DepthConvention, Draw, Features, Fragment, Profile, Rasterizer};
+use crate::rasterizer::{Draw, Fragment, Rasterizer};
 use crate::setup::{PixelRect, SnappedTriangle, ZeroArea, drawn_winding, snap_before_clipping};
 use crate::traverse::{FanTriangle, Hit, build_fan, traverse};
 
@@ -312,8 +313,8 @@ impl Rasterizer for Reference {
     fn profile(&self) -> Profile {
         Profile {
             name: "reference".into(),
-            subpixel_bits: self.config.subpixel_bits.get(),
-            fill: self.config.fill,
+            snapping: Snapping::Grid(self.config.subpixel_bits.get()),
+            fill: Some(self.config.fill),
             depth: DepthConvention::ScreenLinearZOverW,
             // Snapping moves an edge by up to √2/2 subpixel from where the float input puts it.
             tolerance_subpixels: 1,

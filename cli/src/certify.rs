@@ -87,12 +87,12 @@ fn certify_one(b: &BuiltIn, options: &Options) -> Report {
     let mut rasterizer = (b.make)();
     let p = rasterizer.profile();
     say(&format!(
-        "== {}: {} subpixel bits, {}, depth {:?}, band {} subpixels, seed {}",
+        "== {}: {}, {}, depth {:?}, band {} px, seed {}",
         p.name,
-        p.subpixel_bits,
-        p.fill.name(),
+        p.snapping,
+        refrast_conformance::fill_name(p.fill),
         p.depth,
-        p.tolerance_subpixels.max(1),
+        p.band_px(),
         options.seed
     ));
     let start = Instant::now();

@@ -73,11 +73,11 @@ fn main() -> ExitCode {
                 let p = (b.make)().profile();
                 let kind = if b.correct { "correct" } else { "broken on purpose" };
                 say(&format!(
-                    "{:<22} {} subpixel bits, {}, band {} subpixels, {kind}: {}",
+                    "{:<22} {}, {}, band {} px, {kind}: {}",
                     b.name,
-                    p.subpixel_bits,
-                    p.fill.name(),
-                    p.tolerance_subpixels,
+                    p.snapping,
+                    refrast_conformance::fill_name(p.fill),
+                    p.band_px(),
                     b.description
                 ));
             }

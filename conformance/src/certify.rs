@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use refrast::{Profile, Rasterizer};
+use refrast::{Features, FillConvention, Profile, Rasterizer};
 use serde::Serialize;
 
 use crate::picture;
@@ -88,47 +88,65 @@ pub struct RuleReport {
 }
 
 /// The profile as the report prints it.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ProfileReport {
     /// Declared name.
     pub name: String,
-    /// Subpixel bits.
-    pub subpixel_bits: u8,
-    /// Fill convention.
+    /// Snapping: a grid's bits, or none.
+    pub snapping: String,
+    /// Tie rule on edges, or none.
     pub fill: String,
     /// Depth convention.
     pub depth: String,
-    /// Tolerance band in subpixels as declared.
+    /// Tolerance band in grid steps, as declared.
     pub tolerance_subpixels: u32,
-    /// Optional features, as declared.
+    /// The band used, in pixels.
+    pub band_px: f64,
+    /// Optional abilities declared, and the supported values of each draw-state setting.
     pub features: Vec<String>,
 }
 
 impl From<&Profile> for ProfileReport {
     fn from(p: &Profile) -> Self {
-        let f = &p.features;
-        let features = [
-            (f.perspective_barycentrics, "perspective-barycentrics"),
-            (f.screen_barycentrics, "screen-barycentrics"),
-            (f.culling, "culling"),
-            (f.depth_test, "depth-test"),
-            (f.far_clipping, "far-clipping"),
-            (f.negative_one_to_one, "negative-one-to-one"),
-            (f.guard_band, "guard-band"),
-        ]
+        Self {
+            name: p.name.clone(),
+            snapping: p.snapping.to_string(),
+            fill: fill_name(p.fill).to_owned(),
+            depth: format!("{:?}", p.depth),
+            tolerance_subpixels: p.tolerance_subpixels,
+            band_px: p.band_px(),
+            features: feature_list(&p.features),
+        }
+    }
+}
+
+/// A tie rule as reports print it.
+#[must_use]
+pub fn fill_name(fill: Option<FillConvention>) -> &'static str {
+    fill.map_or("no tie rule", FillConvention::name)
+}
+
+/// The abilities a profile declares, then each setting's supported values.
+#[must_use]
+pub fn feature_list(f: &Features) -> Vec<String> {
+    let abilities = [
+        (f.perspective_barycentrics, "perspective-barycentrics"),
+        (f.screen_barycentrics, "screen-barycentrics"),
+        (f.depth_test, "depth-test"),
+        (f.guard_band, "guard-band"),
+    ];
+    let mut list: Vec<String> = abilities
         .iter()
         .filter(|(on, _)| *on)
         .map(|(_, name)| (*name).to_owned())
         .collect();
-        Self {
-            name: p.name.clone(),
-            subpixel_bits: p.subpixel_bits,
-            fill: p.fill.name().to_owned(),
-            depth: format!("{:?}", p.depth),
-            tolerance_subpixels: p.tolerance_subpixels,
-            features,
-        }
-    }
+    list.push(format!("cull {:?}", f.cull_modes));
+    list.push(format!("front faces {:?}", f.front_faces));
+    list.push(format!("compare {:?}", f.compare_ops));
+    list.push(format!("depth writes {:?}", f.depth_writes));
+    list.push(format!("far clipping {:?}", f.far_clipping));
+    list.push(format!("depth ranges {:?}", f.depth_ranges));
+    list
 }
 
 /// The whole certification of one implementation.

@@ -36,7 +36,9 @@ mod scene;
 pub mod strategy;
 mod violation;
 
-pub use certify::{Options, ProfileReport, Report, RuleReport, Status, certify, matches, run_rule};
+pub use certify::{
+    Options, ProfileReport, Report, RuleReport, Status, certify, feature_list, fill_name, matches, run_rule,
+};
 pub use harness::{failure_text, run_as_tests};
 pub use impls::{BuiltIn, Maker, Named, builtins};
 pub use rules::meta::Translated;

@@ -58,6 +58,13 @@ where
         max_shrink_iters: 2048,
         ..Config::default()
     };
+    // Every case asks only for draw states the rasterizer declares it supports.
+    let profile = rasterizer.profile();
+    let strategy = strategy.prop_map(move |mut input| {
+        let scene = input.scene_mut();
+        scene.state = profile.fit(scene.state);
+        input
+    });
     let rng = TestRng::from_seed(RngAlgorithm::ChaCha, &seed_bytes(cfg.seed));
     let mut runner = TestRunner::new_with_rng(config, rng);
     let cell = RefCell::new(rasterizer);

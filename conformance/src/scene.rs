@@ -2,7 +2,7 @@
 
 use std::fmt;
 
-use refrast::{CullMode, DepthRange, Draw, DrawState, FrontFace, Viewport};
+use refrast::{CullMode, DepthRange, Draw, DrawState, FrontFace, Profile, Viewport};
 
 use crate::oracle::raster::to_ndc;
 
@@ -17,6 +17,9 @@ pub trait Case: Sized {
 
     /// The scene drawn, for the counterexample picture.
     fn scene(&self) -> &Scene;
+
+    /// The scene drawn, to fit its state to what the rasterizer supports.
+    fn scene_mut(&mut self) -> &mut Scene;
 }
 
 /// One draw call as the rules generate it; `Debug` prints Rust that rebuilds it.
@@ -69,6 +72,13 @@ impl Scene {
     #[must_use]
     pub fn viewport(&self) -> Option<Viewport> {
         Viewport::new(self.width, self.height).ok()
+    }
+
+    /// The scene with its state fitted to what `profile` supports ([`Profile::fit`]).
+    #[must_use]
+    pub fn fitted(mut self, profile: &Profile) -> Self {
+        self.state = profile.fit(self.state);
+        self
     }
 
     /// The draw the rasterizer under test receives.
@@ -139,6 +149,10 @@ impl Case for Scene {
     }
 
     fn scene(&self) -> &Scene {
+        self
+    }
+
+    fn scene_mut(&mut self) -> &mut Scene {
         self
     }
 }

@@ -180,15 +180,15 @@ const EXPECTED: [Expected; 3] = [
         first_failure: "fill.mesh.exactly-once",
         // `≥ 0` on every edge (shared edges twice), samples at pixel corners, clockwise only, no clipping.
         fail: "fill.mesh.exactly-once fill.fan.exactly-once fill.rotated-quad.exactly-once \
-               fill.projected-mesh.exactly-once fill.interior.matches-raycast fill.top-left.exact \
-               fill.guard-band.exact fill.brute-force.exact bary.screen.reconstructs-sample \
-               clip.behind-eye.empty clip.interior.matches-raycast clip.mesh.watertight \
+               fill.projected-mesh.exactly-once fill.interior.matches-raycast \
+               bary.screen.reconstructs-sample clip.behind-eye.empty clip.interior.matches-raycast clip.mesh.watertight \
                clip.crossing-quad.watertight meta.reversal.flips-facing meta.translate.one-subpixel",
         pass: "meta.rotation.same-coverage meta.translate.whole-pixels meta.viewport.neutral \
                meta.batch.independent meta.facing.from-winding meta.degenerate.empty \
                robust.non-finite.discarded robust.bit-patterns.sane-output robust.output.well-formed \
                robust.bad-index.error",
-        not_applicable: "bary.sum.one bary.range.unit bary.vertex.one bary.perspective.matches-raycast \
+        not_applicable: "fill.top-left.exact fill.guard-band.exact fill.brute-force.exact \
+               bary.sum.one bary.range.unit bary.vertex.one bary.perspective.matches-raycast \
                bary.equal-w.affine depth.range.vertices depth.screen-linear.matches-raycast \
                depth.order.independent depth.resolve.matches-fragments clip.far.respected \
                clip.gl-range.matches-raycast meta.cull.by-facing",
@@ -198,15 +198,16 @@ const EXPECTED: [Expected; 3] = [
         first_failure: "fill.mesh.exactly-once",
         // Both row ends drawn, vertices truncated toward the screen centre, no clipping, ties by edge order.
         fail: "fill.mesh.exactly-once fill.fan.exactly-once fill.rotated-quad.exactly-once \
-               fill.projected-mesh.exactly-once fill.interior.matches-raycast fill.guard-band.exact \
-               fill.brute-force.exact bary.sum.one bary.range.unit bary.vertex.one \
+               fill.projected-mesh.exactly-once fill.interior.matches-raycast \
+               bary.sum.one bary.range.unit bary.vertex.one \
                bary.perspective.matches-raycast clip.behind-eye.empty clip.interior.matches-raycast \
                clip.mesh.watertight clip.crossing-quad.watertight meta.rotation.same-coverage \
                meta.reversal.flips-facing meta.translate.whole-pixels meta.viewport.neutral \
                meta.facing.from-winding meta.degenerate.empty",
         pass: "meta.translate.one-subpixel meta.batch.independent robust.non-finite.discarded \
                robust.bit-patterns.sane-output robust.output.well-formed robust.bad-index.error",
-        not_applicable: "fill.top-left.exact bary.screen.reconstructs-sample bary.equal-w.affine \
+        not_applicable: "fill.top-left.exact fill.guard-band.exact fill.brute-force.exact \
+               bary.screen.reconstructs-sample bary.equal-w.affine \
                depth.range.vertices depth.screen-linear.matches-raycast depth.order.independent \
                depth.resolve.matches-fragments clip.far.respected clip.gl-range.matches-raycast \
                meta.cull.by-facing",
@@ -216,15 +217,16 @@ const EXPECTED: [Expected; 3] = [
         first_failure: "fill.mesh.exactly-once",
         // Counter-clockwise only, `O_i ≤ 0` owns every edge, pixel corners, far always clipped, nudged cuts.
         fail: "fill.mesh.exactly-once fill.fan.exactly-once fill.rotated-quad.exactly-once \
-               fill.projected-mesh.exactly-once fill.interior.matches-raycast fill.top-left.exact \
-               fill.brute-force.exact bary.screen.reconstructs-sample depth.screen-linear.matches-raycast \
+               fill.projected-mesh.exactly-once fill.interior.matches-raycast \
+               bary.screen.reconstructs-sample depth.screen-linear.matches-raycast \
                clip.interior.matches-raycast clip.mesh.watertight clip.crossing-quad.watertight \
                clip.far.respected clip.gl-range.matches-raycast meta.reversal.flips-facing \
                meta.translate.whole-pixels meta.translate.one-subpixel meta.degenerate.empty",
         pass: "depth.range.vertices clip.behind-eye.empty meta.rotation.same-coverage meta.viewport.neutral \
                meta.batch.independent meta.facing.from-winding robust.non-finite.discarded \
                robust.bit-patterns.sane-output robust.output.well-formed robust.bad-index.error",
-        not_applicable: "fill.guard-band.exact bary.sum.one bary.range.unit bary.vertex.one \
+        not_applicable: "fill.top-left.exact fill.guard-band.exact fill.brute-force.exact \
+               bary.sum.one bary.range.unit bary.vertex.one \
                bary.perspective.matches-raycast bary.equal-w.affine depth.order.independent \
                depth.resolve.matches-fragments meta.cull.by-facing",
     },

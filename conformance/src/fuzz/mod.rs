@@ -11,8 +11,8 @@ use std::fmt;
 
 use arbitrary::{Arbitrary, Unstructured};
 use glam::{Mat4, Vec3};
-use refrast::Rasterizer;
 use refrast::pipeline::{Framebuffer, Mesh, Renderer, Vertex};
+use refrast::{Profile, Rasterizer};
 
 pub use input::{Clipping, GridTriangles, Overlapping, Perspective, Points, RawDraw, RawPipeline};
 
@@ -20,7 +20,7 @@ use crate::rules::bary::{check_matches_raycast, check_sum_one};
 use crate::rules::depth::{check_depth_matches_raycast, check_order_independent};
 use crate::rules::fill::{check_exactly_once, check_guard_band};
 use crate::rules::robust::check_well_formed;
-use crate::rules::{PERSPECTIVE_BARYCENTRICS, Z_OVER_W_DEPTH};
+use crate::rules::{EXACT_COVERAGE, GUARD_BAND, NEARER_WINS, Need, PERSPECTIVE_BARYCENTRICS, Z_OVER_W_DEPTH};
 use crate::violation::Violation;
 
 /// A check that failed on a fuzz input.
@@ -40,6 +40,11 @@ impl fmt::Display for Failure {
 
 impl std::error::Error for Failure {}
 
+/// Whether the profile has everything `needs` asks for (else the target does not judge it).
+fn applies(needs: &[Need], profile: &Profile) -> bool {
+    needs.iter().all(|n| n.check(profile).is_ok())
+}
+
 /// Runs `check` and attaches the input's `Debug` to a violation.
 fn judged(input: &impl fmt::Debug, check: impl FnOnce() -> Result<(), Violation>) -> Result<(), Failure> {
     check().map_err(|violation| Failure {
@@ -51,6 +56,7 @@ fn judged(input: &impl fmt::Debug, check: impl FnOnce() -> Result<(), Violation>
 /// Any bit patterns: no panic, only well-formed fragments, and `resolve` works.
 pub fn robustness(r: &mut dyn Rasterizer, input: &RawDraw) -> Result<(), Failure> {
     let Some(scene) = input.scene() else { return Ok(()) };
+    let scene = scene.fitted(&r.profile());
     judged(input, || {
         check_well_formed(r, &scene)?;
         r.resolve(&scene.draw())
@@ -59,9 +65,15 @@ pub fn robustness(r: &mut dyn Rasterizer, input: &RawDraw) -> Result<(), Failure
     })
 }
 
-/// Each grid triangle alone against the brute-force oracle, bit for bit.
+/// Each grid triangle alone against the brute-force oracle, bit for bit (where the profile has
+/// exact coverage and a guard band, as `fill.guard-band.exact` needs).
 pub fn differential(r: &mut dyn Rasterizer, input: &GridTriangles) -> Result<(), Failure> {
+    let profile = r.profile();
+    if !applies(&[EXACT_COVERAGE, GUARD_BAND], &profile) {
+        return Ok(());
+    }
     let Some(scene) = input.scene() else { return Ok(()) };
+    let scene = scene.fitted(&profile);
     for t in 0..scene.triangles.len() {
         let mut one = scene.clone();
         one.triangles = vec![scene.triangles[t]];
@@ -73,31 +85,39 @@ pub fn differential(r: &mut dyn Rasterizer, input: &GridTriangles) -> Result<(),
 
 /// A spade mesh of the points covers every sample exactly once.
 pub fn watertight(r: &mut dyn Rasterizer, input: &Points) -> Result<(), Failure> {
-    judged(input, || check_exactly_once(r, &input.scene()))
+    let scene = input.scene().fitted(&r.profile());
+    judged(input, || check_exactly_once(r, &scene))
 }
 
 /// Triangles and meshes across the clip planes agree with the ray cast outside the band.
 pub fn clipping(r: &mut dyn Rasterizer, input: &Clipping) -> Result<(), Failure> {
-    judged(input, || check_exactly_once(r, &input.scene()))
+    let scene = input.scene().fitted(&r.profile());
+    judged(input, || check_exactly_once(r, &scene))
 }
 
-/// Overlapping triangles leave the same depth buffer in any draw order.
+/// Overlapping triangles leave the same depth buffer in any draw order (where the profile has
+/// a depth test keeping the nearer fragment).
 pub fn depth_order(r: &mut dyn Rasterizer, input: &Overlapping) -> Result<(), Failure> {
+    let profile = r.profile();
+    if !applies(&[NEARER_WINS], &profile) {
+        return Ok(());
+    }
     let Some(scene) = input.scene() else { return Ok(()) };
+    let scene = scene.fitted(&profile);
     judged(input, || check_order_independent(r, &scene))
 }
 
 /// Barycentrics sum to one and, where the profile declares them, perspective-correct
 /// barycentrics and z/w depth equal the ray cast's within 2^-18.
 pub fn interpolation(r: &mut dyn Rasterizer, input: &Perspective) -> Result<(), Failure> {
-    let scene = input.scene();
     let profile = r.profile();
+    let scene = input.scene().fitted(&profile);
     judged(input, || {
         check_sum_one(r, &scene)?;
-        if PERSPECTIVE_BARYCENTRICS.check(&profile).is_ok() {
+        if applies(&[PERSPECTIVE_BARYCENTRICS], &profile) {
             check_matches_raycast(r, &scene)?;
         }
-        if Z_OVER_W_DEPTH.check(&profile).is_ok() {
+        if applies(&[Z_OVER_W_DEPTH], &profile) {
             check_depth_matches_raycast(r, &scene)?;
         }
         Ok(())

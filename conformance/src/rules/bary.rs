@@ -2,7 +2,7 @@
 
 use refrast::Rasterizer;
 
-use super::common::{BARY_EPS, ORACLE_EPS, band_px, fragments, raycast_fragments, snapped_triangle};
+use super::common::{BARY_EPS, ORACLE_EPS, fragments, raycast_fragments, snapped_triangle};
 use super::{Family, PERSPECTIVE_BARYCENTRICS, Rule, SCREEN_BARYCENTRICS};
 use crate::oracle::outline::{distance_to_outline, visible_outline};
 use crate::oracle::raster::{project, sample_centre};
@@ -87,7 +87,7 @@ pub fn check_sum_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violat
 
 /// Barycentrics of samples outside the band lie in [0, 1] within `BARY_EPS`.
 pub fn check_in_range(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let band = band_px(&r.profile());
+    let band = r.profile().band_px();
     let outline = visible_outline(&scene.positions_of(0), scene.width, scene.height, &scene.state);
     for f in fragments(r, scene)? {
         let s = sample_centre(f.x, f.y);
@@ -156,7 +156,7 @@ pub fn check_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<()
 
 /// Screen-space barycentrics weight the snapped vertices to the sample position.
 pub fn check_reconstructs(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let Some(tri) = snapped_triangle(scene, 0, r.profile().subpixel_bits) else {
+    let Some(tri) = snapped_triangle(scene, 0, r.profile().snapping) else {
         return Ok(());
     };
     let p = tri.map(|v| project(scene.width, scene.height, v));

@@ -2,7 +2,7 @@
 
 use std::collections::HashMap;
 
-use refrast::{Fragment, Profile, Rasterizer, Reference, ReferenceConfig, SubpixelBits};
+use refrast::{Fragment, Profile, Rasterizer, Reference, ReferenceConfig, Snapping, SubpixelBits};
 
 use crate::oracle::outline::{OutlinePoint, distance_to_outline, visible_outline};
 use crate::oracle::raster::{sample_centre, sample_ndc, snap, to_ndc};
@@ -29,31 +29,30 @@ pub fn fragments(r: &mut dyn Rasterizer, scene: &Scene) -> Result<Vec<Fragment>,
         .map_err(|e| Violation::new(format!("rasterize returned an error: {e}")))
 }
 
-/// The tolerance band in pixels: the profile's, but never under one subpixel, because
-/// snapping alone moves an edge by up to √2/2 subpixel.
-#[must_use]
-pub fn band_px(profile: &Profile) -> f64 {
-    f64::from(profile.tolerance_subpixels.max(1)) / f64::from(1u32 << profile.subpixel_bits.min(16))
-}
-
-/// The reference configured as the profile says, for exact rules.
+/// The reference configured as the profile says, for exact rules: `None` without a grid of
+/// 1..=8 bits and a tie rule.
 #[must_use]
 pub fn reference_for(profile: &Profile) -> Option<Reference> {
-    let subpixel_bits = SubpixelBits::new(profile.subpixel_bits).ok()?;
+    let subpixel_bits = SubpixelBits::new(profile.snapping.grid_bits()?).ok()?;
     Some(Reference::new(ReferenceConfig {
         subpixel_bits,
-        fill: profile.fill,
+        fill: profile.fill?,
         ..ReferenceConfig::default()
     }))
 }
 
 /// Triangle `t` as the rasterizer draws it: each vertex snapped to the profile's grid, then put
-/// back into clip space at its own `w` and `z`. `None` unless every `w > 0`.
+/// back into clip space at its own `w` and `z` (unsnapped without a grid). `None` unless every
+/// `w > 0`.
 ///
 /// The oracles compare against this, not the f32 input, so that rounding the input on a sliver
 /// triangle does not count against the rasterizer.
 #[must_use]
-pub fn snapped_triangle(scene: &Scene, t: usize, bits: u8) -> Option<[[f64; 4]; 3]> {
+pub fn snapped_triangle(scene: &Scene, t: usize, snapping: Snapping) -> Option<[[f64; 4]; 3]> {
+    let Some(bits) = snapping.grid_bits() else {
+        let tri = scene.positions_of(t);
+        return tri.iter().all(|v| v[3] > 0.0).then_some(tri);
+    };
     let bits = bits.min(16);
     let one = f64::from(1u32 << bits);
     let mut out = [[0.0; 4]; 3];
@@ -72,7 +71,7 @@ pub fn snapped_triangle(scene: &Scene, t: usize, bits: u8) -> Option<[[f64; 4]; 
 /// Fragments whose ray misses (a covered sample on an edge, a hair outside in f64) are left
 /// out; empty when a vertex has no projection.
 pub fn raycast_fragments(r: &mut dyn Rasterizer, scene: &Scene) -> Result<Vec<(Fragment, Hit)>, Violation> {
-    let Some(tri) = snapped_triangle(scene, 0, r.profile().subpixel_bits) else {
+    let Some(tri) = snapped_triangle(scene, 0, r.profile().snapping) else {
         return Ok(Vec::new());
     };
     Ok(fragments(r, scene)?
@@ -148,7 +147,7 @@ pub fn mesh_expectation(scene: &Scene, band: f64) -> (Vec<Expect>, Vec<Vec<[f64;
 
 /// Checks a scene's coverage against [`mesh_expectation`].
 pub fn check_mesh_coverage(r: &mut dyn Rasterizer, scene: &Scene, what: &str) -> Result<(), Violation> {
-    let band = band_px(&r.profile());
+    let band = r.profile().band_px();
     let frags = fragments(r, scene)?;
     let (expected, outlines) = mesh_expectation(scene, band);
     let counts = count_fragments(&frags, scene.width, scene.height);

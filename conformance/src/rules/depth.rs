@@ -4,7 +4,7 @@ use proptest::prelude::*;
 use refrast::{CompareOp, DepthState, Rasterizer, Resolved};
 
 use super::common::{BARY_EPS, ORACLE_EPS, fragments, raycast_fragments};
-use super::{DEPTH_TEST, Family, Rule, Z_OVER_W_DEPTH};
+use super::{DEPTH_TEST, Family, NEARER_WINS, Rule, Z_OVER_W_DEPTH};
 use crate::runner::property;
 use crate::scene::Scene;
 use crate::strategy;
@@ -39,10 +39,10 @@ pub(super) fn rules() -> Vec<Rule> {
                 )
             }),
         Rule::invariant(Family::Depth, "depth.order.independent")
-            .sentence("After a LESS depth test the depth buffer is identical under every submission order, and the primitive ids too where depths differ.")
+            .sentence("After a depth test keeping the nearer fragment (Less, else LessOrEqual) the depth buffer is identical under every submission order, and the primitive ids too where depths differ.")
             .source("seed 000 (depth buffer); conformance-anchors d5")
             .cases(3000)
-            .needs(DEPTH_TEST)
+            .needs(NEARER_WINS)
             .run(|r, cfg| property(r, cfg, strategy::overlapping_scene(), check_order_independent)),
         Rule::invariant(Family::Depth, "depth.resolve.matches-fragments")
             .sentence("The resolved depth and id buffers are the fragments replayed in primitive order through the draw's compare op and write mask.")

@@ -3,7 +3,7 @@
 use refrast::{Fragment, Rasterizer};
 
 use super::common::{check_mesh_coverage, compare_sets, fragments, reference_for};
-use super::{Family, GUARD_BAND, REFERENCE_BITS, Rule};
+use super::{EXACT_COVERAGE, Family, GUARD_BAND, REFERENCE_PROFILE, Rule};
 use crate::oracle::{brute_force, raster};
 use crate::runner::property;
 use crate::scene::Scene;
@@ -41,18 +41,20 @@ pub(super) fn rules() -> Vec<Rule> {
             .sentence("Coverage of a triangle needing no clipping equals the reference's under the same subpixel bits and fill convention.")
             .source("D3D11.3 §3.4 (top-left rule), §3.2.4.1 (16.8 snapping)")
             .cases(20000)
-            .needs(REFERENCE_BITS)
+            .needs(REFERENCE_PROFILE)
             .run(|r, cfg| property(r, cfg, strategy::inside_scene(), check_matches_reference)),
         Rule::exact(Family::Fill, "fill.guard-band.exact")
             .sentence("Coverage of a triangle reaching up to 1500 px outside the viewport equals the brute-force oracle, as a guard band promises.")
             .source("D3D11.3 §15.4 (guard band); ecosystem.md (32-bit edge overflow, float edges)")
             .cases(5000)
+            .needs(EXACT_COVERAGE)
             .needs(GUARD_BAND)
             .run(|r, cfg| property(r, cfg, strategy::grid_scene(), check_guard_band)),
         Rule::exact(Family::Fill, "fill.brute-force.exact")
             .sentence("Coverage of an unclipped triangle equals the brute-force oracle (i128 orient2d, explicit fill bias) at every pixel.")
             .source("Giesen, Triangle rasterization in practice; piglit triangle-rasterization")
             .cases(20000)
+            .needs(EXACT_COVERAGE)
             .run(|r, cfg| property(r, cfg, strategy::inside_scene(), check_matches_brute_force)),
     ]
 }
@@ -100,7 +102,10 @@ fn compare_brute_force(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Viol
     let profile = r.profile();
     let got = fragments(r, scene)?;
     let p = [0, 1, 2].map(|k| scene.positions[scene.triangles[0][k] as usize]);
-    let bits = profile.subpixel_bits.min(16);
+    let (Some(bits), Some(fill)) = (profile.snapping.grid_bits(), profile.fill) else {
+        return Ok(());
+    };
+    let bits = bits.min(16);
     let Some(t) = p
         .iter()
         .map(|&v| raster::snap(v, scene.width, scene.height, bits))
@@ -109,7 +114,7 @@ fn compare_brute_force(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Viol
         return Ok(());
     };
     let want: Vec<Fragment> =
-        brute_force::coverage([t[0], t[1], t[2]], scene.width, scene.height, bits, profile.fill)
+        brute_force::coverage([t[0], t[1], t[2]], scene.width, scene.height, bits, fill)
             .into_iter()
             .map(|(x, y)| Fragment {
                 x,

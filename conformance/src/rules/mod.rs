@@ -10,7 +10,7 @@ pub mod robust;
 
 use std::fmt;
 
-use refrast::{DepthConvention, Profile, Rasterizer, SubpixelBits};
+use refrast::{CompareOp, CullMode, DepthConvention, DepthRange, Profile, Rasterizer, SubpixelBits};
 
 use crate::runner::{RunConfig, Verdict};
 
@@ -239,21 +239,50 @@ pub const Z_OVER_W_DEPTH: Need = needs(
 );
 /// The depth test is implemented.
 pub const DEPTH_TEST: Need = needs(|p| p.features.depth_test, "no depth test");
-/// Culling by facing is implemented.
-pub const CULLING: Need = needs(|p| p.features.culling, "no culling");
+/// A depth test that keeps the nearer fragment and writes it: `Less` or `LessOrEqual`.
+pub const NEARER_WINS: Need = needs(
+    |p| {
+        let f = &p.features;
+        f.depth_test
+            && f.depth_writes.contains(true)
+            && (f.compare_ops.contains(CompareOp::Less) || f.compare_ops.contains(CompareOp::LessOrEqual))
+    },
+    "no depth test keeping the nearer fragment (Less or LessOrEqual, with writes)",
+);
+/// Culling of front or back faces is implemented.
+pub const CULLING: Need = needs(
+    |p| p.features.cull_modes.values().any(|c| c != CullMode::None),
+    "no culling",
+);
 /// Far-plane clipping can be switched on.
-pub const FAR_CLIPPING: Need = needs(|p| p.features.far_clipping, "no far-plane clipping");
+pub const FAR_CLIPPING: Need = needs(
+    |p| p.features.far_clipping.contains(true),
+    "no far-plane clipping",
+);
 /// The OpenGL `−w ≤ z` clip volume is supported.
-pub const GL_DEPTH_RANGE: Need = needs(|p| p.features.negative_one_to_one, "no −w ≤ z clip volume");
+pub const GL_DEPTH_RANGE: Need = needs(
+    |p| p.features.depth_ranges.contains(DepthRange::NegativeOneToOne),
+    "no −w ≤ z clip volume",
+);
 /// x/y clipping never moves an edge inside the viewport.
 pub const GUARD_BAND: Need = needs(
     |p| p.features.guard_band,
     "x/y clipping may move edges (no guard band)",
 );
-/// Subpixel bits the reference can reproduce, for exact rules.
-pub const REFERENCE_BITS: Need = needs(
-    |p| SubpixelBits::new(p.subpixel_bits).is_ok(),
-    "the reference supports 1..=8 subpixel bits only",
+/// Coverage decided exactly: a snapping grid and a tie rule, so an oracle can say bit for bit.
+pub const EXACT_COVERAGE: Need = needs(
+    |p| p.snapping.grid_bits().is_some() && p.fill.is_some(),
+    "no snapping grid or no tie rule, so coverage has no exact answer",
+);
+/// A profile the reference can reproduce, for rules that compare with it.
+pub const REFERENCE_PROFILE: Need = needs(
+    |p| {
+        p.snapping
+            .grid_bits()
+            .is_some_and(|b| SubpixelBits::new(b).is_ok())
+            && p.fill.is_some()
+    },
+    "the reference reproduces only a grid of 1..=8 subpixel bits with a tie rule",
 );
 
 /// Every rule, in catalogue order.

@@ -47,6 +47,10 @@ impl crate::scene::Case for Poisoned {
     fn scene(&self) -> &Scene {
         &self.scene
     }
+
+    fn scene_mut(&mut self) -> &mut Scene {
+        &mut self.scene
+    }
 }
 
 pub(super) fn rules() -> Vec<Rule> {

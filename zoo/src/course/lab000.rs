@@ -23,8 +23,8 @@
 //! [`window_depth`], a strictly increasing map of it; the lab's test is done on the raw value.
 
 use refrast::{
-    DepthConvention, Draw, DrawError, Features, FillConvention, Fragment, Profile, Rasterizer, Resolved,
-    Winding,
+    CullMode, DepthConvention, DepthRange, Draw, DrawError, Features, Fragment, Profile, Rasterizer,
+    Resolved, Snapping, Supported, Winding,
 };
 
 /// Seed 000's rasterizer: `f32` cross products at pixel corners, view-depth buffer, no clipping.
@@ -133,22 +133,24 @@ impl Rasterizer for Lab000 {
     fn profile(&self) -> Profile {
         Profile {
             name: "lab000".into(),
-            // No snapping: f32 on raw coordinates resolves finer than any grid the reference
-            // offers, so the finest one (8 bits) describes it best.
-            subpixel_bits: 8,
-            // The lab has no fill convention (`≥ 0` on every edge); a profile must name one.
-            fill: FillConvention::TopLeft,
+            // No snapping: f32 cross products on raw coordinates.
+            snapping: Snapping::Float,
+            // `≥ 0` on every edge: no tie rule.
+            fill: None,
             // Interpolated view-space depth, not z/w.
             depth: DepthConvention::Other,
             tolerance_subpixels: 1,
             features: Features {
                 perspective_barycentrics: false,
                 screen_barycentrics: true,
-                culling: false,
+                cull_modes: Supported::only(&[CullMode::None]),
+                front_faces: Supported::ALL,
                 // Only LESS against a max-float clear: no compare ops, no write mask.
                 depth_test: false,
-                far_clipping: false,
-                negative_one_to_one: false,
+                compare_ops: Supported::ALL,
+                depth_writes: Supported::ALL,
+                far_clipping: Supported::only(&[false]),
+                depth_ranges: Supported::only(&[DepthRange::ZeroToOne]),
                 // No x/y clipping at all, so none can move an edge.
                 guard_band: true,
             },

@@ -24,8 +24,8 @@
 //! [`COORD_LIMIT`] pixels from the centre is discarded, because its rows would not fit in memory.
 
 use refrast::{
-    COORD_LIMIT, DepthConvention, Draw, DrawError, Features, FillConvention, Fragment, Profile, Rasterizer,
-    Resolved, Winding,
+    COORD_LIMIT, CullMode, DepthConvention, DepthRange, Draw, DrawError, Features, Fragment, Profile,
+    Rasterizer, Resolved, Snapping, Supported, Winding,
 };
 
 /// Seed 002's rasterizer: whole-pixel vertices, left/right rows from interpolated edges, 1/z depth.
@@ -226,9 +226,9 @@ impl Rasterizer for Lab002 {
         Profile {
             name: "lab002-scanline".into(),
             // The VertexShader truncates every vertex to a whole pixel: a grid of 2^0 pixel.
-            subpixel_bits: 0,
-            // The lab has no fill convention (both row ends are drawn); a profile must name one.
-            fill: FillConvention::TopLeft,
+            snapping: Snapping::Grid(0),
+            // Both row ends are drawn: no tie rule.
+            fill: None,
             // 1/z interpolated linearly, not z/w.
             depth: DepthConvention::Other,
             tolerance_subpixels: 1,
@@ -236,11 +236,14 @@ impl Rasterizer for Lab002 {
                 // Section 6.2: q·zinv interpolated, then divided by zinv.
                 perspective_barycentrics: true,
                 screen_barycentrics: false,
-                culling: false,
+                cull_modes: Supported::only(&[CullMode::None]),
+                front_faces: Supported::ALL,
                 // Only `zinv >` against a cleared 0: no compare ops, no write mask.
                 depth_test: false,
-                far_clipping: false,
-                negative_one_to_one: false,
+                compare_ops: Supported::ALL,
+                depth_writes: Supported::ALL,
+                far_clipping: Supported::only(&[false]),
+                depth_ranges: Supported::only(&[DepthRange::ZeroToOne]),
                 // No x/y clipping at all, so none can move an edge.
                 guard_band: true,
             },

@@ -31,8 +31,8 @@
 use std::collections::HashSet;
 
 use refrast::{
-    DepthConvention, DepthRange, Draw, DrawError, Features, FillConvention, Fragment, Profile, Rasterizer,
-    Winding,
+    CullMode, DepthConvention, DepthRange, Draw, DrawError, Features, Fragment, Profile, Rasterizer,
+    Snapping, Supported, Winding,
 };
 
 /// Seed 004's rasterizer: six-plane Sutherland–Hodgman with a 10⁻⁶ nudge, then line equations `O_i ≤ 0`.
@@ -208,21 +208,23 @@ impl Rasterizer for Lab004 {
     fn profile(&self) -> Profile {
         Profile {
             name: "lab004-lineeq".into(),
-            // No snapping: f64 on raw coordinates resolves finer than any grid the reference
-            // offers, so the finest one (8 bits) describes it best.
-            subpixel_bits: 8,
-            // The lab has no fill convention (`O_i ≤ 0` owns every edge); a profile must name one.
-            fill: FillConvention::TopLeft,
+            // No snapping: f64 line equations on raw coordinates.
+            snapping: Snapping::Float,
+            // `O_i ≤ 0` owns every edge: no tie rule.
+            fill: None,
             // z/w of each vertex, mixed with screen-space α, β, γ.
             depth: DepthConvention::ScreenLinearZOverW,
             tolerance_subpixels: 1,
             features: Features {
                 perspective_barycentrics: false,
                 screen_barycentrics: true,
-                culling: false,
+                cull_modes: Supported::only(&[CullMode::None]),
+                front_faces: Supported::ALL,
                 depth_test: false,
-                far_clipping: true,
-                negative_one_to_one: true,
+                compare_ops: Supported::ALL,
+                depth_writes: Supported::ALL,
+                far_clipping: Supported::ALL,
+                depth_ranges: Supported::ALL,
                 // x and y are clipped at the viewport, cut points nudged inward.
                 guard_band: false,
             },

@@ -3,7 +3,7 @@
 use proptest::prelude::*;
 use refrast::{CullMode, Fragment, FrontFace, Rasterizer};
 
-use super::common::{ORACLE_EPS, band_px, check_draws_nothing, compare_sets, fragments};
+use super::common::{ORACLE_EPS, check_draws_nothing, compare_sets, fragments};
 use super::{CULLING, Family, Rule};
 use crate::oracle::brute_force;
 use crate::oracle::outline::{distance_to_outline, visible_outline};
@@ -106,8 +106,10 @@ pub fn check_facing(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violati
             ),
         )
     };
-    if raster::unclipped(&p, scene.state.depth_range, scene.state.clip_far) {
-        let bits = profile.subpixel_bits.min(16);
+    // Unclipped on a grid: exactly as the snapped triangle turns.
+    if let Some(bits) = profile.snapping.grid_bits()
+        && raster::unclipped(&p, scene.state.depth_range, scene.state.clip_far)
+    {
         let snapped: Option<Vec<_>> = p
             .iter()
             .map(|&v| raster::snap(v, scene.width, scene.height, bits))
@@ -123,7 +125,8 @@ pub fn check_facing(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violati
             None => Ok(()),
         };
     }
-    // Clipped: the visible part turns as det[x y w] says, whatever the signs of w (Olano–Greer),
+    // Clipped, or without a grid: the visible part turns as det[x y w] says, whatever the signs
+    // of w (Olano–Greer),
     // and the ray cast decides that sign exactly at each sample it hits. A rasterizer may take
     // facing from its snapped, clipped polygon instead (Vulkan): snapping moves each vertex by
     // less than the band, which can turn over a sliver but not the polygon around a sample more
@@ -131,7 +134,7 @@ pub fn check_facing(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violati
     // the grid and add no risk). Samples nearer the visible outline are not judged.
     let tri = scene.positions_of(0);
     let outline = visible_outline(&tri, scene.width, scene.height, &scene.state);
-    let band = band_px(&profile);
+    let band = profile.band_px();
     for f in &frags {
         if distance_to_outline(&outline, sample_centre(f.x, f.y), |_, _| true) <= 2.0 * band {
             continue;
@@ -277,11 +280,16 @@ pub fn check_batch_independent(r: &mut dyn Rasterizer, scene: &Scene) -> Result<
 
 /// Culling removes exactly the fragments of the culled facing.
 pub fn check_culling(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    for front_face in [FrontFace::CounterClockwise, FrontFace::Clockwise] {
+    let features = r.profile().features;
+    for front_face in features.front_faces.values() {
         let mut none = scene.clone();
         none.state.front_face = front_face;
+        none.state.cull = CullMode::None;
         let all = fragments(r, &none)?;
         for cull in [CullMode::Front, CullMode::Back] {
+            if !features.cull_modes.contains(cull) {
+                continue;
+            }
             let mut culled = none.clone();
             culled.state.cull = cull;
             let want: Vec<Fragment> = all

@@ -4,11 +4,11 @@
 use std::collections::HashSet;
 
 use proptest::prelude::*;
-use refrast::{Profile, Rasterizer};
+use refrast::{Profile, Rasterizer, Snapping};
 
 use crate::oracle::outline::segment_distance;
 use crate::oracle::raster::{self, sample_centre};
-use crate::rules::common::{band_px, coverage_set, fragments};
+use crate::rules::common::{coverage_set, fragments};
 use crate::scene::{Case, Scene};
 use crate::strategy;
 use crate::violation::Violation;
@@ -37,25 +37,39 @@ impl Case for Translated {
     fn scene(&self) -> &Scene {
         &self.scene
     }
+
+    fn scene_mut(&mut self) -> &mut Scene {
+        &mut self.scene
+    }
 }
 
 pub(super) fn translated() -> impl Strategy<Value = Translated> {
     (strategy::grid_scene(), -12i32..12, -12i32..12).prop_map(|(scene, dx, dy)| Translated { scene, dx, dy })
 }
 
-/// Whether sample `(x, y)` lies within `limit` pixels of an edge of triangle 0 as snapped to
-/// `bits`; true when a vertex has no projection (the triangle is then judged elsewhere).
-fn near_edge(scene: &Scene, bits: u8, x: u32, y: u32, limit: f64) -> bool {
-    let bits = bits.min(16);
-    let unit = 1.0 / f64::from(1u32 << bits);
-    let snapped: Option<Vec<[f64; 2]>> = scene.triangles[0]
-        .iter()
-        .map(|&i| {
-            let (px, py) = raster::snap(scene.positions[i as usize], scene.width, scene.height, bits)?;
-            Some([px as f64 * unit, py as f64 * unit])
-        })
-        .collect();
-    let Some(p) = snapped else { return true };
+/// Triangle 0's vertices in raster space as the rasterizer places them: snapped to its grid,
+/// or where they project without one; `None` when a vertex has no projection.
+fn placed(scene: &Scene, snapping: Snapping) -> Option<[[f64; 2]; 3]> {
+    let [a, b, c] = scene.triangles[0].map(|i| {
+        let p = scene.positions[i as usize];
+        match snapping.grid_bits() {
+            Some(bits) => {
+                let unit = 1.0 / f64::from(1u32 << bits.min(16));
+                let (px, py) = raster::snap(p, scene.width, scene.height, bits)?;
+                Some([px as f64 * unit, py as f64 * unit])
+            }
+            None => (p[3] > 0.0).then(|| raster::project(scene.width, scene.height, p.map(f64::from))),
+        }
+    });
+    Some([a?, b?, c?])
+}
+
+/// Whether sample `(x, y)` lies within `limit` pixels of an edge of triangle 0 as placed by
+/// `snapping`; true when a vertex has no projection (the triangle is then judged elsewhere).
+fn near_edge(scene: &Scene, snapping: Snapping, x: u32, y: u32, limit: f64) -> bool {
+    let Some(p) = placed(scene, snapping) else {
+        return true;
+    };
     let s = sample_centre(x, y);
     (0..3).any(|k| segment_distance(p[k], p[(k + 1) % 3], s) <= limit)
 }
@@ -63,7 +77,7 @@ fn near_edge(scene: &Scene, bits: u8, x: u32, y: u32, limit: f64) -> bool {
 /// How far from an edge two correct drawings of one triangle may differ: clipping at a
 /// different viewport border snaps new vertices, moving an edge by up to the band, on either side.
 fn clip_slack(profile: &Profile) -> f64 {
-    2.0 * band_px(profile)
+    2.0 * profile.band_px()
 }
 
 /// Moving by whole pixels moves coverage alike, except near an edge.
@@ -93,7 +107,7 @@ pub fn check_translation(r: &mut dyn Rasterizer, t: &Translated) -> Result<(), V
         .map(|f| (f.x, f.y))
         .collect();
     for &(x, y) in want.symmetric_difference(&got) {
-        if !near_edge(&moved, profile.subpixel_bits, x, y, clip_slack(&profile)) {
+        if !near_edge(&moved, profile.snapping, x, y, clip_slack(&profile)) {
             let how = if got.contains(&(x, y)) { "gained" } else { "lost" };
             return Err(Violation::at(
                 (x, y),
@@ -112,8 +126,7 @@ pub fn check_translation(r: &mut dyn Rasterizer, t: &Translated) -> Result<(), V
 /// Moving by one subpixel changes only samples near an edge.
 pub fn check_subpixel_translation(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let profile = r.profile();
-    let bits = profile.subpixel_bits.min(16);
-    let unit = 1.0 / f64::from(1u32 << bits);
+    let unit = profile.snapping.unit_px();
     let mut moved = scene.clone();
     let step = raster::ndc_offset(scene.width, scene.height, unit, 0.0)[0] as f32;
     for p in &mut moved.positions {
@@ -125,24 +138,10 @@ pub fn check_subpixel_translation(r: &mut dyn Rasterizer, scene: &Scene) -> Resu
         .iter()
         .filter(|p| !sb.contains(p))
         .chain(sb.iter().filter(|p| !sa.contains(p)));
-    let Some(t) = (0..3)
-        .map(|k| {
-            raster::snap(
-                scene.positions[scene.triangles[0][k] as usize],
-                scene.width,
-                scene.height,
-                bits,
-            )
-        })
-        .collect::<Option<Vec<_>>>()
-    else {
+    let Some(pts) = placed(scene, profile.snapping) else {
         return Ok(());
     };
-    let pts: Vec<[f64; 2]> = t
-        .iter()
-        .map(|&(x, y)| [x as f64 * unit, y as f64 * unit])
-        .collect();
-    let limit = unit + band_px(&profile);
+    let limit = unit + profile.band_px();
     for &(_, x, y) in changed {
         let s = sample_centre(x, y);
         let d = (0..3)
@@ -182,7 +181,7 @@ pub fn check_viewport_neutral(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(
         .map(|f| (f.x, f.y))
         .collect();
     for &(x, y) in small.symmetric_difference(&large) {
-        if !near_edge(scene, profile.subpixel_bits, x, y, clip_slack(&profile)) {
+        if !near_edge(scene, profile.snapping, x, y, clip_slack(&profile)) {
             let how = if large.contains(&(x, y)) { "gains" } else { "loses" };
             return Err(Violation::at(
                 (x, y),

@@ -1,10 +1,12 @@
 //! `refrast certify`: run the catalogue against built-in implementations, print, write reports.
 
 use std::path::PathBuf;
-use std::process::ExitCode;
-use std::time::Instant;
+use std::process::{Command, ExitCode};
+use std::time::{Duration, Instant};
 
+use refrast_conformance::isolate::certify_isolated;
 use refrast_conformance::{BuiltIn, Options, Report, RuleReport, Status, catalogue, matches};
+use serde::Serialize;
 
 use crate::{all_builtins, say};
 
@@ -29,6 +31,37 @@ pub struct Args {
     /// Also write the report as JSON (an array, one entry per implementation).
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
+    /// Seconds one case may take before the rule fails as hung.
+    #[arg(long, value_name = "SECONDS", default_value_t = refrast_conformance::DEFAULT_CASE_TIMEOUT.as_secs_f64(),
+          value_parser = positive_seconds)]
+    case_timeout: f64,
+    /// Run the rules in this process instead of one child process each (for a debugger or a
+    /// profiler; a rasterizer that hangs or aborts then stops the whole run).
+    #[arg(long)]
+    in_process: bool,
+}
+
+/// A finite, positive number of seconds.
+fn positive_seconds(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(s) if s.is_finite() && s > 0.0 => Ok(s),
+        _ => Err(format!("'{text}' is not a positive number of seconds")),
+    }
+}
+
+/// One implementation's entry in the JSON report.
+#[derive(Serialize)]
+#[serde(untagged)]
+enum Entry {
+    /// Certified: the report.
+    Certified(Report),
+    /// Not available on this machine, and why.
+    Skipped {
+        /// Its name.
+        implementation: String,
+        /// Why it was skipped.
+        skipped: String,
+    },
 }
 
 /// Runs `refrast certify`: 0 when every applicable rule passes, 1 when one fails, 2 on a usage error.
@@ -63,10 +96,12 @@ pub fn run(args: &Args) -> ExitCode {
         seed: args.seed,
         rule: args.rule.clone(),
         report_dir: Some(args.report.clone()),
+        case_timeout: Duration::from_secs_f64(args.case_timeout),
+        ..Options::default()
     };
     let mut reports = Vec::new();
     for b in &chosen {
-        reports.push(certify_one(b, &options));
+        reports.push(certify_one(b, &options, args.in_process));
     }
     if let Some(path) = &args.json {
         let json = serde_json::to_string_pretty(&reports).expect("reports serialise");
@@ -76,15 +111,30 @@ pub fn run(args: &Args) -> ExitCode {
         }
         say(&format!("wrote {}", path.display()));
     }
-    if reports.iter().all(Report::passed) {
+    let passed = |entry: &Entry| match entry {
+        Entry::Certified(report) => report.passed(),
+        Entry::Skipped { .. } => true,
+    };
+    if reports.iter().all(passed) {
         ExitCode::SUCCESS
     } else {
         ExitCode::FAILURE
     }
 }
 
-fn certify_one(b: &BuiltIn, options: &Options) -> Report {
-    let mut rasterizer = (b.make)();
+/// Certifies one built-in, each rule in a child process unless `in_process`; skips it, saying
+/// why, when it cannot be built here.
+fn certify_one(b: &BuiltIn, options: &Options, in_process: bool) -> Entry {
+    let mut rasterizer = match b.build() {
+        Ok(r) => r,
+        Err(why) => {
+            say(&format!("== {}: SKIPPED: {why}\n", b.name));
+            return Entry::Skipped {
+                implementation: b.name.clone(),
+                skipped: why.to_string(),
+            };
+        }
+    };
     let p = rasterizer.profile();
     say(&format!(
         "== {}: {}, {}, depth {:?}, band {} px, seed {}",
@@ -96,14 +146,81 @@ fn certify_one(b: &BuiltIn, options: &Options) -> Report {
         options.seed
     ));
     let start = Instant::now();
-    let report = refrast_conformance::certify(rasterizer.as_mut(), options, print_rule);
+    let report = if in_process {
+        refrast_conformance::certify(rasterizer.as_mut(), options, print_rule)
+    } else {
+        drop(rasterizer);
+        let command = |rule: &refrast_conformance::Rule| run_rule_command(&b.name, rule.id, options);
+        certify_isolated(&p, &command, options, print_rule)
+    };
     let (pass, fail, na) = report.tally();
     say(&format!(
         "{}: {pass} passed, {fail} failed, {na} not applicable ({:.1} s)\n",
         p.name,
         start.elapsed().as_secs_f64()
     ));
-    report
+    Entry::Certified(report)
+}
+
+/// This program again, running one rule of one built-in (`refrast run-rule`).
+fn run_rule_command(implementation: &str, rule: &str, options: &Options) -> Command {
+    let exe = std::env::current_exe().unwrap_or_else(|_| PathBuf::from("refrast"));
+    let mut command = Command::new(exe);
+    command.args(["run-rule", "--impl", implementation, "--rule", rule]);
+    command.args(["--seed", &options.seed.to_string()]);
+    if let Some(cases) = options.cases {
+        command.args(["--cases", &cases.to_string()]);
+    }
+    if let Some(dir) = &options.report_dir {
+        command.arg("--report").arg(dir);
+    }
+    command
+}
+
+/// Arguments of the hidden `refrast run-rule`, the child `certify` starts for each rule.
+#[derive(clap::Args, Debug)]
+pub struct RunRuleArgs {
+    /// The built-in to run.
+    #[arg(long = "impl", value_name = "NAME")]
+    implementation: String,
+    /// The rule's ID.
+    #[arg(long, value_name = "ID")]
+    rule: String,
+    /// Cases [default: PROPTEST_CASES, else the rule's own].
+    #[arg(long, value_name = "N")]
+    cases: Option<u32>,
+    /// Seed of the case generator.
+    #[arg(long, value_name = "S", default_value_t = refrast_conformance::DEFAULT_SEED)]
+    seed: u64,
+    /// Folder for the counterexample picture.
+    #[arg(long, value_name = "DIR")]
+    report: Option<PathBuf>,
+}
+
+/// Runs `refrast run-rule`: one rule, spoken to the parent on stdout ([`refrast_conformance::isolate`]).
+pub fn run_rule(args: &RunRuleArgs) -> ExitCode {
+    let Some(b) = all_builtins().into_iter().find(|b| b.name == args.implementation) else {
+        eprintln!("error: no implementation named '{}'", args.implementation);
+        return ExitCode::from(2);
+    };
+    let mut rasterizer = match b.build() {
+        Ok(r) => r,
+        Err(why) => {
+            eprintln!("error: {} cannot be built here: {why}", b.name);
+            return ExitCode::from(2);
+        }
+    };
+    let options = Options {
+        cases: args.cases,
+        seed: args.seed,
+        report_dir: args.report.clone(),
+        ..Options::default()
+    };
+    if refrast_conformance::isolate::serve_rule(&args.rule, rasterizer.as_mut(), &options) {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(2)
+    }
 }
 
 fn print_rule(r: &RuleReport) {

@@ -45,12 +45,16 @@ enum Command {
     },
     /// List the built-in scenes.
     Scenes,
+    /// Run one rule for `certify` and speak to it on stdout (not for people).
+    #[command(hide = true)]
+    RunRule(certify::RunRuleArgs),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         Command::Certify(args) => certify::run(&args),
+        Command::RunRule(args) => certify::run_rule(&args),
         Command::Rules { markdown: true } => {
             say(&refrast_conformance::markdown_table());
             ExitCode::SUCCESS
@@ -70,7 +74,13 @@ fn main() -> ExitCode {
         }
         Command::Impls => {
             for b in all_builtins() {
-                let p = (b.make)().profile();
+                let p = match b.build() {
+                    Ok(r) => r.profile(),
+                    Err(why) => {
+                        say(&format!("{:<22} unavailable here: {why}", b.name));
+                        continue;
+                    }
+                };
                 let kind = if b.correct { "correct" } else { "broken on purpose" };
                 say(&format!(
                     "{:<22} {}, {}, band {} px, {kind}: {}",

@@ -1,17 +1,23 @@
 //! Certification: every applicable rule against one rasterizer, summed up as a report.
 
 use std::path::{Path, PathBuf};
+use std::time::Duration;
 
 use refrast::{Features, FillConvention, Profile, Rasterizer};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::picture;
 use crate::rules::{Family, Kind, Rule, catalogue};
-use crate::runner::{DEFAULT_SEED, RunConfig, Verdict};
+use crate::runner::{Announce, DEFAULT_SEED, RunConfig, Verdict};
 use crate::violation::Counts;
 
+/// How long one case may take by default: far more than any correct rasterizer needs for the
+/// suite's small scenes (a GPU through an API takes milliseconds), short enough that a hang
+/// costs a run little.
+pub const DEFAULT_CASE_TIMEOUT: Duration = Duration::from_secs(20);
+
 /// What to run and where to write pictures.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug)]
 pub struct Options {
     /// Cases per rule; `None` takes `PROPTEST_CASES`, else each rule's default.
     pub cases: Option<u32>,
@@ -21,6 +27,11 @@ pub struct Options {
     pub rule: Option<String>,
     /// Where to write counterexample pictures; `None` writes none.
     pub report_dir: Option<PathBuf>,
+    /// Called with every input before it is checked ([`RunConfig::announce`]).
+    pub announce: Option<Announce>,
+    /// How long one case may take before a rule run in a child process ([`crate::isolate`])
+    /// fails as hung.
+    pub case_timeout: Duration,
 }
 
 impl Default for Options {
@@ -30,12 +41,14 @@ impl Default for Options {
             seed: DEFAULT_SEED,
             rule: None,
             report_dir: None,
+            announce: None,
+            case_timeout: DEFAULT_CASE_TIMEOUT,
         }
     }
 }
 
 /// A rule's outcome.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum Status {
     /// Every case held.
     #[serde(rename = "pass")]
@@ -61,7 +74,7 @@ impl Status {
 }
 
 /// One rule's line in the report.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RuleReport {
     /// The rule's ID.
     pub id: String,
@@ -88,7 +101,7 @@ pub struct RuleReport {
 }
 
 /// The profile as the report prints it.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ProfileReport {
     /// Declared name.
     pub name: String,
@@ -150,7 +163,7 @@ pub fn feature_list(f: &Features) -> Vec<String> {
 }
 
 /// The whole certification of one implementation.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Report {
     /// The implementation's name.
     pub implementation: String,
@@ -229,6 +242,7 @@ pub fn run_rule(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options)
     let cfg = RunConfig {
         cases: cases_for(rule, options),
         seed: options.seed,
+        announce: options.announce,
     };
     report.cases = cfg.cases;
     if let Verdict::Fail {

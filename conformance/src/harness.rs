@@ -9,53 +9,88 @@
 //! ```
 //!
 //! `cargo test -- --list` then reads like the spec; `cargo test -- fill.` runs one family.
-//! Rules that do not apply to the profile are reported as ignored, never as passed.
+//! Rules that do not apply to the profile are reported as ignored, never as passed, even under
+//! `--include-ignored` (then they say `n/a` and why).
 
 use std::path::PathBuf;
+use std::process::Command;
 use std::sync::Arc;
+use std::time::Duration;
 
-use libtest_mimic::{Arguments, Failed, Trial};
+use libtest_mimic::{Arguments, Completion, Failed, Trial};
 use refrast::Rasterizer;
 
-use crate::certify::{Options, Status, run_rule};
+use crate::certify::{DEFAULT_CASE_TIMEOUT, Options, RuleReport, Status, run_rule};
+use crate::isolate::{run_rule_isolated, serve_rule};
 use crate::rules::catalogue;
 use crate::runner::DEFAULT_SEED;
 
+/// Set in a child of the harness: the one rule it runs.
+const RULE_ENV: &str = "REFRAST_RUN_RULE";
+
+/// The options the environment asks for.
+fn options_from_env() -> Options {
+    let var = |name: &str| std::env::var(name).ok();
+    Options {
+        seed: var("REFRAST_SEED")
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(DEFAULT_SEED),
+        report_dir: Some(
+            var("REFRAST_REPORT").map_or_else(|| PathBuf::from("target/refrast-report"), PathBuf::from),
+        ),
+        case_timeout: var("REFRAST_CASE_TIMEOUT")
+            .and_then(|s| s.parse().ok())
+            .map_or(DEFAULT_CASE_TIMEOUT, Duration::from_secs_f64),
+        ..Options::default()
+    }
+}
+
 /// Runs every rule against rasterizers made by `make`, as a test harness, then exits.
 ///
-/// Case counts follow `PROPTEST_CASES` (else each rule's default); `REFRAST_SEED` sets the
-/// seed; counterexample pictures go to `REFRAST_REPORT` (default `target/refrast-report`).
+/// Each rule runs in a child process (this test binary again), so a rasterizer that hangs,
+/// aborts or crashes fails that rule with a message and the others still run.
+///
+/// Environment: `PROPTEST_CASES` sets the cases per rule (else each rule's default);
+/// `REFRAST_SEED` the seed; `REFRAST_REPORT` where counterexample pictures go (default
+/// `target/refrast-report`); `REFRAST_CASE_TIMEOUT` the seconds one case may take (default 20);
+/// `REFRAST_IN_PROCESS=1` runs the rules in this process instead (for a debugger or a profiler;
+/// a hang then hangs the test).
 pub fn run_as_tests<R, F>(make: F) -> !
 where
     R: Rasterizer + 'static,
     F: Fn() -> R + Send + Sync + 'static,
 {
+    let options = Arc::new(options_from_env());
+    if let Ok(id) = std::env::var(RULE_ENV) {
+        let served = serve_rule(&id, &mut make(), &options);
+        std::process::exit(if served { 0 } else { 2 });
+    }
+    let in_process = std::env::var_os("REFRAST_IN_PROCESS").is_some_and(|v| v != "0");
     let args = Arguments::from_args();
     let make = Arc::new(make);
-    let profile = make().profile();
-    let options = Arc::new(Options {
-        cases: None,
-        seed: std::env::var("REFRAST_SEED")
-            .ok()
-            .and_then(|s| s.parse().ok())
-            .unwrap_or(DEFAULT_SEED),
-        rule: None,
-        report_dir: Some(
-            std::env::var_os("REFRAST_REPORT")
-                .map_or_else(|| PathBuf::from("target/refrast-report"), PathBuf::from),
-        ),
-    });
+    let profile = Arc::new(make().profile());
     let trials = catalogue()
         .into_iter()
         .map(|rule| {
             let ignored = rule.applies(&profile).is_err();
             let (id, family) = (rule.id, rule.family);
-            let (make, options) = (Arc::clone(&make), Arc::clone(&options));
-            Trial::test(id, move || {
-                let mut r = make();
-                let report = run_rule(&rule, &mut r, &options);
+            let (make, options, profile) = (Arc::clone(&make), Arc::clone(&options), Arc::clone(&profile));
+            Trial::ignorable_test(id, move || {
+                let report = if in_process {
+                    run_rule(&rule, &mut make(), &options)
+                } else {
+                    let exe =
+                        std::env::current_exe().map_err(|e| format!("cannot find this test binary: {e}"))?;
+                    let mut child = Command::new(exe);
+                    child.env(RULE_ENV, rule.id);
+                    run_rule_isolated(&rule, &profile, child, &options)
+                };
                 match report.status {
-                    Status::Pass | Status::NotApplicable => Ok(()),
+                    Status::Pass => Ok(Completion::Completed),
+                    Status::NotApplicable => Ok(Completion::ignored_with(format!(
+                        "n/a: {}",
+                        report.message.as_deref().unwrap_or("")
+                    ))),
                     Status::Fail => Err(Failed::from(failure_text(&report))),
                 }
             })
@@ -68,7 +103,7 @@ where
 
 /// A failed rule as a test failure message: what, the counts, the input as Rust, the picture.
 #[must_use]
-pub fn failure_text(report: &crate::certify::RuleReport) -> String {
+pub fn failure_text(report: &RuleReport) -> String {
     let mut text = format!(
         "rule {} failed (seed {}, {} cases, band {} subpixels): {}",
         report.id,

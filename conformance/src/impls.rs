@@ -5,8 +5,18 @@ use refrast::{
     SubpixelBits,
 };
 
-/// Builds a fresh rasterizer.
-pub type Maker = std::sync::Arc<dyn Fn() -> Box<dyn Rasterizer> + Send + Sync>;
+/// Why an implementation cannot be built on this machine: no driver, no such adapter.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Unavailable(pub String);
+
+impl std::fmt::Display for Unavailable {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+/// Builds a fresh rasterizer, or says why it cannot here.
+pub type Maker = std::sync::Arc<dyn Fn() -> Result<Box<dyn Rasterizer>, Unavailable> + Send + Sync>;
 
 /// A built-in implementation.
 #[derive(Clone)]
@@ -22,12 +32,22 @@ pub struct BuiltIn {
 }
 
 impl BuiltIn {
-    /// A built-in from its parts.
+    /// A built-in that can always be built.
     pub fn new(
         name: impl Into<String>,
         description: impl Into<String>,
         correct: bool,
         make: impl Fn() -> Box<dyn Rasterizer> + Send + Sync + 'static,
+    ) -> Self {
+        Self::fallible(name, description, correct, move || Ok(make()))
+    }
+
+    /// A built-in that needs something this machine may lack (a driver, a device).
+    pub fn fallible(
+        name: impl Into<String>,
+        description: impl Into<String>,
+        correct: bool,
+        make: impl Fn() -> Result<Box<dyn Rasterizer>, Unavailable> + Send + Sync + 'static,
     ) -> Self {
         Self {
             name: name.into(),
@@ -35,6 +55,11 @@ impl BuiltIn {
             correct,
             make: std::sync::Arc::new(make),
         }
+    }
+
+    /// A fresh instance, or why there is none here.
+    pub fn build(&self) -> Result<Box<dyn Rasterizer>, Unavailable> {
+        (self.make)()
     }
 }
 

@@ -12,7 +12,8 @@
 //! | 5 | `runner` | [`property`]: one rule's property, seeded, shrunk, panics caught |
 //! | 6 | [`rules`] | [`catalogue`], [`Rule`], [`Family`], [`Kind`], [`Need`]: six families, each rule a proptest property |
 //! | 7 | `certify` | [`certify`], [`Options`], [`Report`] |
-//! | 8 | `harness`, [`fuzz`] | [`run_as_tests`]: one test per rule in your own crate; the cargo-fuzz targets as functions on any rasterizer |
+//! | 8 | [`isolate`] | rules in child processes: a hang, an abort or a crash fails the rule it was running |
+//! | 9 | `harness`, [`fuzz`] | [`run_as_tests`]: one test per rule in your own crate; the cargo-fuzz targets as functions on any rasterizer |
 //! | — | `impls` | [`builtins`]: the implementations `refrast certify --impl` knows (refrast only) |
 //!
 //! # Kinds and tolerance
@@ -28,6 +29,7 @@ mod certify;
 pub mod fuzz;
 mod harness;
 mod impls;
+pub mod isolate;
 pub mod oracle;
 pub mod picture;
 pub mod rules;
@@ -37,10 +39,11 @@ pub mod strategy;
 mod violation;
 
 pub use certify::{
-    Options, ProfileReport, Report, RuleReport, Status, certify, feature_list, fill_name, matches, run_rule,
+    DEFAULT_CASE_TIMEOUT, Options, ProfileReport, Report, RuleReport, Status, certify, feature_list,
+    fill_name, matches, run_rule,
 };
 pub use harness::{failure_text, run_as_tests};
-pub use impls::{BuiltIn, Maker, Named, builtins};
+pub use impls::{BuiltIn, Maker, Named, Unavailable, builtins};
 pub use rules::meta::Translated;
 pub use rules::robust::Poisoned;
 pub use rules::{Family, Kind, Need, Rule, RuleDraft, catalogue, markdown_table, needs};

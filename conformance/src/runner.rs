@@ -15,13 +15,19 @@ use crate::violation::{Picture, Violation};
 /// The seed used when none is given, so that every run tries the same cases.
 pub const DEFAULT_SEED: u64 = 0x5eed_2026_0001;
 
+/// Told each input before the rasterizer sees it, so that a process watching from outside can
+/// name the case a rasterizer hung or crashed on.
+pub type Announce = fn(&dyn Debug);
+
 /// How many cases to try and from which seed.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug)]
 pub struct RunConfig {
     /// Random cases to generate (shrinking comes on top).
     pub cases: u32,
     /// The seed of the case generator.
     pub seed: u64,
+    /// Called with every input, shrinking included, before it is checked.
+    pub announce: Option<Announce>,
 }
 
 /// How a property run ended.
@@ -68,20 +74,23 @@ where
     let rng = TestRng::from_seed(RngAlgorithm::ChaCha, &seed_bytes(cfg.seed));
     let mut runner = TestRunner::new_with_rng(config, rng);
     let cell = RefCell::new(rasterizer);
+    let announce = cfg.announce;
     let result = runner.run(&strategy, |input| {
         let mut r = cell.borrow_mut();
-        run_check(&mut **r, check, &input).map_err(|v| TestCaseError::fail(v.message))
+        run_announced(&mut **r, check, &input, announce).map_err(|v| TestCaseError::fail(v.message))
     });
     match result {
         Ok(()) => Verdict::Pass,
         Err(TestError::Fail(reason, input)) => {
             let mut r = cell.borrow_mut();
-            let input = reduce(&mut **r, check, input);
-            let mut violation = run_check(&mut **r, check, &input).err().unwrap_or_else(|| {
-                Violation::new(format!(
-                    "{reason} (the shrunk case passed on a second run: is the rasterizer deterministic?)"
-                ))
-            });
+            let input = reduce(&mut **r, check, input, announce);
+            let mut violation = run_announced(&mut **r, check, &input, announce)
+                .err()
+                .unwrap_or_else(|| {
+                    Violation::new(format!(
+                        "{reason} (the shrunk case passed on a second run: is the rasterizer deterministic?)"
+                    ))
+                });
             if violation.picture.is_none() {
                 violation.picture = Some(Box::new(coverage_picture(
                     &mut **r,
@@ -102,10 +111,15 @@ where
 }
 
 /// Takes the first smaller input that still fails, until none does.
-fn reduce<T: Case>(r: &mut dyn Rasterizer, check: Check<T>, mut input: T) -> T {
+fn reduce<T: Case + Debug>(
+    r: &mut dyn Rasterizer,
+    check: Check<T>,
+    mut input: T,
+    announce: Option<Announce>,
+) -> T {
     'outer: loop {
         for candidate in input.reductions() {
-            if run_check(r, check, &candidate).is_err() {
+            if run_announced(r, check, &candidate, announce).is_err() {
                 input = candidate;
                 continue 'outer;
             }
@@ -121,6 +135,19 @@ fn coverage_picture(r: &mut dyn Rasterizer, scene: &Scene, sample: Option<(u32, 
         .and_then(Result::ok)
         .unwrap_or_default();
     picture::of_fragments(scene, &fragments, sample)
+}
+
+/// [`run_check`], announcing the input first.
+fn run_announced<T: Debug>(
+    r: &mut dyn Rasterizer,
+    check: Check<T>,
+    input: &T,
+    announce: Option<Announce>,
+) -> Result<(), Violation> {
+    if let Some(announce) = announce {
+        announce(input);
+    }
+    run_check(r, check, input)
 }
 
 /// Runs one check, turning a panic of the rasterizer into a violation.

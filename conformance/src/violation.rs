@@ -38,7 +38,7 @@ pub enum Expect {
 }
 
 /// The tally of a coverage comparison.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 pub struct Counts {
     /// Samples that should be covered and are not.
     pub missing: usize,

@@ -18,6 +18,7 @@ const LAYERS: &[&[&str]] = &[
     &["runner"],
     &["rules"],
     &["certify"],
+    &["isolate"],
     &["harness", "fuzz"],
 ];
 

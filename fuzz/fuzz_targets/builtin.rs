@@ -29,6 +29,10 @@ fn chosen() -> &'static (Target, BuiltIn) {
             );
             std::process::exit(2);
         };
+        if let Err(why) = built_in.build() {
+            eprintln!("REFRAST_FUZZ_IMPL={impl_name} cannot be built on this machine: {why}");
+            std::process::exit(2);
+        }
         let Some(target) = Target::from_name(&target_name).filter(|t| t.judges_rasterizer()) else {
             let targets: Vec<&str> = Target::ALL
                 .iter()
@@ -52,7 +56,9 @@ fuzz_target!(
     },
     |data: &[u8]| {
         let (target, built_in) = chosen();
-        if let Outcome::Failed(failure) = target.run(&mut *(built_in.make)(), data) {
+        // Checked buildable in `chosen`; a build failing later is itself worth a crash report.
+        let mut rasterizer = built_in.build().unwrap_or_else(|why| panic!("{} stopped building: {why}", built_in.name));
+        if let Outcome::Failed(failure) = target.run(&mut *rasterizer, data) {
             panic!("{} fails the {} target: {failure}", built_in.name, target.name());
         }
     }

@@ -15,7 +15,7 @@ use refrast::{CompareOp, CullMode, DepthConvention, DepthRange, Profile, Rasteri
 use crate::runner::{RunConfig, Verdict};
 
 /// A rule family.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Family {
     /// Coverage and the fill rule: watertight meshes, ownership of shared edges.
@@ -48,7 +48,7 @@ impl Family {
 }
 
 /// Whether a rule holds for any correct rasterizer or pins one exact answer.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Kind {
     /// Holds for every correct rasterizer, within the profile's tolerance band.

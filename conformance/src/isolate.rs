@@ -1,0 +1,297 @@
+//! Rules run in child processes, so that a rasterizer that hangs, aborts or crashes fails the
+//! rule it was running, with a message, and the run goes on.
+//!
+//! The parent decides applicability and starts one child per applicable rule (a command the
+//! caller builds: `refrast run-rule …`, or the test binary itself for [`crate::run_as_tests`]).
+//! The child runs the rule with [`serve_rule`] and speaks one JSON object a line on its stdout,
+//! each after [`MARK`]: every case before it is checked, then the report. Lines without the
+//! mark are the rasterizer's own output and are kept for the failure message.
+//!
+//! The parent gives each case [`Options::case_timeout`]: a child silent for longer is killed and
+//! the rule fails as hung, on the last case it announced. A child that exits without a report
+//! failed the same way, with its exit status or signal and the end of its stderr.
+
+use std::io::{BufRead, BufReader, Read, Write};
+use std::process::{Child, Command, ExitStatus, Stdio};
+use std::sync::mpsc::{self, RecvTimeoutError};
+use std::thread;
+use std::time::Instant;
+
+use refrast::{Profile, Rasterizer};
+use serde::{Deserialize, Serialize};
+
+use crate::certify::{Options, ProfileReport, Report, RuleReport, Status, cases_for, matches, run_rule};
+use crate::rules::{Rule, catalogue};
+
+/// The prefix of every protocol line on the child's stdout.
+pub const MARK: &str = "@refrast-rule ";
+
+/// How much of a child's own output a failure message keeps (its end).
+const KEPT_OUTPUT: usize = 4000;
+
+/// One line from a child.
+#[derive(Debug, Serialize, Deserialize)]
+enum Message {
+    /// The input about to be checked, as Rust.
+    Case(String),
+    /// The rule's outcome.
+    Report(Box<RuleReport>),
+}
+
+/// Writes one protocol line to stdout.
+fn send(message: &Message) {
+    let line = serde_json::to_string(message).unwrap_or_default();
+    let mut out = std::io::stdout().lock();
+    // A parent that stopped listening has killed us or is about to: nothing to do on failure.
+    let _ = writeln!(out, "{MARK}{line}").and_then(|()| out.flush());
+}
+
+/// Announces an input to the parent.
+fn announce(input: &dyn std::fmt::Debug) {
+    send(&Message::Case(format!("{input:?}")));
+}
+
+/// Child side: runs rule `id` against `rasterizer`, announcing every case, and writes the
+/// report. Returns `false` when no rule has that ID (after saying so on stderr).
+pub fn serve_rule(id: &str, rasterizer: &mut dyn Rasterizer, options: &Options) -> bool {
+    let Some(rule) = catalogue().into_iter().find(|r| r.id == id) else {
+        eprintln!("error: no rule with ID '{id}'; `refrast rules` lists them");
+        return false;
+    };
+    let options = Options {
+        announce: Some(announce),
+        ..options.clone()
+    };
+    let report = run_rule(&rule, rasterizer, &options);
+    send(&Message::Report(Box::new(report)));
+    true
+}
+
+/// Parent side: certifies an implementation whose profile is `profile`, each applicable rule in
+/// a child started by `command(rule)`, calling `progress` after each rule.
+pub fn certify_isolated(
+    profile: &Profile,
+    command: &dyn Fn(&Rule) -> Command,
+    options: &Options,
+    mut progress: impl FnMut(&RuleReport),
+) -> Report {
+    let mut rules = Vec::new();
+    for rule in catalogue() {
+        if options.rule.as_deref().is_some_and(|p| !matches(p, rule.id)) {
+            continue;
+        }
+        let report = match rule.applies(profile) {
+            Err(reason) => not_applicable(&rule, profile, options, reason),
+            Ok(()) => run_rule_isolated(&rule, profile, command(&rule), options),
+        };
+        progress(&report);
+        rules.push(report);
+    }
+    Report {
+        implementation: profile.name.clone(),
+        profile: ProfileReport::from(profile),
+        rules,
+    }
+}
+
+/// The report of a rule that does not apply.
+fn not_applicable(rule: &Rule, profile: &Profile, options: &Options, reason: &str) -> RuleReport {
+    RuleReport {
+        status: Status::NotApplicable,
+        cases: 0,
+        message: Some(reason.to_owned()),
+        ..blank(rule, profile, options)
+    }
+}
+
+/// A report of `rule` with nothing run yet.
+fn blank(rule: &Rule, profile: &Profile, options: &Options) -> RuleReport {
+    RuleReport {
+        id: rule.id.to_owned(),
+        family: rule.family,
+        kind: rule.kind,
+        status: Status::Pass,
+        cases: cases_for(rule, options),
+        seed: options.seed,
+        tolerance_subpixels: profile.tolerance_subpixels.max(1),
+        message: None,
+        counts: None,
+        counterexample: None,
+        picture: None,
+    }
+}
+
+/// What a child printed, as the reader thread passes it on.
+enum Line {
+    Message(Message),
+    Other(String),
+    Closed,
+}
+
+/// Runs one rule in a child started by `command`; a hang, crash or garbled answer is a failure.
+pub fn run_rule_isolated(
+    rule: &Rule,
+    profile: &Profile,
+    mut command: Command,
+    options: &Options,
+) -> RuleReport {
+    let failed = |message: String, last_case: Option<String>| RuleReport {
+        status: Status::Fail,
+        message: Some(message),
+        counterexample: last_case,
+        ..blank(rule, profile, options)
+    };
+    let program = format!("{:?}", command.get_program());
+    let mut child = match command
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .stdin(Stdio::null())
+        .spawn()
+    {
+        Ok(child) => child,
+        Err(e) => return failed(format!("could not start the rule's process {program}: {e}"), None),
+    };
+    let stderr = child.stderr.take().map(collect_tail);
+    let (tx, rx) = mpsc::channel();
+    if let Some(stdout) = child.stdout.take() {
+        thread::spawn(move || {
+            for line in BufReader::new(stdout).lines() {
+                let Ok(line) = line else { break };
+                let parsed = match line.strip_prefix(MARK) {
+                    Some(json) => match serde_json::from_str(json) {
+                        Ok(message) => Line::Message(message),
+                        Err(e) => Line::Other(format!("(a garbled protocol line: {e})")),
+                    },
+                    None => Line::Other(line),
+                };
+                if tx.send(parsed).is_err() {
+                    return;
+                }
+            }
+            let _ = tx.send(Line::Closed);
+        });
+    }
+    let mut last_case = None;
+    let mut cases_seen = 0usize;
+    let mut own_output = Tail::default();
+    let mut last_word = Instant::now();
+    loop {
+        let waited = last_word.elapsed();
+        let left = options.case_timeout.saturating_sub(waited);
+        match rx.recv_timeout(left) {
+            Ok(Line::Message(Message::Case(input))) => {
+                cases_seen += 1;
+                last_case = Some(input);
+                last_word = Instant::now();
+            }
+            Ok(Line::Message(Message::Report(report))) => {
+                let _ = child.wait();
+                return *report;
+            }
+            Ok(Line::Other(line)) => own_output.push(&line),
+            Ok(Line::Closed) | Err(RecvTimeoutError::Disconnected) => {
+                let status = wait(&mut child);
+                let output = join_output(stderr, &own_output);
+                return failed(
+                    format!(
+                        "the rasterizer's process ended without a verdict ({}) during case {cases_seen}{}",
+                        describe(status),
+                        output
+                    ),
+                    last_case,
+                );
+            }
+            Err(RecvTimeoutError::Timeout) => {
+                let _ = child.kill();
+                let _ = child.wait();
+                let output = join_output(stderr, &own_output);
+                return failed(
+                    format!(
+                        "no answer within {} s on case {cases_seen}: the rasterizer hangs on it (or is far \
+                         too slow; --case-timeout sets the limit){output}",
+                        options.case_timeout.as_secs_f64()
+                    ),
+                    last_case,
+                );
+            }
+        }
+    }
+}
+
+/// The exit status, once the child is gone.
+fn wait(child: &mut Child) -> Option<ExitStatus> {
+    child.wait().ok()
+}
+
+/// An exit status in words: a code, or the signal that ended the process.
+fn describe(status: Option<ExitStatus>) -> String {
+    let Some(status) = status else {
+        return "exit status unknown".into();
+    };
+    if let Some(code) = status.code() {
+        return format!("exit code {code}");
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::process::ExitStatusExt;
+        if let Some(signal) = status.signal() {
+            let name = match signal {
+                4 => " (SIGILL)",
+                6 => " (SIGABRT: an abort)",
+                7 => " (SIGBUS)",
+                8 => " (SIGFPE)",
+                9 => " (SIGKILL)",
+                11 => " (SIGSEGV: a crash)",
+                _ => "",
+            };
+            return format!("killed by signal {signal}{name}");
+        }
+    }
+    format!("{status}")
+}
+
+/// The last [`KEPT_OUTPUT`] bytes of a stream.
+#[derive(Default)]
+struct Tail(String);
+
+impl Tail {
+    fn push(&mut self, line: &str) {
+        self.0.push_str(line);
+        self.0.push('\n');
+        if self.0.len() > 2 * KEPT_OUTPUT {
+            let mut cut = self.0.len() - KEPT_OUTPUT;
+            while !self.0.is_char_boundary(cut) {
+                cut += 1;
+            }
+            self.0.drain(..cut);
+        }
+    }
+}
+
+/// Reads a stream to its end on a thread of its own, keeping its tail.
+fn collect_tail(stream: impl Read + Send + 'static) -> thread::JoinHandle<String> {
+    thread::spawn(move || {
+        let mut tail = Tail::default();
+        for line in BufReader::new(stream).lines() {
+            let Ok(line) = line else { break };
+            tail.push(&line);
+        }
+        tail.0
+    })
+}
+
+/// The child's stderr and stray stdout, ready to append to a message.
+fn join_output(stderr: Option<thread::JoinHandle<String>>, stdout: &Tail) -> String {
+    let stderr = stderr.and_then(|h| h.join().ok()).unwrap_or_default();
+    let mut text = String::new();
+    for (name, body) in [("stderr", stderr.trim_end()), ("stdout", stdout.0.trim_end())] {
+        if !body.is_empty() {
+            let start = body.len().saturating_sub(KEPT_OUTPUT);
+            let start = (start..body.len())
+                .find(|&i| body.is_char_boundary(i))
+                .unwrap_or(0);
+            text.push_str(&format!("; its {name} ends:\n{}", &body[start..]));
+        }
+    }
+    text
+}

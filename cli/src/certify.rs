@@ -239,6 +239,9 @@ fn print_rule(r: &RuleReport) {
         )),
         Status::Fail => {
             say(&format!("      {}", r.message.as_deref().unwrap_or("")));
+            for detail in r.details.iter().skip(1) {
+                say(&format!("        {detail}"));
+            }
             if let Some(p) = &r.picture {
                 say(&format!("      picture: {}", p.display()));
             }

@@ -92,6 +92,9 @@ pub struct RuleReport {
     pub tolerance_subpixels: u32,
     /// Why it failed, or why it does not apply.
     pub message: Option<String>,
+    /// The numbers behind a failure, one line per wrong sample (the first few).
+    #[serde(default)]
+    pub details: Vec<String>,
     /// Sample tallies of a failed coverage check.
     pub counts: Option<Counts>,
     /// The shrunk failing input, as Rust.
@@ -230,6 +233,7 @@ pub fn run_rule(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options)
         seed: options.seed,
         tolerance_subpixels: profile.tolerance_subpixels.max(1),
         message: None,
+        details: Vec::new(),
         counts: None,
         counterexample: None,
         picture: None,
@@ -252,10 +256,13 @@ pub fn run_rule(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options)
     {
         report.status = Status::Fail;
         report.message = Some(violation.to_string());
+        report.details = violation.details.clone();
         report.counts = violation.counts;
         report.counterexample = Some(counterexample);
         if let (Some(dir), Some(pic)) = (&options.report_dir, &violation.picture) {
-            report.picture = write_picture(dir, &profile.name, rule.id, pic);
+            let mut caption = vec![format!("{} on {}: {violation}", rule.id, profile.name)];
+            caption.extend(violation.details.iter().skip(1).cloned());
+            report.picture = write_picture(dir, &profile.name, rule.id, pic, &caption);
         }
     }
     report
@@ -266,6 +273,7 @@ fn write_picture(
     implementation: &str,
     id: &str,
     pic: &crate::violation::Picture,
+    caption: &[String],
 ) -> Option<PathBuf> {
     let safe: String = implementation
         .chars()
@@ -273,7 +281,7 @@ fn write_picture(
         .collect();
     let path = dir.join(format!("{safe}__{id}.png"));
     std::fs::create_dir_all(dir).ok()?;
-    picture::save(pic, &path).ok()?;
+    picture::save(pic, caption, &path).ok()?;
     Some(path)
 }
 

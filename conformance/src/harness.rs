@@ -112,6 +112,9 @@ pub fn failure_text(report: &RuleReport) -> String {
         report.tolerance_subpixels,
         report.message.as_deref().unwrap_or("")
     );
+    for detail in report.details.iter().skip(1) {
+        text.push_str(&format!("\n  {detail}"));
+    }
     if let Some(input) = &report.counterexample {
         text.push_str("\nshrunk counterexample:\n");
         text.push_str(input);

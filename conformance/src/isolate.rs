@@ -115,6 +115,7 @@ fn blank(rule: &Rule, profile: &Profile, options: &Options) -> RuleReport {
         seed: options.seed,
         tolerance_subpixels: profile.tolerance_subpixels.max(1),
         message: None,
+        details: Vec::new(),
         counts: None,
         counterexample: None,
         picture: None,

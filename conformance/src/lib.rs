@@ -49,4 +49,4 @@ pub use rules::robust::Poisoned;
 pub use rules::{Family, Kind, Need, Rule, RuleDraft, catalogue, markdown_table, needs};
 pub use runner::{DEFAULT_SEED, RunConfig, Verdict, property};
 pub use scene::{Case, Scene, clip_of};
-pub use violation::{Class, Counts, Expect, Picture, Violation, compare_coverage, count_fragments};
+pub use violation::{Class, Counts, Expect, Findings, Picture, Violation, compare_coverage, count_fragments};

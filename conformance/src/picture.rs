@@ -1,7 +1,9 @@
 //! Counterexample pictures: the zoomed pixel grid, samples coloured by class, outlines on top.
 //!
 //! Colours follow dEQP: missing purple, unexpected red, double-covered blue, don't-care yellow;
-//! rightly covered samples are light grey, rightly empty ones dark grey.
+//! rightly covered samples are light grey, rightly empty ones dark grey. Triangles are outlined
+//! in white where they are visible. Below the grid a caption repeats the legend, then what went
+//! wrong with its numbers, one line per wrong sample (the first few).
 
 use std::path::Path;
 
@@ -49,10 +51,10 @@ pub fn scene_outlines(scene: &Scene) -> Vec<Vec<[f64; 2]>> {
     finite_outlines(&outlines)
 }
 
-/// A picture of `fragments` of `scene`: covered once grey, more often blue, `sample` (the one a
+/// A picture of `fragments` of `scene`: covered once grey, more often blue, `samples` (those a
 /// failure is about) red, with the triangles' outlines.
 #[must_use]
-pub fn of_fragments(scene: &Scene, fragments: &[Fragment], sample: Option<(u32, u32)>) -> Picture {
+pub fn of_fragments(scene: &Scene, fragments: &[Fragment], samples: &[(u32, u32)]) -> Picture {
     let (w, h) = (scene.width, scene.height);
     let mut classes: Vec<Class> = count_fragments(fragments, w, h)
         .iter()
@@ -62,7 +64,7 @@ pub fn of_fragments(scene: &Scene, fragments: &[Fragment], sample: Option<(u32, 
             _ => Class::Double,
         })
         .collect();
-    if let Some((x, y)) = sample.filter(|&(x, y)| x < w && y < h) {
+    for &(x, y) in samples.iter().filter(|&&(x, y)| x < w && y < h) {
         classes[y as usize * w as usize + x as usize] = Class::Unexpected;
     }
     Picture {
@@ -156,7 +158,105 @@ fn clip_to_rect(a: [f64; 2], b: [f64; 2], r: [f64; 4]) -> Option<([f64; 2], [f64
         .then(|| ([a[0] + t0 * dx, a[1] + t0 * dy], [a[0] + t1 * dx, a[1] + t1 * dy]))
 }
 
-/// Writes the picture as a PNG.
-pub fn save(picture: &Picture, path: &Path) -> Result<(), image::ImageError> {
-    render(picture).save_with_format(path, image::ImageFormat::Png)
+/// Height of a caption line in pixels (8×8 glyphs and a 2-pixel gap).
+const LINE: u32 = 10;
+
+/// The legend: each class's name in its own colour.
+const LEGEND: [(Class, &str); 6] = [
+    (Class::Covered, "covered"),
+    (Class::Empty, "empty"),
+    (Class::Missing, "missing"),
+    (Class::Unexpected, "wrong"),
+    (Class::Double, "double"),
+    (Class::DontCare, "don't care"),
+];
+
+/// The picture with a caption below it: the legend, then `lines` wrapped to its width.
+#[must_use]
+pub fn render_with_caption(picture: &Picture, lines: &[String]) -> RgbaImage {
+    let grid = render(picture);
+    // At least wide enough for the legend, so a small viewport still says what colours mean.
+    let width = grid.width().max(8 * 70);
+    let columns = (width / 8 - 1) as usize;
+    let wrapped: Vec<String> = lines.iter().flat_map(|l| wrap(l, columns)).collect();
+    let caption = LINE * (2 + wrapped.len() as u32) + 4;
+    let mut img = RgbaImage::from_pixel(width, grid.height() + caption, Rgba([16, 16, 16, 255]));
+    image::imageops::replace(&mut img, &grid, 0, 0);
+    let mut x = 4;
+    let y = grid.height() + 4;
+    for (class, name) in LEGEND {
+        let c = colour(class);
+        // Dark grey on dark grey would vanish: empty samples are named in light grey.
+        let c = if class == Class::Empty {
+            [120, 120, 120, 255]
+        } else {
+            c
+        };
+        x = draw_text(&mut img, x, y, name, c) + 12;
+    }
+    draw_text(&mut img, x, y, "(white: outlines)", [255, 255, 255, 255]);
+    for (i, line) in wrapped.iter().enumerate() {
+        draw_text(
+            &mut img,
+            4,
+            y + LINE * (i as u32 + 1) + 4,
+            line,
+            [235, 235, 235, 255],
+        );
+    }
+    img
+}
+
+/// `text` cut into lines of at most `columns` characters, at spaces where it can be.
+fn wrap(text: &str, columns: usize) -> Vec<String> {
+    let mut out = Vec::new();
+    for paragraph in text.lines() {
+        let mut line = String::new();
+        for word in paragraph.split(' ') {
+            if !line.is_empty() && line.chars().count() + 1 + word.chars().count() > columns {
+                out.push(std::mem::take(&mut line));
+            }
+            if !line.is_empty() {
+                line.push(' ');
+            }
+            line.push_str(word);
+            while line.chars().count() > columns {
+                let rest: String = line.chars().skip(columns).collect();
+                out.push(line.chars().take(columns).collect());
+                line = rest;
+            }
+        }
+        out.push(line);
+    }
+    out
+}
+
+/// Draws `text` from `(x, y)` in 8×8 glyphs and returns where it ends; characters without a
+/// glyph show as `?`.
+fn draw_text(img: &mut RgbaImage, x: u32, y: u32, text: &str, colour: [u8; 4]) -> u32 {
+    use font8x8::{BASIC_FONTS, GREEK_FONTS, LATIN_FONTS, UnicodeFonts};
+    let mut x = x;
+    for ch in text.chars() {
+        let glyph = BASIC_FONTS
+            .get(ch)
+            .or_else(|| LATIN_FONTS.get(ch))
+            .or_else(|| GREEK_FONTS.get(ch))
+            .or_else(|| BASIC_FONTS.get('?'))
+            .unwrap_or([0; 8]);
+        for (row, bits) in glyph.iter().enumerate() {
+            for col in 0..8 {
+                let (px, py) = (x + col, y + row as u32);
+                if bits & (1 << col) != 0 && px < img.width() && py < img.height() {
+                    img.put_pixel(px, py, Rgba(colour));
+                }
+            }
+        }
+        x += 8;
+    }
+    x
+}
+
+/// Writes the picture with its caption as a PNG.
+pub fn save(picture: &Picture, caption: &[String], path: &Path) -> Result<(), image::ImageError> {
+    render_with_caption(picture, caption).save_with_format(path, image::ImageFormat::Png)
 }

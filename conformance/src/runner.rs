@@ -95,7 +95,7 @@ where
                 violation.picture = Some(Box::new(coverage_picture(
                     &mut **r,
                     input.scene(),
-                    violation.sample,
+                    &violation.samples,
                 )));
             }
             Verdict::Fail {
@@ -128,13 +128,13 @@ fn reduce<T: Case + Debug>(
     }
 }
 
-/// The rasterizer's coverage of `scene` with the outlines, `sample` marked as wrong (red).
-fn coverage_picture(r: &mut dyn Rasterizer, scene: &Scene, sample: Option<(u32, u32)>) -> Picture {
+/// The rasterizer's coverage of `scene` with the outlines, `samples` marked as wrong (red).
+fn coverage_picture(r: &mut dyn Rasterizer, scene: &Scene, samples: &[(u32, u32)]) -> Picture {
     let fragments = catch_unwind(AssertUnwindSafe(|| r.rasterize(&scene.draw())))
         .ok()
         .and_then(Result::ok)
         .unwrap_or_default();
-    picture::of_fragments(scene, &fragments, sample)
+    picture::of_fragments(scene, &fragments, samples)
 }
 
 /// [`run_check`], announcing the input first.

@@ -72,8 +72,10 @@ pub struct Violation {
     pub counts: Option<Counts>,
     /// The samples, for coverage checks (boxed: a violation travels in every `Err`).
     pub picture: Option<Box<Picture>>,
-    /// The sample the failure is about, if it is about one (drawn red when there is no picture).
-    pub sample: Option<(u32, u32)>,
+    /// Every sample the failure is about (drawn red when there is no picture).
+    pub samples: Vec<(u32, u32)>,
+    /// The numbers behind the failure, one line per wrong sample (the first few).
+    pub details: Vec<String>,
 }
 
 impl Violation {
@@ -84,7 +86,8 @@ impl Violation {
             message: message.into(),
             counts: None,
             picture: None,
-            sample: None,
+            samples: Vec::new(),
+            details: Vec::new(),
         }
     }
 
@@ -92,9 +95,70 @@ impl Violation {
     #[must_use]
     pub fn at(sample: (u32, u32), message: impl Into<String>) -> Self {
         Self {
-            sample: Some(sample),
+            samples: vec![sample],
             ..Self::new(message)
         }
+    }
+}
+
+/// `n` and a noun, singular or plural: `1 fragment`, `3 fragments`.
+#[must_use]
+pub fn plural(n: usize, noun: &str) -> String {
+    if n == 1 {
+        format!("1 {noun}")
+    } else {
+        format!("{n} {noun}s")
+    }
+}
+
+/// What one check finds wrong, sample by sample: every wrong sample is pictured, the first few
+/// described with their numbers.
+#[derive(Clone, Debug, Default)]
+pub struct Findings {
+    samples: Vec<(u32, u32)>,
+    details: Vec<String>,
+}
+
+impl Findings {
+    /// How many wrong samples are described with their numbers.
+    pub const DESCRIBED: usize = 8;
+
+    /// Nothing found yet.
+    #[must_use]
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Records a wrong sample; `detail` says what is wrong there, with the numbers.
+    pub fn add(&mut self, sample: (u32, u32), detail: impl FnOnce() -> String) {
+        if self.details.len() < Self::DESCRIBED {
+            self.details.push(detail());
+        }
+        self.samples.push(sample);
+    }
+
+    /// Whether nothing was found.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.samples.is_empty()
+    }
+
+    /// `Ok` when nothing was found, else a violation whose message is `summary(n)` for `n` wrong
+    /// samples followed by the first one's numbers.
+    pub fn verdict(self, summary: impl FnOnce(usize) -> String) -> Result<(), Violation> {
+        if self.is_empty() {
+            return Ok(());
+        }
+        let mut message = summary(self.samples.len());
+        if let Some(first) = self.details.first() {
+            message.push_str(": ");
+            message.push_str(first);
+        }
+        Err(Violation {
+            samples: self.samples,
+            details: self.details,
+            ..Violation::new(message)
+        })
     }
 }
 
@@ -163,7 +227,8 @@ pub fn compare_coverage(
     Err(Violation {
         message: format!("coverage differs from {what}"),
         counts: Some(tally),
-        sample: None,
+        samples: Vec::new(),
+        details: Vec::new(),
         picture: Some(Box::new(Picture {
             width,
             height,

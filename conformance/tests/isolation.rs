@@ -54,7 +54,10 @@ fn main() {
         let served = serve_rule(RULE, &mut Misbehaving(kind), &options());
         std::process::exit(if served { 0 } else { 2 });
     }
-    let rule = catalogue().into_iter().find(|r| r.id == RULE).expect("the rule exists");
+    let rule = catalogue()
+        .into_iter()
+        .find(|r| r.id == RULE)
+        .expect("the rule exists");
     let run = |kind: &'static str| {
         let mut child = Command::new(std::env::current_exe().expect("this test binary"));
         child.env("ISOLATION_CHILD", kind);
@@ -69,13 +72,19 @@ fn main() {
     assert!(message.contains("no answer within 3 s"), "{message}");
     let case = hang.counterexample.clone().unwrap_or_default();
     assert!(case.contains("positions"), "the hung case is named: {case}");
-    assert!(took < Duration::from_secs(60), "the hung child was stopped, after {took:?}");
+    assert!(
+        took < Duration::from_secs(60),
+        "the hung child was stopped, after {took:?}"
+    );
 
     let (abort, _) = run("abort");
     assert_eq!(abort.status, Status::Fail, "{abort:#?}");
     let message = abort.message.clone().unwrap_or_default();
     assert!(message.contains("SIGABRT"), "{message}");
-    assert!(message.contains("about to abort on purpose"), "stderr is shown: {message}");
+    assert!(
+        message.contains("about to abort on purpose"),
+        "stderr is shown: {message}"
+    );
     assert!(abort.counterexample.is_some(), "the case it aborted on is named");
 
     let (noise, _) = run("noise");

@@ -27,7 +27,7 @@ use crate::violation::Violation;
 #[derive(Clone, Debug)]
 pub struct Failure {
     /// What the check found.
-    pub violation: Violation,
+    pub violation: Box<Violation>,
     /// The input as Rust (its `Debug`): paste it into a regression test.
     pub input: String,
 }
@@ -48,7 +48,7 @@ fn applies(needs: &[Need], profile: &Profile) -> bool {
 /// Runs `check` and attaches the input's `Debug` to a violation.
 fn judged(input: &impl fmt::Debug, check: impl FnOnce() -> Result<(), Violation>) -> Result<(), Failure> {
     check().map_err(|violation| Failure {
-        violation,
+        violation: Box::new(violation),
         input: format!("{input:?}"),
     })
 }

@@ -9,7 +9,7 @@ use crate::oracle::raster::{project, sample_centre};
 use crate::runner::property;
 use crate::scene::Scene;
 use crate::strategy;
-use crate::violation::Violation;
+use crate::violation::{Findings, Violation, plural};
 
 pub(super) fn rules() -> Vec<Rule> {
     vec![
@@ -73,22 +73,28 @@ fn equal_w_scene() -> impl proptest::strategy::Strategy<Value = Scene> {
 
 /// Every fragment's barycentrics sum to 1 within `BARY_EPS`.
 pub fn check_sum_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let mut found = Findings::new();
     for f in fragments(r, scene)? {
         let sum: f32 = f.barycentric.iter().sum();
         if (sum - 1.0).abs() > BARY_EPS {
-            return Err(Violation::at(
-                (f.x, f.y),
-                format!("fragment {:?} has barycentrics summing to {sum}", (f.x, f.y)),
-            ));
+            found.add((f.x, f.y), || {
+                format!("{:?} has {:?}, summing to {sum}", (f.x, f.y), f.barycentric)
+            });
         }
     }
-    Ok(())
+    found.verdict(|n| {
+        format!(
+            "barycentrics not summing to 1 within 2^-20 at {}",
+            plural(n, "fragment")
+        )
+    })
 }
 
 /// Barycentrics of samples outside the band lie in [0, 1] within `BARY_EPS`.
 pub fn check_in_range(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let band = r.profile().band_px();
     let outline = visible_outline(&scene.positions_of(0), scene.width, scene.height, &scene.state);
+    let mut found = Findings::new();
     for f in fragments(r, scene)? {
         let s = sample_centre(f.x, f.y);
         if distance_to_outline(&outline, s, |_, _| true) < band {
@@ -99,22 +105,23 @@ pub fn check_in_range(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Viola
             .iter()
             .find(|&&b| !(-BARY_EPS..=1.0 + BARY_EPS).contains(&b))
         {
-            return Err(Violation::at(
-                (f.x, f.y),
-                format!(
-                    "fragment {:?} has barycentric {b} outside [0, 1]: {:?}",
-                    (f.x, f.y),
-                    f.barycentric
-                ),
-            ));
+            found.add((f.x, f.y), || {
+                format!("{:?} has {b} in {:?}", (f.x, f.y), f.barycentric)
+            });
         }
     }
-    Ok(())
+    found.verdict(|n| {
+        format!(
+            "a barycentric outside [0, 1] at {} away from every edge",
+            plural(n, "fragment")
+        )
+    })
 }
 
 /// A covered sample on a vertex has weight 1 there and 0 elsewhere.
 pub fn check_vertex_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let tri = scene.positions_of(0);
+    let mut found = Findings::new();
     for f in fragments(r, scene)? {
         let s = sample_centre(f.x, f.y);
         for (k, v) in tri.iter().enumerate() {
@@ -124,34 +131,40 @@ pub fn check_vertex_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Vio
                 let b = f.barycentric;
                 let ok = (0..3).all(|i| (b[i] - if i == k { 1.0 } else { 0.0 }).abs() <= BARY_EPS);
                 if !ok {
-                    return Err(Violation::new(format!(
-                        "the sample on vertex {k} has barycentrics {b:?}"
-                    )));
+                    found.add((f.x, f.y), || {
+                        format!("{:?} lies on vertex {k} but has {b:?}", (f.x, f.y))
+                    });
                 }
             }
         }
     }
-    Ok(())
+    found.verdict(|n| format!("a vertex not weighted 1 at {} on it", plural(n, "sample")))
 }
 
 /// Perspective-correct barycentrics equal the ray cast of the snapped triangle.
 pub fn check_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let mut found = Findings::new();
     for (f, hit) in raycast_fragments(r, scene)? {
-        for k in 0..3 {
-            if (f64::from(f.barycentric[k]) - hit.barycentric[k]).abs() > ORACLE_EPS {
-                return Err(Violation::at(
+        let off = (0..3)
+            .map(|k| (f64::from(f.barycentric[k]) - hit.barycentric[k]).abs())
+            .fold(0.0, f64::max);
+        if off > ORACLE_EPS {
+            found.add((f.x, f.y), || {
+                format!(
+                    "{:?} has {:?}, the ray cast {:?} (off by {off:.3e})",
                     (f.x, f.y),
-                    format!(
-                        "fragment {:?}: barycentrics {:?}, ray cast {:?}",
-                        (f.x, f.y),
-                        f.barycentric,
-                        hit.barycentric
-                    ),
-                ));
-            }
+                    f.barycentric,
+                    hit.barycentric
+                )
+            });
         }
     }
-    Ok(())
+    found.verdict(|n| {
+        format!(
+            "barycentrics off the ray cast's by more than 2^-18 at {}",
+            plural(n, "fragment")
+        )
+    })
 }
 
 /// Screen-space barycentrics weight the snapped vertices to the sample position.
@@ -161,9 +174,11 @@ pub fn check_reconstructs(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), V
     };
     let p = tri.map(|v| project(scene.width, scene.height, v));
     let extent = p.iter().flatten().fold(1.0f64, |m, c| m.max(c.abs()));
+    let mut found = Findings::new();
     for f in fragments(r, scene)? {
         let Some(b) = f.screen_barycentric else {
-            return Err(Violation::new(
+            return Err(Violation::at(
+                (f.x, f.y),
                 "the profile declares screen-space barycentrics, but a fragment has none",
             ));
         };
@@ -171,35 +186,44 @@ pub fn check_reconstructs(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), V
         let at = [0, 1].map(|c| b[0] * p[0][c] + b[1] * p[1][c] + b[2] * p[2][c]);
         let s = sample_centre(f.x, f.y);
         // Weights within ORACLE_EPS each move the point by at most 3·ORACLE_EPS·extent.
-        if (at[0] - s[0]).hypot(at[1] - s[1]) > 3.0 * ORACLE_EPS * extent {
-            return Err(Violation::at(
-                (f.x, f.y),
-                format!("fragment {:?}: screen barycentrics {b:?} give {at:?}", (f.x, f.y)),
-            ));
+        let off = (at[0] - s[0]).hypot(at[1] - s[1]);
+        if off > 3.0 * ORACLE_EPS * extent {
+            found.add((f.x, f.y), || {
+                format!(
+                    "{:?}: screen barycentrics {b:?} give {at:?}, {off:.3e} px away",
+                    (f.x, f.y)
+                )
+            });
         }
     }
-    Ok(())
+    found.verdict(|n| {
+        format!(
+            "screen barycentrics that do not give back the sample at {}",
+            plural(n, "fragment")
+        )
+    })
 }
 
 /// With equal w, perspective-correct and screen-space barycentrics agree.
 pub fn check_equal_w(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let mut found = Findings::new();
     for f in fragments(r, scene)? {
         let Some(s) = f.screen_barycentric else {
-            return Err(Violation::new(
+            return Err(Violation::at(
+                (f.x, f.y),
                 "the profile declares screen-space barycentrics, but a fragment has none",
             ));
         };
         if (0..3).any(|k| f64::from((f.barycentric[k] - s[k]).abs()) > ORACLE_EPS) {
-            return Err(Violation::at(
-                (f.x, f.y),
-                format!(
-                    "fragment {:?}: perspective {:?} but screen {:?} with equal w",
-                    (f.x, f.y),
-                    f.barycentric,
-                    s
-                ),
-            ));
+            found.add((f.x, f.y), || {
+                format!("{:?}: perspective {:?}, screen {s:?}", (f.x, f.y), f.barycentric)
+            });
         }
     }
-    Ok(())
+    found.verdict(|n| {
+        format!(
+            "perspective and screen barycentrics apart, with equal w, at {}",
+            plural(n, "fragment")
+        )
+    })
 }

@@ -5,10 +5,11 @@ use refrast::{CompareOp, DepthState, Rasterizer, Resolved};
 
 use super::common::{BARY_EPS, ORACLE_EPS, fragments, raycast_fragments};
 use super::{DEPTH_TEST, Family, NEARER_WINS, Rule, Z_OVER_W_DEPTH};
+use crate::oracle::raster::window_depth;
 use crate::runner::property;
 use crate::scene::Scene;
 use crate::strategy;
-use crate::violation::Violation;
+use crate::violation::{Findings, Violation, plural};
 
 pub(super) fn rules() -> Vec<Rule> {
     vec![
@@ -82,41 +83,51 @@ fn depth_state_scene() -> impl Strategy<Value = Scene> {
 
 /// Depth stays between the vertices' smallest and largest z/w.
 pub fn check_within_vertices(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let z: Vec<f32> = scene.positions.iter().map(|p| p[2] / p[3]).collect();
+    let range = scene.state.depth_range;
+    let z: Vec<f32> = scene
+        .positions
+        .iter()
+        .map(|p| window_depth(range, f64::from(p[2] / p[3])) as f32)
+        .collect();
     let (lo, hi) = z
         .iter()
         .fold((f32::MAX, f32::MIN), |(l, h), &v| (l.min(v), h.max(v)));
+    let mut found = Findings::new();
     for f in fragments(r, scene)? {
         if f.depth < lo - BARY_EPS || f.depth > hi + BARY_EPS {
-            return Err(Violation::at(
-                (f.x, f.y),
-                format!(
-                    "fragment {:?} has depth {} outside the vertices' [{lo}, {hi}]",
-                    (f.x, f.y),
-                    f.depth
-                ),
-            ));
+            found.add((f.x, f.y), || format!("{:?} has depth {}", (f.x, f.y), f.depth));
         }
     }
-    Ok(())
+    found.verdict(|n| {
+        format!(
+            "depth outside the vertices' [{lo}, {hi}] at {}",
+            plural(n, "fragment")
+        )
+    })
 }
 
 /// Depth equals z/w at the ray-cast hit of the snapped triangle.
 pub fn check_depth_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let mut found = Findings::new();
     for (f, hit) in raycast_fragments(r, scene)? {
-        if (f64::from(f.depth) - hit.depth.clamp(0.0, 1.0)).abs() > ORACLE_EPS {
-            return Err(Violation::at(
-                (f.x, f.y),
+        let want = hit.depth.clamp(0.0, 1.0);
+        let off = (f64::from(f.depth) - want).abs();
+        if off > ORACLE_EPS {
+            found.add((f.x, f.y), || {
                 format!(
-                    "fragment {:?} has depth {}, the ray cast {}",
+                    "{:?} has depth {}, the ray cast {want} (off by {off:.3e})",
                     (f.x, f.y),
-                    f.depth,
-                    hit.depth
-                ),
-            ));
+                    f.depth
+                )
+            });
         }
     }
-    Ok(())
+    found.verdict(|n| {
+        format!(
+            "depth off the ray cast's by more than 2^-18 at {}",
+            plural(n, "fragment")
+        )
+    })
 }
 
 /// The scene with its triangles in the order `order` (entries are original indices).
@@ -126,9 +137,38 @@ fn reorder(scene: &Scene, order: &[usize]) -> Scene {
     s
 }
 
+/// The rasterizer's resolved buffers; an error, or buffers of the wrong size, is a violation.
 fn resolve(r: &mut dyn Rasterizer, scene: &Scene) -> Result<Resolved, Violation> {
-    r.resolve(&scene.draw())
-        .map_err(|e| Violation::new(format!("resolve returned an error: {e}")))
+    let resolved = r
+        .resolve(&scene.draw())
+        .map_err(|e| Violation::new(format!("resolve returned an error: {e}")))?;
+    let pixels = scene.width as usize * scene.height as usize;
+    if resolved.depth.len() != pixels || resolved.primitive.len() != pixels {
+        return Err(Violation::new(format!(
+            "resolve returned {} depths and {} ids for a {}×{} viewport ({pixels} pixels)",
+            resolved.depth.len(),
+            resolved.primitive.len(),
+            scene.width,
+            scene.height
+        )));
+    }
+    let n = scene.triangles.len();
+    if let Some(i) = resolved
+        .primitive
+        .iter()
+        .position(|p| p.is_some_and(|p| p as usize >= n))
+    {
+        let (x, y) = (i as u32 % scene.width, i as u32 / scene.width);
+        return Err(Violation::at(
+            (x, y),
+            format!(
+                "resolve names primitive {:?} at {:?}, but the draw has {n}",
+                resolved.primitive[i],
+                (x, y)
+            ),
+        ));
+    }
+    Ok(resolved)
 }
 
 /// The resolved buffers do not depend on submission order (ids where depths differ).
@@ -147,31 +187,24 @@ pub fn check_order_independent(r: &mut dyn Rasterizer, scene: &Scene) -> Result<
     let rotated: Vec<usize> = (0..n).map(|i| (i + 1) % n).collect();
     for order in [reversed, rotated] {
         let other = resolve(r, &reorder(scene, &order))?;
+        let mut found = Findings::new();
         for (i, &pixel_ties) in ties.iter().enumerate() {
             let (x, y) = (i as u32 % scene.width, i as u32 / scene.width);
-            if base.depth[i].to_bits() != other.depth[i].to_bits() {
-                return Err(Violation::at(
-                    (x, y),
+            let mapped = other.primitive[i].map(|p| order[p as usize] as u32);
+            let depth_differs = base.depth[i].to_bits() != other.depth[i].to_bits();
+            if depth_differs || (pixel_ties <= 1 && mapped != base.primitive[i]) {
+                found.add((x, y), || {
                     format!(
-                        "pixel {:?}: depth {} in API order, {} in order {order:?}",
+                        "{:?}: depth {} and primitive {:?} in API order, {} and {mapped:?} in order {order:?}",
                         (x, y),
                         base.depth[i],
+                        base.primitive[i],
                         other.depth[i]
-                    ),
-                ));
-            }
-            let mapped = other.primitive[i].map(|p| order[p as usize] as u32);
-            if pixel_ties <= 1 && mapped != base.primitive[i] {
-                return Err(Violation::at(
-                    (x, y),
-                    format!(
-                        "pixel {:?}: primitive {:?} in API order, {mapped:?} in order {order:?}",
-                        (x, y),
-                        base.primitive[i]
-                    ),
-                ));
+                    )
+                });
             }
         }
+        found.verdict(|n| format!("another draw order resolves {} differently", plural(n, "pixel")))?;
     }
     Ok(())
 }
@@ -181,17 +214,26 @@ pub fn check_resolve(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violat
     let draw = scene.draw();
     let got = resolve(r, scene)?;
     let want = Resolved::from_fragments(&draw, fragments(r, scene)?);
+    let mut found = Findings::new();
     for i in 0..want.depth.len() {
         if got.depth[i].to_bits() != want.depth[i].to_bits() || got.primitive[i] != want.primitive[i] {
-            return Err(Violation::new(format!(
-                "pixel {:?}: resolved ({}, {:?}), fragments replayed give ({}, {:?})",
-                (i as u32 % scene.width, i as u32 / scene.width),
-                got.depth[i],
-                got.primitive[i],
-                want.depth[i],
-                want.primitive[i]
-            )));
+            let (x, y) = (i as u32 % scene.width, i as u32 / scene.width);
+            found.add((x, y), || {
+                format!(
+                    "{:?}: resolved ({}, {:?}), its fragments replayed ({}, {:?})",
+                    (x, y),
+                    got.depth[i],
+                    got.primitive[i],
+                    want.depth[i],
+                    want.primitive[i]
+                )
+            });
         }
     }
-    Ok(())
+    found.verdict(|n| {
+        format!(
+            "the resolved buffers differ from the fragments replayed at {}",
+            plural(n, "pixel")
+        )
+    })
 }

@@ -5,10 +5,12 @@ use refrast::{Fragment, Rasterizer};
 
 use super::common::{compare_sets, fragments};
 use super::{Family, Rule};
+use crate::picture;
 use crate::runner::property;
 use crate::scene::Scene;
+use crate::scene::rust_f32;
 use crate::strategy;
-use crate::violation::Violation;
+use crate::violation::{Findings, Violation, plural};
 
 /// A scene with one coordinate of triangle 0 replaced by a non-finite value.
 #[derive(Clone)]
@@ -23,7 +25,7 @@ pub struct Poisoned {
 
 impl std::fmt::Debug for Poisoned {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let value = crate::scene::rust_f32(self.value);
+        let value = rust_f32(self.value);
         write!(
             f,
             "Poisoned {{ scene: {:?}, at: {:?}, value: {value} }}",
@@ -109,15 +111,26 @@ pub fn check_poisoned(r: &mut dyn Rasterizer, p: &Poisoned) -> Result<(), Violat
     let vertex = p.scene.triangles[0][p.at.0] as usize;
     bad.positions[vertex][p.at.1] = p.value;
     let got = fragments(r, &bad)?;
-    if let Some(f) = got.iter().find(|f| f.primitive == 0) {
-        return Err(Violation::at(
-            (f.x, f.y),
-            format!(
-                "the triangle with a {} coordinate drew at {:?}",
-                p.value,
-                (f.x, f.y)
-            ),
-        ));
+    let mut found = Findings::new();
+    for f in got.iter().filter(|f| f.primitive == 0) {
+        found.add((f.x, f.y), || format!("{:?} at depth {}", (f.x, f.y), f.depth));
+    }
+    if let Err(mut violation) = found.verdict(|n| {
+        format!(
+            "the triangle with a {} coordinate (vertex {}, component {}) drew {}",
+            rust_f32(p.value),
+            p.at.0,
+            p.at.1,
+            plural(n, "fragment")
+        )
+    }) {
+        // The fragments drawn, over the outline of the triangle as it was before poisoning.
+        violation.picture = Some(Box::new(picture::of_fragments(
+            &p.scene,
+            &got,
+            &violation.samples,
+        )));
+        return Err(violation);
     }
     let others: Vec<Fragment> = clean.into_iter().filter(|f| f.primitive != 0).collect();
     compare_sets(
@@ -132,6 +145,7 @@ pub fn check_poisoned(r: &mut dyn Rasterizer, p: &Poisoned) -> Result<(), Violat
 pub fn check_well_formed(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let frags = fragments(r, scene)?;
     let mut seen = std::collections::HashSet::new();
+    let mut found = Findings::new();
     for f in &frags {
         let problem = if f.x >= scene.width || f.y >= scene.height {
             "lies outside the viewport"
@@ -146,9 +160,9 @@ pub fn check_well_formed(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Vi
         } else {
             continue;
         };
-        return Err(Violation::new(format!("fragment {f:?} {problem}")));
+        found.add((f.x, f.y), || format!("{f:?} {problem}"));
     }
-    Ok(())
+    found.verdict(|n| format!("{} not well formed", plural(n, "fragment")))
 }
 
 /// An out-of-range index is an error, not a panic.

@@ -12,7 +12,7 @@ use crate::oracle::ray_cast::ray_cast;
 use crate::runner::property;
 use crate::scene::Scene;
 use crate::strategy;
-use crate::violation::Violation;
+use crate::violation::{Findings, Violation, plural};
 
 mod translate;
 
@@ -90,26 +90,30 @@ pub fn check_facing(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violati
     let front_is_cw = scene.state.front_face == FrontFace::Clockwise;
     let p = [0, 1, 2].map(|k| scene.positions[scene.triangles[0][k] as usize]);
     let frags = fragments(r, scene)?;
-    let wrong = |f: &Fragment, clockwise: bool, how: &str| {
-        Violation::at(
-            (f.x, f.y),
-            format!(
-                "the triangle turns {} on screen ({how}) with {:?} front faces, but its fragment at {:?} says front_facing = {}",
-                if clockwise {
-                    "clockwise"
-                } else {
-                    "counter-clockwise"
-                },
-                scene.state.front_face,
-                (f.x, f.y),
-                f.front_facing
-            ),
-        )
+    let turn = |clockwise: bool| {
+        if clockwise {
+            "clockwise"
+        } else {
+            "counter-clockwise"
+        }
     };
-    // Unclipped on a grid: exactly as the snapped triangle turns.
+    let mut found = Findings::new();
+    let mut judge = |f: &Fragment, clockwise: bool, how: &str| {
+        if f.front_facing != (clockwise == front_is_cw) {
+            found.add((f.x, f.y), || {
+                format!(
+                    "{:?} says front_facing = {}, but the triangle turns {} there ({how})",
+                    (f.x, f.y),
+                    f.front_facing,
+                    turn(clockwise)
+                )
+            });
+        }
+    };
     if let Some(bits) = profile.snapping.grid_bits()
         && raster::unclipped(&p, scene.state.depth_range, scene.state.clip_far)
     {
+        // Unclipped on a grid: exactly as the snapped triangle turns.
         let snapped: Option<Vec<_>> = p
             .iter()
             .map(|&v| raster::snap(v, scene.width, scene.height, bits))
@@ -117,41 +121,37 @@ pub fn check_facing(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violati
         let Some(v) = snapped else { return Ok(()) };
         // Positive orient2d with y down is clockwise on screen.
         let clockwise = brute_force::orient2d(v[0], v[1], v[2]) > 0;
-        return match frags
-            .iter()
-            .find(|f| f.front_facing != (clockwise == front_is_cw))
-        {
-            Some(f) => Err(wrong(f, clockwise, "its snapped signed area")),
-            None => Ok(()),
-        };
-    }
-    // Clipped, or without a grid: the visible part turns as det[x y w] says, whatever the signs
-    // of w (Olano–Greer),
-    // and the ray cast decides that sign exactly at each sample it hits. A rasterizer may take
-    // facing from its snapped, clipped polygon instead (Vulkan): snapping moves each vertex by
-    // less than the band, which can turn over a sliver but not the polygon around a sample more
-    // than twice the band inside it (a heuristic, not a proof; cuts at the viewport snap onto
-    // the grid and add no risk). Samples nearer the visible outline are not judged.
-    let tri = scene.positions_of(0);
-    let outline = visible_outline(&tri, scene.width, scene.height, &scene.state);
-    let band = profile.band_px();
-    for f in &frags {
-        if distance_to_outline(&outline, sample_centre(f.x, f.y), |_, _| true) <= 2.0 * band {
-            continue;
+        for f in &frags {
+            judge(f, clockwise, "its snapped signed area");
         }
-        let [nx, ny] = sample_ndc(scene.width, scene.height, f.x, f.y);
-        let Some(hit) = ray_cast(&tri, nx, ny, &scene.state) else {
-            continue;
-        };
-        if f.front_facing != (hit.clockwise == front_is_cw) {
-            return Err(wrong(
-                f,
-                hit.clockwise,
-                "the sign of det[x y w] of its visible part",
-            ));
+    } else {
+        // Clipped, or without a grid: the visible part turns as det[x y w] says, whatever the
+        // signs of w (Olano–Greer), and the ray cast decides that sign exactly at each sample it
+        // hits. A rasterizer may take facing from its snapped, clipped polygon instead (Vulkan):
+        // snapping moves each vertex by less than the band, which can turn over a sliver but not
+        // the polygon around a sample more than twice the band inside it (a heuristic, not a
+        // proof; cuts at the viewport snap onto the grid and add no risk). Samples nearer the
+        // visible outline are not judged.
+        let tri = scene.positions_of(0);
+        let outline = visible_outline(&tri, scene.width, scene.height, &scene.state);
+        let band = profile.band_px();
+        for f in &frags {
+            if distance_to_outline(&outline, sample_centre(f.x, f.y), |_, _| true) <= 2.0 * band {
+                continue;
+            }
+            let [nx, ny] = sample_ndc(scene.width, scene.height, f.x, f.y);
+            if let Some(hit) = ray_cast(&tri, nx, ny, &scene.state) {
+                judge(f, hit.clockwise, "the sign of det[x y w] of its visible part");
+            }
         }
     }
-    Ok(())
+    found.verdict(|n| {
+        format!(
+            "the wrong facing for {:?} front faces at {}",
+            scene.state.front_face,
+            plural(n, "fragment")
+        )
+    })
 }
 
 fn degenerate_scene() -> impl Strategy<Value = Scene> {
@@ -189,33 +189,36 @@ fn compare_permuted(
     by_pixel.sort_by_key(|f| (f.y, f.x));
     let mut base_sorted: Vec<&Fragment> = base.iter().collect();
     base_sorted.sort_by_key(|f| (f.y, f.x));
+    let mut facing = Findings::new();
+    let mut weights = Findings::new();
     for (a, b) in base_sorted.iter().zip(&by_pixel) {
-        if a.front_facing == b.front_facing && flip || a.front_facing != b.front_facing && !flip {
-            return Err(Violation::at(
-                (a.x, a.y),
-                format!(
-                    "{what}: facing at {:?} is {} then {}",
-                    (a.x, a.y),
-                    a.front_facing,
-                    b.front_facing
-                ),
-            ));
+        if (a.front_facing == b.front_facing) == flip {
+            facing.add((a.x, a.y), || {
+                format!("{:?} is {} then {}", (a.x, a.y), a.front_facing, b.front_facing)
+            });
         }
-        for (k, &moved_to) in map.iter().enumerate() {
-            if unclipped && f64::from((a.barycentric[k] - b.barycentric[moved_to]).abs()) > ORACLE_EPS {
-                return Err(Violation::at(
+        let moved_apart = map
+            .iter()
+            .enumerate()
+            .any(|(k, &to)| f64::from((a.barycentric[k] - b.barycentric[to]).abs()) > ORACLE_EPS);
+        if unclipped && moved_apart {
+            weights.add((a.x, a.y), || {
+                format!(
+                    "{:?} has {:?} then {:?}",
                     (a.x, a.y),
-                    format!(
-                        "{what}: barycentrics at {:?} are {:?} then {:?}",
-                        (a.x, a.y),
-                        a.barycentric,
-                        b.barycentric
-                    ),
-                ));
-            }
+                    a.barycentric,
+                    b.barycentric
+                )
+            });
         }
     }
-    Ok(())
+    facing.verdict(|n| format!("{what}: the facing is wrong at {}", plural(n, "fragment")))?;
+    weights.verdict(|n| {
+        format!(
+            "{what}: barycentrics did not move with their vertices at {}",
+            plural(n, "fragment")
+        )
+    })
 }
 
 /// Rotating the vertex order keeps coverage and rotates barycentrics.

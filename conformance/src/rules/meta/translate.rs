@@ -11,7 +11,7 @@ use crate::oracle::raster::{self, sample_centre};
 use crate::rules::common::{coverage_set, fragments};
 use crate::scene::{Case, Scene};
 use crate::strategy;
-use crate::violation::Violation;
+use crate::violation::{Findings, Violation, plural};
 
 /// A scene and a translation in whole pixels.
 #[derive(Clone, Debug)]
@@ -106,21 +106,21 @@ pub fn check_translation(r: &mut dyn Rasterizer, t: &Translated) -> Result<(), V
         .filter(|f| shift(f.x, f.y, -t.dx, -t.dy).is_some())
         .map(|f| (f.x, f.y))
         .collect();
+    let mut found = Findings::new();
     for &(x, y) in want.symmetric_difference(&got) {
         if !near_edge(&moved, profile.snapping, x, y, clip_slack(&profile)) {
             let how = if got.contains(&(x, y)) { "gained" } else { "lost" };
-            return Err(Violation::at(
-                (x, y),
-                format!(
-                    "moved by ({}, {}) px, the triangle {how} sample {:?}, which is away from every edge",
-                    t.dx,
-                    t.dy,
-                    (x, y)
-                ),
-            ));
+            found.add((x, y), || format!("{how} {:?}", (x, y)));
         }
     }
-    Ok(())
+    found.verdict(|n| {
+        format!(
+            "moved by ({}, {}) px, the triangle changed {} away from every edge",
+            t.dx,
+            t.dy,
+            plural(n, "sample")
+        )
+    })
 }
 
 /// Moving by one subpixel changes only samples near an edge.
@@ -142,22 +142,22 @@ pub fn check_subpixel_translation(r: &mut dyn Rasterizer, scene: &Scene) -> Resu
         return Ok(());
     };
     let limit = unit + profile.band_px();
+    let mut found = Findings::new();
     for &(_, x, y) in changed {
         let s = sample_centre(x, y);
         let d = (0..3)
             .map(|k| segment_distance(pts[k], pts[(k + 1) % 3], s))
             .fold(f64::INFINITY, f64::min);
         if d > limit + unit {
-            return Err(Violation::at(
-                (x, y),
-                format!(
-                    "moving one subpixel right changed sample {:?}, {d:.4} px from every edge",
-                    (x, y)
-                ),
-            ));
+            found.add((x, y), || format!("{:?}, {d:.4} px from every edge", (x, y)));
         }
     }
-    Ok(())
+    found.verdict(|n| {
+        format!(
+            "moving one subpixel right changed {} away from every edge",
+            plural(n, "sample")
+        )
+    })
 }
 
 /// A viewport twice as large changes coverage only near an edge.
@@ -180,17 +180,17 @@ pub fn check_viewport_neutral(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(
         .filter(|f| f.x < scene.width && f.y < scene.height)
         .map(|f| (f.x, f.y))
         .collect();
+    let mut found = Findings::new();
     for &(x, y) in small.symmetric_difference(&large) {
         if !near_edge(scene, profile.snapping, x, y, clip_slack(&profile)) {
             let how = if large.contains(&(x, y)) { "gains" } else { "loses" };
-            return Err(Violation::at(
-                (x, y),
-                format!(
-                    "in a viewport twice as large the triangle {how} sample {:?}, which is away from every edge",
-                    (x, y)
-                ),
-            ));
+            found.add((x, y), || format!("{how} {:?}", (x, y)));
         }
     }
-    Ok(())
+    found.verdict(|n| {
+        format!(
+            "in a viewport twice as large the triangle changes {} away from every edge",
+            plural(n, "sample")
+        )
+    })
 }

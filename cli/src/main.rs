@@ -81,7 +81,7 @@ fn main() -> ExitCode {
                         continue;
                     }
                 };
-                let kind = if b.correct { "correct" } else { "broken on purpose" };
+                let kind = b.origin.label();
                 say(&format!(
                     "{:<22} {}, {}, band {} px, {kind}: {}",
                     b.name,
@@ -120,6 +120,7 @@ pub(crate) fn say(line: &str) {
 pub(crate) fn all_builtins() -> Vec<BuiltIn> {
     let mut all = refrast_conformance::builtins();
     all.extend(refrast_zoo::builtins());
+    all.extend(refrast_euc::builtins());
     all
 }
 

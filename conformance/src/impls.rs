@@ -18,6 +18,32 @@ impl std::fmt::Display for Unavailable {
 /// Builds a fresh rasterizer, or says why it cannot here.
 pub type Maker = std::sync::Arc<dyn Fn() -> Result<Box<dyn Rasterizer>, Unavailable> + Send + Sync>;
 
+/// Where a built-in comes from, and so what a failure of it means.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Origin {
+    /// refrast's own, meant to be correct: `refrast certify` runs these by default.
+    Ours,
+    /// Someone else's rasterizer behind an adapter: its failures are findings about it.
+    ThirdParty,
+    /// A course lab's algorithm as the lab describes it.
+    Course,
+    /// Broken on purpose: the suite must catch it.
+    Mutant,
+}
+
+impl Origin {
+    /// As `refrast impls` prints it.
+    #[must_use]
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::Ours => "ours",
+            Self::ThirdParty => "third party",
+            Self::Course => "course lab",
+            Self::Mutant => "broken on purpose",
+        }
+    }
+}
+
 /// A built-in implementation.
 #[derive(Clone)]
 pub struct BuiltIn {
@@ -25,8 +51,8 @@ pub struct BuiltIn {
     pub name: String,
     /// One line on what it is.
     pub description: String,
-    /// Whether it is meant to be correct (certified by default) or broken on purpose.
-    pub correct: bool,
+    /// Where it comes from.
+    pub origin: Origin,
     /// Builds it.
     pub make: Maker,
 }
@@ -36,23 +62,23 @@ impl BuiltIn {
     pub fn new(
         name: impl Into<String>,
         description: impl Into<String>,
-        correct: bool,
+        origin: Origin,
         make: impl Fn() -> Box<dyn Rasterizer> + Send + Sync + 'static,
     ) -> Self {
-        Self::fallible(name, description, correct, move || Ok(make()))
+        Self::fallible(name, description, origin, move || Ok(make()))
     }
 
     /// A built-in that needs something this machine may lack (a driver, a device).
     pub fn fallible(
         name: impl Into<String>,
         description: impl Into<String>,
-        correct: bool,
+        origin: Origin,
         make: impl Fn() -> Result<Box<dyn Rasterizer>, Unavailable> + Send + Sync + 'static,
     ) -> Self {
         Self {
             name: name.into(),
             description: description.into(),
-            correct,
+            origin,
             make: std::sync::Arc::new(make),
         }
     }
@@ -67,7 +93,7 @@ impl std::fmt::Debug for BuiltIn {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("BuiltIn")
             .field("name", &self.name)
-            .field("correct", &self.correct)
+            .field("origin", &self.origin)
             .finish_non_exhaustive()
     }
 }
@@ -114,13 +140,13 @@ pub fn builtins() -> Vec<BuiltIn> {
         BuiltIn::new(
             "reference",
             "the reference: 8 subpixel bits, top-left, guard-band clipping",
-            true,
+            Origin::Ours,
             || Box::new(Reference::default()),
         ),
         BuiltIn::new(
             "reference-full-clip",
             "the reference clipping all six planes (Sutherland–Hodgman, seed 004)",
-            true,
+            Origin::Ours,
             || {
                 Box::new(Named::new(
                     "reference-full-clip",
@@ -134,7 +160,7 @@ pub fn builtins() -> Vec<BuiltIn> {
         BuiltIn::new(
             "reference-4bit",
             "the reference snapping to 4 subpixel bits (Vulkan's minimum)",
-            true,
+            Origin::Ours,
             || {
                 Box::new(Named::new(
                     "reference-4bit",

@@ -43,7 +43,7 @@ pub use certify::{
     fill_name, matches, run_rule,
 };
 pub use harness::{failure_text, run_as_tests};
-pub use impls::{BuiltIn, Maker, Named, Unavailable, builtins};
+pub use impls::{BuiltIn, Maker, Named, Origin, Unavailable, builtins};
 pub use rules::meta::Translated;
 pub use rules::robust::Poisoned;
 pub use rules::{Family, Kind, Need, Rule, RuleDraft, catalogue, markdown_table, needs};

@@ -10,7 +10,7 @@ use refrast::{
     ClipMode, Draw, DrawError, FillConvention, FixedPoint, Fragment, FrontFace, Profile, Rasterizer,
     Reference, Resolved, Viewport, is_top_left,
 };
-use refrast_conformance::{BuiltIn, Family};
+use refrast_conformance::{BuiltIn, Family, Origin};
 
 /// A classic rasterizer bug.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -456,7 +456,7 @@ pub fn builtins() -> Vec<BuiltIn> {
                     "broken on purpose ({} rules must catch it)",
                     bug.caught_by().name()
                 ),
-                false,
+                Origin::Mutant,
                 move || Box::new(Mutant::new(bug)),
             )
         })

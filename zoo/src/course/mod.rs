@@ -18,7 +18,7 @@ pub use lab000::Lab000;
 pub use lab002::Lab002;
 pub use lab004::Lab004;
 
-use refrast_conformance::BuiltIn;
+use refrast_conformance::{BuiltIn, Origin};
 
 /// The course rasterizers as built-ins, in seed order.
 #[must_use]
@@ -27,19 +27,19 @@ pub fn builtins() -> Vec<BuiltIn> {
         BuiltIn::new(
             "lab000",
             "seed 000: f32 cross-product inside test at pixel corners, view-depth buffer, no clipping",
-            false,
+            Origin::Course,
             || Box::new(Lab000),
         ),
         BuiltIn::new(
             "lab002-scanline",
             "seed 002: scanline fill of left/right rows from interpolated edges, 1/z depth",
-            false,
+            Origin::Course,
             || Box::new(Lab002),
         ),
         BuiltIn::new(
             "lab004-lineeq",
             "seed 004: Sutherland–Hodgman with a 1e-6 nudge, then line equations O_i <= 0",
-            false,
+            Origin::Course,
             || Box::new(Lab004),
         ),
     ]

@@ -125,9 +125,10 @@ impl Rasterizer for Euc {
             fill: None,
             // z interpolated perspective-correctly and divided by w: z/w, linear on screen.
             depth: DepthConvention::ScreenLinearZOverW,
-            // Its f32 weights put an edge within about 2^-14 of a pixel of where it is:
-            // four 1/256-px units covers that with room.
-            tolerance_subpixels: 4,
+            // f32 on raster coordinates as large as the suite's ±30000·w (about 10^6 px) has an
+            // ulp of 1/16 px, so an edge may move that far: 16 units of 1/256 px. It is also
+            // Vulkan's coarsest vertex precision (subPixelPrecisionBits = 4).
+            tolerance_subpixels: 16,
             features: Features {
                 perspective_barycentrics: true,
                 screen_barycentrics: false,

@@ -66,7 +66,7 @@ fn placed(scene: &Scene, snapping: Snapping) -> Option<[[f64; 2]; 3]> {
 
 /// Whether sample `(x, y)` lies within `limit` pixels of an edge of triangle 0 as placed by
 /// `snapping`; true when a vertex has no projection (the triangle is then judged elsewhere).
-fn near_edge(scene: &Scene, snapping: Snapping, x: u32, y: u32, limit: f64) -> bool {
+pub(super) fn near_edge(scene: &Scene, snapping: Snapping, x: u32, y: u32, limit: f64) -> bool {
     let Some(p) = placed(scene, snapping) else {
         return true;
     };

@@ -176,11 +176,8 @@ fn barycentrics_are_off_by_a_thousandth() {
     let tri = Scene::new(16, 16, d.positions.clone(), d.triangles.clone()).positions_of(0);
     let [nx, ny] = sample_ndc(16, 16, 2, 1);
     let hit = ray_cast(&tri, nx, ny, &d.state).expect("the sample is inside");
-    for k in 0..3 {
-        assert!(
-            (hit.barycentric[k] - exact[k]).abs() < 1e-12,
-            "the ray cast is exact here"
-        );
+    for (got, want) in hit.barycentric.iter().zip(exact) {
+        assert!((got - want).abs() < 1e-12, "the ray cast is exact here");
     }
     let f = fragments(&d)
         .into_iter()

@@ -5,7 +5,7 @@ use std::process::{Command, ExitCode};
 use std::time::{Duration, Instant};
 
 use refrast_conformance::isolate::certify_isolated;
-use refrast_conformance::{BuiltIn, Options, Report, RuleReport, Status, catalogue, matches};
+use refrast_conformance::{BuiltIn, Options, Report, RuleReport, Status, Unavailable, catalogue, matches};
 use serde::Serialize;
 
 use crate::{all_builtins, say};
@@ -128,40 +128,40 @@ pub fn run(args: &Args) -> ExitCode {
 /// Certifies one built-in, each rule in a child process unless `in_process`; skips it, saying
 /// why, when it cannot be built here.
 fn certify_one(b: &BuiltIn, options: &Options, in_process: bool) -> Entry {
-    let mut rasterizer = match b.build() {
-        Ok(r) => r,
-        Err(why) => {
-            say(&format!("== {}: SKIPPED: {why}\n", b.name));
-            return Entry::Skipped {
-                implementation: b.name.clone(),
-                skipped: why.to_string(),
-            };
+    let skipped = |why: Unavailable| {
+        say(&format!("== {}: SKIPPED: {why}\n", b.name));
+        Entry::Skipped {
+            implementation: b.name.clone(),
+            skipped: why.to_string(),
         }
     };
-    let p = rasterizer.profile();
-    say(&format!(
-        "== {}: {}, {}, depth {:?}, band {} px, seed {}",
-        p.name,
-        p.snapping,
-        refrast_conformance::fill_name(p.fill),
-        p.depth,
-        p.band_px(),
-        options.seed
-    ));
+    say(&format!("== {} (seed {})", b.name, options.seed));
     let start = Instant::now();
     let report = if in_process {
-        refrast_conformance::certify(rasterizer.as_mut(), options, print_rule)
+        match b.build() {
+            Ok(mut r) => refrast_conformance::certify(r.as_mut(), options, print_rule),
+            Err(why) => return skipped(why),
+        }
     } else {
-        drop(rasterizer);
+        // Each rule's process builds the implementation itself, in the environment it needs.
         let command = |rule: &refrast_conformance::Rule| run_rule_command(&b.name, rule.id, options);
-        certify_isolated(&p, &command, options, print_rule)
+        match certify_isolated(&command, options, print_rule) {
+            Ok(report) => report,
+            Err(why) => return skipped(why),
+        }
     };
+    let p = &report.profile;
     let (pass, fail, na) = report.tally();
     say(&format!(
-        "{}: {pass} passed, {fail} failed, {na} not applicable ({:.1} s)\n",
+        "{}: {pass} passed, {fail} failed, {na} not applicable ({:.1} s); profile: {}, {}, depth {}, band {} px",
         p.name,
-        start.elapsed().as_secs_f64()
+        start.elapsed().as_secs_f64(),
+        p.snapping,
+        p.fill,
+        p.depth,
+        p.band_px
     ));
+    say(&format!("  features: {}\n", p.features.join("; ")));
     Entry::Certified(report)
 }
 
@@ -206,20 +206,13 @@ pub fn run_rule(args: &RunRuleArgs) -> ExitCode {
         eprintln!("error: no implementation named '{}'", args.implementation);
         return ExitCode::from(2);
     };
-    let mut rasterizer = match b.build() {
-        Ok(r) => r,
-        Err(why) => {
-            eprintln!("error: {} cannot be built here: {why}", b.name);
-            return ExitCode::from(2);
-        }
-    };
     let options = Options {
         cases: args.cases,
         seed: args.seed,
         report_dir: args.report.clone(),
         ..Options::default()
     };
-    if refrast_conformance::isolate::serve_rule(&args.rule, rasterizer.as_mut(), &options) {
+    if refrast_conformance::isolate::serve_rule(&args.rule, || b.build(), &options) {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(2)

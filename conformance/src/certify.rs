@@ -136,6 +136,22 @@ impl From<&Profile> for ProfileReport {
     }
 }
 
+impl ProfileReport {
+    /// A profile nobody reported (every rule's process died before it could).
+    #[must_use]
+    pub fn unknown() -> Self {
+        Self {
+            name: "unknown (no rule's process reported a profile)".into(),
+            snapping: String::new(),
+            fill: String::new(),
+            depth: String::new(),
+            tolerance_subpixels: 1,
+            band_px: 0.0,
+            features: Vec::new(),
+        }
+    }
+}
+
 /// A tie rule as reports print it.
 #[must_use]
 pub fn fill_name(fill: Option<FillConvention>) -> &'static str {

@@ -21,7 +21,7 @@ use libtest_mimic::{Arguments, Completion, Failed, Trial};
 use refrast::Rasterizer;
 
 use crate::certify::{DEFAULT_CASE_TIMEOUT, Options, RuleReport, Status, run_rule};
-use crate::isolate::{run_rule_isolated, serve_rule};
+use crate::isolate::{Outcome, run_rule_isolated, serve_rule};
 use crate::rules::catalogue;
 use crate::runner::DEFAULT_SEED;
 
@@ -62,19 +62,19 @@ where
 {
     let options = Arc::new(options_from_env());
     if let Ok(id) = std::env::var(RULE_ENV) {
-        let served = serve_rule(&id, &mut make(), &options);
+        let served = serve_rule(&id, || Ok(Box::new(make())), &options);
         std::process::exit(if served { 0 } else { 2 });
     }
     let in_process = std::env::var_os("REFRAST_IN_PROCESS").is_some_and(|v| v != "0");
     let args = Arguments::from_args();
     let make = Arc::new(make);
-    let profile = Arc::new(make().profile());
+    let profile = make().profile();
     let trials = catalogue()
         .into_iter()
         .map(|rule| {
             let ignored = rule.applies(&profile).is_err();
             let (id, family) = (rule.id, rule.family);
-            let (make, options, profile) = (Arc::clone(&make), Arc::clone(&options), Arc::clone(&profile));
+            let (make, options) = (Arc::clone(&make), Arc::clone(&options));
             Trial::ignorable_test(id, move || {
                 let report = if in_process {
                     run_rule(&rule, &mut make(), &options)
@@ -83,7 +83,14 @@ where
                         std::env::current_exe().map_err(|e| format!("cannot find this test binary: {e}"))?;
                     let mut child = Command::new(exe);
                     child.env(RULE_ENV, rule.id);
-                    run_rule_isolated(&rule, &profile, child, &options)
+                    match run_rule_isolated(&rule, child, &options) {
+                        Outcome::Ran(report, _) => *report,
+                        Outcome::Unavailable(why) => {
+                            return Err(Failed::from(format!(
+                                "the rasterizer cannot be built in a child: {why}"
+                            )));
+                        }
+                    }
                 };
                 match report.status {
                     Status::Pass => Ok(Completion::Completed),

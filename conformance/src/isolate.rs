@@ -1,11 +1,13 @@
 //! Rules run in child processes, so that a rasterizer that hangs, aborts or crashes fails the
 //! rule it was running, with a message, and the run goes on.
 //!
-//! The parent decides applicability and starts one child per applicable rule (a command the
-//! caller builds: `refrast run-rule …`, or the test binary itself for [`crate::run_as_tests`]).
-//! The child runs the rule with [`serve_rule`] and speaks one JSON object a line on its stdout,
-//! each after [`MARK`]: every case before it is checked, then the report. Lines without the
-//! mark are the rasterizer's own output and are kept for the failure message.
+//! The parent starts one child per rule (a command the caller builds: `refrast run-rule …`, or
+//! the test binary itself for [`crate::run_as_tests`]). The child builds the rasterizer, runs
+//! the rule with [`serve_rule`] and speaks one JSON object a line on its stdout, each after
+//! [`MARK`]: its profile (or why it cannot be built here), every case before it is checked,
+//! then the report. Lines without the mark are the rasterizer's own output and are kept for
+//! the failure message. Building in the child means an implementation that needs its own
+//! environment (a driver chosen by an environment variable) gets it there.
 //!
 //! The parent gives each case [`Options::case_timeout`]: a child silent for longer is killed and
 //! the rule fails as hung, on the last case it announced. A child that exits without a report
@@ -17,10 +19,11 @@ use std::sync::mpsc::{self, RecvTimeoutError};
 use std::thread;
 use std::time::Instant;
 
-use refrast::{Profile, Rasterizer};
+use refrast::Rasterizer;
 use serde::{Deserialize, Serialize};
 
 use crate::certify::{Options, ProfileReport, Report, RuleReport, Status, cases_for, matches, run_rule};
+use crate::impls::Unavailable;
 use crate::rules::{Rule, catalogue};
 
 /// The prefix of every protocol line on the child's stdout.
@@ -32,6 +35,10 @@ const KEPT_OUTPUT: usize = 4000;
 /// One line from a child.
 #[derive(Debug, Serialize, Deserialize)]
 enum Message {
+    /// The rasterizer's profile, once built.
+    Profile(Box<ProfileReport>),
+    /// Why the rasterizer cannot be built in this process.
+    Unavailable(String),
     /// The input about to be checked, as Rust.
     Case(String),
     /// The rule's outcome.
@@ -51,61 +58,80 @@ fn announce(input: &dyn std::fmt::Debug) {
     send(&Message::Case(format!("{input:?}")));
 }
 
-/// Child side: runs rule `id` against `rasterizer`, announcing every case, and writes the
-/// report. Returns `false` when no rule has that ID (after saying so on stderr).
-pub fn serve_rule(id: &str, rasterizer: &mut dyn Rasterizer, options: &Options) -> bool {
+/// Child side: builds the rasterizer and runs rule `id` against it, announcing its profile and
+/// every case, and writes the report. Returns `false` when no rule has that ID (after saying
+/// so on stderr).
+pub fn serve_rule(
+    id: &str,
+    build: impl FnOnce() -> Result<Box<dyn Rasterizer>, Unavailable>,
+    options: &Options,
+) -> bool {
     let Some(rule) = catalogue().into_iter().find(|r| r.id == id) else {
         eprintln!("error: no rule with ID '{id}'; `refrast rules` lists them");
         return false;
     };
+    let mut rasterizer = match build() {
+        Ok(r) => r,
+        Err(why) => {
+            send(&Message::Unavailable(why.0));
+            return true;
+        }
+    };
+    send(&Message::Profile(Box::new(ProfileReport::from(
+        &rasterizer.profile(),
+    ))));
     let options = Options {
         announce: Some(announce),
         ..options.clone()
     };
-    let report = run_rule(&rule, rasterizer, &options);
+    let report = run_rule(&rule, rasterizer.as_mut(), &options);
     send(&Message::Report(Box::new(report)));
     true
 }
 
-/// Parent side: certifies an implementation whose profile is `profile`, each applicable rule in
-/// a child started by `command(rule)`, calling `progress` after each rule.
+/// How one rule went in its child.
+#[derive(Debug)]
+pub enum Outcome {
+    /// The rule ran (or found it does not apply), with the profile the child reported.
+    Ran(Box<RuleReport>, Option<Box<ProfileReport>>),
+    /// The rasterizer cannot be built where the child runs.
+    Unavailable(Unavailable),
+}
+
+/// Parent side: certifies the implementation the children build, each rule in a child started
+/// by `command(rule)`, calling `progress` after each rule. `Err` when the first child says it
+/// cannot build the implementation here.
 pub fn certify_isolated(
-    profile: &Profile,
     command: &dyn Fn(&Rule) -> Command,
     options: &Options,
     mut progress: impl FnMut(&RuleReport),
-) -> Report {
+) -> Result<Report, Unavailable> {
     let mut rules = Vec::new();
+    let mut profile = None;
     for rule in catalogue() {
         if options.rule.as_deref().is_some_and(|p| !matches(p, rule.id)) {
             continue;
         }
-        let report = match rule.applies(profile) {
-            Err(reason) => not_applicable(&rule, profile, options, reason),
-            Ok(()) => run_rule_isolated(&rule, profile, command(&rule), options),
+        let report = match run_rule_isolated(&rule, command(&rule), options) {
+            Outcome::Unavailable(why) => return Err(why),
+            Outcome::Ran(report, reported) => {
+                profile = profile.or(reported);
+                report
+            }
         };
         progress(&report);
-        rules.push(report);
+        rules.push(*report);
     }
-    Report {
+    let profile = profile.map_or_else(ProfileReport::unknown, |p| *p);
+    Ok(Report {
         implementation: profile.name.clone(),
-        profile: ProfileReport::from(profile),
+        profile,
         rules,
-    }
-}
-
-/// The report of a rule that does not apply.
-fn not_applicable(rule: &Rule, profile: &Profile, options: &Options, reason: &str) -> RuleReport {
-    RuleReport {
-        status: Status::NotApplicable,
-        cases: 0,
-        message: Some(reason.to_owned()),
-        ..blank(rule, profile, options)
-    }
+    })
 }
 
 /// A report of `rule` with nothing run yet.
-fn blank(rule: &Rule, profile: &Profile, options: &Options) -> RuleReport {
+fn blank(rule: &Rule, options: &Options, tolerance_subpixels: u32) -> RuleReport {
     RuleReport {
         id: rule.id.to_owned(),
         family: rule.family,
@@ -113,7 +139,7 @@ fn blank(rule: &Rule, profile: &Profile, options: &Options) -> RuleReport {
         status: Status::Pass,
         cases: cases_for(rule, options),
         seed: options.seed,
-        tolerance_subpixels: profile.tolerance_subpixels.max(1),
+        tolerance_subpixels,
         message: None,
         details: Vec::new(),
         counts: None,
@@ -130,17 +156,17 @@ enum Line {
 }
 
 /// Runs one rule in a child started by `command`; a hang, crash or garbled answer is a failure.
-pub fn run_rule_isolated(
-    rule: &Rule,
-    profile: &Profile,
-    mut command: Command,
-    options: &Options,
-) -> RuleReport {
-    let failed = |message: String, last_case: Option<String>| RuleReport {
-        status: Status::Fail,
-        message: Some(message),
-        counterexample: last_case,
-        ..blank(rule, profile, options)
+pub fn run_rule_isolated(rule: &Rule, mut command: Command, options: &Options) -> Outcome {
+    let mut profile: Option<Box<ProfileReport>> = None;
+    let failed = |message: String, last_case: Option<String>, profile: &Option<Box<ProfileReport>>| {
+        let tolerance = profile.as_ref().map_or(1, |p| p.tolerance_subpixels.max(1));
+        let report = RuleReport {
+            status: Status::Fail,
+            message: Some(message),
+            counterexample: last_case,
+            ..blank(rule, options, tolerance)
+        };
+        Outcome::Ran(Box::new(report), profile.clone())
     };
     let program = format!("{:?}", command.get_program());
     let mut child = match command
@@ -150,7 +176,13 @@ pub fn run_rule_isolated(
         .spawn()
     {
         Ok(child) => child,
-        Err(e) => return failed(format!("could not start the rule's process {program}: {e}"), None),
+        Err(e) => {
+            return failed(
+                format!("could not start the rule's process {program}: {e}"),
+                None,
+                &profile,
+            );
+        }
     };
     let stderr = child.stderr.take().map(collect_tail);
     let (tx, rx) = mpsc::channel();
@@ -185,9 +217,17 @@ pub fn run_rule_isolated(
                 last_case = Some(input);
                 last_word = Instant::now();
             }
+            Ok(Line::Message(Message::Profile(reported))) => {
+                profile = Some(reported);
+                last_word = Instant::now();
+            }
+            Ok(Line::Message(Message::Unavailable(why))) => {
+                let _ = child.wait();
+                return Outcome::Unavailable(Unavailable(why));
+            }
             Ok(Line::Message(Message::Report(report))) => {
                 let _ = child.wait();
-                return *report;
+                return Outcome::Ran(report, profile);
             }
             Ok(Line::Other(line)) => own_output.push(&line),
             Ok(Line::Closed) | Err(RecvTimeoutError::Disconnected) => {
@@ -200,6 +240,7 @@ pub fn run_rule_isolated(
                         output
                     ),
                     last_case,
+                    &profile,
                 );
             }
             Err(RecvTimeoutError::Timeout) => {
@@ -213,6 +254,7 @@ pub fn run_rule_isolated(
                         options.case_timeout.as_secs_f64()
                     ),
                     last_case,
+                    &profile,
                 );
             }
         }

@@ -235,6 +235,11 @@ pub struct Profile {
     /// Half-width of the band around edges where rules that compare with an oracle don't care,
     /// in grid steps ([`Snapping::unit_px`]); at least one is used.
     pub tolerance_subpixels: u32,
+    /// The precision claimed for interpolation: barycentrics and depth within
+    /// `2^-precision_bits` of their exact values, barycentrics summing to 1 within a quarter of
+    /// that. Neither Vulkan nor D3D bounds it; 18 is what f32 on exact edge values keeps, with
+    /// room (the reference's claim), 14 what an f32 rasterizer evaluating plane equations keeps.
+    pub precision_bits: u8,
     /// Optional abilities and supported states.
     pub features: Features,
 }
@@ -300,6 +305,7 @@ mod tests {
             fill: Some(FillConvention::TopLeft),
             depth: DepthConvention::ScreenLinearZOverW,
             tolerance_subpixels: 1,
+            precision_bits: 18,
             features,
         };
         let state = DrawState {

@@ -162,6 +162,12 @@ pub trait Rasterizer {
     /// The conventions and abilities this implementation declares.
     fn profile(&self) -> Profile;
 
+    /// What it is, as it reports itself: a driver's name and version, a library's release.
+    /// Shown beside the profile in reports; empty by default.
+    fn about(&self) -> String {
+        String::new()
+    }
+
     /// Every covered sample of the draw, before the depth test, in any order.
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError>;
 

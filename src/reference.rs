@@ -318,6 +318,8 @@ impl Rasterizer for Reference {
             depth: DepthConvention::ScreenLinearZOverW,
             // Snapping moves an edge by up to √2/2 subpixel from where the float input puts it.
             tolerance_subpixels: 1,
+            // f64 on exact edge values, rounded to f32 once: within 2^-24, claimed with room.
+            precision_bits: 18,
             features: Features {
                 guard_band: self.config.clip == ClipMode::GuardBand,
                 ..Features::ALL

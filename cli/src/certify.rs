@@ -144,7 +144,11 @@ fn certify_one(b: &BuiltIn, options: &Options, in_process: bool) -> Entry {
         }
     } else {
         // Each rule's process builds the implementation itself, in the environment it needs.
-        let command = |rule: &refrast_conformance::Rule| run_rule_command(&b.name, rule.id, options);
+        let command = |rule: &refrast_conformance::Rule| {
+            let mut command = run_rule_command(&b.name, rule.id, options);
+            command.envs(b.env.iter().map(|(k, v)| (k, v)));
+            command
+        };
         match certify_isolated(&command, options, print_rule) {
             Ok(report) => report,
             Err(why) => return skipped(why),
@@ -161,6 +165,9 @@ fn certify_one(b: &BuiltIn, options: &Options, in_process: bool) -> Entry {
         p.depth,
         p.band_px
     ));
+    if !p.about.is_empty() {
+        say(&format!("  reports itself as: {}", p.about));
+    }
     say(&format!("  features: {}\n", p.features.join("; ")));
     Entry::Certified(report)
 }

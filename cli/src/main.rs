@@ -121,6 +121,7 @@ pub(crate) fn all_builtins() -> Vec<BuiltIn> {
     let mut all = refrast_conformance::builtins();
     all.extend(refrast_zoo::builtins());
     all.extend(refrast_euc::builtins());
+    all.extend(refrast_wgpu::builtins());
     all
 }
 

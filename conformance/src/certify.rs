@@ -108,6 +108,9 @@ pub struct RuleReport {
 pub struct ProfileReport {
     /// Declared name.
     pub name: String,
+    /// What the implementation reports itself to be ([`Rasterizer::about`]).
+    #[serde(default)]
+    pub about: String,
     /// Snapping: a grid's bits, or none.
     pub snapping: String,
     /// Tie rule on edges, or none.
@@ -122,10 +125,22 @@ pub struct ProfileReport {
     pub features: Vec<String>,
 }
 
+impl ProfileReport {
+    /// The report of `rasterizer`'s profile, with what it says about itself.
+    #[must_use]
+    pub fn of(rasterizer: &dyn Rasterizer) -> Self {
+        Self {
+            about: rasterizer.about(),
+            ..Self::from(&rasterizer.profile())
+        }
+    }
+}
+
 impl From<&Profile> for ProfileReport {
     fn from(p: &Profile) -> Self {
         Self {
             name: p.name.clone(),
+            about: String::new(),
             snapping: p.snapping.to_string(),
             fill: fill_name(p.fill).to_owned(),
             depth: format!("{:?}", p.depth),
@@ -142,6 +157,7 @@ impl ProfileReport {
     pub fn unknown() -> Self {
         Self {
             name: "unknown (no rule's process reported a profile)".into(),
+            about: String::new(),
             snapping: String::new(),
             fill: String::new(),
             depth: String::new(),
@@ -319,7 +335,7 @@ pub fn certify(
     }
     Report {
         implementation: profile.name.clone(),
-        profile: ProfileReport::from(&profile),
+        profile: ProfileReport::of(rasterizer),
         rules,
     }
 }

@@ -53,6 +53,9 @@ pub struct BuiltIn {
     pub description: String,
     /// Where it comes from.
     pub origin: Origin,
+    /// Environment variables its process needs (a driver chosen before it loads); `certify`
+    /// sets them for each rule's child process.
+    pub env: Vec<(String, String)>,
     /// Builds it.
     pub make: Maker,
 }
@@ -79,8 +82,16 @@ impl BuiltIn {
             name: name.into(),
             description: description.into(),
             origin,
+            env: Vec::new(),
             make: std::sync::Arc::new(make),
         }
+    }
+
+    /// The same, with `name=value` set in the environment of the processes it runs in.
+    #[must_use]
+    pub fn with_env(mut self, name: &str, value: &str) -> Self {
+        self.env.push((name.to_owned(), value.to_owned()));
+        self
     }
 
     /// A fresh instance, or why there is none here.

@@ -129,6 +129,8 @@ impl Rasterizer for Euc {
             // ulp of 1/16 px, so an edge may move that far: 16 units of 1/256 px. It is also
             // Vulkan's coarsest vertex precision (subPixelPrecisionBits = 4).
             tolerance_subpixels: 16,
+            // What an f32 rasterizer keeps (see `Profile::precision_bits`); euc promises nothing.
+            precision_bits: 14,
             features: Features {
                 perspective_barycentrics: true,
                 screen_barycentrics: false,

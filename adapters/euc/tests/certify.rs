@@ -17,12 +17,12 @@ const CRASH_ENV: &str = "EUC_CERTIFY_CRASH";
 
 /// The verdicts the hand checks confirm, at the cases below.
 const FAIL: &str = "fill.mesh.exactly-once fill.fan.exactly-once fill.projected-mesh.exactly-once \
-    bary.vertex.one bary.perspective.matches-raycast depth.range.vertices \
+    bary.perspective.matches-raycast \
     depth.screen-linear.matches-raycast clip.behind-eye.empty clip.interior.matches-raycast \
-    clip.mesh.watertight clip.crossing-quad.watertight meta.rotation.same-coverage \
-    meta.reversal.flips-facing meta.facing.from-winding meta.degenerate.empty \
+    clip.mesh.watertight clip.crossing-quad.watertight meta.reversal.flips-facing meta.facing.from-winding meta.degenerate.empty \
     robust.non-finite.discarded robust.bit-patterns.sane-output robust.output.well-formed";
 const PASS: &str = "fill.rotated-quad.exactly-once fill.interior.matches-raycast bary.sum.one bary.range.unit \
+    bary.vertex.one depth.range.vertices meta.rotation.same-coverage \
     depth.order.independent depth.resolve.matches-fragments meta.translate.whole-pixels \
     meta.translate.one-subpixel \
     meta.viewport.neutral meta.batch.independent meta.cull.by-facing robust.bad-index.error";

@@ -113,6 +113,7 @@ fn a_triangle_before_the_near_plane_is_drawn() {
 
 /// Finding 3. A zero-area triangle (a repeated vertex) covers a sample, with NaN depth and
 /// barycentrics (Vulkan §28.7.1: zero-area triangles are back-facing and cover nothing).
+/// Nearly edge-on triangles do the same (the suite's rotation and reversal counterexamples).
 #[test]
 fn a_zero_area_triangle_draws_nan_fragments() {
     let d = draw(
@@ -160,7 +161,7 @@ fn facing_flips_when_a_vertex_is_behind_the_eye() {
 
 /// Finding 5. f32 weights: at pixel (2, 1) of this triangle euc's perspective-correct
 /// barycentrics are off by 1.2·10⁻³ from the exact ones (worked out in exact rationals:
-/// 0.773157, 0.062797, 0.164046).
+/// 0.773157, 0.062797, 0.164046), twenty times the 2^-14 an f32 rasterizer keeps.
 #[test]
 fn barycentrics_are_off_by_a_thousandth() {
     let d = draw(
@@ -189,32 +190,33 @@ fn barycentrics_are_off_by_a_thousandth() {
     assert!(off > 1e-3 && off < 1.3e-3, "off by {off}");
 }
 
-/// Finding 5, depth: 5.4·10⁻⁶ from the exact z/w at pixel (1, 4) (exact 0.507879).
+/// Finding 5, depth: near an edge of a triangle whose vertices' w differ thirtyfold, euc's depth
+/// at pixel (3, 0) is 0.889460, the exact z/w 0.878723 (worked out in exact rationals): off by
+/// 1.07·10⁻², where an f32 rasterizer keeps 2^-14 ≈ 6·10⁻⁵.
 #[test]
-fn depth_is_off_by_five_millionths() {
+fn depth_is_off_by_a_hundredth_near_an_edge() {
     let d = fitted(Draw::new(
-        Viewport::new(32, 64).expect("a valid viewport"),
+        Viewport::new(32, 16).expect("a valid viewport"),
         vec![
-            [-0.03125, 0.07283936, 0.0, 0.1],
-            [-0.80874914, 0.7136378, 0.0, 0.8271252],
-            [-0.088134766, 0.08643799, 0.096984625, 0.1],
+            [-0.07832032, -0.053320315, 0.0, 0.1],
+            [-0.2707494, 0.10829976, 0.0, 0.34655923],
+            [-2.3588076, 3.0192738, 2.918375, 3.0192738],
         ],
         vec![[0, 1, 2]],
     ));
     let f = fragments(&d)
         .into_iter()
-        .find(|f| (f.x, f.y) == (1, 4))
+        .find(|f| (f.x, f.y) == (3, 0))
         .expect("covered");
-    let off = (f64::from(f.depth) - 0.5078790011549628).abs();
-    assert!(off > 5e-6 && off < 6e-6, "off by {off}");
+    let off = (f64::from(f.depth) - 0.8787225288466437).abs();
+    assert!(off > 1.0e-2 && off < 1.1e-2, "off by {off}");
 }
 
 /// Not a finding, a false positive fixed: a sample within 10⁻⁶ px of an edge goes in or out
 /// depending on the vertex order in euc's f32 weights. Without a tie rule that is allowed, so
 /// `meta.rotation.same-coverage` no longer judges the coverage of samples within the band of
 /// an edge for a profile without exact coverage (it did, and failed euc on this triangle).
-/// The rule still fails euc here, rightly, on barycentrics that move by 6·10⁻⁶ with the order
-/// (finding 5).
+/// Its barycentrics move by 6·10⁻⁶ with the order, within the 2^-14 its profile claims.
 #[test]
 fn rotation_ignores_samples_on_an_edge_without_exact_coverage() {
     let positions = vec![
@@ -234,8 +236,5 @@ fn rotation_ignores_samples_on_an_edge_without_exact_coverage() {
     };
     // euc's coverage does change with the order, on the row the edge from vertex 0 to 2 runs along.
     assert_ne!(covered(&scene), covered(&rotated));
-    let verdict = rules::meta::check_rotation(&mut Euc, &scene);
-    let message = verdict.err().map(|v| v.message).unwrap_or_default();
-    assert!(!message.contains("coverage"), "{message}");
-    assert!(message.contains("barycentrics did not move"), "{message}");
+    assert!(rules::meta::check_rotation(&mut Euc, &scene).is_ok());
 }

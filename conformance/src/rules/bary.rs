@@ -2,7 +2,7 @@
 
 use refrast::Rasterizer;
 
-use super::common::{BARY_EPS, ORACLE_EPS, fragments, raycast_fragments, snapped_triangle};
+use super::common::{fragments, oracle_eps, raycast_fragments, snapped_triangle, sum_eps};
 use super::{Family, PERSPECTIVE_BARYCENTRICS, Rule, SCREEN_BARYCENTRICS};
 use crate::oracle::outline::{distance_to_outline, visible_outline};
 use crate::oracle::raster::{project, sample_centre};
@@ -14,13 +14,13 @@ use crate::violation::{Findings, Violation, plural};
 pub(super) fn rules() -> Vec<Rule> {
     vec![
         Rule::invariant(Family::Bary, "bary.sum.one")
-            .sentence("Every fragment's barycentrics sum to 1 within 2^-20.")
+            .sentence("Every fragment's barycentrics sum to 1 within a quarter of the claimed precision (2^-20 for the reference).")
             .source("Vulkan 1.4 §28.7.5 (a + b + c = 1)")
             .cases(5000)
             .needs(PERSPECTIVE_BARYCENTRICS)
             .run(|r, cfg| property(r, cfg, strategy::float_scene(), check_sum_one)),
         Rule::invariant(Family::Bary, "bary.range.unit")
-            .sentence("Barycentrics of samples outside the tolerance band lie in [0, 1] within 2^-20.")
+            .sentence("Barycentrics of samples outside the tolerance band lie in [0, 1] within a quarter of the claimed precision.")
             .source("Vulkan 1.4 §28.7.5 (clipped polygons: convex combinations)")
             .cases(5000)
             .needs(PERSPECTIVE_BARYCENTRICS)
@@ -32,7 +32,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .needs(PERSPECTIVE_BARYCENTRICS)
             .run(|r, cfg| property(r, cfg, strategy::perspective_inside_scene(), check_vertex_one)),
         Rule::invariant(Family::Bary, "bary.perspective.matches-raycast")
-            .sentence("Perspective-correct barycentrics equal those of the ray-cast hit within 2^-18.")
+            .sentence("Perspective-correct barycentrics equal those of the ray-cast hit within the claimed precision (2^-18 for the reference).")
             .source("seed 002 (q/z interpolation); Vulkan 1.4 §28.7.5")
             .cases(5000)
             .needs(PERSPECTIVE_BARYCENTRICS)
@@ -51,7 +51,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .needs(SCREEN_BARYCENTRICS)
             .run(|r, cfg| property(r, cfg, strategy::perspective_inside_scene(), check_reconstructs)),
         Rule::invariant(Family::Bary, "bary.equal-w.affine")
-            .sentence("With equal w at every vertex, perspective-correct and screen-space barycentrics agree within 2^-18.")
+            .sentence("With equal w at every vertex, perspective-correct and screen-space barycentrics agree within the claimed precision.")
             .source("conformance-anchors (d5: perspective equals linear when all w are equal)")
             .cases(5000)
             .needs(SCREEN_BARYCENTRICS)
@@ -71,12 +71,13 @@ fn equal_w_scene() -> impl proptest::strategy::Strategy<Value = Scene> {
     })
 }
 
-/// Every fragment's barycentrics sum to 1 within `BARY_EPS`.
+/// Every fragment's barycentrics sum to 1 within [`sum_eps`].
 pub fn check_sum_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let eps = sum_eps(&r.profile());
     let mut found = Findings::new();
     for f in fragments(r, scene)? {
         let sum: f32 = f.barycentric.iter().sum();
-        if (sum - 1.0).abs() > BARY_EPS {
+        if (sum - 1.0).abs() > eps {
             found.add((f.x, f.y), || {
                 format!("{:?} has {:?}, summing to {sum}", (f.x, f.y), f.barycentric)
             });
@@ -84,14 +85,15 @@ pub fn check_sum_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violat
     }
     found.verdict(|n| {
         format!(
-            "barycentrics not summing to 1 within 2^-20 at {}",
+            "barycentrics not summing to 1 within the claimed precision at {}",
             plural(n, "fragment")
         )
     })
 }
 
-/// Barycentrics of samples outside the band lie in [0, 1] within `BARY_EPS`.
+/// Barycentrics of samples outside the band lie in [0, 1] within [`sum_eps`].
 pub fn check_in_range(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let eps = sum_eps(&r.profile());
     let band = r.profile().band_px();
     let outline = visible_outline(&scene.positions_of(0), scene.width, scene.height, &scene.state);
     let mut found = Findings::new();
@@ -100,11 +102,7 @@ pub fn check_in_range(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Viola
         if distance_to_outline(&outline, s, |_, _| true) < band {
             continue;
         }
-        if let Some(b) = f
-            .barycentric
-            .iter()
-            .find(|&&b| !(-BARY_EPS..=1.0 + BARY_EPS).contains(&b))
-        {
+        if let Some(b) = f.barycentric.iter().find(|&&b| !(-eps..=1.0 + eps).contains(&b)) {
             found.add((f.x, f.y), || {
                 format!("{:?} has {b} in {:?}", (f.x, f.y), f.barycentric)
             });
@@ -120,6 +118,7 @@ pub fn check_in_range(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Viola
 
 /// A covered sample on a vertex has weight 1 there and 0 elsewhere.
 pub fn check_vertex_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let eps = sum_eps(&r.profile());
     let tri = scene.positions_of(0);
     let mut found = Findings::new();
     for f in fragments(r, scene)? {
@@ -129,7 +128,7 @@ pub fn check_vertex_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Vio
             // Grid vertices are exact to f32 rounding of x·w: well within 1e-3 px of a sample.
             if (p[0] - s[0]).abs() < 1e-3 && (p[1] - s[1]).abs() < 1e-3 {
                 let b = f.barycentric;
-                let ok = (0..3).all(|i| (b[i] - if i == k { 1.0 } else { 0.0 }).abs() <= BARY_EPS);
+                let ok = (0..3).all(|i| (b[i] - if i == k { 1.0 } else { 0.0 }).abs() <= eps);
                 if !ok {
                     found.add((f.x, f.y), || {
                         format!("{:?} lies on vertex {k} but has {b:?}", (f.x, f.y))
@@ -143,12 +142,13 @@ pub fn check_vertex_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Vio
 
 /// Perspective-correct barycentrics equal the ray cast of the snapped triangle.
 pub fn check_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let eps = oracle_eps(&r.profile());
     let mut found = Findings::new();
     for (f, hit) in raycast_fragments(r, scene)? {
         let off = (0..3)
             .map(|k| (f64::from(f.barycentric[k]) - hit.barycentric[k]).abs())
             .fold(0.0, f64::max);
-        if off > ORACLE_EPS {
+        if off > eps {
             found.add((f.x, f.y), || {
                 format!(
                     "{:?} has {:?}, the ray cast {:?} (off by {off:.3e})",
@@ -161,7 +161,7 @@ pub fn check_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<()
     }
     found.verdict(|n| {
         format!(
-            "barycentrics off the ray cast's by more than 2^-18 at {}",
+            "barycentrics off the ray cast's by more than the claimed precision at {}",
             plural(n, "fragment")
         )
     })
@@ -169,6 +169,7 @@ pub fn check_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<()
 
 /// Screen-space barycentrics weight the snapped vertices to the sample position.
 pub fn check_reconstructs(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let eps = oracle_eps(&r.profile());
     let Some(tri) = snapped_triangle(scene, 0, r.profile().snapping) else {
         return Ok(());
     };
@@ -185,9 +186,9 @@ pub fn check_reconstructs(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), V
         let b = b.map(f64::from);
         let at = [0, 1].map(|c| b[0] * p[0][c] + b[1] * p[1][c] + b[2] * p[2][c]);
         let s = sample_centre(f.x, f.y);
-        // Weights within ORACLE_EPS each move the point by at most 3·ORACLE_EPS·extent.
+        // Weights within eps each move the point by at most 3·eps·extent.
         let off = (at[0] - s[0]).hypot(at[1] - s[1]);
-        if off > 3.0 * ORACLE_EPS * extent {
+        if off > 3.0 * eps * extent {
             found.add((f.x, f.y), || {
                 format!(
                     "{:?}: screen barycentrics {b:?} give {at:?}, {off:.3e} px away",
@@ -206,6 +207,7 @@ pub fn check_reconstructs(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), V
 
 /// With equal w, perspective-correct and screen-space barycentrics agree.
 pub fn check_equal_w(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let eps = oracle_eps(&r.profile());
     let mut found = Findings::new();
     for f in fragments(r, scene)? {
         let Some(s) = f.screen_barycentric else {
@@ -214,7 +216,7 @@ pub fn check_equal_w(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violat
                 "the profile declares screen-space barycentrics, but a fragment has none",
             ));
         };
-        if (0..3).any(|k| f64::from((f.barycentric[k] - s[k]).abs()) > ORACLE_EPS) {
+        if (0..3).any(|k| f64::from((f.barycentric[k] - s[k]).abs()) > eps) {
             found.add((f.x, f.y), || {
                 format!("{:?}: perspective {:?}, screen {s:?}", (f.x, f.y), f.barycentric)
             });

@@ -140,6 +140,8 @@ impl Rasterizer for Lab000 {
             // Interpolated view-space depth, not z/w.
             depth: DepthConvention::Other,
             tolerance_subpixels: 1,
+            // Held to the reference's precision: the labs compute in f32 or f64 from exact inputs.
+            precision_bits: 18,
             features: Features {
                 perspective_barycentrics: false,
                 screen_barycentrics: true,

@@ -232,6 +232,8 @@ impl Rasterizer for Lab002 {
             // 1/z interpolated linearly, not z/w.
             depth: DepthConvention::Other,
             tolerance_subpixels: 1,
+            // Held to the reference's precision: the labs compute in f32 or f64 from exact inputs.
+            precision_bits: 18,
             features: Features {
                 // Section 6.2: q·zinv interpolated, then divided by zinv.
                 perspective_barycentrics: true,

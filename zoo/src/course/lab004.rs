@@ -215,6 +215,8 @@ impl Rasterizer for Lab004 {
             // z/w of each vertex, mixed with screen-space α, β, γ.
             depth: DepthConvention::ScreenLinearZOverW,
             tolerance_subpixels: 1,
+            // Held to the reference's precision: the labs compute in f32 or f64 from exact inputs.
+            precision_bits: 18,
             features: Features {
                 perspective_barycentrics: false,
                 screen_barycentrics: true,

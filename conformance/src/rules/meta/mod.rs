@@ -5,7 +5,7 @@ use std::collections::{HashMap, HashSet};
 
 use refrast::{CullMode, Fragment, FrontFace, Profile, Rasterizer};
 
-use super::common::{ORACLE_EPS, check_draws_nothing, compare_sets, fragments};
+use super::common::{check_draws_nothing, compare_sets, fragments, oracle_eps};
 use super::{CULLING, EXACT_COVERAGE, Family, Rule};
 use crate::oracle::brute_force;
 use crate::oracle::outline::{distance_to_outline, visible_outline};
@@ -207,7 +207,8 @@ fn compare_permuted(
         })?;
     }
     // A clipped triangle is drawn as a fan that starts at another vertex once rotated, and its
-    // new vertices snap differently: only unclipped barycentrics must match within ORACLE_EPS.
+    // new vertices snap differently: only unclipped barycentrics must match, within the
+    // claimed precision.
     let p = scene.triangles[0].map(|i| scene.positions[i as usize]);
     let unclipped = raster::unclipped(&p, scene.state.depth_range, scene.state.clip_far);
     // Fragment pairs by pixel (one triangle covers a pixel once), in row order.
@@ -228,7 +229,7 @@ fn compare_permuted(
         let moved_apart = map
             .iter()
             .enumerate()
-            .any(|(k, &to)| f64::from((a.barycentric[k] - b.barycentric[to]).abs()) > ORACLE_EPS);
+            .any(|(k, &to)| f64::from((a.barycentric[k] - b.barycentric[to]).abs()) > oracle_eps(profile));
         if unclipped && moved_apart {
             weights.add((a.x, a.y), || {
                 format!(

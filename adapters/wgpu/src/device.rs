@@ -1,0 +1,167 @@
+//! Finding the driver asked for, and the one device per process and driver that draws.
+
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex, OnceLock};
+
+use refrast_conformance::Unavailable;
+
+/// The driver a built-in asks for; never quietly another.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Driver {
+    /// Mesa's lavapipe: llvmpipe behind Vulkan.
+    Lavapipe,
+    /// Mesa's llvmpipe behind OpenGL ES, over EGL.
+    Llvmpipe,
+    /// Mesa's older softpipe behind OpenGL ES (`GALLIUM_DRIVER=softpipe`), over EGL.
+    Softpipe,
+    /// Whatever Vulkan adapter the machine has, a GPU before a CPU one.
+    Vulkan,
+}
+
+impl Driver {
+    /// Every driver, as `--impl` names them.
+    pub const ALL: [Driver; 4] = [Self::Lavapipe, Self::Llvmpipe, Self::Softpipe, Self::Vulkan];
+
+    /// The name `--impl` takes.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Lavapipe => "lavapipe",
+            Self::Llvmpipe => "llvmpipe",
+            Self::Softpipe => "softpipe",
+            Self::Vulkan => "vulkan",
+        }
+    }
+
+    /// The environment its process needs: Mesa picks softpipe only when told before it loads.
+    #[must_use]
+    pub fn env(self) -> &'static [(&'static str, &'static str)] {
+        match self {
+            Self::Softpipe => &[("GALLIUM_DRIVER", "softpipe")],
+            _ => &[],
+        }
+    }
+
+    fn backends(self) -> wgpu::Backends {
+        match self {
+            Self::Lavapipe | Self::Vulkan => wgpu::Backends::VULKAN,
+            Self::Llvmpipe | Self::Softpipe => wgpu::Backends::GL,
+        }
+    }
+
+    /// Whether an adapter is this driver.
+    fn accepts(self, info: &wgpu::AdapterInfo) -> bool {
+        let named = |what: &str| {
+            [&info.name, &info.driver, &info.driver_info]
+                .iter()
+                .any(|s| s.to_lowercase().contains(what))
+        };
+        match self {
+            Self::Lavapipe => info.backend == wgpu::Backend::Vulkan && named("llvmpipe"),
+            Self::Llvmpipe => info.backend == wgpu::Backend::Gl && named("llvmpipe"),
+            Self::Softpipe => info.backend == wgpu::Backend::Gl && named("softpipe"),
+            Self::Vulkan => info.backend == wgpu::Backend::Vulkan,
+        }
+    }
+}
+
+/// An adapter as reports name it: name, backend, driver and its version.
+#[must_use]
+pub fn describe(info: &wgpu::AdapterInfo) -> String {
+    format!(
+        "{} ({:?} backend, {:?}, driver {} {})",
+        info.name, info.backend, info.device_type, info.driver, info.driver_info
+    )
+}
+
+/// A device of the driver asked for, with what it drew with.
+pub struct Context {
+    /// The device.
+    pub device: wgpu::Device,
+    /// Its queue.
+    pub queue: wgpu::Queue,
+    /// The adapter it came from.
+    pub info: wgpu::AdapterInfo,
+    /// The device's largest texture side.
+    pub max_side: u32,
+}
+
+/// What opening a driver gave: its device, or why there is none.
+type Opened = Result<Arc<Context>, Unavailable>;
+
+/// One device per process and driver, created on first use.
+static CONTEXTS: OnceLock<Mutex<HashMap<Driver, Opened>>> = OnceLock::new();
+
+/// The device of `driver`, created once per process; why not, when there is none.
+pub fn context(driver: Driver) -> Result<Arc<Context>, Unavailable> {
+    let contexts = CONTEXTS.get_or_init(|| Mutex::new(HashMap::new()));
+    let mut contexts = contexts.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    contexts
+        .entry(driver)
+        .or_insert_with(|| open(driver).map(Arc::new))
+        .clone()
+}
+
+/// Opens the adapter that is `driver`, or says which adapters there are instead.
+fn open(driver: Driver) -> Result<Context, Unavailable> {
+    for (name, value) in driver.env() {
+        if std::env::var(name).as_deref() != Ok(*value) {
+            return Err(Unavailable(format!(
+                "{} needs {name}={value} set before its process starts; `refrast certify` sets it",
+                driver.name()
+            )));
+        }
+    }
+    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
+        backends: driver.backends(),
+        ..wgpu::InstanceDescriptor::new_without_display_handle()
+    });
+    let adapters = pollster::block_on(instance.enumerate_adapters(driver.backends()));
+    let infos: Vec<wgpu::AdapterInfo> = adapters.iter().map(wgpu::Adapter::get_info).collect();
+    let mut chosen: Vec<(usize, &wgpu::AdapterInfo)> = infos
+        .iter()
+        .enumerate()
+        .filter(|(_, i)| driver.accepts(i))
+        .collect();
+    // "Whatever Vulkan adapter": a GPU first, then anything else.
+    chosen.sort_by_key(|(_, i)| u8::from(i.device_type == wgpu::DeviceType::Cpu));
+    let Some(&(index, info)) = chosen.first() else {
+        let found: Vec<String> = infos.iter().map(describe).collect();
+        let found = if found.is_empty() {
+            "none".to_owned()
+        } else {
+            found.join("; ")
+        };
+        return Err(Unavailable(format!(
+            "no {} adapter here ({:?} adapters found: {found}); on Debian, apt-get install \
+             mesa-vulkan-drivers libvulkan1 libegl1 libegl-mesa0 libgl1-mesa-dri",
+            driver.name(),
+            driver.backends()
+        )));
+    };
+    let adapter = &adapters[index];
+    let downlevel = adapter.get_downlevel_capabilities();
+    if !downlevel
+        .flags
+        .contains(wgpu::DownlevelFlags::FRAGMENT_WRITABLE_STORAGE)
+    {
+        return Err(Unavailable(format!(
+            "{} cannot write storage buffers from fragment shaders, which capturing every \
+             fragment needs",
+            describe(info)
+        )));
+    }
+    let limits = adapter.limits();
+    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+        label: Some("refrast"),
+        required_limits: limits.clone(),
+        ..wgpu::DeviceDescriptor::default()
+    }))
+    .map_err(|e| Unavailable(format!("{} refused a device: {e}", describe(info))))?;
+    Ok(Context {
+        device,
+        queue,
+        info: info.clone(),
+        max_side: limits.max_texture_dimension_2d,
+    })
+}

@@ -1,0 +1,175 @@
+//! Real GPU drivers behind refrast's [`Rasterizer`] trait, through wgpu: Mesa's lavapipe
+//! (Vulkan), llvmpipe and softpipe (OpenGL ES over EGL), or any Vulkan adapter.
+//!
+//! The draw's clip-space positions go straight to the vertex stage, so the driver does its own
+//! clipping, snapping, fill rule and depth test; that is what gets certified. Two passes read
+//! back what it did:
+//!
+//! - **capture**: no depth test, a fragment shader appending every covered sample to a storage
+//!   buffer with an atomic counter: pixel, primitive, window depth (`@builtin(position).z`),
+//!   the barycentric unit vectors interpolated perspective-correctly and `@interpolate(linear)`,
+//!   and `@builtin(front_facing)`;
+//! - **resolve**: the driver's depth test against a `Depth32Float` attachment cleared to the
+//!   draw's value, with the primitive id in an `R32Uint` target.
+//!
+//! # What the driver promises, and what the profile says
+//!
+//! wgpu cannot ask for a fill rule or a subpixel precision, so the profile states what the
+//! driver documents, and the suite measures whether it holds:
+//!
+//! - Mesa's llvmpipe (lavapipe's rasterizer) reports `subPixelPrecisionBits = 8` and
+//!   `standardSampleLocations` (`vulkaninfo` on Mesa 22.3.6); its setup code (`lp_setup_tri.c`)
+//!   breaks ties with D3D's top-left rule in a y-down framebuffer. Declared: an 8-bit grid,
+//!   top-left.
+//! - Vulkan asks only that a sample on an edge shared by two polygons be covered by exactly one
+//!   of them (§28.7.1); the `fill.*.exactly-once` rules judge that whatever the profile says.
+//! - WebGPU clips depth to `0 ≤ z ≤ w` always (far clipping cannot be switched off without a
+//!   feature that also drops near clipping) and has no `−w ≤ z` range: those are declared
+//!   unsupported, and the suite sends no such draw.
+//!
+//! One device per process and driver is created, on first use ([`device::context`]). A driver
+//! that is missing, or an adapter that is not the one asked for, makes the built-in
+//! unavailable, with the reason; it never quietly falls back to another driver.
+#![forbid(unsafe_code)]
+
+pub mod device;
+mod draw;
+
+use std::sync::{Arc, Mutex};
+
+use refrast::{
+    CompareOp, DepthConvention, DepthRange, Draw, DrawError, Features, FillConvention, Fragment, Profile,
+    Rasterizer, Resolved, Snapping, Supported,
+};
+use refrast_conformance::{BuiltIn, Origin, Unavailable};
+
+pub use device::Driver;
+use device::{Context, context, describe};
+use draw::Pipelines;
+
+/// A driver behind wgpu, as a [`Rasterizer`].
+pub struct Gpu {
+    driver: Driver,
+    context: Arc<Context>,
+    pipelines: Mutex<Pipelines>,
+}
+
+impl Gpu {
+    /// The driver asked for, on this process's device for it; why not, when there is none.
+    pub fn new(driver: Driver) -> Result<Self, Unavailable> {
+        let context = context(driver)?;
+        let pipelines = Mutex::new(Pipelines::new(&context.device));
+        Ok(Self {
+            driver,
+            context,
+            pipelines,
+        })
+    }
+
+    /// The adapter drawing, as wgpu reports it.
+    #[must_use]
+    pub fn adapter(&self) -> &wgpu::AdapterInfo {
+        &self.context.info
+    }
+
+    /// Refuses a draw the driver cannot do as asked, rather than draw something else.
+    fn check(&self, draw: &Draw) -> Result<(), DrawError> {
+        draw.validate()?;
+        let profile = self.profile();
+        if !profile.supports(&draw.state) {
+            return Err(DrawError::Unsupported(format!(
+                "{} cannot draw with {:?}: far clipping is always on and z runs 0 ≤ z ≤ w",
+                profile.name, draw.state
+            )));
+        }
+        let side = self.context.max_side;
+        if draw.viewport.width() > side || draw.viewport.height() > side {
+            return Err(DrawError::Unsupported(format!(
+                "a {}×{} target is beyond this device's {side}-pixel limit",
+                draw.viewport.width(),
+                draw.viewport.height()
+            )));
+        }
+        Ok(())
+    }
+
+    fn pipelines(&self) -> std::sync::MutexGuard<'_, Pipelines> {
+        self.pipelines
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+}
+
+impl Rasterizer for Gpu {
+    fn profile(&self) -> Profile {
+        Profile {
+            name: self.driver.name().into(),
+            // llvmpipe's subPixelPrecisionBits and its setup's top-left rule (see the crate docs).
+            snapping: Snapping::Grid(8),
+            fill: Some(FillConvention::TopLeft),
+            // Window depth is z/w, interpolated linearly on screen (Vulkan §28.7.5).
+            depth: DepthConvention::ScreenLinearZOverW,
+            // Snapping moves an edge by up to √2/2 subpixel from where the float input puts it.
+            tolerance_subpixels: 1,
+            // Neither Vulkan nor Mesa bounds interpolation; llvmpipe evaluates f32 plane
+            // equations set up per triangle, which keep about 14 bits (`Profile::precision_bits`).
+            precision_bits: 14,
+            features: Features {
+                perspective_barycentrics: true,
+                screen_barycentrics: true,
+                cull_modes: Supported::ALL,
+                front_faces: Supported::ALL,
+                depth_test: true,
+                compare_ops: Supported::<CompareOp>::ALL,
+                depth_writes: Supported::ALL,
+                far_clipping: Supported::only(&[true]),
+                depth_ranges: Supported::only(&[DepthRange::ZeroToOne]),
+                guard_band: true,
+            },
+        }
+    }
+
+    fn about(&self) -> String {
+        describe(&self.context.info)
+    }
+
+    fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+        self.check(draw)?;
+        draw::capture(&self.context, &mut self.pipelines(), draw)
+    }
+
+    fn resolve(&mut self, draw: &Draw) -> Result<Resolved, DrawError> {
+        self.check(draw)?;
+        let (depth, primitive) = draw::resolve(&self.context, &mut self.pipelines(), draw)?;
+        Ok(Resolved {
+            viewport: draw.viewport,
+            depth,
+            primitive,
+        })
+    }
+}
+
+/// Every driver as a built-in: `refrast certify --impl lavapipe`, and so on.
+#[must_use]
+pub fn builtins() -> Vec<BuiltIn> {
+    Driver::ALL
+        .iter()
+        .map(|&driver| {
+            let description = match driver {
+                Driver::Lavapipe => "Mesa's lavapipe (Vulkan on the CPU) through wgpu",
+                Driver::Llvmpipe => "Mesa's llvmpipe through wgpu's OpenGL ES backend (EGL)",
+                Driver::Softpipe => {
+                    "Mesa's softpipe (GALLIUM_DRIVER=softpipe) through wgpu's OpenGL ES backend"
+                }
+                Driver::Vulkan => "whatever Vulkan adapter this machine has (a GPU first) through wgpu",
+            };
+            let mut b = BuiltIn::fallible(driver.name(), description, Origin::ThirdParty, move || {
+                Ok(Box::new(Gpu::new(driver)?) as Box<dyn Rasterizer>)
+            });
+            for (name, value) in driver.env() {
+                b = b.with_env(name, value);
+            }
+            b
+        })
+        .collect()
+}

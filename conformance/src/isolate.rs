@@ -77,8 +77,8 @@ pub fn serve_rule(
             return true;
         }
     };
-    send(&Message::Profile(Box::new(ProfileReport::from(
-        &rasterizer.profile(),
+    send(&Message::Profile(Box::new(ProfileReport::of(
+        rasterizer.as_ref(),
     ))));
     let options = Options {
         announce: Some(announce),

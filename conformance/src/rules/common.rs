@@ -11,8 +11,10 @@ use crate::picture::{finite_outlines, scene_outlines};
 use crate::scene::Scene;
 use crate::violation::{Expect, Violation, compare_coverage, count_fragments};
 
-/// Bound on the difference between a barycentric (or window depth) and the oracle's: the
-/// profile's claim, `2^-precision_bits`.
+/// The precision a profile claims: barycentrics and window depth within this of their exact
+/// values (`2^-precision_bits`). Bounds derived from it: a barycentric outside `[0, 1]`, or a
+/// depth outside its vertices' range, by at most this; a sum of three barycentrics off 1 by at
+/// most three times this.
 ///
 /// At the reference's 18 bits: the perspective correction `(sᵢ/wᵢ) / Σ sⱼ/wⱼ` adds only
 /// positive terms, so an f32 implementation on exact edge values loses about ten ulps of 1
@@ -20,16 +22,8 @@ use crate::violation::{Expect, Violation, compare_coverage, count_fragments};
 /// equations): `a + b·x + c·y` over a 128-px target cancels up to 7 of f32's 24 bits for a
 /// one-pixel triangle, setup and the perspective division a few more.
 #[must_use]
-pub fn oracle_eps(profile: &Profile) -> f64 {
+pub fn precision(profile: &Profile) -> f64 {
     0.5f64.powi(i32::from(profile.precision_bits.min(52)))
-}
-
-/// Bound on `|Σ bᵢ − 1|` and on each weight's excursion outside [0, 1]: a quarter of
-/// [`oracle_eps`] (2^-20 at 18 bits: an f32 implementation that divides exact edge values by the
-/// exact area and sums in f32 stays within 5·2^-24, a third of that).
-#[must_use]
-pub fn sum_eps(profile: &Profile) -> f32 {
-    (oracle_eps(profile) / 4.0) as f32
 }
 
 /// The rasterizer's fragments for `scene`; an error becomes a violation.

@@ -3,7 +3,7 @@
 use proptest::prelude::*;
 use refrast::{CompareOp, DepthState, Rasterizer, Resolved};
 
-use super::common::{fragments, oracle_eps, raycast_fragments, sum_eps};
+use super::common::{fragments, precision, raycast_fragments};
 use super::{DEPTH_TEST, Family, NEARER_WINS, Rule, Z_OVER_W_DEPTH};
 use crate::oracle::raster::window_depth;
 use crate::runner::property;
@@ -83,7 +83,7 @@ fn depth_state_scene() -> impl Strategy<Value = Scene> {
 
 /// Depth stays between the vertices' smallest and largest z/w.
 pub fn check_within_vertices(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let eps = sum_eps(&r.profile());
+    let eps = precision(&r.profile()) as f32;
     let range = scene.state.depth_range;
     let z: Vec<f32> = scene
         .positions
@@ -109,7 +109,7 @@ pub fn check_within_vertices(r: &mut dyn Rasterizer, scene: &Scene) -> Result<()
 
 /// Depth equals z/w at the ray-cast hit of the snapped triangle.
 pub fn check_depth_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let eps = oracle_eps(&r.profile());
+    let eps = precision(&r.profile());
     let mut found = Findings::new();
     for (f, hit) in raycast_fragments(r, scene)? {
         let want = hit.depth.clamp(0.0, 1.0);

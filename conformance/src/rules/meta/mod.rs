@@ -5,7 +5,7 @@ use std::collections::{HashMap, HashSet};
 
 use refrast::{CullMode, Fragment, FrontFace, Profile, Rasterizer};
 
-use super::common::{check_draws_nothing, compare_sets, fragments, oracle_eps};
+use super::common::{check_draws_nothing, compare_sets, fragments, precision};
 use super::{CULLING, EXACT_COVERAGE, Family, Rule};
 use crate::oracle::brute_force;
 use crate::oracle::outline::{distance_to_outline, visible_outline};
@@ -229,7 +229,7 @@ fn compare_permuted(
         let moved_apart = map
             .iter()
             .enumerate()
-            .any(|(k, &to)| f64::from((a.barycentric[k] - b.barycentric[to]).abs()) > oracle_eps(profile));
+            .any(|(k, &to)| f64::from((a.barycentric[k] - b.barycentric[to]).abs()) > precision(profile));
         if unclipped && moved_apart {
             weights.add((a.x, a.y), || {
                 format!(

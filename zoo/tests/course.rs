@@ -241,9 +241,11 @@ const EXPECTED: [Expected; 3] = [
                bary.screen.reconstructs-sample depth.screen-linear.matches-raycast \
                clip.interior.matches-raycast clip.mesh.watertight clip.crossing-quad.watertight \
                clip.far.respected clip.gl-range.matches-raycast meta.reversal.flips-facing \
-               meta.translate.whole-pixels meta.translate.one-subpixel meta.degenerate.empty",
+               meta.translate.whole-pixels meta.translate.one-subpixel",
+        // meta.degenerate.empty: its zero-area triangles drew only once clipped, which without a
+        // guard band may give new vertices off the line (passes 10 000 cases).
         pass: "depth.range.vertices clip.behind-eye.empty meta.rotation.same-coverage meta.viewport.neutral \
-               meta.batch.independent meta.facing.from-winding robust.non-finite.discarded \
+               meta.batch.independent meta.facing.from-winding meta.degenerate.empty robust.non-finite.discarded \
                robust.bit-patterns.sane-output robust.output.well-formed robust.bad-index.error",
         not_applicable: "fill.top-left.exact fill.guard-band.exact fill.brute-force.exact \
                bary.sum.one bary.range.unit bary.vertex.one \

@@ -3,7 +3,7 @@
 use proptest::prelude::*;
 use refrast::{Fragment, Rasterizer};
 
-use super::common::{compare_sets, fragments};
+use super::common::{compare_sets, fragments, precision};
 use super::{Family, Rule};
 use crate::picture;
 use crate::runner::property;
@@ -68,7 +68,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .cases(20000)
             .run(|r, cfg| property(r, cfg, bit_pattern_scene(), check_well_formed)),
         Rule::invariant(Family::Robust, "robust.output.well-formed")
-            .sentence("Fragments lie in the viewport, name a real primitive, cover a pixel at most once per primitive, and have depth in [0, 1].")
+            .sentence("Fragments lie in the viewport, name a real primitive, cover a pixel at most once per primitive, and have depth in [0, 1] within the claimed precision.")
             .source("design.md (what must be observable)")
             .cases(5000)
             .run(|r, cfg| property(r, cfg, strategy::crossing_scene(), check_well_formed)),
@@ -141,8 +141,11 @@ pub fn check_poisoned(r: &mut dyn Rasterizer, p: &Poisoned) -> Result<(), Violat
     )
 }
 
-/// Fragments are in the viewport, name real primitives, are unique, have depth in [0, 1].
+/// Fragments are in the viewport, name real primitives, are unique, have depth in [0, 1]
+/// within [`precision`].
 pub fn check_well_formed(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    // Window depth is claimed within the precision of its exact value, which lies in [0, 1].
+    let eps = precision(&r.profile()) as f32;
     let frags = fragments(r, scene)?;
     let mut seen = std::collections::HashSet::new();
     let mut found = Findings::new();
@@ -151,8 +154,8 @@ pub fn check_well_formed(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Vi
             "lies outside the viewport"
         } else if f.primitive as usize >= scene.triangles.len() {
             "names a primitive that does not exist"
-        } else if !(0.0..=1.0).contains(&f.depth) {
-            "has depth outside [0, 1]"
+        } else if !(-eps..=1.0 + eps).contains(&f.depth) {
+            "has depth outside [0, 1] by more than the claimed precision"
         } else if f.barycentric.iter().any(|b| !b.is_finite()) {
             "has a non-finite barycentric"
         } else if !seen.insert((f.primitive, f.x, f.y)) {

@@ -84,6 +84,10 @@ pub struct Context {
     pub info: wgpu::AdapterInfo,
     /// The device's largest texture side.
     pub max_side: u32,
+    /// Whether it can render to `Rgba32Float` targets (the capture without storage buffers).
+    pub renders_floats: bool,
+    /// Whether it can copy a depth texture to a buffer (OpenGL ES cannot).
+    pub copies_depth: bool,
 }
 
 /// What opening a driver gave: its device, or why there is none.
@@ -114,6 +118,9 @@ fn open(driver: Driver) -> Result<Context, Unavailable> {
     }
     let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
         backends: driver.backends(),
+        // Validating indirect draws needs a compute pipeline, which softpipe's OpenGL ES cannot
+        // build (wgpu then reports the device lost); the adapter draws nothing indirectly.
+        flags: wgpu::InstanceFlags::default() - wgpu::InstanceFlags::VALIDATION_INDIRECT_CALL,
         ..wgpu::InstanceDescriptor::new_without_display_handle()
     });
     let adapters = pollster::block_on(instance.enumerate_adapters(driver.backends()));
@@ -140,17 +147,12 @@ fn open(driver: Driver) -> Result<Context, Unavailable> {
         )));
     };
     let adapter = &adapters[index];
-    let downlevel = adapter.get_downlevel_capabilities();
-    if !downlevel
-        .flags
-        .contains(wgpu::DownlevelFlags::FRAGMENT_WRITABLE_STORAGE)
-    {
-        return Err(Unavailable(format!(
-            "{} cannot write storage buffers from fragment shaders, which capturing every \
-             fragment needs",
-            describe(info)
-        )));
-    }
+    // Softpipe cannot write storage buffers from fragment shaders, whatever its downlevel flags
+    // say; the capture then renders one triangle at a time into float targets instead.
+    let renders_floats = adapter
+        .get_texture_format_features(wgpu::TextureFormat::Rgba32Float)
+        .allowed_usages
+        .contains(wgpu::TextureUsages::RENDER_ATTACHMENT);
     let limits = adapter.limits();
     let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
         label: Some("refrast"),
@@ -163,5 +165,10 @@ fn open(driver: Driver) -> Result<Context, Unavailable> {
         queue,
         info: info.clone(),
         max_side: limits.max_texture_dimension_2d,
+        renders_floats,
+        copies_depth: adapter
+            .get_downlevel_capabilities()
+            .flags
+            .contains(wgpu::DownlevelFlags::DEPTH_TEXTURE_AND_BUFFER_COPIES),
     })
 }

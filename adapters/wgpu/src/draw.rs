@@ -1,15 +1,16 @@
-//! The two render passes: capture (every covered sample into a storage buffer) and resolve
-//! (the driver's own depth test into a depth and an id target), and reading them back.
-
-use std::collections::HashMap;
+//! The passes that read back what the driver did: capture (every covered sample) and resolve
+//! (the driver's own depth test into a depth and an id target).
 
 use bytemuck::{Pod, Zeroable};
-use refrast::{CompareOp, CullMode, Draw, DrawError, DrawState, Fragment, FrontFace};
+use refrast::{Draw, DrawError, Fragment};
 use wgpu::util::DeviceExt;
 
-use crate::device::Context;
+use std::time::{Duration, Instant};
 
-/// One covered sample as the capture shader writes it (`Sample` in `shaders.wgsl`).
+use crate::device::Context;
+use crate::pipelines::{DEPTH, DEPTHS, IDS, Key, Method, Pass, Pipelines};
+
+/// One covered sample as the capture shader writes it (`Sample` in `capture.wgsl`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct RawSample {
@@ -23,194 +24,17 @@ pub struct RawSample {
     pad: u32,
 }
 
-/// Which of the two passes a pipeline is for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-enum Pass {
-    Capture,
-    Resolve,
-}
-
-/// The state a pipeline is built for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-struct Key {
-    pass: Pass,
-    cull: CullMode,
-    front_face: FrontFace,
-    compare: CompareOp,
-    write: bool,
-}
-
-/// The shaders, the capture pass's bind group layout and the pipelines built so far.
-pub struct Pipelines {
-    module: wgpu::ShaderModule,
-    layout: wgpu::BindGroupLayout,
-    capture_layout: wgpu::PipelineLayout,
-    resolve_layout: wgpu::PipelineLayout,
-    built: HashMap<Key, wgpu::RenderPipeline>,
-}
-
-/// The depth format of both passes.
-const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
-/// The id target of the resolve pass.
-const IDS: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
-
-impl Pipelines {
-    /// Compiles the shaders on `device`.
-    pub fn new(device: &wgpu::Device) -> Self {
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("refrast shaders"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("shaders.wgsl").into()),
-        });
-        let storage = |binding| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only: false },
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("capture"),
-            entries: &[storage(0), storage(1)],
-        });
-        let capture_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("capture"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let resolve_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("resolve"),
-            bind_group_layouts: &[],
-            immediate_size: 0,
-        });
-        Self {
-            module,
-            layout,
-            capture_layout,
-            resolve_layout,
-            built: HashMap::new(),
-        }
-    }
-
-    /// The pipeline for `key`, built on first use.
-    fn get(&mut self, device: &wgpu::Device, key: Key) -> &wgpu::RenderPipeline {
-        let Self {
-            module,
-            capture_layout,
-            resolve_layout,
-            built,
-            ..
-        } = self;
-        built.entry(key).or_insert_with(|| {
-            let (layout, entry, targets, depth) = match key.pass {
-                // No depth test and no colour: every covered sample reaches the shader.
-                Pass::Capture => (
-                    &*capture_layout,
-                    "capture",
-                    vec![],
-                    (wgpu::CompareFunction::Always, false),
-                ),
-                Pass::Resolve => (
-                    &*resolve_layout,
-                    "resolve",
-                    vec![Some(wgpu::ColorTargetState::from(IDS))],
-                    (compare_function(key.compare), key.write),
-                ),
-            };
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(entry),
-                layout: Some(layout),
-                vertex: wgpu::VertexState {
-                    module,
-                    entry_point: Some("vertex"),
-                    compilation_options: wgpu::PipelineCompilationOptions::default(),
-                    buffers: &[Some(wgpu::VertexBufferLayout {
-                        array_stride: 16,
-                        step_mode: wgpu::VertexStepMode::Vertex,
-                        attributes: &wgpu::vertex_attr_array![0 => Float32x4],
-                    })],
-                },
-                primitive: wgpu::PrimitiveState {
-                    topology: wgpu::PrimitiveTopology::TriangleList,
-                    front_face: front_face(key.front_face),
-                    cull_mode: cull_mode(key.cull),
-                    ..wgpu::PrimitiveState::default()
-                },
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: DEPTH,
-                    depth_write_enabled: Some(depth.1),
-                    depth_compare: Some(depth.0),
-                    stencil: wgpu::StencilState::default(),
-                    bias: wgpu::DepthBiasState::default(),
-                }),
-                multisample: wgpu::MultisampleState::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module,
-                    entry_point: Some(entry),
-                    compilation_options: wgpu::PipelineCompilationOptions::default(),
-                    targets: &targets,
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
-        })
-    }
-}
-
 /// The draw's triangles as a plain vertex list (three per triangle, in order): vertex `i` of
 /// the list is corner `i % 3` of primitive `i / 3`.
-fn vertex_list(draw: &Draw) -> Vec<[f32; 4]> {
+pub fn vertex_list(draw: &Draw) -> Vec<[f32; 4]> {
     draw.triangles
         .iter()
         .flat_map(|t| t.map(|i| draw.positions[i as usize]))
         .collect()
 }
 
-/// The draw's state as a pipeline key for `pass`.
-fn key(pass: Pass, state: &DrawState) -> Key {
-    Key {
-        pass,
-        cull: state.cull,
-        front_face: state.front_face,
-        compare: state.depth.compare,
-        write: state.depth.write,
-    }
-}
-
-/// The API's front face for refrast's. Both name the turn as seen on screen (framebuffer
-/// coordinates, y down); `tests/gpu.rs` checks it on a triangle of each turn.
-fn front_face(face: FrontFace) -> wgpu::FrontFace {
-    match face {
-        FrontFace::CounterClockwise => wgpu::FrontFace::Ccw,
-        FrontFace::Clockwise => wgpu::FrontFace::Cw,
-    }
-}
-
-fn cull_mode(cull: CullMode) -> Option<wgpu::Face> {
-    match cull {
-        CullMode::None => None,
-        CullMode::Front => Some(wgpu::Face::Front),
-        CullMode::Back => Some(wgpu::Face::Back),
-    }
-}
-
-fn compare_function(op: CompareOp) -> wgpu::CompareFunction {
-    match op {
-        CompareOp::Never => wgpu::CompareFunction::Never,
-        CompareOp::Less => wgpu::CompareFunction::Less,
-        CompareOp::Equal => wgpu::CompareFunction::Equal,
-        CompareOp::LessOrEqual => wgpu::CompareFunction::LessEqual,
-        CompareOp::Greater => wgpu::CompareFunction::Greater,
-        CompareOp::NotEqual => wgpu::CompareFunction::NotEqual,
-        CompareOp::GreaterOrEqual => wgpu::CompareFunction::GreaterEqual,
-        CompareOp::Always => wgpu::CompareFunction::Always,
-    }
-}
-
 /// A texture of the viewport's size.
-fn target(ctx: &Context, draw: &Draw, format: wgpu::TextureFormat) -> wgpu::Texture {
+pub fn target(ctx: &Context, draw: &Draw, format: wgpu::TextureFormat) -> wgpu::Texture {
     ctx.device.create_texture(&wgpu::TextureDescriptor {
         label: Some("target"),
         size: wgpu::Extent3d {
@@ -228,7 +52,7 @@ fn target(ctx: &Context, draw: &Draw, format: wgpu::TextureFormat) -> wgpu::Text
 }
 
 /// A depth attachment cleared to `clear`, kept when `store`.
-fn depth_attachment(
+pub fn depth_attachment(
     view: &wgpu::TextureView,
     clear: f32,
     store: bool,
@@ -251,6 +75,9 @@ fn depth_attachment(
 pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
     if draw.triangles.is_empty() {
         return Ok(Vec::new());
+    }
+    if pipelines.method == Method::FloatTargets {
+        return crate::targets::capture(ctx, pipelines, draw);
     }
     let vertices = vertex_list(draw);
     // Room for every sample covered by four triangles; a draw covering more is drawn again with
@@ -326,7 +153,7 @@ fn capture_pass(
     });
     let depth = target(ctx, draw, DEPTH);
     let depth_view = depth.create_view(&wgpu::TextureViewDescriptor::default());
-    let pipeline = pipelines.get(device, key(Pass::Capture, &draw.state));
+    let pipeline = pipelines.get(device, Key::new(Pass::Capture, &draw.state));
     let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
         label: Some("capture"),
     });
@@ -374,7 +201,7 @@ fn read_buffer(
 }
 
 /// Maps a staging buffer after the queue has finished, and copies it out.
-fn map(ctx: &Context, staging: &wgpu::Buffer) -> Result<Vec<u8>, DrawError> {
+pub fn map(ctx: &Context, staging: &wgpu::Buffer) -> Result<Vec<u8>, DrawError> {
     let slice = staging.slice(..);
     let (tx, rx) = std::sync::mpsc::channel();
     slice.map_async(wgpu::MapMode::Read, move |r| {
@@ -395,18 +222,16 @@ fn map(ctx: &Context, staging: &wgpu::Buffer) -> Result<Vec<u8>, DrawError> {
 }
 
 /// The driver's depth test: the depth buffer and the id of the last fragment that passed.
-pub fn resolve(
-    ctx: &Context,
-    pipelines: &mut Pipelines,
-    draw: &Draw,
-) -> Result<(Vec<f32>, Vec<Option<u32>>), DrawError> {
+pub fn resolve(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<Resolve, DrawError> {
     let (w, h) = (draw.viewport.width(), draw.viewport.height());
     let clear = draw.state.depth.clear;
     if draw.triangles.is_empty() {
-        return Ok((
-            vec![clear; draw.viewport.pixel_count()],
-            vec![None; draw.viewport.pixel_count()],
-        ));
+        return Ok(Resolve {
+            depth: vec![clear; draw.viewport.pixel_count()],
+            primitive: vec![None; draw.viewport.pixel_count()],
+            drawing: Duration::ZERO,
+            reading: Duration::ZERO,
+        });
     }
     let device = &ctx.device;
     let vertices = vertex_list(draw);
@@ -417,24 +242,37 @@ pub fn resolve(
     });
     let depth = target(ctx, draw, DEPTH);
     let ids = target(ctx, draw, IDS);
+    let depths = target(ctx, draw, DEPTHS);
     let depth_view = depth.create_view(&wgpu::TextureViewDescriptor::default());
     let ids_view = ids.create_view(&wgpu::TextureViewDescriptor::default());
-    let pipeline = pipelines.get(device, key(Pass::Resolve, &draw.state));
+    let depths_view = depths.create_view(&wgpu::TextureViewDescriptor::default());
+    let pipeline = pipelines.get(device, Key::new(Pass::Resolve, &draw.state));
     let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
         label: Some("resolve"),
     });
     {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("resolve"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &ids_view,
+        let colour = |view, clear| {
+            Some(wgpu::RenderPassColorAttachment {
+                view,
                 depth_slice: None,
                 resolve_target: None,
                 ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    load: wgpu::LoadOp::Clear(clear),
                     store: wgpu::StoreOp::Store,
                 },
-            })],
+            })
+        };
+        // The clear depth's bits, exact in an f64.
+        let cleared = wgpu::Color {
+            r: f64::from(clear.to_bits()),
+            ..wgpu::Color::TRANSPARENT
+        };
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("resolve"),
+            color_attachments: &[
+                colour(&ids_view, wgpu::Color::TRANSPARENT),
+                colour(&depths_view, cleared),
+            ],
             depth_stencil_attachment: Some(depth_attachment(&depth_view, clear, true)),
             ..wgpu::RenderPassDescriptor::default()
         });
@@ -442,18 +280,100 @@ pub fn resolve(
         pass.set_vertex_buffer(0, vertex_buffer.slice(..));
         pass.draw(0..vertices.len() as u32, 0..1);
     }
-    // Rows are padded to 256 bytes in a copy; both formats take 4 bytes a pixel.
-    let row = (4 * w).div_ceil(256) * 256;
-    let staging = |label| {
-        device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some(label),
-            size: u64::from(row) * u64::from(h),
+    // The draw, timed apart from reading it back.
+    let started = Instant::now();
+    ctx.queue.submit([encoder.finish()]);
+    ctx.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| DrawError::Backend(format!("the device did not finish: {e}")))?;
+    let drawing = started.elapsed();
+    let started = Instant::now();
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+        label: Some("read back"),
+    });
+    let ids_out = Readback::new(ctx, w, h, 4);
+    ids_out.copy(&mut encoder, &ids, wgpu::TextureAspect::All);
+    let depth_out = if ctx.copies_depth {
+        let out = Readback::new(ctx, w, h, 4);
+        out.copy(&mut encoder, &depth, wgpu::TextureAspect::DepthOnly);
+        out
+    } else {
+        // OpenGL ES cannot copy a depth texture: the passing fragment wrote its depth's bits to
+        // an integer target. With writes on, that is what the depth buffer holds; with writes off the
+        // buffer keeps its clear value (a driver writing it anyway would still show in the ids,
+        // as later fragments would test against it).
+        let out = Readback::new(ctx, w, h, 4);
+        out.copy(&mut encoder, &depths, wgpu::TextureAspect::All);
+        out
+    };
+    ctx.queue.submit([encoder.finish()]);
+    let depths: Vec<f32> = depth_out.read::<f32>(ctx)?;
+    let depths = if ctx.copies_depth || draw.state.depth.write {
+        depths
+    } else {
+        vec![clear; depths.len()]
+    };
+    let primitives = ids_out
+        .read::<u32>(ctx)?
+        .into_iter()
+        .map(|id| id.checked_sub(1))
+        .collect();
+    Ok(Resolve {
+        depth: depths,
+        primitive: primitives,
+        drawing,
+        reading: started.elapsed(),
+    })
+}
+
+/// What the driver's depth test left, and how long drawing and reading it back took.
+pub struct Resolve {
+    /// The depth buffer, row by row.
+    pub depth: Vec<f32>,
+    /// The primitive that last passed the depth test at each pixel.
+    pub primitive: Vec<Option<u32>>,
+    /// From submitting the draw to the device finishing it.
+    pub drawing: Duration,
+    /// Copying the targets to buffers and mapping them.
+    pub reading: Duration,
+}
+
+/// A staging buffer a texture is copied into, and read back from row by row.
+pub struct Readback {
+    buffer: wgpu::Buffer,
+    /// Bytes per row in the buffer: a copy pads rows to 256 bytes.
+    row: u32,
+    pixel: u32,
+    width: u32,
+    height: u32,
+}
+
+impl Readback {
+    /// Room for a `width`×`height` texture of `pixel` bytes a texel.
+    pub fn new(ctx: &Context, width: u32, height: u32, pixel: u32) -> Self {
+        let row = (pixel * width).div_ceil(256) * 256;
+        let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size: u64::from(row) * u64::from(height),
             usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
-        })
-    };
-    let (depth_out, ids_out) = (staging("depth"), staging("ids"));
-    let copy = |encoder: &mut wgpu::CommandEncoder, texture: &wgpu::Texture, aspect, out: &wgpu::Buffer| {
+        });
+        Self {
+            buffer,
+            row,
+            pixel,
+            width,
+            height,
+        }
+    }
+
+    /// Records a copy of `texture` (its `aspect`) into the buffer.
+    pub fn copy(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        texture: &wgpu::Texture,
+        aspect: wgpu::TextureAspect,
+    ) {
         encoder.copy_texture_to_buffer(
             wgpu::TexelCopyTextureInfo {
                 texture,
@@ -462,33 +382,30 @@ pub fn resolve(
                 aspect,
             },
             wgpu::TexelCopyBufferInfo {
-                buffer: out,
+                buffer: &self.buffer,
                 layout: wgpu::TexelCopyBufferLayout {
                     offset: 0,
-                    bytes_per_row: Some(row),
-                    rows_per_image: Some(h),
+                    bytes_per_row: Some(self.row),
+                    rows_per_image: Some(self.height),
                 },
             },
             wgpu::Extent3d {
-                width: w,
-                height: h,
+                width: self.width,
+                height: self.height,
                 depth_or_array_layers: 1,
             },
         );
-    };
-    copy(&mut encoder, &depth, wgpu::TextureAspect::DepthOnly, &depth_out);
-    copy(&mut encoder, &ids, wgpu::TextureAspect::All, &ids_out);
-    ctx.queue.submit([encoder.finish()]);
-    let (depth_bytes, id_bytes) = (map(ctx, &depth_out)?, map(ctx, &ids_out)?);
-    let rows = |bytes: &[u8]| -> Vec<u32> {
-        (0..h as usize)
+    }
+
+    /// The texels, row after row, once the copy's submission has finished.
+    pub fn read<T: Pod>(&self, ctx: &Context) -> Result<Vec<T>, DrawError> {
+        let bytes = map(ctx, &self.buffer)?;
+        let used = (self.pixel * self.width) as usize;
+        Ok((0..self.height as usize)
             .flat_map(|y| {
-                let start = y * row as usize;
-                bytemuck::pod_collect_to_vec::<u8, u32>(&bytes[start..start + 4 * w as usize])
+                let start = y * self.row as usize;
+                bytemuck::pod_collect_to_vec::<u8, T>(&bytes[start..start + used])
             })
-            .collect()
-    };
-    let depths = rows(&depth_bytes).into_iter().map(f32::from_bits).collect();
-    let primitives = rows(&id_bytes).into_iter().map(|id| id.checked_sub(1)).collect();
-    Ok((depths, primitives))
+            .collect())
+    }
 }

@@ -8,9 +8,15 @@
 //! - **capture**: no depth test, a fragment shader appending every covered sample to a storage
 //!   buffer with an atomic counter: pixel, primitive, window depth (`@builtin(position).z`),
 //!   the barycentric unit vectors interpolated perspective-correctly and `@interpolate(linear)`,
-//!   and `@builtin(front_facing)`;
+//!   and `@builtin(front_facing)`. A driver whose fragment shaders cannot write storage buffers
+//!   (softpipe's OpenGL ES) draws one triangle per pass into two `Rgba32Float` targets instead
+//!   (`targets.rs`); a triangle covers a sample at most once, so nothing is lost;
 //! - **resolve**: the driver's depth test against a `Depth32Float` attachment cleared to the
-//!   draw's value, with the primitive id in an `R32Uint` target.
+//!   draw's value, with the primitive id in an `R32Uint` target. The depth buffer is copied
+//!   back; OpenGL ES cannot copy depth textures, so there the passing fragment also writes its
+//!   depth's bits to a second `R32Uint` target, which with writes on is what the depth buffer
+//!   holds (with writes off the buffer keeps its clear value, and a driver writing it anyway
+//!   would show in the ids).
 //!
 //! # What the driver promises, and what the profile says
 //!
@@ -20,7 +26,13 @@
 //! - Mesa's llvmpipe (lavapipe's rasterizer) reports `subPixelPrecisionBits = 8` and
 //!   `standardSampleLocations` (`vulkaninfo` on Mesa 22.3.6); its setup code (`lp_setup_tri.c`)
 //!   breaks ties with D3D's top-left rule in a y-down framebuffer. Declared: an 8-bit grid,
-//!   top-left.
+//!   top-left; `fill.top-left.exact` and `fill.brute-force.exact` pass 20 000 cases each.
+//! - OpenGL names no tie rule, and softpipe keeps none (it covers a sample on a vertex where
+//!   two right edges meet): declared an 8-bit grid and no tie rule.
+//! - Measured, against what a first profile assumed: Mesa clips x/y against the viewport (a
+//!   tie on an edge leaving it flips), so no guard band is declared; and its f32 interpolation
+//!   keeps 8 bits on slivers with very unequal w, so `precision_bits` is 8. Both are checked
+//!   in `tests/drivers.rs`.
 //! - Vulkan asks only that a sample on an edge shared by two polygons be covered by exactly one
 //!   of them (§28.7.1); the `fill.*.exactly-once` rules judge that whatever the profile says.
 //! - WebGPU clips depth to `0 ≤ z ≤ w` always (far clipping cannot be switched off without a
@@ -34,6 +46,8 @@
 
 pub mod device;
 mod draw;
+mod pipelines;
+mod targets;
 
 use std::sync::{Arc, Mutex};
 
@@ -45,7 +59,16 @@ use refrast_conformance::{BuiltIn, Origin, Unavailable};
 
 pub use device::Driver;
 use device::{Context, context, describe};
-use draw::Pipelines;
+use pipelines::{Method, Pipelines};
+
+/// How long a resolve took on the device.
+#[derive(Clone, Copy, Debug)]
+pub struct Timings {
+    /// From submitting the draw to the device finishing it.
+    pub drawing: std::time::Duration,
+    /// Copying the depth and id targets to buffers and mapping them.
+    pub reading: std::time::Duration,
+}
 
 /// A driver behind wgpu, as a [`Rasterizer`].
 pub struct Gpu {
@@ -64,6 +87,23 @@ impl Gpu {
             context,
             pipelines,
         })
+    }
+
+    /// [`Rasterizer::resolve`], with how long the device took to draw and how long reading
+    /// the targets back took, apart (the side-by-side benchmark reports both).
+    pub fn resolve_timed(&mut self, draw: &Draw) -> Result<(Resolved, Timings), DrawError> {
+        self.check(draw)?;
+        let r = draw::resolve(&self.context, &mut self.pipelines(), draw)?;
+        let timings = Timings {
+            drawing: r.drawing,
+            reading: r.reading,
+        };
+        let resolved = Resolved {
+            viewport: draw.viewport,
+            depth: r.depth,
+            primitive: r.primitive,
+        };
+        Ok((resolved, timings))
     }
 
     /// The adapter drawing, as wgpu reports it.
@@ -104,16 +144,24 @@ impl Rasterizer for Gpu {
     fn profile(&self) -> Profile {
         Profile {
             name: self.driver.name().into(),
-            // llvmpipe's subPixelPrecisionBits and its setup's top-left rule (see the crate docs).
+            // llvmpipe's subPixelPrecisionBits and its setup's top-left rule (see the crate docs);
+            // OpenGL names no tie rule, and softpipe keeps none: it covers a sample on a vertex
+            // where two right edges meet (tests/findings.rs).
             snapping: Snapping::Grid(8),
-            fill: Some(FillConvention::TopLeft),
+            fill: match self.driver {
+                Driver::Softpipe => None,
+                _ => Some(FillConvention::TopLeft),
+            },
             // Window depth is z/w, interpolated linearly on screen (Vulkan §28.7.5).
             depth: DepthConvention::ScreenLinearZOverW,
             // Snapping moves an edge by up to √2/2 subpixel from where the float input puts it.
             tolerance_subpixels: 1,
-            // Neither Vulkan nor Mesa bounds interpolation; llvmpipe evaluates f32 plane
-            // equations set up per triangle, which keep about 14 bits (`Profile::precision_bits`).
-            precision_bits: 14,
+            // Neither Vulkan nor Mesa bounds interpolation. Measured, not assumed: Mesa's f32
+            // plane equations keep about 14 bits on ordinary triangles, but on a 0.008-px sliver
+            // with a 30:1 w ratio lavapipe's weight at a vertex is 0.99744 (2^-8.6 off), and
+            // softpipe's are off by 1.6e-3 on a vertex (tests/findings.rs). 8 bits is what they
+            // keep on every case the suite draws.
+            precision_bits: 8,
             features: Features {
                 perspective_barycentrics: true,
                 screen_barycentrics: true,
@@ -124,13 +172,21 @@ impl Rasterizer for Gpu {
                 depth_writes: Supported::ALL,
                 far_clipping: Supported::only(&[true]),
                 depth_ranges: Supported::only(&[DepthRange::ZeroToOne]),
-                guard_band: true,
+                // Mesa clips x/y against the viewport for a triangle reaching outside it: a tie
+                // sample on an edge crossing the boundary can flip (tests/findings.rs).
+                guard_band: false,
             },
         }
     }
 
     fn about(&self) -> String {
-        describe(&self.context.info)
+        let how = match self.pipelines().method {
+            Method::StorageBuffer => "",
+            Method::FloatTargets => {
+                "; no storage buffers in fragment shaders, so captured one triangle per pass"
+            }
+        };
+        format!("{}{how}", describe(&self.context.info))
     }
 
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
@@ -139,13 +195,7 @@ impl Rasterizer for Gpu {
     }
 
     fn resolve(&mut self, draw: &Draw) -> Result<Resolved, DrawError> {
-        self.check(draw)?;
-        let (depth, primitive) = draw::resolve(&self.context, &mut self.pipelines(), draw)?;
-        Ok(Resolved {
-            viewport: draw.viewport,
-            depth,
-            primitive,
-        })
+        self.resolve_timed(draw).map(|(resolved, _)| resolved)
     }
 }
 

@@ -1,0 +1,86 @@
+//! Capturing without storage buffers: one pass per triangle into two float targets, for a
+//! driver whose fragment shaders cannot write storage buffers (softpipe's OpenGL ES). A
+//! triangle covers a sample at most once, so one pass per triangle loses nothing.
+
+use refrast::{Draw, DrawError, Fragment};
+use wgpu::util::DeviceExt;
+
+use crate::device::Context;
+use crate::draw::{Readback, depth_attachment, target, vertex_list};
+use crate::pipelines::{DEPTH, FLOATS, Key, Pass, Pipelines};
+
+/// Every covered sample of every triangle of `draw`, one triangle per pass.
+pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+    let device = &ctx.device;
+    if !ctx.renders_floats {
+        return Err(DrawError::Unsupported(format!(
+            "{} can neither write storage buffers from fragment shaders nor render to {FLOATS:?}, \
+             so its covered samples cannot be read back",
+            ctx.info.name
+        )));
+    }
+    let (w, h) = (draw.viewport.width(), draw.viewport.height());
+    let vertices = vertex_list(draw);
+    let vertex_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("vertices"),
+        contents: bytemuck::cast_slice(&vertices),
+        usage: wgpu::BufferUsages::VERTEX,
+    });
+    let (perspective, screen, depth) = (
+        target(ctx, draw, FLOATS),
+        target(ctx, draw, FLOATS),
+        target(ctx, draw, DEPTH),
+    );
+    let views =
+        [&perspective, &screen, &depth].map(|t| t.create_view(&wgpu::TextureViewDescriptor::default()));
+    let mut fragments = Vec::new();
+    for primitive in 0..draw.triangles.len() as u32 {
+        let pipeline = pipelines.get(device, Key::new(Pass::CaptureTargets, &draw.state));
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("capture one triangle"),
+        });
+        {
+            let colour = |view| {
+                Some(wgpu::RenderPassColorAttachment {
+                    view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })
+            };
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("capture one triangle"),
+                color_attachments: &[colour(&views[0]), colour(&views[1])],
+                depth_stencil_attachment: Some(depth_attachment(&views[2], 1.0, false)),
+                ..wgpu::RenderPassDescriptor::default()
+            });
+            pass.set_pipeline(pipeline);
+            pass.set_vertex_buffer(0, vertex_buffer.slice(..));
+            pass.draw(3 * primitive..3 * primitive + 3, 0..1);
+        }
+        let (first, second) = (Readback::new(ctx, w, h, 16), Readback::new(ctx, w, h, 16));
+        first.copy(&mut encoder, &perspective, wgpu::TextureAspect::All);
+        second.copy(&mut encoder, &screen, wgpu::TextureAspect::All);
+        ctx.queue.submit([encoder.finish()]);
+        let (first, second) = (first.read::<[f32; 4]>(ctx)?, second.read::<[f32; 4]>(ctx)?);
+        for (i, (p, s)) in first.iter().zip(&second).enumerate() {
+            // The facing marker is 1 or 2 on a covered sample, 0 (the clear) elsewhere.
+            if s[3] == 0.0 {
+                continue;
+            }
+            fragments.push(Fragment {
+                x: i as u32 % w,
+                y: i as u32 / w,
+                primitive,
+                depth: p[3],
+                barycentric: [p[0], p[1], p[2]],
+                screen_barycentric: Some([s[0], s[1], s[2]]),
+                front_facing: s[3] == 1.0,
+            });
+        }
+    }
+    Ok(fragments)
+}

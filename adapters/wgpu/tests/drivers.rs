@@ -1,0 +1,375 @@
+//! Mesa's lavapipe, llvmpipe and softpipe, each in a process of its own (softpipe is chosen by an
+//! environment variable read when Mesa loads): the findings checked by hand (README, "Certified
+//! implementations"), then every rule, its verdict pinned.
+//!
+//! A driver that is not installed is skipped with its reason printed; with
+//! `REFRAST_REQUIRE_DRIVERS=1` (set by `.ci/run`, which installs Mesa) it fails instead.
+
+use std::process::Command;
+use std::time::Duration;
+
+use refrast::{Draw, Fragment, FrontFace, Rasterizer, Viewport};
+use refrast_conformance::isolate::{certify_isolated, serve_rule};
+use refrast_conformance::{Options, Status};
+use refrast_wgpu::{Driver, Gpu};
+
+const RULE_ENV: &str = "WGPU_TEST_RULE";
+const DRIVER_ENV: &str = "WGPU_TEST_DRIVER";
+const FINDINGS_ENV: &str = "WGPU_TEST_FINDINGS";
+/// The exit code of a findings child whose driver is missing.
+const UNAVAILABLE: i32 = 3;
+
+/// The verdicts the hand checks confirm at [`CASES`] cases a rule, per driver: the failures;
+/// `n/a` below; every other rule passes.
+const LLVMPIPE_FAIL: &str = "robust.bit-patterns.sane-output";
+const LAVAPIPE_FAIL: &str = "robust.non-finite.discarded robust.bit-patterns.sane-output";
+/// At the default cases also `clip.mesh.watertight`, `meta.rotation.same-coverage` and
+/// `meta.reversal.flips-facing` fail (README); the zero-area finding below pins the latter two.
+const SOFTPIPE_FAIL: &str = "fill.mesh.exactly-once fill.fan.exactly-once fill.projected-mesh.exactly-once \
+    robust.bit-patterns.sane-output";
+const NOT_APPLICABLE: &str = "fill.guard-band.exact clip.gl-range.matches-raycast";
+/// Also n/a for softpipe, which claims no tie rule.
+const SOFTPIPE_NOT_APPLICABLE: &str = "fill.top-left.exact fill.brute-force.exact";
+const CASES: u32 = 300;
+
+fn options() -> Options {
+    Options {
+        cases: Some(CASES),
+        case_timeout: Duration::from_secs(60),
+        ..Options::default()
+    }
+}
+
+fn driver(name: &str) -> Driver {
+    Driver::ALL
+        .into_iter()
+        .find(|d| d.name() == name)
+        .expect("a driver name")
+}
+
+fn main() {
+    if let (Ok(id), Ok(name)) = (std::env::var(RULE_ENV), std::env::var(DRIVER_ENV)) {
+        let d = driver(&name);
+        let served = serve_rule(
+            &id,
+            || Ok(Box::new(Gpu::new(d)?) as Box<dyn Rasterizer>),
+            &options(),
+        );
+        std::process::exit(if served { 0 } else { 2 });
+    }
+    if let Ok(name) = std::env::var(FINDINGS_ENV) {
+        let mut gpu = match Gpu::new(driver(&name)) {
+            Ok(gpu) => gpu,
+            Err(why) => {
+                println!("{why}");
+                std::process::exit(UNAVAILABLE);
+            }
+        };
+        findings(driver(&name), &mut gpu);
+        std::process::exit(0);
+    }
+    let required = std::env::var_os("REFRAST_REQUIRE_DRIVERS").is_some();
+    let exe = std::env::current_exe().expect("this test binary");
+    let with_env = |d: Driver| {
+        let mut c = Command::new(&exe);
+        for (name, value) in d.env() {
+            c.env(name, value);
+        }
+        c
+    };
+    for d in [Driver::Lavapipe, Driver::Llvmpipe, Driver::Softpipe] {
+        let output = with_env(d)
+            .env(FINDINGS_ENV, d.name())
+            .output()
+            .expect("the child starts");
+        let stdout = String::from_utf8_lossy(&output.stdout);
+        if output.status.code() == Some(UNAVAILABLE) {
+            assert!(
+                !required,
+                "{}: REFRAST_REQUIRE_DRIVERS is set, but {stdout}",
+                d.name()
+            );
+            println!("{}: SKIPPED: {stdout}", d.name());
+            continue;
+        }
+        assert!(
+            output.status.success(),
+            "{}: a hand-checked finding moved:\n{stdout}\n{}",
+            d.name(),
+            String::from_utf8_lossy(&output.stderr)
+        );
+        print!("{stdout}");
+        verdicts(d, &|rule| {
+            let mut c = with_env(d);
+            c.env(RULE_ENV, rule.id).env(DRIVER_ENV, d.name());
+            c
+        });
+    }
+}
+
+/// Certifies `d` rule by rule in child processes and compares each verdict with the pinned one.
+fn verdicts(d: Driver, command: &dyn Fn(&refrast_conformance::Rule) -> Command) {
+    let report = certify_isolated(command, &options(), |_| {}).expect("the driver was there a moment ago");
+    let (pass, fail, na) = report.tally();
+    println!(
+        "{}: {pass} passed, {fail} failed, {na} not applicable ({CASES} cases per rule)",
+        d.name()
+    );
+    let (failing, extra_na) = match d {
+        Driver::Lavapipe => (LAVAPIPE_FAIL, ""),
+        Driver::Softpipe => (SOFTPIPE_FAIL, SOFTPIPE_NOT_APPLICABLE),
+        _ => (LLVMPIPE_FAIL, ""),
+    };
+    let expected = |id: &str| {
+        if failing.split_whitespace().any(|f| f == id) {
+            Status::Fail
+        } else if NOT_APPLICABLE
+            .split_whitespace()
+            .chain(extra_na.split_whitespace())
+            .any(|n| n == id)
+        {
+            Status::NotApplicable
+        } else {
+            Status::Pass
+        }
+    };
+    let wrong: Vec<String> = report
+        .rules
+        .iter()
+        .filter(|r| r.status != expected(&r.id))
+        .map(|r| {
+            format!(
+                "{}: expected {}, got {} ({:?})",
+                r.id,
+                expected(&r.id).label(),
+                r.status.label(),
+                r.message
+            )
+        })
+        .collect();
+    assert!(
+        wrong.is_empty(),
+        "{}'s verdicts moved:\n{}",
+        d.name(),
+        wrong.join("\n")
+    );
+}
+
+/// A draw on a `width`×`height` target with far clipping on (WebGPU cannot turn it off).
+fn draw(width: u32, height: u32, positions: Vec<[f32; 4]>, triangles: Vec<[u32; 3]>) -> Draw {
+    let mut draw = Draw::new(
+        Viewport::new(width, height).expect("a viewport"),
+        positions,
+        triangles,
+    );
+    draw.state.clip_far = true;
+    draw
+}
+
+fn at(frags: &[Fragment], x: u32, y: u32) -> Vec<Fragment> {
+    frags.iter().filter(|f| (f.x, f.y) == (x, y)).copied().collect()
+}
+
+/// Each finding of the README's write-up for driver `d`, as the driver does it today.
+fn findings(d: Driver, gpu: &mut Gpu) {
+    let mut run = |draw: &Draw| gpu.rasterize(draw).expect("the driver draws");
+
+    // The front face as seen on screen (y down): counter-clockwise there is front-facing.
+    let mut ccw = draw(
+        8,
+        8,
+        vec![
+            [-0.5, 0.5, 0.5, 1.0],
+            [-0.5, -0.5, 0.5, 1.0],
+            [0.5, 0.5, 0.5, 1.0],
+        ],
+        vec![[0, 1, 2]],
+    );
+    ccw.state.front_face = FrontFace::Clockwise;
+    let frags = run(&ccw);
+    assert!(
+        !frags.is_empty() && frags.iter().all(|f| !f.front_facing),
+        "{}: facing",
+        d.name()
+    );
+
+    // Outside-the-framebuffer fragments from extreme inputs (w = 0, a subnormal w, 10³³).
+    let extreme = draw(
+        2,
+        2,
+        vec![
+            [0.0, 0.0, 0.0, 1.546_945_5e33],
+            [0.0, 1.387_206_3e25, 0.0, 0.0],
+            [-9.870_036e-26, -0.0, 1.974_007_4e-25, f32::MIN_POSITIVE],
+        ],
+        vec![[0, 1, 2]],
+    );
+    let frags = run(&extreme);
+    let outside = frags.iter().filter(|f| f.x >= 2 || f.y >= 2).count();
+    let non_finite = frags
+        .iter()
+        .filter(|f| f.barycentric.iter().any(|b| !b.is_finite()))
+        .count();
+    println!(
+        "{}: the extreme triangle gives {} fragments, {outside} outside the 2×2 target, {non_finite} with non-finite weights",
+        d.name(),
+        frags.len()
+    );
+
+    if d == Driver::Softpipe {
+        softpipe(&mut run);
+        return;
+    }
+    assert!(
+        outside > 0,
+        "{}: fragment shaders ran outside the framebuffer",
+        d.name()
+    );
+
+    // A sample exactly on an edge leaving the viewport is covered; the same triangle moved
+    // inside (8 px right and down, on a 64×64 target; pixel x / 32 − 1 in NDC) leaves it out,
+    // as the top-left rule says.
+    let leaving = draw(
+        32,
+        32,
+        vec![
+            [-0.53125, 0.65625, 0.5, 1.0],
+            [-0.635_253_9, 0.21875, 0.5, 1.0],
+            [1.172_851_6, 1.09375, 0.5, 1.0],
+        ],
+        vec![[0, 1, 2]],
+    );
+    let inside = draw(
+        64,
+        64,
+        vec![
+            [-0.515625, 0.578125, 0.5, 1.0],
+            [13.835_937_5 / 32.0 - 1.0, 0.359375, 0.5, 1.0],
+            [42.765_625 / 32.0 - 1.0, 0.796875, 0.5, 1.0],
+        ],
+        vec![[0, 1, 2]],
+    );
+    assert_eq!(
+        at(&run(&leaving), 26, 2).len(),
+        1,
+        "{}: clipped tie covered",
+        d.name()
+    );
+    assert!(
+        at(&run(&inside), 34, 10).is_empty(),
+        "{}: unclipped tie left out",
+        d.name()
+    );
+
+    // A 0.008-px sliver with a 30:1 w ratio: the sample on vertex 0 weighs 0.99744 there.
+    let sliver = draw(
+        32,
+        16,
+        vec![
+            [1.594_691, -1.313_275, 0.0, 3.001_771_5],
+            [0.053_173_83, -0.081_25, 0.0, 0.1],
+            [0.053_173_83, -0.036_425_78, 0.0, 0.1],
+        ],
+        vec![[0, 1, 2]],
+    );
+    let on_vertex = at(&run(&sliver), 24, 11);
+    let off = (1.0
+        - on_vertex
+            .first()
+            .expect("the vertex sample is covered")
+            .barycentric[0])
+        .abs();
+    assert!(
+        off > 0.5f32.powi(14) && off < 0.5f32.powi(8),
+        "{}: off by {off}",
+        d.name()
+    );
+
+    // w = +∞ at a vertex: lavapipe draws a fragment, llvmpipe through OpenGL ES draws none.
+    let infinite = draw(
+        16,
+        16,
+        vec![
+            [-0.631_347_66, 1.0, 0.0, f32::INFINITY],
+            [-0.631_347_66, 1.0, 0.0, 1.0],
+            [-0.631_347_66, 0.9375, 0.0, 1.0],
+        ],
+        vec![[0, 1, 2]],
+    );
+    let drawn = run(&infinite).len();
+    let expected = usize::from(d == Driver::Lavapipe);
+    assert_eq!(
+        drawn,
+        expected,
+        "{}: fragments of a triangle with w = ∞",
+        d.name()
+    );
+    println!("{}: every hand-checked finding holds", d.name());
+}
+
+/// softpipe's findings.
+fn softpipe(run: &mut dyn FnMut(&Draw) -> Vec<Fragment>) {
+    // Two triangles sharing the edge (32.5, 32.5)–(18.5, 50.5); its midpoint is the sample of
+    // pixel (25, 41), covered by both.
+    let fan = draw(
+        64,
+        64,
+        vec![
+            [0.015625, -0.015625, 0.5, 1.0],
+            [0.0, -0.1875, 0.5, 1.0],
+            [-0.421875, -0.578125, 0.5, 1.0],
+            [-0.046875, -0.015625, 0.5, 1.0],
+        ],
+        vec![[0, 1, 2], [0, 2, 3]],
+    );
+    assert_eq!(
+        at(&run(&fan), 25, 41).len(),
+        2,
+        "softpipe: the shared-edge sample twice"
+    );
+
+    // The sample (12.5, 0.5) is vertex 1, where two right edges meet: softpipe covers it.
+    let corner = draw(
+        16,
+        16,
+        vec![
+            [-1.0, 1.0, 0.5, 1.0],
+            [0.5625, 0.9375, 0.5, 1.0],
+            [-1.0, 0.937_011_7, 0.5, 1.0],
+        ],
+        vec![[0, 1, 2]],
+    );
+    assert_eq!(at(&run(&corner), 12, 0).len(), 1, "softpipe: the vertex sample");
+
+    // All three vertices snap to y = 4.5 (zero area), yet (24, 4) is drawn, weighted 0, 0, 0.
+    let flat = draw(
+        32,
+        32,
+        vec![
+            [0.053125, 0.071875, 0.0, 0.1],
+            [1.355_272_4, 2.509_384_9, 0.0, 3.491_318_2],
+            [0.050_903_32, 0.071875, 0.0, 0.1],
+        ],
+        vec![[0, 1, 2]],
+    );
+    let frags = run(&flat);
+    assert_eq!(frags.len(), 1, "softpipe: one fragment of a zero-area triangle");
+    assert_eq!(frags[0].barycentric, [0.0; 3], "softpipe: weighted nothing");
+    // A triangle crossing w = 0 (w = 0, −2·10⁻⁶, 27.7): (2, 10) is weighted (∞, NaN, ∞).
+    let crossing = draw(
+        3,
+        21,
+        vec![
+            [1.876_499_6e14, 0.0, 0.0, 0.0],
+            [-0.0, 0.0, 0.0, -2.011_305e-6],
+            [0.0, -1.257_901_8e-6, 0.0, 27.699_118],
+        ],
+        vec![[0, 1, 2]],
+    );
+    let weights = at(&run(&crossing), 2, 10);
+    assert!(
+        weights.len() == 1 && weights[0].barycentric.iter().all(|b| !b.is_finite()),
+        "softpipe: non-finite weights at (2, 10): {weights:?}"
+    );
+    println!("softpipe: every hand-checked finding holds");
+}

@@ -21,8 +21,10 @@ fn capture(in: Varyings, @builtin(front_facing) front_facing: bool) {
     let i = atomicAdd(&count, 1u);
     if i < arrayLength(&samples) {
         samples[i] = Sample(
-            u32(in.position.x),
-            u32(in.position.y),
+            // The sample position's bits: a conversion to u32 would clamp a fragment left of or
+            // above the target to column or row 0, inside it.
+            bitcast<u32>(in.position.x),
+            bitcast<u32>(in.position.y),
             in.primitive,
             select(0u, 1u, front_facing),
             in.position.z,

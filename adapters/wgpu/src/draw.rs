@@ -10,7 +10,8 @@ use std::time::{Duration, Instant};
 use crate::device::Context;
 use crate::pipelines::{DEPTH, DEPTHS, IDS, Key, Method, Pass, Pipelines};
 
-/// One covered sample as the capture shader writes it (`Sample` in `capture.wgsl`).
+/// One covered sample as the capture shader writes it (`Sample` in `capture.wgsl`); the
+/// position as the bits of its f32 coordinates.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct RawSample {
@@ -92,10 +93,20 @@ pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
     }
 }
 
+/// A captured sample as a fragment; a position outside `0..2³²` (a driver shading off the
+/// target) becomes `u32::MAX`, which every viewport excludes.
 fn fragment(s: &RawSample) -> Fragment {
+    let pixel = |bits: u32| {
+        let centre = f32::from_bits(bits).floor();
+        if (0.0..u32::MAX as f32).contains(&centre) {
+            centre as u32
+        } else {
+            u32::MAX
+        }
+    };
     Fragment {
-        x: s.x,
-        y: s.y,
+        x: pixel(s.x),
+        y: pixel(s.y),
         primitive: s.primitive,
         depth: s.depth,
         barycentric: s.perspective,

@@ -146,7 +146,7 @@ impl Rasterizer for Gpu {
             name: self.driver.name().into(),
             // llvmpipe's subPixelPrecisionBits and its setup's top-left rule (see the crate docs);
             // OpenGL names no tie rule, and softpipe keeps none: it covers a sample on a vertex
-            // where two right edges meet (tests/findings.rs).
+            // where two right edges meet (tests/drivers.rs).
             snapping: Snapping::Grid(8),
             fill: match self.driver {
                 Driver::Softpipe => None,
@@ -158,9 +158,8 @@ impl Rasterizer for Gpu {
             tolerance_subpixels: 1,
             // Neither Vulkan nor Mesa bounds interpolation. Measured, not assumed: Mesa's f32
             // plane equations keep about 14 bits on ordinary triangles, but on a 0.008-px sliver
-            // with a 30:1 w ratio lavapipe's weight at a vertex is 0.99744 (2^-8.6 off), and
-            // softpipe's are off by 1.6e-3 on a vertex (tests/findings.rs). 8 bits is what they
-            // keep on every case the suite draws.
+            // with a 30:1 w ratio lavapipe's weight at a vertex is 0.99744 (2^-8.6 off;
+            // tests/drivers.rs). 8 bits is what they keep on every case the suite draws.
             precision_bits: 8,
             features: Features {
                 perspective_barycentrics: true,
@@ -173,7 +172,7 @@ impl Rasterizer for Gpu {
                 far_clipping: Supported::only(&[true]),
                 depth_ranges: Supported::only(&[DepthRange::ZeroToOne]),
                 // Mesa clips x/y against the viewport for a triangle reaching outside it: a tie
-                // sample on an edge crossing the boundary can flip (tests/findings.rs).
+                // sample on an edge crossing the boundary can flip (tests/drivers.rs).
                 guard_band: false,
             },
         }

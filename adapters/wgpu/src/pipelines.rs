@@ -213,7 +213,8 @@ impl Pipelines {
 }
 
 /// The API's front face for refrast's. Both name the turn as seen on screen (framebuffer
-/// coordinates, y down); `tests/gpu.rs` checks it on a triangle of each turn.
+/// coordinates, y down); `tests/drivers.rs` checks it on a
+/// counter-clockwise triangle under each front face.
 fn front_face(face: FrontFace) -> wgpu::FrontFace {
     match face {
         FrontFace::CounterClockwise => wgpu::FrontFace::Ccw,

@@ -32,6 +32,7 @@ const NOT_APPLICABLE: &str = "fill.guard-band.exact clip.gl-range.matches-raycas
 const SOFTPIPE_NOT_APPLICABLE: &str = "fill.top-left.exact fill.brute-force.exact";
 const CASES: u32 = 300;
 
+/// The options of every pinned certification.
 fn options() -> Options {
     Options {
         cases: Some(CASES),
@@ -40,6 +41,7 @@ fn options() -> Options {
     }
 }
 
+/// The driver `--impl` calls `name`.
 fn driver(name: &str) -> Driver {
     Driver::ALL
         .into_iter()
@@ -68,7 +70,7 @@ fn main() {
         findings(driver(&name), &mut gpu);
         std::process::exit(0);
     }
-    let required = std::env::var_os("REFRAST_REQUIRE_DRIVERS").is_some();
+    let required = std::env::var("REFRAST_REQUIRE_DRIVERS").as_deref() == Ok("1");
     let exe = std::env::current_exe().expect("this test binary");
     let with_env = |d: Driver| {
         let mut c = Command::new(&exe);
@@ -166,6 +168,7 @@ fn draw(width: u32, height: u32, positions: Vec<[f32; 4]>, triangles: Vec<[u32; 
     draw
 }
 
+/// The fragments at pixel `(x, y)`.
 fn at(frags: &[Fragment], x: u32, y: u32) -> Vec<Fragment> {
     frags.iter().filter(|f| (f.x, f.y) == (x, y)).copied().collect()
 }
@@ -185,13 +188,15 @@ fn findings(d: Driver, gpu: &mut Gpu) {
         ],
         vec![[0, 1, 2]],
     );
-    ccw.state.front_face = FrontFace::Clockwise;
-    let frags = run(&ccw);
-    assert!(
-        !frags.is_empty() && frags.iter().all(|f| !f.front_facing),
-        "{}: facing",
-        d.name()
-    );
+    for (face, front) in [(FrontFace::CounterClockwise, true), (FrontFace::Clockwise, false)] {
+        ccw.state.front_face = face;
+        let frags = run(&ccw);
+        assert!(
+            !frags.is_empty() && frags.iter().all(|f| f.front_facing == front),
+            "{}: facing under {face:?}",
+            d.name()
+        );
+    }
 
     // Outside-the-framebuffer fragments from extreme inputs (w = 0, a subnormal w, 10³³).
     let extreme = draw(
@@ -220,9 +225,17 @@ fn findings(d: Driver, gpu: &mut Gpu) {
         softpipe(&mut run);
         return;
     }
+    assert_eq!(
+        (frags.len(), outside),
+        (12, 10),
+        "{}: fragments outside the framebuffer",
+        d.name()
+    );
     assert!(
-        outside > 0,
-        "{}: fragment shaders ran outside the framebuffer",
+        frags
+            .iter()
+            .all(|f| f.screen_barycentric.is_some_and(|b| b.iter().all(|w| w.is_nan()))),
+        "{}: NaN screen-space weights",
         d.name()
     );
 
@@ -296,8 +309,12 @@ fn findings(d: Driver, gpu: &mut Gpu) {
         ],
         vec![[0, 1, 2]],
     );
-    let drawn = run(&infinite).len();
-    let expected = usize::from(d == Driver::Lavapipe);
+    let drawn: Vec<(u32, u32)> = run(&infinite).iter().map(|f| (f.x, f.y)).collect();
+    let expected = if d == Driver::Lavapipe {
+        vec![(4, 2)]
+    } else {
+        vec![]
+    };
     assert_eq!(
         drawn,
         expected,
@@ -354,7 +371,17 @@ fn softpipe(run: &mut dyn FnMut(&Draw) -> Vec<Fragment>) {
     );
     let frags = run(&flat);
     assert_eq!(frags.len(), 1, "softpipe: one fragment of a zero-area triangle");
+    assert_eq!(
+        (frags[0].x, frags[0].y),
+        (24, 4),
+        "softpipe: the zero-area triangle's pixel"
+    );
     assert_eq!(frags[0].barycentric, [0.0; 3], "softpipe: weighted nothing");
+    assert_eq!(
+        frags[0].screen_barycentric,
+        Some([2.0, 0.0, -2.0]),
+        "softpipe: screen weights"
+    );
     // A triangle crossing w = 0 (w = 0, −2·10⁻⁶, 27.7): (2, 10) is weighted (∞, NaN, ∞).
     let crossing = draw(
         3,

@@ -18,7 +18,7 @@ use crate::violation::{Expect, Violation, compare_coverage, count_fragments};
 ///
 /// At the reference's 18 bits: the perspective correction `(sᵢ/wᵢ) / Σ sⱼ/wⱼ` adds only
 /// positive terms, so an f32 implementation on exact edge values loses about ten ulps of 1
-/// (≈ 2^-20.7); 2^-18 allows four times that. At 14 bits (an f32 rasterizer evaluating plane
+/// (≈ 2^-20.7); 2^-18 allows about six times that. At 14 bits (an f32 rasterizer evaluating plane
 /// equations): `a + b·x + c·y` over a 128-px target cancels up to 7 of f32's 24 bits for a
 /// one-pixel triangle, setup and the perspective division a few more.
 #[must_use]

@@ -320,7 +320,8 @@ pub fn check_batch_independent(r: &mut dyn Rasterizer, scene: &Scene) -> Result<
     let back: Vec<Fragment> = fragments(r, &reversed)?
         .into_iter()
         .map(|f| Fragment {
-            primitive: n - 1 - f.primitive,
+            // A primitive id out of range stays out of range instead of wrapping into one.
+            primitive: (n - 1).checked_sub(f.primitive).unwrap_or(u32::MAX),
             ..f
         })
         .collect();

@@ -7,6 +7,7 @@ use wgpu::util::DeviceExt;
 
 use std::time::{Duration, Instant};
 
+use crate::Timings;
 use crate::device::Context;
 use crate::pipelines::{DEPTH, DEPTHS, IDS, Key, Method, Pass, Pipelines};
 
@@ -240,8 +241,10 @@ pub fn resolve(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
         return Ok(Resolve {
             depth: vec![clear; draw.viewport.pixel_count()],
             primitive: vec![None; draw.viewport.pixel_count()],
-            drawing: Duration::ZERO,
-            reading: Duration::ZERO,
+            timings: Timings {
+                drawing: Duration::ZERO,
+                reading: Duration::ZERO,
+            },
         });
     }
     let device = &ctx.device;
@@ -332,8 +335,10 @@ pub fn resolve(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
     Ok(Resolve {
         depth: depths,
         primitive: primitives,
-        drawing,
-        reading: started.elapsed(),
+        timings: Timings {
+            drawing,
+            reading: started.elapsed(),
+        },
     })
 }
 
@@ -343,10 +348,8 @@ pub struct Resolve {
     pub depth: Vec<f32>,
     /// The primitive that last passed the depth test at each pixel.
     pub primitive: Vec<Option<u32>>,
-    /// From submitting the draw to the device finishing it.
-    pub drawing: Duration,
-    /// Copying the targets to buffers and mapping them.
-    pub reading: Duration,
+    /// How long the device drew, and how long reading back took.
+    pub timings: Timings,
 }
 
 /// A staging buffer a texture is copied into, and read back from row by row.

@@ -94,16 +94,12 @@ impl Gpu {
     pub fn resolve_timed(&mut self, draw: &Draw) -> Result<(Resolved, Timings), DrawError> {
         self.check(draw)?;
         let r = draw::resolve(&self.context, &mut self.pipelines(), draw)?;
-        let timings = Timings {
-            drawing: r.drawing,
-            reading: r.reading,
-        };
         let resolved = Resolved {
             viewport: draw.viewport,
             depth: r.depth,
             primitive: r.primitive,
         };
-        Ok((resolved, timings))
+        Ok((resolved, r.timings))
     }
 
     /// The adapter drawing, as wgpu reports it.

@@ -37,14 +37,19 @@ pub struct Key {
 }
 
 impl Key {
-    /// The draw's state as a pipeline key for `pass`.
+    /// The draw's state as a pipeline key for `pass`; the captures run no depth test, so
+    /// their keys leave the depth state out.
     pub fn new(pass: Pass, state: &DrawState) -> Self {
+        let (compare, write) = match pass {
+            Pass::Resolve => (state.depth.compare, state.depth.write),
+            Pass::Capture | Pass::CaptureTargets => (CompareOp::Always, false),
+        };
         Self {
             pass,
             cull: state.cull,
             front_face: state.front_face,
-            compare: state.depth.compare,
-            write: state.depth.write,
+            compare,
+            write,
         }
     }
 }

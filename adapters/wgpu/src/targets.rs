@@ -33,9 +33,11 @@ pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
     );
     let views =
         [&perspective, &screen, &depth].map(|t| t.create_view(&wgpu::TextureViewDescriptor::default()));
+    // One pipeline and one pair of read-back buffers serve every triangle.
+    let pipeline = pipelines.get(device, Key::new(Pass::CaptureTargets, &draw.state));
+    let (first, second) = (Readback::new(ctx, w, h, 16), Readback::new(ctx, w, h, 16));
     let mut fragments = Vec::new();
     for primitive in 0..draw.triangles.len() as u32 {
-        let pipeline = pipelines.get(device, Key::new(Pass::CaptureTargets, &draw.state));
         let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("capture one triangle"),
         });
@@ -61,12 +63,11 @@ pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
             pass.set_vertex_buffer(0, vertex_buffer.slice(..));
             pass.draw(3 * primitive..3 * primitive + 3, 0..1);
         }
-        let (first, second) = (Readback::new(ctx, w, h, 16), Readback::new(ctx, w, h, 16));
         first.copy(&mut encoder, &perspective, wgpu::TextureAspect::All);
         second.copy(&mut encoder, &screen, wgpu::TextureAspect::All);
         ctx.queue.submit([encoder.finish()]);
-        let (first, second) = (first.read::<[f32; 4]>(ctx)?, second.read::<[f32; 4]>(ctx)?);
-        for (i, (p, s)) in first.iter().zip(&second).enumerate() {
+        let (weights, facing) = (first.read::<[f32; 4]>(ctx)?, second.read::<[f32; 4]>(ctx)?);
+        for (i, (p, s)) in weights.iter().zip(&facing).enumerate() {
             // The facing marker is 1 or 2 on a covered sample, 0 (the clear) elsewhere.
             if s[3] == 0.0 {
                 continue;

@@ -8,7 +8,7 @@
 use std::process::Command;
 use std::time::Duration;
 
-use refrast::{Draw, Fragment, FrontFace, Rasterizer, Viewport};
+use refrast::{Draw, Fragment, FrontFace, Rasterizer, Reference, Viewport};
 use refrast_conformance::isolate::{certify_isolated, serve_rule};
 use refrast_conformance::{Options, Status};
 use refrast_wgpu::{Driver, Gpu};
@@ -168,6 +168,12 @@ fn draw(width: u32, height: u32, positions: Vec<[f32; 4]>, triangles: Vec<[u32; 
     draw
 }
 
+/// The reference's fragments for `draw`: what each finding's input should give, exactly (i128
+/// edge functions on the same 8-bit grid, the top-left rule).
+fn expected(draw: &Draw) -> Vec<Fragment> {
+    Reference::default().rasterize(draw).expect("the reference draws")
+}
+
 /// The fragments at pixel `(x, y)`.
 fn at(frags: &[Fragment], x: u32, y: u32) -> Vec<Fragment> {
     frags.iter().filter(|f| (f.x, f.y) == (x, y)).copied().collect()
@@ -273,6 +279,7 @@ fn findings(d: Driver, gpu: &mut Gpu) {
         "{}: unclipped tie left out",
         d.name()
     );
+    assert!(at(&expected(&leaving), 26, 2).is_empty() && at(&expected(&inside), 34, 10).is_empty());
 
     // A 0.008-px sliver with a 30:1 w ratio: the sample on vertex 0 weighs 0.99744 there.
     let sliver = draw(
@@ -357,6 +364,12 @@ fn softpipe(run: &mut dyn FnMut(&Draw) -> Vec<Fragment>) {
         vec![[0, 1, 2]],
     );
     assert_eq!(at(&run(&corner), 12, 0).len(), 1, "softpipe: the vertex sample");
+    assert!(at(&expected(&corner), 12, 0).is_empty(), "top-left leaves it out");
+    assert_eq!(
+        at(&expected(&fan), 25, 41).len(),
+        1,
+        "exactly one triangle covers it"
+    );
 
     // All three vertices snap to y = 4.5 (zero area), yet (24, 4) is drawn, weighted 0, 0, 0.
     let flat = draw(
@@ -369,6 +382,7 @@ fn softpipe(run: &mut dyn FnMut(&Draw) -> Vec<Fragment>) {
         ],
         vec![[0, 1, 2]],
     );
+    assert!(expected(&flat).is_empty(), "a zero-area triangle draws nothing");
     let frags = run(&flat);
     assert_eq!(frags.len(), 1, "softpipe: one fragment of a zero-area triangle");
     assert_eq!(

@@ -52,6 +52,9 @@ pub enum DrawError {
     Unsupported(String),
     /// The implementation failed for a reason of its own (a device lost, a driver error).
     Backend(String),
+    /// The implementation broke the contract itself: a child process that crashed, hung or
+    /// answered garbage. A failure under every rule, even one that expects an error.
+    Misbehaved(String),
 }
 
 impl fmt::Display for DrawError {
@@ -67,6 +70,7 @@ impl fmt::Display for DrawError {
             ),
             Self::Unsupported(what) => write!(f, "unsupported by this rasterizer: {what}"),
             Self::Backend(why) => write!(f, "rasterizer backend failed: {why}"),
+            Self::Misbehaved(what) => write!(f, "the rasterizer misbehaved: {what}"),
         }
     }
 }

@@ -32,6 +32,9 @@ pub struct Options {
     /// How long one case may take before a rule run in a child process ([`crate::isolate`])
     /// fails as hung.
     pub case_timeout: Duration,
+    /// Wall time per rule after which no new case starts ([`RunConfig::budget`]); `None` runs
+    /// every case.
+    pub budget: Option<Duration>,
 }
 
 impl Default for Options {
@@ -43,6 +46,7 @@ impl Default for Options {
             report_dir: None,
             announce: None,
             case_timeout: DEFAULT_CASE_TIMEOUT,
+            budget: None,
         }
     }
 }
@@ -84,8 +88,15 @@ pub struct RuleReport {
     pub kind: Kind,
     /// Pass, fail or not applicable.
     pub status: Status,
-    /// Cases tried (0 when not applicable).
+    /// Cases tried (0 when not applicable): up to the failing one, or fewer than planned when
+    /// the time budget ran out.
     pub cases: u32,
+    /// Cases the rule would have tried (0 when not applicable).
+    #[serde(default)]
+    pub planned: u32,
+    /// Whether the time budget ran out before every planned case was tried.
+    #[serde(default)]
+    pub budget_spent: bool,
     /// The generator's seed.
     pub seed: u64,
     /// The tolerance band used, in subpixels.
@@ -262,6 +273,8 @@ pub fn run_rule(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options)
         kind: rule.kind,
         status: Status::Pass,
         cases: 0,
+        planned: 0,
+        budget_spent: false,
         seed: options.seed,
         tolerance_subpixels: profile.tolerance_subpixels.max(1),
         message: None,
@@ -279,22 +292,30 @@ pub fn run_rule(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options)
         cases: cases_for(rule, options),
         seed: options.seed,
         announce: options.announce,
+        budget: options.budget,
     };
-    report.cases = cfg.cases;
-    if let Verdict::Fail {
-        counterexample,
-        violation,
-    } = (rule.run)(rasterizer, &cfg)
-    {
-        report.status = Status::Fail;
-        report.message = Some(violation.to_string());
-        report.details = violation.details.clone();
-        report.counts = violation.counts;
-        report.counterexample = Some(counterexample);
-        if let (Some(dir), Some(pic)) = (&options.report_dir, &violation.picture) {
-            let mut caption = vec![format!("{} on {}: {violation}", rule.id, profile.name)];
-            caption.extend(violation.details.iter().skip(1).cloned());
-            report.picture = write_picture(dir, &profile.name, rule.id, pic, &caption);
+    report.planned = cfg.cases;
+    match (rule.run)(rasterizer, &cfg) {
+        Verdict::Pass { cases, budget_spent } => {
+            report.cases = cases;
+            report.budget_spent = budget_spent;
+        }
+        Verdict::Fail {
+            cases,
+            counterexample,
+            violation,
+        } => {
+            report.cases = cases;
+            report.status = Status::Fail;
+            report.message = Some(violation.to_string());
+            report.details = violation.details.clone();
+            report.counts = violation.counts;
+            report.counterexample = Some(counterexample);
+            if let (Some(dir), Some(pic)) = (&options.report_dir, &violation.picture) {
+                let mut caption = vec![format!("{} on {}: {violation}", rule.id, profile.name)];
+                caption.extend(violation.details.iter().skip(1).cloned());
+                report.picture = write_picture(dir, &profile.name, rule.id, pic, &caption);
+            }
         }
     }
     report

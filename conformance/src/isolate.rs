@@ -24,13 +24,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::certify::{Options, ProfileReport, Report, RuleReport, Status, cases_for, matches, run_rule};
 use crate::impls::Unavailable;
+use crate::process::{Tail, status_words};
 use crate::rules::{Rule, catalogue};
 
 /// The prefix of every protocol line on the child's stdout.
 pub const MARK: &str = "@refrast-rule ";
-
-/// How much of a child's own output a failure message keeps (its end).
-const KEPT_OUTPUT: usize = 4000;
 
 /// One line from a child.
 #[derive(Debug, Serialize, Deserialize)]
@@ -137,7 +135,9 @@ fn blank(rule: &Rule, options: &Options, tolerance_subpixels: u32) -> RuleReport
         family: rule.family,
         kind: rule.kind,
         status: Status::Pass,
-        cases: cases_for(rule, options),
+        cases: 0,
+        planned: cases_for(rule, options),
+        budget_spent: false,
         seed: options.seed,
         tolerance_subpixels,
         message: None,
@@ -158,16 +158,19 @@ enum Line {
 /// Runs one rule in a child started by `command`; a hang, crash or garbled answer is a failure.
 pub fn run_rule_isolated(rule: &Rule, mut command: Command, options: &Options) -> Outcome {
     let mut profile: Option<Box<ProfileReport>> = None;
-    let failed = |message: String, last_case: Option<String>, profile: &Option<Box<ProfileReport>>| {
-        let tolerance = profile.as_ref().map_or(1, |p| p.tolerance_subpixels.max(1));
-        let report = RuleReport {
-            status: Status::Fail,
-            message: Some(message),
-            counterexample: last_case,
-            ..blank(rule, options, tolerance)
+    let failed =
+        |message: String, last_case: Option<String>, cases: usize, profile: &Option<Box<ProfileReport>>| {
+            let tolerance = profile.as_ref().map_or(1, |p| p.tolerance_subpixels.max(1));
+            let report = RuleReport {
+                status: Status::Fail,
+                // Announced inputs include shrinking's, so this may count more than were generated.
+                cases: u32::try_from(cases).unwrap_or(u32::MAX),
+                message: Some(message),
+                counterexample: last_case,
+                ..blank(rule, options, tolerance)
+            };
+            Outcome::Ran(Box::new(report), profile.clone())
         };
-        Outcome::Ran(Box::new(report), profile.clone())
-    };
     let program = format!("{:?}", command.get_program());
     let mut child = match command
         .stdout(Stdio::piped())
@@ -180,6 +183,7 @@ pub fn run_rule_isolated(rule: &Rule, mut command: Command, options: &Options) -
             return failed(
                 format!("could not start the rule's process {program}: {e}"),
                 None,
+                0,
                 &profile,
             );
         }
@@ -240,6 +244,7 @@ pub fn run_rule_isolated(rule: &Rule, mut command: Command, options: &Options) -
                         output
                     ),
                     last_case,
+                    cases_seen,
                     &profile,
                 );
             }
@@ -254,6 +259,7 @@ pub fn run_rule_isolated(rule: &Rule, mut command: Command, options: &Options) -
                         options.case_timeout.as_secs_f64()
                     ),
                     last_case,
+                    cases_seen,
                     &profile,
                 );
             }
@@ -268,47 +274,7 @@ fn wait(child: &mut Child) -> Option<ExitStatus> {
 
 /// An exit status in words: a code, or the signal that ended the process.
 fn describe(status: Option<ExitStatus>) -> String {
-    let Some(status) = status else {
-        return "exit status unknown".into();
-    };
-    if let Some(code) = status.code() {
-        return format!("exit code {code}");
-    }
-    #[cfg(unix)]
-    {
-        use std::os::unix::process::ExitStatusExt;
-        if let Some(signal) = status.signal() {
-            let name = match signal {
-                4 => " (SIGILL)",
-                6 => " (SIGABRT: an abort)",
-                7 => " (SIGBUS)",
-                8 => " (SIGFPE)",
-                9 => " (SIGKILL)",
-                11 => " (SIGSEGV: a crash)",
-                _ => "",
-            };
-            return format!("killed by signal {signal}{name}");
-        }
-    }
-    format!("{status}")
-}
-
-/// The last [`KEPT_OUTPUT`] bytes of a stream.
-#[derive(Default)]
-struct Tail(String);
-
-impl Tail {
-    fn push(&mut self, line: &str) {
-        self.0.push_str(line);
-        self.0.push('\n');
-        if self.0.len() > 2 * KEPT_OUTPUT {
-            let mut cut = self.0.len() - KEPT_OUTPUT;
-            while !self.0.is_char_boundary(cut) {
-                cut += 1;
-            }
-            self.0.drain(..cut);
-        }
-    }
+    status.map_or_else(|| "exit status unknown".into(), status_words)
 }
 
 /// Reads a stream to its end on a thread of its own, keeping its tail.
@@ -325,15 +291,11 @@ fn collect_tail(stream: impl Read + Send + 'static) -> thread::JoinHandle<String
 
 /// The child's stderr and stray stdout, ready to append to a message.
 fn join_output(stderr: Option<thread::JoinHandle<String>>, stdout: &Tail) -> String {
-    let stderr = stderr.and_then(|h| h.join().ok()).unwrap_or_default();
+    let stderr = Tail(stderr.and_then(|h| h.join().ok()).unwrap_or_default());
     let mut text = String::new();
-    for (name, body) in [("stderr", stderr.trim_end()), ("stdout", stdout.0.trim_end())] {
-        if !body.is_empty() {
-            let start = body.len().saturating_sub(KEPT_OUTPUT);
-            let start = (start..body.len())
-                .find(|&i| body.is_char_boundary(i))
-                .unwrap_or(0);
-            text.push_str(&format!("; its {name} ends:\n{}", &body[start..]));
+    for (name, tail) in [("stderr", &stderr), ("stdout", stdout)] {
+        if !tail.end().is_empty() {
+            text.push_str(&format!("; its {name} ends:\n{}", tail.end()));
         }
     }
     text

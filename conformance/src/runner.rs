@@ -1,8 +1,9 @@
 //! Runs one rule's property with proptest: seeded, shrunk, panics caught.
 
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::fmt::Debug;
 use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::time::{Duration, Instant};
 
 use proptest::strategy::Strategy;
 use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestError, TestRng, TestRunner};
@@ -28,15 +29,25 @@ pub struct RunConfig {
     pub seed: u64,
     /// Called with every input, shrinking included, before it is checked.
     pub announce: Option<Announce>,
+    /// Wall time after which no new case starts and shrinking stops, for slow implementations
+    /// (a rasterizer in another language behind a pipe); `None` runs every case.
+    pub budget: Option<Duration>,
 }
 
 /// How a property run ended.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Verdict {
-    /// Every case held.
-    Pass,
+    /// Every case tried held.
+    Pass {
+        /// Cases tried: all of them, unless the budget ran out first.
+        cases: u32,
+        /// Whether the budget ran out before every case was tried.
+        budget_spent: bool,
+    },
     /// A case failed: the shrunk input as Rust and why it failed.
     Fail {
+        /// Cases tried, the failing one included.
+        cases: u32,
         /// The minimal failing input, printed as Rust.
         counterexample: String,
         /// Why it fails.
@@ -58,10 +69,18 @@ where
     T: Debug + Clone + Case,
     S: Strategy<Value = T>,
 {
+    let deadline = cfg.budget.map(|b| Instant::now() + b);
+    let spent = || deadline.is_some_and(|d| Instant::now() >= d);
     let config = Config {
         cases: cfg.cases,
         failure_persistence: None,
         max_shrink_iters: 2048,
+        // No rule rejects a case, so a reject means the budget is spent: stop at the first.
+        max_global_rejects: 0,
+        // Shrinking gets the budget as a whole too (0 means no limit).
+        max_shrink_time: cfg
+            .budget
+            .map_or(0, |b| u32::try_from(b.as_millis()).unwrap_or(u32::MAX).max(1)),
         ..Config::default()
     };
     // Every case asks only for draw states the rasterizer declares it supports.
@@ -75,15 +94,39 @@ where
     let mut runner = TestRunner::new_with_rng(config, rng);
     let cell = RefCell::new(rasterizer);
     let announce = cfg.announce;
+    // Cases tried before the first failure; shrinking comes after and is not counted.
+    let tried = Cell::new(0u32);
+    let failed = Cell::new(false);
     let result = runner.run(&strategy, |input| {
+        if spent() {
+            // Before a failure: stop generating cases. While shrinking: keep what failed last.
+            return if failed.get() {
+                Ok(())
+            } else {
+                Err(TestCaseError::reject("the time budget is spent"))
+            };
+        }
+        if !failed.get() {
+            tried.set(tried.get() + 1);
+        }
         let mut r = cell.borrow_mut();
-        run_announced(&mut **r, check, &input, announce).map_err(|v| TestCaseError::fail(v.message))
+        let result =
+            run_announced(&mut **r, check, &input, announce).map_err(|v| TestCaseError::fail(v.message));
+        failed.set(failed.get() || result.is_err());
+        result
     });
     match result {
-        Ok(()) => Verdict::Pass,
+        Ok(()) => Verdict::Pass {
+            cases: tried.get(),
+            budget_spent: false,
+        },
+        Err(TestError::Abort(_)) if !failed.get() && spent() => Verdict::Pass {
+            cases: tried.get(),
+            budget_spent: true,
+        },
         Err(TestError::Fail(reason, input)) => {
             let mut r = cell.borrow_mut();
-            let input = reduce(&mut **r, check, input, announce);
+            let input = reduce(&mut **r, check, input, announce, &spent);
             let mut violation = run_announced(&mut **r, check, &input, announce)
                 .err()
                 .unwrap_or_else(|| {
@@ -99,26 +142,32 @@ where
                 )));
             }
             Verdict::Fail {
+                cases: tried.get(),
                 counterexample: format!("{input:?}"),
                 violation,
             }
         }
         Err(TestError::Abort(reason)) => Verdict::Fail {
+            cases: tried.get(),
             counterexample: String::new(),
             violation: Violation::new(format!("the case generator gave up: {reason}")),
         },
     }
 }
 
-/// Takes the first smaller input that still fails, until none does.
+/// Takes the first smaller input that still fails, until none does or the budget is spent.
 fn reduce<T: Case + Debug>(
     r: &mut dyn Rasterizer,
     check: Check<T>,
     mut input: T,
     announce: Option<Announce>,
+    spent: &dyn Fn() -> bool,
 ) -> T {
     'outer: loop {
         for candidate in input.reductions() {
+            if spent() {
+                return input;
+            }
             if run_announced(r, check, &candidate, announce).is_err() {
                 input = candidate;
                 continue 'outer;

@@ -1,7 +1,7 @@
 //! Bad and extreme input: no panic, no error where the outcome is defined, sane output.
 
 use proptest::prelude::*;
-use refrast::{Fragment, Rasterizer};
+use refrast::{DrawError, Fragment, Rasterizer};
 
 use super::common::{compare_sets, fragments, precision};
 use super::{Family, Rule};
@@ -171,6 +171,10 @@ pub fn check_well_formed(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Vi
 /// An out-of-range index is an error, not a panic.
 pub fn check_bad_index(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     match r.rasterize(&scene.draw()) {
+        // A crash or a garbled answer is no error report: it fails here as everywhere.
+        Err(DrawError::Misbehaved(what)) => Err(Violation::new(format!(
+            "a draw with vertex index out of range made the rasterizer misbehave: {what}"
+        ))),
         Err(_) => Ok(()),
         Ok(frags) => Err(Violation::new(format!(
             "a draw with vertex index out of range succeeded with {} fragments",

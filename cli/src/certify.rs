@@ -5,7 +5,9 @@ use std::process::{Command, ExitCode};
 use std::time::{Duration, Instant};
 
 use refrast_conformance::isolate::certify_isolated;
-use refrast_conformance::{BuiltIn, Options, Report, RuleReport, Status, Unavailable, catalogue, matches};
+use refrast_conformance::{
+    BuiltIn, Options, Process, Report, RuleReport, Status, Unavailable, catalogue, matches,
+};
 use serde::Serialize;
 
 use crate::{all_builtins, say};
@@ -13,9 +15,18 @@ use crate::{all_builtins, say};
 /// Arguments of `refrast certify`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// Implementation to certify (repeatable; see `refrast impls`) [default: every correct built-in].
+    /// Implementation to certify (repeatable; see `refrast impls`) [default: every correct
+    /// built-in, unless --exec is given].
     #[arg(long = "impl", value_name = "NAME")]
     impls: Vec<String>,
+    /// A rasterizer in any language to certify: the command that starts it, speaking the pipe
+    /// protocol of PROTOCOL.md (repeatable; certified after the --impl ones).
+    #[arg(long = "exec", value_name = "CMD")]
+    execs: Vec<String>,
+    /// Seconds of wall time per rule after which no new case starts; the report says how many
+    /// ran [default: 10 for --exec, none for built-ins].
+    #[arg(long, value_name = "SECONDS", value_parser = positive_seconds)]
+    budget: Option<f64>,
     /// Cases per rule [default: PROPTEST_CASES, else each rule's own].
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     cases: Option<u32>,
@@ -31,7 +42,7 @@ pub struct Args {
     /// Also write the report as JSON (an array, one entry per implementation).
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
-    /// Seconds one case may take before the rule fails as hung.
+    /// Seconds one case may take before the rule fails as hung (for --exec: one draw).
     #[arg(long, value_name = "SECONDS", default_value_t = refrast_conformance::DEFAULT_CASE_TIMEOUT.as_secs_f64(),
           value_parser = positive_seconds)]
     case_timeout: f64,
@@ -49,12 +60,23 @@ fn positive_seconds(text: &str) -> Result<f64, String> {
     }
 }
 
+/// The time budget per rule of an --exec rasterizer unless --budget says otherwise: a Python
+/// rasterizer gets through the catalogue in a few minutes.
+const DEFAULT_EXEC_BUDGET: Duration = Duration::from_secs(10);
+
 /// One implementation's entry in the JSON report.
 #[derive(Serialize)]
 #[serde(untagged)]
 enum Entry {
     /// Certified: the report.
     Certified(Report),
+    /// A child that could not be started or did not complete its handshake: a failure.
+    FailedToStart {
+        /// The command line.
+        implementation: String,
+        /// Why, with the end of its stderr.
+        failed_to_start: String,
+    },
     /// Not available on this machine, and why.
     Skipped {
         /// Its name.
@@ -66,7 +88,9 @@ enum Entry {
 
 /// Runs `refrast certify`: 0 when every applicable rule passes, 1 when one fails, 2 on a usage error.
 pub fn run(args: &Args) -> ExitCode {
-    let chosen: Vec<BuiltIn> = if args.impls.is_empty() {
+    let chosen: Vec<BuiltIn> = if args.impls.is_empty() && !args.execs.is_empty() {
+        Vec::new()
+    } else if args.impls.is_empty() {
         all_builtins()
             .into_iter()
             .filter(|b| b.origin == refrast_conformance::Origin::Ours)
@@ -88,6 +112,12 @@ pub fn run(args: &Args) -> ExitCode {
         }
         chosen
     };
+    for command in &args.execs {
+        if let Err(e) = refrast_conformance::process::split_command(command) {
+            eprintln!("error: --exec: {e}");
+            return ExitCode::from(2);
+        }
+    }
     if let Some(pattern) = &args.rule
         && !catalogue().iter().any(|r| matches(pattern, r.id))
     {
@@ -100,11 +130,19 @@ pub fn run(args: &Args) -> ExitCode {
         rule: args.rule.clone(),
         report_dir: Some(args.report.clone()),
         case_timeout: Duration::from_secs_f64(args.case_timeout),
+        budget: args.budget.map(Duration::from_secs_f64),
         ..Options::default()
     };
     let mut reports = Vec::new();
     for b in &chosen {
         reports.push(certify_one(b, &options, args.in_process));
+    }
+    let exec_options = Options {
+        budget: Some(options.budget.unwrap_or(DEFAULT_EXEC_BUDGET)),
+        ..options.clone()
+    };
+    for command in &args.execs {
+        reports.push(certify_exec(command, &exec_options));
     }
     if let Some(path) = &args.json {
         let json = serde_json::to_string_pretty(&reports).expect("reports serialise");
@@ -116,6 +154,7 @@ pub fn run(args: &Args) -> ExitCode {
     }
     let passed = |entry: &Entry| match entry {
         Entry::Certified(report) => report.passed(),
+        Entry::FailedToStart { .. } => false,
         Entry::Skipped { .. } => true,
     };
     if reports.iter().all(passed) {
@@ -154,6 +193,38 @@ fn certify_one(b: &BuiltIn, options: &Options, in_process: bool) -> Entry {
             Err(why) => return skipped(why),
         }
     };
+    summarise(&report, start);
+    Entry::Certified(report)
+}
+
+/// Certifies a rasterizer in a child process, started once and reused, in this process: the
+/// [`Process`] turns a crash, a hang or garbage into a failed draw, and restarts the child.
+fn certify_exec(command: &str, options: &Options) -> Entry {
+    say(&format!("== {command} (seed {}, pipe protocol)", options.seed));
+    let start = Instant::now();
+    let mut process = match Process::try_spawn_with(command, options.case_timeout) {
+        Ok(process) => process,
+        Err(why) => {
+            say(&format!("FAILED TO START: {why}\n"));
+            return Entry::FailedToStart {
+                implementation: command.to_owned(),
+                failed_to_start: why.to_string(),
+            };
+        }
+    };
+    let report = refrast_conformance::certify(&mut process, options, print_rule);
+    summarise(&report, start);
+    if process.starts() > 1 {
+        say(&format!(
+            "  the child was restarted {} times after misbehaving\n",
+            process.starts() - 1
+        ));
+    }
+    Entry::Certified(report)
+}
+
+/// The closing lines of one implementation: tallies, time, profile.
+fn summarise(report: &Report, start: Instant) {
     let p = &report.profile;
     let (pass, fail, na) = report.tally();
     say(&format!(
@@ -169,7 +240,6 @@ fn certify_one(b: &BuiltIn, options: &Options, in_process: bool) -> Entry {
         say(&format!("  reports itself as: {}", p.about));
     }
     say(&format!("  features: {}\n", p.features.join("; ")));
-    Entry::Certified(report)
 }
 
 /// This program again, running one rule of one built-in (`refrast run-rule`).
@@ -180,6 +250,9 @@ fn run_rule_command(implementation: &str, rule: &str, options: &Options) -> Comm
     command.args(["--seed", &options.seed.to_string()]);
     if let Some(cases) = options.cases {
         command.args(["--cases", &cases.to_string()]);
+    }
+    if let Some(budget) = options.budget {
+        command.args(["--budget", &budget.as_secs_f64().to_string()]);
     }
     if let Some(dir) = &options.report_dir {
         command.arg("--report").arg(dir);
@@ -205,6 +278,9 @@ pub struct RunRuleArgs {
     /// Folder for the counterexample picture.
     #[arg(long, value_name = "DIR")]
     report: Option<PathBuf>,
+    /// Seconds of wall time after which no new case starts.
+    #[arg(long, value_name = "SECONDS", value_parser = positive_seconds)]
+    budget: Option<f64>,
 }
 
 /// Runs `refrast run-rule`: one rule, spoken to the parent on stdout ([`refrast_conformance::isolate`]).
@@ -217,6 +293,7 @@ pub fn run_rule(args: &RunRuleArgs) -> ExitCode {
         cases: args.cases,
         seed: args.seed,
         report_dir: args.report.clone(),
+        budget: args.budget.map(Duration::from_secs_f64),
         ..Options::default()
     };
     if refrast_conformance::isolate::serve_rule(&args.rule, || b.build(), &options) {
@@ -227,12 +304,16 @@ pub fn run_rule(args: &RunRuleArgs) -> ExitCode {
 }
 
 fn print_rule(r: &RuleReport) {
+    let cases = if r.budget_spent {
+        format!("{:>6} of {} cases (time budget spent)", r.cases, r.planned)
+    } else {
+        format!("{:>6} cases", r.cases)
+    };
     say(&format!(
-        "{:<4}  {:<38} {:<9} {:>6} cases",
+        "{:<4}  {:<38} {:<9} {cases}",
         r.status.label(),
         r.id,
         r.kind,
-        r.cases
     ));
     match r.status {
         Status::Pass => {}

@@ -15,6 +15,7 @@
 //! | 8 | [`isolate`] | rules in child processes: a hang, an abort or a crash fails the rule it was running |
 //! | 9 | `harness`, [`fuzz`] | [`run_as_tests`]: one test per rule in your own crate; the cargo-fuzz targets as functions on any rasterizer |
 //! | — | `impls` | [`builtins`]: the implementations `refrast certify --impl` knows (refrast only) |
+//! | — | [`process`] | [`Process`]: a rasterizer in any language, in a child speaking `PROTOCOL.md` (refrast only) |
 //!
 //! # Kinds and tolerance
 //!
@@ -32,6 +33,7 @@ mod impls;
 pub mod isolate;
 pub mod oracle;
 pub mod picture;
+pub mod process;
 pub mod rules;
 mod runner;
 mod scene;
@@ -44,6 +46,7 @@ pub use certify::{
 };
 pub use harness::{failure_text, run_as_tests};
 pub use impls::{BuiltIn, Maker, Named, Origin, Unavailable, builtins};
+pub use process::{Process, ProcessError};
 pub use rules::meta::Translated;
 pub use rules::robust::Poisoned;
 pub use rules::{Family, Kind, Need, Rule, RuleDraft, catalogue, markdown_table, needs};

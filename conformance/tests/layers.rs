@@ -8,9 +8,9 @@
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
-/// Top-level modules, lowest layer first; `impls` stands apart (it uses only refrast).
+/// Top-level modules, lowest layer first; `impls` and `process` stand apart (they use only refrast).
 const LAYERS: &[&[&str]] = &[
-    &["oracle", "impls"],
+    &["oracle", "impls", "process"],
     &["scene"],
     &["violation"],
     &["picture"],

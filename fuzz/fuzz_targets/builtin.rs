@@ -2,13 +2,34 @@
 //! rasterizers) under any target's check but `pipeline`, chosen by the environment:
 //! `REFRAST_FUZZ_IMPL` (default `reference`) and `REFRAST_FUZZ_TARGET` (default `watertight`).
 //! Bytes decode exactly as that target's own `fuzz_target!` decodes them, so corpora are shared.
+//!
+//! `REFRAST_FUZZ_EXEC="python3 my_raster.py"` fuzzes a rasterizer in any language instead,
+//! through the pipe protocol (PROTOCOL.md): one child, started once and restarted after it
+//! misbehaves, whose crash, hang or garbled answer is a finding like any other.
 #![no_main]
 
-use std::sync::OnceLock;
+use std::sync::{Mutex, OnceLock};
 
 use libfuzzer_sys::fuzz_target;
-use refrast_conformance::BuiltIn;
 use refrast_conformance::fuzz::{Outcome, Target};
+use refrast_conformance::{BuiltIn, Process};
+
+/// The child named by `REFRAST_FUZZ_EXEC`, if any; exits 2 saying why when it cannot start.
+fn process() -> Option<&'static Mutex<Process>> {
+    static PROCESS: OnceLock<Option<Mutex<Process>>> = OnceLock::new();
+    PROCESS
+        .get_or_init(|| {
+            let command = std::env::var("REFRAST_FUZZ_EXEC").ok()?;
+            match Process::try_spawn(&command) {
+                Ok(p) => Some(Mutex::new(p)),
+                Err(why) => {
+                    eprintln!("REFRAST_FUZZ_EXEC={command}: {why}");
+                    std::process::exit(2);
+                }
+            }
+        })
+        .as_ref()
+}
 
 /// The target and implementation named by the environment; exits 2 naming the choices if unknown.
 fn chosen() -> &'static (Target, BuiltIn) {
@@ -52,10 +73,20 @@ fn chosen() -> &'static (Target, BuiltIn) {
 fuzz_target!(
     init: {
         let (target, built_in) = chosen();
-        eprintln!("fuzzing {} with the {} target", built_in.name, target.name());
+        match process() {
+            Some(p) => eprintln!("fuzzing `{}` with the {} target", p.lock().map(|p| p.command().to_owned()).unwrap_or_default(), target.name()),
+            None => eprintln!("fuzzing {} with the {} target", built_in.name, target.name()),
+        }
     },
     |data: &[u8]| {
         let (target, built_in) = chosen();
+        if let Some(p) = process() {
+            let mut p = p.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+            if let Outcome::Failed(failure) = target.run(&mut *p, data) {
+                panic!("`{}` fails the {} target: {failure}", p.command(), target.name());
+            }
+            return;
+        }
         // Checked buildable in `chosen`; a build failing later is itself worth a crash report.
         let mut rasterizer = built_in.build().unwrap_or_else(|why| panic!("{} stopped building: {why}", built_in.name));
         if let Outcome::Failed(failure) = target.run(&mut *rasterizer, data) {

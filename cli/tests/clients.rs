@@ -1,0 +1,168 @@
+//! `refrast certify --exec` on the example clients in `clients/`: the correct Python rasterizer
+//! passes every rule, and the two course labs, ported to Python and C++, get exactly the verdicts
+//! (and counterexamples) of their Rust ports in the zoo.
+//!
+//! Needs `python3` and `g++`; without them each test says so and passes, unless
+//! `REFRAST_REQUIRE_CLIENTS=1` (set by `.ci/run`, which installs both) makes that a failure.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use serde_json::Value;
+
+const REFRAST: &str = env!("CARGO_BIN_EXE_refrast");
+
+/// The repository root (clients/ lives there).
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+/// Whether `program --version` runs; if not, says why the test cannot run here.
+fn have(program: &str) -> bool {
+    let found = Command::new(program)
+        .arg("--version")
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !found {
+        assert!(
+            std::env::var("REFRAST_REQUIRE_CLIENTS").as_deref() != Ok("1"),
+            "{program} is missing, and REFRAST_REQUIRE_CLIENTS=1 requires it"
+        );
+        eprintln!("SKIPPED: {program} is not installed (apt-get install {program})");
+    }
+    found
+}
+
+/// Runs `refrast certify` with `args`, returning its exit code and its JSON report's rules.
+fn certify(name: &str, args: &[&str]) -> (i32, Vec<Value>) {
+    let json = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}.json"));
+    let out = Command::new(REFRAST)
+        .current_dir(root())
+        .arg("certify")
+        .args(args)
+        .arg("--json")
+        .arg(&json)
+        .arg("--report")
+        .arg(Path::new(env!("CARGO_TARGET_TMPDIR")).join("report"))
+        .output()
+        .expect("refrast runs");
+    let text = std::fs::read_to_string(&json).unwrap_or_else(|e| {
+        panic!(
+            "no report from certify {args:?} ({e}):\n{}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        )
+    });
+    let report: Value = serde_json::from_str(&text).expect("the report is JSON");
+    let rules = report[0]["rules"].as_array().cloned().unwrap_or_default();
+    (out.status.code().unwrap_or(-1), rules)
+}
+
+/// Rule IDs with `status`, space-separated.
+fn with_status(rules: &[Value], status: &str) -> String {
+    let ids: Vec<&str> = rules
+        .iter()
+        .filter(|r| r["status"] == status)
+        .filter_map(|r| r["id"].as_str())
+        .collect();
+    ids.join(" ")
+}
+
+/// The client's statuses and counterexamples equal those of the built-in `port`.
+fn same_as_port(client: &[Value], port: &str, cases: &str) {
+    let (_, expected) = certify(port, &["--impl", port, "--cases", cases]);
+    assert_eq!(client.len(), expected.len());
+    for (c, e) in client.iter().zip(&expected) {
+        assert_eq!(
+            (&c["id"], &c["status"], &c["counterexample"]),
+            (&e["id"], &e["status"], &e["counterexample"]),
+            "the client and its Rust port `{port}` differ"
+        );
+    }
+}
+
+#[test]
+fn python_topleft_passes_every_rule() {
+    if !have("python3") {
+        return;
+    }
+    let (code, rules) = certify(
+        "topleft",
+        &["--exec", "python3 clients/python/topleft.py", "--cases", "60"],
+    );
+    assert_eq!(code, 0, "{rules:#?}");
+    assert_eq!(rules.len(), refrast_conformance::catalogue().len());
+    assert_eq!(with_status(&rules, "fail"), "");
+    assert_eq!(with_status(&rules, "n/a"), "");
+}
+
+#[test]
+fn python_lab004_gets_the_verdicts_of_seed_004() {
+    if !have("python3") {
+        return;
+    }
+    let (code, rules) = certify(
+        "lab004",
+        &["--exec", "python3 clients/python/lab004.py", "--cases", "200"],
+    );
+    assert_eq!(code, 1);
+    // Counter-clockwise only, `O_i ≤ 0` owns every edge, pixel corners, far always clipped,
+    // cuts nudged by 10⁻⁶ (zoo/src/course/lab004.rs says why each fails).
+    assert_eq!(
+        with_status(&rules, "fail"),
+        "fill.mesh.exactly-once fill.fan.exactly-once fill.rotated-quad.exactly-once \
+         fill.projected-mesh.exactly-once fill.interior.matches-raycast bary.screen.reconstructs-sample \
+         depth.screen-linear.matches-raycast clip.interior.matches-raycast clip.mesh.watertight \
+         clip.crossing-quad.watertight clip.far.respected clip.gl-range.matches-raycast \
+         meta.reversal.flips-facing meta.translate.whole-pixels meta.translate.one-subpixel"
+    );
+    same_as_port(&rules, "lab004-lineeq", "200");
+}
+
+#[test]
+fn cpp_lab000_gets_the_verdicts_of_seed_000() {
+    if !(have("g++")) {
+        return;
+    }
+    let binary = Path::new(env!("CARGO_TARGET_TMPDIR")).join("lab000");
+    let status = Command::new("g++")
+        .args(["-O2", "-std=c++17", "-Wall", "-Wextra", "-Werror", "-o"])
+        .arg(&binary)
+        .arg(root().join("clients/cpp/lab000.cpp"))
+        .status()
+        .expect("g++ runs");
+    assert!(status.success(), "clients/cpp/lab000.cpp does not compile");
+    let command = binary.display().to_string();
+    let (code, rules) = certify("lab000", &["--exec", &command, "--cases", "200"]);
+    assert_eq!(code, 1);
+    // `≥ 0` on every edge, samples at pixel corners, clockwise only, no clipping
+    // (zoo/src/course/lab000.rs says why each fails).
+    assert_eq!(
+        with_status(&rules, "fail"),
+        "fill.mesh.exactly-once fill.fan.exactly-once fill.rotated-quad.exactly-once \
+         fill.projected-mesh.exactly-once fill.interior.matches-raycast bary.screen.reconstructs-sample \
+         clip.behind-eye.empty clip.interior.matches-raycast clip.mesh.watertight \
+         clip.crossing-quad.watertight meta.reversal.flips-facing meta.translate.one-subpixel"
+    );
+    same_as_port(&rules, "lab000", "200");
+}
+
+#[test]
+fn a_child_that_cannot_start_fails_and_a_bad_command_is_a_usage_error() {
+    let out = Command::new(REFRAST)
+        .args(["certify", "--exec", "./no-such-rasterizer", "--cases", "1"])
+        .output()
+        .expect("refrast runs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{text}");
+    assert!(
+        text.contains("FAILED TO START") && text.contains("no-such-rasterizer"),
+        "{text}"
+    );
+    let out = Command::new(REFRAST)
+        .args(["certify", "--exec", "python3 'unbalanced"])
+        .output()
+        .expect("refrast runs");
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--exec: bad command line"));
+}

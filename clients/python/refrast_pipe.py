@@ -1,0 +1,124 @@
+"""The child side of refrast's pipe protocol, version 1 (PROTOCOL.md), standard library only.
+
+Copy this file beside your rasterizer and call `serve(profile, rasterize)`: refrast starts your
+program, reads the profile, then sends draws on stdin and reads fragments from stdout. Print
+anything meant for people to stderr: stdout belongs to the protocol.
+"""
+
+import struct
+import sys
+from collections import namedtuple
+
+VERSION = 1
+
+# x, y, primitive, front-facing (u32), depth, perspective barycentrics, screen barycentrics (f32).
+FRAGMENT = struct.Struct("<4I7f")
+
+Draw = namedtuple(
+    "Draw",
+    "width height positions triangles cull front_face depth_compare depth_write depth_clear "
+    "depth_range far_clipping",
+)
+Draw.__doc__ = """One draw: clip-space positions (x, y, z, w), triangles (i, j, k) and state.
+
+cull is none/front/back, front_face ccw/cw, depth_compare less/less-equal/greater/
+greater-equal/equal/not-equal/always/never, depth_write and far_clipping booleans, depth_clear a
+float, depth_range zero-to-one or negative-one-to-one. Indices are not checked: raise Refused
+for one that names no vertex."""
+
+Fragment = namedtuple(
+    "Fragment", "x y primitive front_facing depth barycentric screen_barycentric"
+)
+Fragment.__new__.__defaults__ = ((0.0, 0.0, 0.0),)
+
+
+class Refused(Exception):
+    """Raise it to refuse a draw (a bad index, say): refrast gets `error MESSAGE`."""
+
+
+class Unsupported(Exception):
+    """Raise it for a draw asking something this rasterizer cannot do: `unsupported MESSAGE`."""
+
+
+def _read_exactly(stream, n):
+    data = stream.read(n)
+    if data is None or len(data) != n:
+        raise EOFError(f"stdin ended inside a draw ({0 if data is None else len(data)} of {n} bytes)")
+    return data
+
+
+def _read_draw(words, stream):
+    fields = dict(word.split("=", 1) for word in words[1:])
+    width, height = int(fields["width"]), int(fields["height"])
+    vertices, triangles = int(fields["vertices"]), int(fields["triangles"])
+    floats = struct.unpack(f"<{4 * vertices}f", _read_exactly(stream, 16 * vertices))
+    indices = struct.unpack(f"<{3 * triangles}I", _read_exactly(stream, 12 * triangles))
+    return Draw(
+        width=width,
+        height=height,
+        positions=[floats[i : i + 4] for i in range(0, len(floats), 4)],
+        triangles=[indices[i : i + 3] for i in range(0, len(indices), 3)],
+        cull=fields["cull"],
+        front_face=fields["front-face"],
+        depth_compare=fields["depth-compare"],
+        depth_write=fields["depth-write"] == "on",
+        depth_clear=float(fields["depth-clear"]),
+        depth_range=fields["depth-range"],
+        far_clipping=fields["far-clipping"] == "on",
+    )
+
+
+def _one_line(message):
+    return " ".join(str(message).split()) or "no reason given"
+
+
+def serve(profile, rasterize, resolve=None):
+    """Declares `profile` (a dict of PROTOCOL.md's profile keys to their values) and answers
+    draws until stdin ends.
+
+    `rasterize(draw)` returns an iterable of Fragment. `resolve(draw)`, needed only when the
+    profile's features include depth-test, returns (depth, primitive): two row-major lists of
+    width * height values, a float and an int or None.
+    """
+    out, inp = sys.stdout.buffer, sys.stdin.buffer
+    lines = [f"refrast-protocol {VERSION}"]
+    lines += [f"{key} {value}" for key, value in profile.items()]
+    lines.append("ready")
+    out.write(("\n".join(lines) + "\n").encode())
+    out.flush()
+    while True:
+        header = inp.readline()
+        if not header:
+            return
+        words = header.decode().split()
+        if not words:
+            continue
+        draw = _read_draw(words, inp)
+        try:
+            if words[0] == "rasterize":
+                fragments = list(rasterize(draw))
+                reply = [f"fragments {len(fragments)}\n".encode()]
+                for f in fragments:
+                    reply.append(
+                        FRAGMENT.pack(
+                            f.x, f.y, f.primitive, 1 if f.front_facing else 0, f.depth,
+                            *f.barycentric, *f.screen_barycentric,
+                        )
+                    )
+            elif words[0] == "resolve" and resolve is not None:
+                depth, primitive = resolve(draw)
+                n = draw.width * draw.height
+                reply = [
+                    f"resolved {draw.width} {draw.height}\n".encode(),
+                    struct.pack(f"<{n}f", *depth),
+                    struct.pack(f"<{n}I", *(0xFFFFFFFF if p is None else p for p in primitive)),
+                ]
+            else:
+                raise Unsupported(f"no `{words[0]}` here")
+            reply.append(b"end\n")
+            out.write(b"".join(reply))
+        except Refused as e:
+            out.write(f"error {_one_line(e)}\n".encode())
+        except Unsupported as e:
+            out.write(f"unsupported {_one_line(e)}\n".encode())
+        out.flush()

@@ -1,0 +1,266 @@
+#!/usr/bin/env python3
+"""A correct rasterizer in plain Python, certified by refrast over a pipe (PROTOCOL.md).
+
+Coverage is exact: vertices snap to 1/256 pixel (round half to even), edge functions are
+Python integers, and a sample exactly on an edge belongs to the triangle only if the edge is a
+top or a left edge (D3D11's top-left rule). Triangles are clipped in clip space against the
+near plane, the far plane when asked, and a guard band 16384 pixels from the viewport's centre,
+each cut computed from the inside end; a clipped polygon covers the samples its snapped fan winds
+around. Barycentrics are perspective-correct, depth is z/w linear on screen, and its own depth
+buffer answers `resolve`.
+
+Run it with refrast:  refrast certify --exec "python3 clients/python/topleft.py"
+"""
+
+import os
+import struct
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from refrast_pipe import Fragment, Refused, serve  # noqa: E402
+
+BITS = 8
+ONE = 1 << BITS
+GUARD_BAND = 16384.0
+COORD_LIMIT = 32768.0
+
+PROFILE = {
+    "name": "python-topleft",
+    "about": f"clients/python/topleft.py on Python {sys.version.split()[0]}",
+    "snapping": f"grid {BITS}",
+    "fill": "top-left",
+    "depth": "z-over-w",
+    "tolerance": 1,
+    "precision": 18,
+    "features": "perspective-barycentrics screen-barycentrics depth-test guard-band",
+    "cull": "none front back",
+    "front-face": "ccw cw",
+    "depth-compare": "never less equal less-equal greater not-equal greater-equal always",
+    "depth-write": "on off",
+    "far-clipping": "off on",
+    "depth-range": "zero-to-one negative-one-to-one",
+}
+
+
+def f32(v):
+    """v rounded to the nearest f32, as the fragment and the depth buffer store it."""
+    return struct.unpack("<f", struct.pack("<f", v))[0]
+
+
+def orient2d(a, b, c):
+    """Twice the signed area of a, b, c in snapped units: positive when clockwise on screen."""
+    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+
+
+def owns_edge(a, b):
+    """Top-left: for a clockwise triangle, an edge going up is a left edge, a horizontal one
+    going right is a top edge."""
+    return a[1] > b[1] if a[1] != b[1] else b[0] > a[0]
+
+
+def snap(v):
+    """A raster coordinate to the grid, or None when it is not a number or out of range."""
+    if v != v or abs(v) > COORD_LIMIT:
+        return None
+    return round(v * ONE)
+
+
+def planes(draw):
+    """Signed distances to the clip planes: inside when >= 0."""
+    kx, ky = 2 * GUARD_BAND / draw.width, 2 * GUARD_BAND / draw.height
+    if draw.depth_range == "zero-to-one":
+        out = [lambda p: p[2]]
+    else:
+        out = [lambda p: p[2] + p[3]]
+    if draw.far_clipping:
+        out.append(lambda p: p[3] - p[2])
+    out += [
+        lambda p: p[0] + kx * p[3],
+        lambda p: kx * p[3] - p[0],
+        lambda p: p[1] + ky * p[3],
+        lambda p: ky * p[3] - p[1],
+    ]
+    return out
+
+
+def clip(polygon, distance):
+    """One Sutherland–Hodgman pass; each cut from the inside end, so shared edges cut alike."""
+    out = []
+    for i, a in enumerate(polygon):
+        b = polygon[(i + 1) % len(polygon)]
+        da, db = distance(a[0]), distance(b[0])
+        if da >= 0:
+            out.append(a)
+        if (da >= 0) != (db >= 0):
+            inside, outside, di, do = (a, b, da, db) if da >= 0 else (b, a, db, da)
+            t = di / (di - do)
+            out.append((
+                tuple(p + (q - p) * t for p, q in zip(inside[0], outside[0])),
+                tuple(p + (q - p) * t for p, q in zip(inside[1], outside[1])),
+            ))
+    return out
+
+
+def project(draw, vertex, input_w):
+    """Snapped position, window depth, 1/w, barycentrics and screen barycentrics of a vertex."""
+    (x, y, z, w), bary = vertex
+    if not w > 0:
+        return None
+    px = (x / w + 1.0) * 0.5 * draw.width
+    py = (1.0 - y / w) * 0.5 * draw.height
+    sx, sy = snap(px), snap(py)
+    if sx is None or sy is None:
+        return None
+    depth = z / w if draw.depth_range == "zero-to-one" else (z / w + 1.0) * 0.5
+    screen = None
+    if input_w is not None:
+        scaled = [b * wi for b, wi in zip(bary, input_w)]
+        total = sum(scaled)
+        screen = [s / total for s in scaled]
+    return (sx, sy), depth, 1.0 / w, bary, screen
+
+
+def clipped_clockwise(tri):
+    """Olano–Greer: the sign of det[x y w] of the clip-space vertices; None when too close to 0."""
+    a, b, c = tri
+    terms = [
+        a[0] * (b[1] * c[3] - c[1] * b[3]),
+        -a[1] * (b[0] * c[3] - c[0] * b[3]),
+        a[3] * (b[0] * c[1] - c[0] * b[1]),
+    ]
+    det = sum(terms)
+    scale = (
+        abs(a[0]) * max(abs(b[1] * c[3]), abs(c[1] * b[3]))
+        + abs(a[1]) * max(abs(b[0] * c[3]), abs(c[0] * b[3]))
+        + abs(a[3]) * max(abs(b[0] * c[1]), abs(c[0] * b[1]))
+    )
+    return det < 0 if abs(det) > 1e-10 * scale else None
+
+
+def triangle_fragments(draw, t, tri):
+    """Every fragment of triangle t, whose clip-space vertices are tri."""
+    if any(c != c or c in (float("inf"), float("-inf")) for p in tri for c in p):
+        return []
+    corners = [(p, tuple(1.0 if j == k else 0.0 for j in range(3))) for k, p in enumerate(tri)]
+    input_w = [p[3] for p in tri] if all(p[3] > 0 for p in tri) else None
+    unclipped = [project(draw, v, input_w) for v in corners] if input_w else [None]
+    if all(v is not None for v in unclipped):
+        area = orient2d(*(v[0] for v in unclipped))
+        if area == 0:
+            return []  # zero area, decided before clipping
+    polygon = corners
+    needs_clipping = False
+    for distance in planes(draw):
+        if len(polygon) < 3:
+            return []
+        if any(distance(v[0]) < 0 for v in polygon):
+            needs_clipping = True
+            polygon = clip(polygon, distance)
+    if len(polygon) < 3:
+        return []
+    raster = [project(draw, v, input_w) for v in polygon]
+    if any(v is None for v in raster):
+        return []
+    points = [v[0] for v in raster]
+    fan_area = sum(orient2d(points[0], points[k], points[k + 1]) for k in range(1, len(points) - 1))
+    if needs_clipping:
+        clockwise = clipped_clockwise(tri)
+        if clockwise is None:
+            if fan_area == 0:
+                return []
+            clockwise = fan_area > 0
+    else:
+        clockwise = fan_area > 0
+    front = clockwise == (draw.front_face == "cw")
+    if (draw.cull == "back" and not front) or (draw.cull == "front" and front):
+        return []
+    return fan_fragments(draw, t, raster, front)
+
+
+def fan_fragments(draw, t, raster, front):
+    """Samples the snapped fan winds around, each with its interpolated values."""
+    covered = {}
+    for k in range(1, len(raster) - 1):
+        corners = [raster[0], raster[k], raster[k + 1]]
+        area = orient2d(*(c[0] for c in corners))
+        if area == 0:
+            continue
+        sign = 1 if area > 0 else -1
+        if sign < 0:
+            corners = [corners[0], corners[2], corners[1]]
+            area = -area
+        a, b, c = (v[0] for v in corners)
+        edges = [(b, c), (c, a), (a, b)]  # edge k is opposite corner k
+        bias = [0 if owns_edge(p, q) else -1 for p, q in edges]
+        x0 = max(0, (min(a[0], b[0], c[0]) - ONE // 2) // ONE)
+        x1 = min(draw.width - 1, (max(a[0], b[0], c[0]) - ONE // 2) // ONE + 1)
+        y0 = max(0, (min(a[1], b[1], c[1]) - ONE // 2) // ONE)
+        y1 = min(draw.height - 1, (max(a[1], b[1], c[1]) - ONE // 2) // ONE + 1)
+        for py in range(y0, y1 + 1):
+            sy = py * ONE + ONE // 2
+            for px in range(x0, x1 + 1):
+                s = (px * ONE + ONE // 2, sy)
+                values = [orient2d(p, q, s) for p, q in edges]
+                if all(v + b >= 0 for v, b in zip(values, bias)):
+                    entry = covered.setdefault((px, py), [0, None])
+                    entry[0] += sign
+                    if entry[1] is None:
+                        entry[1] = (corners, values, area)
+    out = []
+    for (px, py), (winding, found) in covered.items():
+        if winding == 0:
+            continue
+        corners, values, area = found
+        s = [v / area for v in values]
+        depth = sum(c[1] * v for c, v in zip(corners, values)) / area
+        q = [si * c[2] for si, c in zip(s, corners)]
+        total = sum(q)
+        bary = tuple(sum(c[3][j] * qi for c, qi in zip(corners, q)) / total for j in range(3))
+        screen = (0.0, 0.0, 0.0)
+        if corners[0][4] is not None:
+            screen = tuple(sum(c[4][j] * si for c, si in zip(corners, s)) for j in range(3))
+        out.append(Fragment(px, py, t, front, f32(min(max(depth, 0.0), 1.0)), bary, screen))
+    return out
+
+
+def rasterize(draw):
+    vertices = len(draw.positions)
+    for t, tri in enumerate(draw.triangles):
+        bad = [i for i in tri if i >= vertices]
+        if bad:
+            raise Refused(f"triangle {t} uses vertex {bad[0]}, but the draw has {vertices} vertices")
+    out = []
+    for t, tri in enumerate(draw.triangles):
+        out += triangle_fragments(draw, t, [draw.positions[i] for i in tri])
+    return out
+
+
+PASSES = {
+    "never": lambda new, old: False,
+    "less": lambda new, old: new < old,
+    "equal": lambda new, old: new == old,
+    "less-equal": lambda new, old: new <= old,
+    "greater": lambda new, old: new > old,
+    "not-equal": lambda new, old: new != old,
+    "greater-equal": lambda new, old: new >= old,
+    "always": lambda new, old: True,
+}
+
+
+def resolve(draw):
+    """The depth test in primitive order: a passing fragment names its primitive and, with
+    writes on, stores its depth."""
+    depth = [draw.depth_clear] * (draw.width * draw.height)
+    primitive = [None] * (draw.width * draw.height)
+    passes = PASSES[draw.depth_compare]
+    for f in sorted(rasterize(draw), key=lambda f: f.primitive):
+        i = f.y * draw.width + f.x
+        if passes(f.depth, depth[i]):
+            primitive[i] = f.primitive
+            if draw.depth_write:
+                depth[i] = f.depth
+    return depth, primitive
+
+
+if __name__ == "__main__":
+    serve(PROFILE, rasterize, resolve)

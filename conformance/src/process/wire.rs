@@ -1,0 +1,359 @@
+//! The protocol's words and bytes: the child's profile lines, the request header and payload,
+//! and the reply headers. `PROTOCOL.md` at the repository root is the specification.
+
+use refrast::{
+    CompareOp, CullMode, DepthConvention, DepthRange, Draw, FillConvention, Fragment, FrontFace, Profile,
+    Setting, Snapping, Supported,
+};
+
+/// The protocol version this refrast speaks.
+pub const VERSION: u32 = 1;
+
+/// Bytes per fragment record: x, y, primitive, front-facing (u32), depth, three perspective and
+/// three screen-space barycentrics (f32), all little-endian.
+pub const FRAGMENT_BYTES: usize = 44;
+
+/// The longest line either side may send, in bytes.
+pub const MAX_LINE: usize = 4096;
+
+/// What the parent asks for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Op {
+    /// Every covered sample, before the depth test.
+    Rasterize,
+    /// The depth and primitive buffers after the child's own depth test.
+    Resolve,
+}
+
+impl Op {
+    /// The request's first word.
+    #[must_use]
+    pub fn word(self) -> &'static str {
+        match self {
+            Self::Rasterize => "rasterize",
+            Self::Resolve => "resolve",
+        }
+    }
+}
+
+/// A draw-state setting as the protocol spells its values.
+pub trait Word: Setting {
+    /// The key naming the setting, in the profile and in requests.
+    const KEY: &'static str;
+    /// The value as a word.
+    fn word(self) -> &'static str;
+    /// The value a word names.
+    fn parse(word: &str) -> Option<Self> {
+        Self::VALUES.iter().copied().find(|v| v.word() == word)
+    }
+    /// Every word, for messages.
+    fn words() -> String {
+        Self::VALUES
+            .iter()
+            .map(|v| v.word())
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+}
+
+impl Word for CullMode {
+    const KEY: &'static str = "cull";
+    fn word(self) -> &'static str {
+        match self {
+            Self::None => "none",
+            Self::Front => "front",
+            Self::Back => "back",
+        }
+    }
+}
+
+impl Word for FrontFace {
+    const KEY: &'static str = "front-face";
+    fn word(self) -> &'static str {
+        match self {
+            Self::CounterClockwise => "ccw",
+            Self::Clockwise => "cw",
+        }
+    }
+}
+
+impl Word for CompareOp {
+    const KEY: &'static str = "depth-compare";
+    fn word(self) -> &'static str {
+        match self {
+            Self::Never => "never",
+            Self::Less => "less",
+            Self::Equal => "equal",
+            Self::LessOrEqual => "less-equal",
+            Self::Greater => "greater",
+            Self::NotEqual => "not-equal",
+            Self::GreaterOrEqual => "greater-equal",
+            Self::Always => "always",
+        }
+    }
+}
+
+impl Word for DepthRange {
+    const KEY: &'static str = "depth-range";
+    fn word(self) -> &'static str {
+        match self {
+            Self::ZeroToOne => "zero-to-one",
+            Self::NegativeOneToOne => "negative-one-to-one",
+        }
+    }
+}
+
+/// Depth writes; far clipping has the same words under its own key ([`FAR_CLIPPING`]).
+impl Word for bool {
+    const KEY: &'static str = "depth-write";
+    fn word(self) -> &'static str {
+        if self { "on" } else { "off" }
+    }
+}
+
+/// The key of far clipping, whose values are `on` and `off` like depth writes'.
+pub const FAR_CLIPPING: &str = "far-clipping";
+
+/// The request for `op` on `draw`: its header line, then positions and indices.
+#[must_use]
+pub fn request(op: Op, draw: &Draw) -> Vec<u8> {
+    let s = &draw.state;
+    let header = format!(
+        "{} width={} height={} vertices={} triangles={} cull={} front-face={} depth-compare={} \
+         depth-write={} depth-clear={:?} depth-range={} far-clipping={}\n",
+        op.word(),
+        draw.viewport.width(),
+        draw.viewport.height(),
+        draw.positions.len(),
+        draw.triangles.len(),
+        s.cull.word(),
+        s.front_face.word(),
+        s.depth.compare.word(),
+        s.depth.write.word(),
+        s.depth.clear,
+        s.depth_range.word(),
+        s.clip_far.word(),
+    );
+    let mut bytes = header.into_bytes();
+    bytes.reserve(draw.positions.len() * 16 + draw.triangles.len() * 12);
+    for c in draw.positions.iter().flatten() {
+        bytes.extend_from_slice(&c.to_le_bytes());
+    }
+    for i in draw.triangles.iter().flatten() {
+        bytes.extend_from_slice(&i.to_le_bytes());
+    }
+    bytes
+}
+
+/// The `u32` at word `k` of a record.
+fn u32_at(record: &[u8], k: usize) -> u32 {
+    let mut word = [0; 4];
+    word.copy_from_slice(&record[4 * k..4 * k + 4]);
+    u32::from_le_bytes(word)
+}
+
+/// The `f32` at word `k` of a record.
+pub fn f32_at(record: &[u8], k: usize) -> f32 {
+    f32::from_bits(u32_at(record, k))
+}
+
+/// Decodes one fragment record; `Err` names a front-facing word that is neither 0 nor 1.
+pub fn fragment(record: &[u8], screen_barycentrics: bool) -> Result<Fragment, String> {
+    let front = u32_at(record, 3);
+    if front > 1 {
+        return Err(format!("its front-facing word is {front}, not 0 or 1"));
+    }
+    let screen = [f32_at(record, 8), f32_at(record, 9), f32_at(record, 10)];
+    Ok(Fragment {
+        x: u32_at(record, 0),
+        y: u32_at(record, 1),
+        primitive: u32_at(record, 2),
+        front_facing: front == 1,
+        depth: f32_at(record, 4),
+        barycentric: [f32_at(record, 5), f32_at(record, 6), f32_at(record, 7)],
+        screen_barycentric: screen_barycentrics.then_some(screen),
+    })
+}
+
+/// Decodes the `u32` values of a primitive buffer, `0xFFFF_FFFF` meaning none.
+pub fn primitives(bytes: &[u8]) -> Vec<Option<u32>> {
+    (0..bytes.len() / 4)
+        .map(|k| Some(u32_at(bytes, k)).filter(|&p| p != u32::MAX))
+        .collect()
+}
+
+/// Decodes little-endian `f32` values.
+pub fn floats(bytes: &[u8]) -> Vec<f32> {
+    (0..bytes.len() / 4).map(|k| f32_at(bytes, k)).collect()
+}
+
+/// What the handshake declared: the profile and what the child says it is.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Declared {
+    /// The profile, defaults filled in.
+    pub profile: Profile,
+    /// The `about` line, empty when there is none.
+    pub about: String,
+}
+
+/// The profile of a child that declares nothing but its name: the defaults of `PROTOCOL.md`.
+#[must_use]
+pub fn default_profile(name: &str) -> Profile {
+    Profile {
+        name: name.to_owned(),
+        snapping: Snapping::Float,
+        fill: None,
+        depth: DepthConvention::ScreenLinearZOverW,
+        tolerance_subpixels: 1,
+        precision_bits: 14,
+        features: refrast::Features {
+            perspective_barycentrics: false,
+            screen_barycentrics: false,
+            cull_modes: Supported::only(&[CullMode::None]),
+            front_faces: Supported::ALL,
+            depth_test: false,
+            compare_ops: Supported::only(&[CompareOp::Less]),
+            depth_writes: Supported::only(&[true]),
+            far_clipping: Supported::only(&[false]),
+            depth_ranges: Supported::only(&[DepthRange::ZeroToOne]),
+            guard_band: false,
+        },
+    }
+}
+
+/// The version a first line declares: `Err` when it is not `refrast-protocol N`.
+pub fn version(line: &str) -> Result<u32, String> {
+    let mut words = line.split_whitespace();
+    match (words.next(), words.next().map(str::parse::<u32>), words.next()) {
+        (Some("refrast-protocol"), Some(Ok(v)), None) => Ok(v),
+        _ => Err(format!(
+            "the child's first line must be `refrast-protocol {VERSION}`, but it is `{}`",
+            shown(line)
+        )),
+    }
+}
+
+/// Builds the profile from the handshake lines between the version line and `ready`.
+pub fn parse_profile(lines: &[String], fallback_name: &str) -> Result<Declared, String> {
+    let mut profile = default_profile(fallback_name);
+    let mut about = String::new();
+    let mut seen: Vec<&str> = Vec::new();
+    for line in lines {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let (key, rest) = line.split_once(char::is_whitespace).unwrap_or((line, ""));
+        let rest = rest.trim();
+        if seen.contains(&key) {
+            return Err(format!("the profile says `{key}` twice"));
+        }
+        let bad = |what: &str| format!("profile line `{}`: {what}", shown(line));
+        let words: Vec<&str> = rest.split_whitespace().collect();
+        let f = &mut profile.features;
+        match key {
+            "name" if !rest.is_empty() => profile.name = rest.to_owned(),
+            "about" => about = rest.to_owned(),
+            "snapping" => {
+                profile.snapping = match words.as_slice() {
+                    ["float"] => Snapping::Float,
+                    ["grid", bits] => match bits.parse::<u8>() {
+                        Ok(b @ 1..=16) => Snapping::Grid(b),
+                        _ => return Err(bad("the grid's bits must be 1 to 16")),
+                    },
+                    _ => return Err(bad("say `snapping float` or `snapping grid BITS`")),
+                }
+            }
+            "fill" => {
+                profile.fill = match rest {
+                    "none" => None,
+                    word => Some(
+                        FillConvention::ALL
+                            .into_iter()
+                            .find(|c| c.name() == word)
+                            .ok_or_else(|| {
+                                bad("use none, top-left, top-right, bottom-left or bottom-right")
+                            })?,
+                    ),
+                }
+            }
+            "depth" => {
+                profile.depth = match rest {
+                    "z-over-w" => DepthConvention::ScreenLinearZOverW,
+                    "other" => DepthConvention::Other,
+                    _ => return Err(bad("use z-over-w or other")),
+                }
+            }
+            "tolerance" => {
+                profile.tolerance_subpixels = rest
+                    .parse()
+                    .ok()
+                    .filter(|t| (1..=1024).contains(t))
+                    .ok_or_else(|| bad("a number of grid steps, 1 to 1024"))?;
+            }
+            "precision" => {
+                profile.precision_bits = rest
+                    .parse()
+                    .ok()
+                    .filter(|p| (1..=30).contains(p))
+                    .ok_or_else(|| bad("a number of bits, 1 to 30"))?;
+            }
+            "features" => {
+                (
+                    f.perspective_barycentrics,
+                    f.screen_barycentrics,
+                    f.depth_test,
+                    f.guard_band,
+                ) = (false, false, false, false);
+                for word in &words {
+                    let flag = match *word {
+                        "perspective-barycentrics" => &mut f.perspective_barycentrics,
+                        "screen-barycentrics" => &mut f.screen_barycentrics,
+                        "depth-test" => &mut f.depth_test,
+                        "guard-band" => &mut f.guard_band,
+                        _ => {
+                            return Err(bad(
+                                "features are perspective-barycentrics, screen-barycentrics, \
+                                 depth-test and guard-band",
+                            ));
+                        }
+                    };
+                    *flag = true;
+                }
+            }
+            CullMode::KEY => f.cull_modes = supported(&words, &bad)?,
+            FrontFace::KEY => f.front_faces = supported(&words, &bad)?,
+            CompareOp::KEY => f.compare_ops = supported(&words, &bad)?,
+            DepthRange::KEY => f.depth_ranges = supported(&words, &bad)?,
+            bool::KEY => f.depth_writes = supported(&words, &bad)?,
+            FAR_CLIPPING => f.far_clipping = supported(&words, &bad)?,
+            "name" => return Err(bad("the name is empty")),
+            _ => {
+                return Err(format!(
+                    "the profile has an unknown key `{key}`; PROTOCOL.md lists the keys of version {VERSION}"
+                ));
+            }
+        }
+        seen.push(key);
+    }
+    Ok(Declared { profile, about })
+}
+
+/// The values a profile line lists, each a known word, at least one.
+fn supported<T: Word>(words: &[&str], bad: &dyn Fn(&str) -> String) -> Result<Supported<T>, String> {
+    let values: Option<Vec<T>> = words.iter().map(|w| T::parse(w)).collect();
+    match values {
+        Some(values) if !values.is_empty() => Ok(Supported::only(&values)),
+        _ => Err(bad(&format!("list one or more of {}", T::words()))),
+    }
+}
+
+/// A line as a message shows it: at most 120 characters, control characters escaped.
+#[must_use]
+pub fn shown(line: &str) -> String {
+    let mut s: String = line.chars().take(120).flat_map(char::escape_debug).collect();
+    if line.chars().count() > 120 {
+        s.push('…');
+    }
+    s
+}

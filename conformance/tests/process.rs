@@ -1,0 +1,467 @@
+//! `Process` against children that misbehave on purpose: each bad child is a failed draw with a
+//! message that says which, never a panic or a hang, and the child is restarted for the next.
+//!
+//! The children are this test binary again: with `REFRAST_FAKE_CHILD=MODE` it speaks the
+//! protocol (PROTOCOL.md) over the reference, misbehaving as MODE says. With
+//! `REFRAST_AS_TESTS=1` it is an outside crate's `run_as_tests` over such a child.
+
+use std::io::{BufRead, Read, Write};
+use std::time::{Duration, Instant};
+
+use libtest_mimic::{Arguments, Failed, Trial};
+use refrast::{CompareOp, CullMode, DepthRange, Draw, DrawError, FrontFace, Rasterizer, Reference, Viewport};
+use refrast_conformance::process::wire::{self, Word};
+use refrast_conformance::{Options, Process, ProcessError, Status, certify};
+
+const MODE: &str = "REFRAST_FAKE_CHILD";
+
+fn main() {
+    if let Ok(mode) = std::env::var(MODE) {
+        fake_child(&mode);
+        return;
+    }
+    if std::env::var_os("REFRAST_AS_TESTS").is_some() {
+        refrast_conformance::run_as_tests(|| Process::spawn(&child("good")));
+    }
+    let trials = vec![
+        trial(
+            "a_good_child_draws_what_the_reference_draws",
+            a_good_child_draws_what_the_reference_draws,
+        ),
+        trial(
+            "a_crash_fails_the_draw_with_its_signal_and_stderr_and_the_child_restarts",
+            crash,
+        ),
+        trial("a_hang_fails_the_draw_at_the_timeout", hang),
+        trial("a_malformed_reply_is_named", malformed),
+        trial("a_truncated_reply_is_named", truncated),
+        trial("a_count_too_high_is_named", count_too_high),
+        trial("a_count_too_low_is_named", count_too_low),
+        trial("a_fragment_outside_the_viewport_is_named", outside),
+        trial("a_fragment_naming_no_primitive_is_named", bad_primitive),
+        trial("a_resolve_of_the_wrong_size_is_named", wrong_size),
+        trial("a_refusal_is_an_error_and_no_restart", refusal),
+        trial("a_version_mismatch_says_both_versions", version_mismatch),
+        trial("a_bad_profile_line_is_named", bad_profile),
+        trial("a_child_that_dies_at_start_shows_its_stderr", dies_at_start),
+        trial("a_missing_program_is_a_start_error", missing_program),
+        trial("spawn_never_fails_and_every_draw_says_why", spawn_never_fails),
+        trial(
+            "certify_fails_rules_of_a_crashing_child_and_goes_on",
+            certify_crashing,
+        ),
+        trial(
+            "the_budget_stops_a_slow_child_and_says_how_many_cases_ran",
+            budget,
+        ),
+        trial("run_as_tests_certifies_a_child", run_as_tests_child),
+    ];
+    libtest_mimic::run(&Arguments::from_args(), trials).exit()
+}
+
+fn trial(name: &'static str, test: fn() -> Result<(), String>) -> Trial {
+    Trial::test(name, move || test().map_err(Failed::from))
+}
+
+/// The command line that starts this binary as a fake child in `mode`.
+fn child(mode: &str) -> String {
+    let exe = std::env::current_exe().expect("the test binary has a path");
+    format!("env {MODE}={mode} '{}'", exe.display())
+}
+
+fn spawn(mode: &str, timeout: f64) -> Process {
+    Process::try_spawn_with(&child(mode), Duration::from_secs_f64(timeout))
+        .unwrap_or_else(|e| panic!("the {mode} child should start: {e}"))
+}
+
+/// A draw of `n` triangles on an 8×8 target.
+fn draw(n: usize) -> Draw {
+    let viewport = Viewport::new(8, 8).expect("valid");
+    let positions = vec![
+        [-1.0, 1.0, 0.5, 1.0],
+        [1.0, 1.0, 0.5, 1.0],
+        [-1.0, -1.0, 0.5, 1.0],
+        [1.0, -1.0, 0.25, 1.0],
+    ];
+    let triangles = [[0, 1, 2], [2, 1, 3]].into_iter().cycle().take(n).collect();
+    Draw::new(viewport, positions, triangles)
+}
+
+/// `Err` unless `result` is a `Misbehaved` error whose message contains every one of `words`.
+fn misbehaved<T: std::fmt::Debug>(result: Result<T, DrawError>, words: &[&str]) -> Result<(), String> {
+    match result {
+        Err(DrawError::Misbehaved(message)) => match words.iter().find(|w| !message.contains(*w)) {
+            Some(w) => Err(format!("the message lacks `{w}`: {message}")),
+            None => Ok(()),
+        },
+        other => Err(format!("expected a misbehaviour, got {other:?}")),
+    }
+}
+
+fn a_good_child_draws_what_the_reference_draws() -> Result<(), String> {
+    let mut p = spawn("good", 10.0);
+    let mut reference = Reference::default();
+    for n in [1, 2, 7] {
+        let d = draw(n);
+        let got = p.rasterize(&d).map_err(|e| e.to_string())?;
+        if got != reference.rasterize(&d).map_err(|e| e.to_string())? {
+            return Err(format!("{n} triangles: fragments differ"));
+        }
+        if p.resolve(&d).map_err(|e| e.to_string())? != reference.resolve(&d).map_err(|e| e.to_string())? {
+            return Err(format!("{n} triangles: resolve differs"));
+        }
+    }
+    assert_eq!(p.profile().name, "fake-good");
+    assert!(p.about().contains("fake child"), "{}", p.about());
+    Ok(())
+}
+
+fn crash() -> Result<(), String> {
+    let mut p = spawn("crash", 10.0);
+    p.rasterize(&draw(1)).map_err(|e| e.to_string())?;
+    misbehaved(
+        p.rasterize(&draw(2)),
+        &["stdout closed", "SIGABRT", "about to crash"],
+    )?;
+    p.rasterize(&draw(1))
+        .map_err(|e| format!("the restarted child should draw: {e}"))?;
+    if p.starts() == 2 {
+        Ok(())
+    } else {
+        Err(format!("{} starts, not 2", p.starts()))
+    }
+}
+
+fn hang() -> Result<(), String> {
+    let mut p = spawn("hang", 1.0);
+    let start = Instant::now();
+    misbehaved(
+        p.rasterize(&draw(2)),
+        &["no reply within 1 s", "hangs", "thinking"],
+    )?;
+    if start.elapsed() > Duration::from_secs(5) {
+        return Err(format!("took {:?}", start.elapsed()));
+    }
+    p.rasterize(&draw(1))
+        .map_err(|e| format!("the restarted child should draw: {e}"))?;
+    Ok(())
+}
+
+fn malformed() -> Result<(), String> {
+    misbehaved(
+        spawn("malformed", 10.0).rasterize(&draw(1)),
+        &["malformed reply", "`hello there`", "stderr"],
+    )
+}
+
+fn truncated() -> Result<(), String> {
+    misbehaved(
+        spawn("truncated", 10.0).rasterize(&draw(1)),
+        &["truncated reply", "exit code 0"],
+    )
+}
+
+fn count_too_high() -> Result<(), String> {
+    misbehaved(
+        spawn("count-high", 1.0).rasterize(&draw(1)),
+        &["is the count right?"],
+    )
+}
+
+fn count_too_low() -> Result<(), String> {
+    misbehaved(
+        spawn("count-low", 10.0).rasterize(&draw(1)),
+        &["wrong count", "`end`"],
+    )
+}
+
+fn outside() -> Result<(), String> {
+    misbehaved(
+        spawn("outside", 10.0).rasterize(&draw(1)),
+        &["lies at (8, 0), outside the 8×8 viewport"],
+    )
+}
+
+fn bad_primitive() -> Result<(), String> {
+    misbehaved(
+        spawn("bad-primitive", 10.0).rasterize(&draw(1)),
+        &["names primitive 1", "1 triangles"],
+    )
+}
+
+fn wrong_size() -> Result<(), String> {
+    misbehaved(
+        spawn("wrong-size", 10.0).resolve(&draw(1)),
+        &["wrong count", "resolved 8 8"],
+    )
+}
+
+fn refusal() -> Result<(), String> {
+    let mut p = spawn("good", 10.0);
+    let mut d = draw(1);
+    d.triangles.push([0, 9, 1]);
+    match p.rasterize(&d) {
+        Err(DrawError::Backend(why)) if why.contains("vertex 9") => {}
+        other => return Err(format!("expected the child's refusal, got {other:?}")),
+    }
+    p.rasterize(&draw(1)).map_err(|e| e.to_string())?;
+    if p.starts() == 1 {
+        Ok(())
+    } else {
+        Err("a refusal restarted the child".into())
+    }
+}
+
+fn start_error(mode: &str) -> String {
+    match Process::try_spawn_with(&child(mode), Duration::from_secs(5)) {
+        Err(ProcessError::Handshake(why)) => why,
+        other => panic!("expected a handshake error, got {other:?}"),
+    }
+}
+
+fn version_mismatch() -> Result<(), String> {
+    let why = start_error("version-2");
+    if why.contains("version 2") && why.contains("speaks version 1") {
+        Ok(())
+    } else {
+        Err(why)
+    }
+}
+
+fn bad_profile() -> Result<(), String> {
+    let why = start_error("bad-profile");
+    if why.contains("unknown key `colour`") {
+        Ok(())
+    } else {
+        Err(why)
+    }
+}
+
+fn dies_at_start() -> Result<(), String> {
+    let why = start_error("die-at-start");
+    if why.contains("exit code 3") && why.contains("no module named numpy") {
+        Ok(())
+    } else {
+        Err(why)
+    }
+}
+
+fn missing_program() -> Result<(), String> {
+    match Process::try_spawn("./no-such-rasterizer --fast") {
+        Err(ProcessError::Start(why)) if why.contains("no-such-rasterizer") => Ok(()),
+        other => Err(format!("{other:?}")),
+    }
+}
+
+fn spawn_never_fails() -> Result<(), String> {
+    let mut p = Process::spawn(&child("version-2"));
+    if p.start_error().is_none() {
+        return Err("no start error".into());
+    }
+    misbehaved(p.rasterize(&draw(1)), &["version 2"])
+}
+
+fn certify_crashing() -> Result<(), String> {
+    let mut p = spawn("crash", 10.0);
+    let options = Options {
+        cases: Some(5),
+        rule: Some("fill.mesh".into()),
+        ..Options::default()
+    };
+    let report = certify(&mut p, &options, |_| {});
+    let rule = &report.rules[0];
+    let message = rule.message.as_deref().unwrap_or("");
+    if rule.status == Status::Fail && message.contains("SIGABRT") && message.contains("about to crash") {
+        Ok(())
+    } else {
+        Err(format!("{:?}: {message}", rule.status))
+    }
+}
+
+fn budget() -> Result<(), String> {
+    let mut p = spawn("slow", 10.0);
+    let options = Options {
+        rule: Some("fill.top-left.exact".into()),
+        budget: Some(Duration::from_millis(600)),
+        ..Options::default()
+    };
+    let start = Instant::now();
+    let report = certify(&mut p, &options, |_| {});
+    let rule = &report.rules[0];
+    let ok = rule.status == Status::Pass && rule.budget_spent && rule.cases > 0 && rule.cases < rule.planned;
+    if ok && start.elapsed() < Duration::from_secs(5) {
+        Ok(())
+    } else {
+        Err(format!("{rule:?} in {:?}", start.elapsed()))
+    }
+}
+
+fn run_as_tests_child() -> Result<(), String> {
+    let exe = std::env::current_exe().map_err(|e| e.to_string())?;
+    let out = std::process::Command::new(exe)
+        .args(["fill.top-left.exact", "--exact"])
+        .env("REFRAST_AS_TESTS", "1")
+        .env("PROPTEST_CASES", "20")
+        .output()
+        .map_err(|e| e.to_string())?;
+    let text = String::from_utf8_lossy(&out.stdout);
+    if out.status.success() && text.contains("fill.top-left.exact ... ok") && text.contains(" 1 passed") {
+        Ok(())
+    } else {
+        Err(format!(
+            "{}\n{text}{}",
+            out.status,
+            String::from_utf8_lossy(&out.stderr)
+        ))
+    }
+}
+
+// ---- the fake child ----------------------------------------------------------------------------
+
+/// Speaks the protocol over the reference, misbehaving as `mode` says.
+fn fake_child(mode: &str) {
+    let mut out = std::io::stdout().lock();
+    match mode {
+        "version-2" => {
+            let _ = writeln!(out, "refrast-protocol 2\nname future\nready");
+            return;
+        }
+        "die-at-start" => {
+            eprintln!("Traceback: no module named numpy");
+            std::process::exit(3);
+        }
+        _ => {}
+    }
+    let colour = if mode == "bad-profile" {
+        "colour blue\n"
+    } else {
+        ""
+    };
+    let _ = write!(
+        out,
+        "refrast-protocol 1\nname fake-{mode}\nabout a fake child\nsnapping grid 8\nfill top-left\n\
+         features perspective-barycentrics screen-barycentrics depth-test guard-band\n{colour}ready\n"
+    );
+    let _ = out.flush();
+    let mut input = std::io::stdin().lock();
+    let mut reference = Reference::default();
+    loop {
+        let mut header = String::new();
+        if input.read_line(&mut header).unwrap_or(0) == 0 {
+            return;
+        }
+        let Some((op, d)) = read_draw(&header, &mut input) else {
+            return;
+        };
+        let mut reply = Vec::new();
+        if op == "resolve" {
+            let r = reference.resolve(&d).expect("valid");
+            let (w, h) = (d.viewport.width(), d.viewport.height());
+            let w = if mode == "wrong-size" { w + 1 } else { w };
+            reply.extend(format!("resolved {w} {h}\n").bytes());
+            r.depth.iter().for_each(|v| reply.extend(v.to_le_bytes()));
+            r.primitive
+                .iter()
+                .for_each(|p| reply.extend(p.unwrap_or(u32::MAX).to_le_bytes()));
+            reply.extend(b"end\n");
+        } else {
+            let fragments = match reference.rasterize(&d) {
+                Ok(f) => f,
+                Err(e) => {
+                    let _ = writeln!(out, "error {e}");
+                    let _ = out.flush();
+                    continue;
+                }
+            };
+            match (mode, d.triangles.len()) {
+                ("crash", 2..) => {
+                    eprintln!("about to crash");
+                    std::process::abort();
+                }
+                ("hang", 2..) => {
+                    eprintln!("thinking");
+                    std::thread::sleep(Duration::from_secs(3600));
+                }
+                ("slow", _) => std::thread::sleep(Duration::from_millis(20)),
+                ("malformed", _) => {
+                    eprintln!("debugging output went to stdout");
+                    let _ = writeln!(out, "hello there");
+                    let _ = out.flush();
+                    continue;
+                }
+                _ => {}
+            }
+            let mut records: Vec<[u8; 44]> = fragments.iter().map(record).collect();
+            match mode {
+                "outside" => records[0][0..4].copy_from_slice(&d.viewport.width().to_le_bytes()),
+                "bad-primitive" => records[0][8..12].copy_from_slice(&1u32.to_le_bytes()),
+                _ => {}
+            }
+            let claimed = match mode {
+                "count-high" | "truncated" => records.len() + 1,
+                "count-low" => records.len() - 1,
+                _ => records.len(),
+            };
+            reply.extend(format!("fragments {claimed}\n").bytes());
+            if mode == "truncated" {
+                reply.extend(records[0]);
+                let _ = out.write_all(&reply);
+                let _ = out.flush();
+                std::process::exit(0);
+            }
+            records.iter().for_each(|r| reply.extend(r));
+            reply.extend(b"end\n");
+        }
+        let _ = out.write_all(&reply);
+        let _ = out.flush();
+    }
+}
+
+/// A fragment as the protocol's 44-byte record.
+fn record(f: &refrast::Fragment) -> [u8; 44] {
+    let words = [
+        f.x,
+        f.y,
+        f.primitive,
+        u32::from(f.front_facing),
+        f.depth.to_bits(),
+        f.barycentric[0].to_bits(),
+        f.barycentric[1].to_bits(),
+        f.barycentric[2].to_bits(),
+    ];
+    let screen = f.screen_barycentric.unwrap_or_default().map(f32::to_bits);
+    let mut out = [0u8; 44];
+    for (k, w) in words.iter().chain(&screen).enumerate() {
+        out[4 * k..4 * k + 4].copy_from_slice(&w.to_le_bytes());
+    }
+    out
+}
+
+/// Parses a request as a child must: the header's `key=value` words, then the arrays.
+fn read_draw(header: &str, input: &mut impl Read) -> Option<(String, Draw)> {
+    let mut words = header.split_whitespace();
+    let op = words.next()?.to_owned();
+    let fields: std::collections::HashMap<&str, &str> = words.filter_map(|w| w.split_once('=')).collect();
+    let number = |key: &str| fields.get(key).and_then(|v| v.parse::<u32>().ok());
+    let viewport = Viewport::new(number("width")?, number("height")?).ok()?;
+    let (vertices, triangles) = (number("vertices")? as usize, number("triangles")? as usize);
+    let mut bytes = vec![0u8; vertices * 16 + triangles * 12];
+    input.read_exact(&mut bytes).ok()?;
+    let positions = (0..vertices)
+        .map(|v| std::array::from_fn(|k| wire::f32_at(&bytes, 4 * v + k)))
+        .collect();
+    let indices = &bytes[vertices * 16..];
+    let triangles = (0..triangles)
+        .map(|t| std::array::from_fn(|k| wire::f32_at(indices, 3 * t + k).to_bits()))
+        .collect();
+    let mut d = Draw::new(viewport, positions, triangles);
+    let word = |key: &str| fields.get(key).copied().unwrap_or("");
+    d.state.cull = CullMode::parse(word("cull"))?;
+    d.state.front_face = FrontFace::parse(word("front-face"))?;
+    d.state.depth.compare = CompareOp::parse(word("depth-compare"))?;
+    d.state.depth.write = bool::parse(word("depth-write"))?;
+    d.state.depth.clear = word("depth-clear").parse().ok()?;
+    d.state.depth_range = DepthRange::parse(word("depth-range"))?;
+    d.state.clip_far = bool::parse(word(wire::FAR_CLIPPING))?;
+    Some((op, d))
+}

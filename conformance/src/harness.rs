@@ -41,6 +41,10 @@ fn options_from_env() -> Options {
         case_timeout: var("REFRAST_CASE_TIMEOUT")
             .and_then(|s| s.parse().ok())
             .map_or(DEFAULT_CASE_TIMEOUT, Duration::from_secs_f64),
+        budget: var("REFRAST_BUDGET")
+            .and_then(|s| s.parse().ok())
+            .filter(|s: &f64| s.is_finite() && *s > 0.0)
+            .map(Duration::from_secs_f64),
         ..Options::default()
     }
 }
@@ -53,7 +57,8 @@ fn options_from_env() -> Options {
 /// Environment: `PROPTEST_CASES` sets the cases per rule (else each rule's default);
 /// `REFRAST_SEED` the seed; `REFRAST_REPORT` where counterexample pictures go (default
 /// `target/refrast-report`); `REFRAST_CASE_TIMEOUT` the seconds one case may take (default 20);
-/// `REFRAST_IN_PROCESS=1` runs the rules in this process instead (for a debugger or a profiler;
+/// `REFRAST_BUDGET` the seconds per rule after which no new case starts (for a slow rasterizer,
+/// such as a [`crate::Process`] running Python); `REFRAST_IN_PROCESS=1` runs the rules in this process instead (for a debugger or a profiler;
 /// a hang then hangs the test).
 pub fn run_as_tests<R, F>(make: F) -> !
 where

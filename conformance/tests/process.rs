@@ -55,6 +55,10 @@ fn main() {
             budget,
         ),
         trial("run_as_tests_certifies_a_child", run_as_tests_child),
+        trial(
+            "the_exchange_in_protocol_md_is_what_refrast_sends_and_the_reference_draws",
+            protocol_md_example,
+        ),
     ];
     libtest_mimic::run(&Arguments::from_args(), trials).exit()
 }
@@ -313,6 +317,38 @@ fn run_as_tests_child() -> Result<(), String> {
             out.status,
             String::from_utf8_lossy(&out.stderr)
         ))
+    }
+}
+
+fn protocol_md_example() -> Result<(), String> {
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../PROTOCOL.md"))
+        .map_err(|e| e.to_string())?;
+    let viewport = Viewport::new(2, 2).expect("valid");
+    let positions = vec![
+        [-1.0, 1.0, 0.5, 1.0],
+        [1.0, 1.0, 0.5, 1.0],
+        [-1.0, -1.0, 0.5, 1.0],
+    ];
+    let d = Draw::new(viewport, positions, vec![[0, 1, 2]]);
+    let bytes = wire::request(wire::Op::Rasterize, &d);
+    let header =
+        String::from_utf8_lossy(&bytes[..bytes.iter().position(|&b| b == b'\n').unwrap_or(0)]).into_owned();
+    if !doc.contains(&format!("→ {header}\n")) {
+        return Err(format!("PROTOCOL.md lacks the request line `{header}`"));
+    }
+    if bytes.len() != header.len() + 1 + 48 + 12 {
+        return Err(format!("{} bytes", bytes.len()));
+    }
+    let fragments = Reference::default().rasterize(&d).map_err(|e| e.to_string())?;
+    match fragments.as_slice() {
+        [f] if (f.x, f.y, f.primitive, f.front_facing, f.depth, f.barycentric)
+            == (0, 0, 0, false, 0.5, [0.5, 0.25, 0.25]) =>
+        {
+            Ok(())
+        }
+        other => Err(format!(
+            "the example's fragment is not what PROTOCOL.md shows: {other:?}"
+        )),
     }
 }
 

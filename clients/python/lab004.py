@@ -16,11 +16,12 @@ refrast's zoo holds the same lab in Rust (`lab004-lineeq`); this port gives the 
 Run it with refrast:  refrast certify --exec "python3 clients/python/lab004.py"
 """
 
+import math
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from refrast_pipe import Fragment, Refused, serve  # noqa: E402
+from refrast_pipe import Fragment, check_indices, serve  # noqa: E402
 
 NUDGE = 1e-6
 
@@ -129,8 +130,8 @@ def draw_triangle(v1, v2, v3, width, height, emit):
     if not all(abs(x) != float("inf") for x in f):
         return
     xs, ys = (v1[0], v2[0], v3[0]), (v1[1], v2[1], v3[1])
-    x0, x1 = max(_ceil(min(xs)), 0.0), min(_floor(max(xs)), width - 1.0)
-    y0, y1 = max(_ceil(min(ys)), 0.0), min(_floor(max(ys)), height - 1.0)
+    x0, x1 = max(float(math.ceil(min(xs))), 0.0), min(float(math.floor(max(xs))), width - 1.0)
+    y0, y1 = max(float(math.ceil(min(ys))), 0.0), min(float(math.floor(max(ys))), height - 1.0)
     if not (x0 <= x1 and y0 <= y1):
         return
     for py in range(int(y0), int(y1) + 1):
@@ -143,22 +144,8 @@ def draw_triangle(v1, v2, v3, width, height, emit):
             emit(px, py, weights, alpha * v1[2] + beta * v2[2] + gamma * v3[2])
 
 
-def _ceil(v):
-    import math
-    return float(math.ceil(v))
-
-
-def _floor(v):
-    import math
-    return float(math.floor(v))
-
-
 def rasterize(draw):
-    vertices = len(draw.positions)
-    for t, tri in enumerate(draw.triangles):
-        bad = [i for i in tri if i >= vertices]
-        if bad:
-            raise Refused(f"triangle {t} uses vertex {bad[0]}, but the draw has {vertices} vertices")
+    check_indices(draw)
     planes = clipping_planes(draw.depth_range)
     # Every drawn triangle is counter-clockwise on screen, the only winding O_i <= 0 accepts.
     front = draw.front_face == "ccw"

@@ -40,6 +40,15 @@ class Unsupported(Exception):
     """Raise it for a draw asking something this rasterizer cannot do: `unsupported MESSAGE`."""
 
 
+def check_indices(draw):
+    """Raises Refused for a triangle naming a vertex the draw does not have."""
+    vertices = len(draw.positions)
+    for t, tri in enumerate(draw.triangles):
+        bad = [i for i in tri if i >= vertices]
+        if bad:
+            raise Refused(f"triangle {t} uses vertex {bad[0]}, but the draw has {vertices} vertices")
+
+
 def _read_exactly(stream, n):
     data = stream.read(n)
     if data is None or len(data) != n:

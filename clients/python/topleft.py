@@ -17,7 +17,7 @@ import struct
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from refrast_pipe import Fragment, Refused, serve  # noqa: E402
+from refrast_pipe import Fragment, check_indices, serve  # noqa: E402
 
 BITS = 8
 ONE = 1 << BITS
@@ -224,11 +224,7 @@ def fan_fragments(draw, t, raster, front):
 
 
 def rasterize(draw):
-    vertices = len(draw.positions)
-    for t, tri in enumerate(draw.triangles):
-        bad = [i for i in tri if i >= vertices]
-        if bad:
-            raise Refused(f"triangle {t} uses vertex {bad[0]}, but the draw has {vertices} vertices")
+    check_indices(draw)
     out = []
     for t, tri in enumerate(draw.triangles):
         out += triangle_fragments(draw, t, [draw.positions[i] for i in tri])

@@ -225,20 +225,27 @@ impl Process {
 
     /// Ends the child after a breach and says what happened, with its exit and its stderr.
     fn breach(&mut self, Breach(what): Breach) -> DrawError {
-        let Some(mut running) = self.running.take() else {
+        let Some(running) = self.running.take() else {
             return DrawError::Misbehaved(what);
         };
+        DrawError::Misbehaved(running.end(&what, &self.launch))
+    }
+}
+
+impl Running {
+    /// Ends the child after `what` went wrong and says so, with how it ended and its stderr.
+    fn end(mut self, what: &str, launch: &Launch) -> String {
         // A child that closed its stdout is exiting: give it a moment before killing it.
-        let status = wait_for(&mut running.child, DRAIN).or_else(|| {
-            let _ = running.child.kill();
-            running.child.wait().ok().map(|_| Ended::Killed)
+        let status = wait_for(&mut self.child, DRAIN).or_else(|| {
+            let _ = self.child.kill();
+            self.child.wait().ok().map(|_| Ended::Killed)
         });
-        let stderr = running.errors.end(Instant::now() + DRAIN);
-        let mut message = format!("{what} [{}; `{}`]", describe(status), self.launch.line);
+        let stderr = self.errors.end(Instant::now() + DRAIN);
+        let mut message = format!("{what} [{}; `{}`]", describe(status), launch.line);
         if !stderr.is_empty() {
             message.push_str(&format!("; its stderr ends:\n{stderr}"));
         }
-        DrawError::Misbehaved(message)
+        message
     }
 }
 
@@ -314,18 +321,7 @@ fn start(launch: &Launch, timeout: Duration) -> Result<(Running, Declared), Proc
     };
     match handshake(&mut running.incoming, launch, timeout) {
         Ok(declared) => Ok((running, declared)),
-        Err(why) => {
-            let status = wait_for(&mut running.child, DRAIN).or_else(|| {
-                let _ = running.child.kill();
-                running.child.wait().ok().map(|_| Ended::Killed)
-            });
-            let stderr = running.errors.end(Instant::now() + DRAIN);
-            let mut message = format!("{why} [{}; `{}`]", describe(status), launch.line);
-            if !stderr.is_empty() {
-                message.push_str(&format!("; its stderr ends:\n{stderr}"));
-            }
-            Err(ProcessError::Handshake(message))
-        }
+        Err(why) => Err(ProcessError::Handshake(running.end(&why, launch))),
     }
 }
 

@@ -168,6 +168,16 @@ mod tests {
         assert_eq!(cam.forward, Vec3::Z);
         let straight_up = Camera::look_at(Vec3::ZERO, Vec3::Y);
         assert_eq!(straight_up.basis().0, Vec3::X);
+        // Away from the origin the direction is target − origin (mutation testing: `+`, `/`).
+        let cam = Camera::look_at(Vec3::new(1.0, 2.0, 3.0), Vec3::new(1.0, 2.0, -1.0));
+        assert_eq!(cam.forward, -Vec3::Z);
+    }
+
+    #[test]
+    fn yaw_turns_right_and_pitch_looks_up() {
+        let cam = Camera::from_yaw_pitch(Vec3::ZERO, 0.5, 0.3);
+        let (cy, sy, cp, sp) = (0.5f32.cos(), 0.5f32.sin(), 0.3f32.cos(), 0.3f32.sin());
+        assert_relative_eq!(cam.forward, Vec3::new(sy * cp, sp, cy * cp), epsilon = 1e-6);
     }
 
     #[test]
@@ -200,5 +210,14 @@ mod tests {
         };
         let clip = proj.matrix() * glam::Vec4::new(2.0, -1.0, 2.0, 1.0);
         assert_relative_eq!(clip, glam::Vec4::new(1.0, -1.0, 0.5, 1.0));
+        // Near → 0 and far → 1 where `near · depth ≠ near − depth` (mutation testing).
+        let deep = Projection::Orthographic {
+            width: 2.0,
+            height: 2.0,
+            near: 2.0,
+            far: 6.0,
+        };
+        assert_relative_eq!((deep.matrix() * glam::Vec4::new(0.0, 0.0, 2.0, 1.0)).z, 0.0);
+        assert_relative_eq!((deep.matrix() * glam::Vec4::new(0.0, 0.0, 6.0, 1.0)).z, 1.0);
     }
 }

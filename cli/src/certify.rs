@@ -30,6 +30,9 @@ pub struct Args {
     /// Cases per rule [default: PROPTEST_CASES, else each rule's own].
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     cases: Option<u32>,
+    /// Multiply the cases per rule by N (nightly runs use 10).
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=1000))]
+    scale: u32,
     /// Seed of the case generator.
     #[arg(long, value_name = "S", default_value_t = refrast_conformance::DEFAULT_SEED)]
     seed: u64,
@@ -46,6 +49,9 @@ pub struct Args {
     #[arg(long, value_name = "SECONDS", default_value_t = refrast_conformance::DEFAULT_CASE_TIMEOUT.as_secs_f64(),
           value_parser = positive_seconds)]
     case_timeout: f64,
+    /// Stop at the first failing rule: the rules and implementations after it are not run.
+    #[arg(long)]
+    fail_fast: bool,
     /// Run the rules in this process instead of one child process each (for a debugger or a
     /// profiler; a rasterizer that hangs or aborts then stops the whole run).
     #[arg(long)]
@@ -126,23 +132,37 @@ pub fn run(args: &Args) -> ExitCode {
     }
     let options = Options {
         cases: args.cases,
+        scale: args.scale,
         seed: args.seed,
         rule: args.rule.clone(),
         report_dir: Some(args.report.clone()),
         case_timeout: Duration::from_secs_f64(args.case_timeout),
         budget: args.budget.map(Duration::from_secs_f64),
+        fail_fast: args.fail_fast,
         ..Options::default()
     };
-    let mut reports = Vec::new();
-    for b in &chosen {
-        reports.push(certify_one(b, &options, args.in_process));
-    }
     let exec_options = Options {
         budget: Some(options.budget.unwrap_or(DEFAULT_EXEC_BUDGET)),
         ..options.clone()
     };
-    for command in &args.execs {
-        reports.push(certify_exec(command, &exec_options));
+    let jobs = chosen
+        .iter()
+        .map(|b| (b.name.clone(), Job::BuiltIn(b)))
+        .chain(args.execs.iter().map(|c| (c.clone(), Job::Exec(c))));
+    let mut reports = Vec::new();
+    let mut left: Vec<String> = Vec::new();
+    for (name, job) in jobs {
+        if !left.is_empty() || reports.last().is_some_and(|e| args.fail_fast && !passed(e)) {
+            left.push(name);
+            continue;
+        }
+        reports.push(match job {
+            Job::BuiltIn(b) => certify_one(b, &options, args.in_process),
+            Job::Exec(command) => certify_exec(command, &exec_options),
+        });
+    }
+    if !left.is_empty() {
+        say(&format!("--fail-fast: not certified: {}", left.join(", ")));
     }
     if let Some(path) = &args.json {
         let json = serde_json::to_string_pretty(&reports).expect("reports serialise");
@@ -152,15 +172,25 @@ pub fn run(args: &Args) -> ExitCode {
         }
         say(&format!("wrote {}", path.display()));
     }
-    let passed = |entry: &Entry| match entry {
-        Entry::Certified(report) => report.passed(),
-        Entry::FailedToStart { .. } => false,
-        Entry::Skipped { .. } => true,
-    };
     if reports.iter().all(passed) {
         ExitCode::SUCCESS
     } else {
         ExitCode::FAILURE
+    }
+}
+
+/// What to certify: a built-in, or a command speaking the pipe protocol.
+enum Job<'a> {
+    BuiltIn(&'a BuiltIn),
+    Exec(&'a str),
+}
+
+/// Whether an entry counts as passed: certified with no failing rule, or skipped.
+fn passed(entry: &Entry) -> bool {
+    match entry {
+        Entry::Certified(report) => report.passed(),
+        Entry::FailedToStart { .. } => false,
+        Entry::Skipped { .. } => true,
     }
 }
 
@@ -239,7 +269,15 @@ fn summarise(report: &Report, start: Instant) {
     if !p.about.is_empty() {
         say(&format!("  reports itself as: {}", p.about));
     }
-    say(&format!("  features: {}\n", p.features.join("; ")));
+    say(&format!("  features: {}", p.features.join("; ")));
+    if !report.not_run.is_empty() {
+        say(&format!(
+            "  --fail-fast: {} rules not run after the first failure: {}",
+            report.not_run.len(),
+            report.not_run.join(", ")
+        ));
+    }
+    say("");
 }
 
 /// This program again, running one rule of one built-in (`refrast run-rule`).
@@ -251,6 +289,7 @@ fn run_rule_command(implementation: &str, rule: &str, options: &Options) -> Comm
     if let Some(cases) = options.cases {
         command.args(["--cases", &cases.to_string()]);
     }
+    command.args(["--scale", &options.scale.to_string()]);
     if let Some(budget) = options.budget {
         command.args(["--budget", &budget.as_secs_f64().to_string()]);
     }
@@ -272,6 +311,9 @@ pub struct RunRuleArgs {
     /// Cases [default: PROPTEST_CASES, else the rule's own].
     #[arg(long, value_name = "N")]
     cases: Option<u32>,
+    /// Multiply the cases by N.
+    #[arg(long, value_name = "N", default_value_t = 1)]
+    scale: u32,
     /// Seed of the case generator.
     #[arg(long, value_name = "S", default_value_t = refrast_conformance::DEFAULT_SEED)]
     seed: u64,
@@ -291,6 +333,7 @@ pub fn run_rule(args: &RunRuleArgs) -> ExitCode {
     };
     let options = Options {
         cases: args.cases,
+        scale: args.scale,
         seed: args.seed,
         report_dir: args.report.clone(),
         budget: args.budget.map(Duration::from_secs_f64),

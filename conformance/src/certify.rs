@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::picture;
 use crate::rules::{Family, Kind, Rule, catalogue};
-use crate::runner::{Announce, DEFAULT_SEED, RunConfig, Verdict};
+use crate::runner::{Announce, DEFAULT_SEED, RunConfig, Verdict, guarded};
 use crate::violation::Counts;
 
 /// How long one case may take by default: far more than any correct rasterizer needs for the
@@ -19,8 +19,12 @@ pub const DEFAULT_CASE_TIMEOUT: Duration = Duration::from_secs(20);
 /// What to run and where to write pictures.
 #[derive(Clone, Debug)]
 pub struct Options {
-    /// Cases per rule; `None` takes `PROPTEST_CASES`, else each rule's default.
+    /// Cases per rule. `None` reads the `PROPTEST_CASES` environment variable (as proptest
+    /// itself does), and without it takes each rule's default: set `Some` to be independent of
+    /// the environment.
     pub cases: Option<u32>,
+    /// Multiplies the cases per rule, whichever way they were chosen (for nightly runs at 10×).
+    pub scale: u32,
     /// Seed of the case generator.
     pub seed: u64,
     /// Only rules whose ID matches this glob (`*` matches anything; no `*` means a prefix).
@@ -35,18 +39,23 @@ pub struct Options {
     /// Wall time per rule after which no new case starts ([`RunConfig::budget`]); `None` runs
     /// every case.
     pub budget: Option<Duration>,
+    /// Stop at the first rule that fails: the rules after it are not run and are listed in
+    /// [`Report::not_run`] (for a quick answer, and for mutation testing).
+    pub fail_fast: bool,
 }
 
 impl Default for Options {
     fn default() -> Self {
         Self {
             cases: None,
+            scale: 1,
             seed: DEFAULT_SEED,
             rule: None,
             report_dir: None,
             announce: None,
             case_timeout: DEFAULT_CASE_TIMEOUT,
             budget: None,
+            fail_fast: false,
         }
     }
 }
@@ -137,12 +146,19 @@ pub struct ProfileReport {
 }
 
 impl ProfileReport {
-    /// The report of `rasterizer`'s profile, with what it says about itself.
+    /// The report of `rasterizer`'s profile, with what it says about itself; a panic in either
+    /// is reported as the name.
     #[must_use]
     pub fn of(rasterizer: &dyn Rasterizer) -> Self {
-        Self {
-            about: rasterizer.about(),
-            ..Self::from(&rasterizer.profile())
+        match guarded(|| (rasterizer.profile(), rasterizer.about())) {
+            Ok((profile, about)) => Self {
+                about,
+                ..Self::from(&profile)
+            },
+            Err(what) => Self {
+                name: format!("unknown (profile() or about() panicked: {what})"),
+                ..Self::unknown()
+            },
         }
     }
 }
@@ -217,6 +233,9 @@ pub struct Report {
     pub profile: ProfileReport,
     /// One entry per rule run.
     pub rules: Vec<RuleReport>,
+    /// The selected rules left unrun after a failure under [`Options::fail_fast`].
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub not_run: Vec<String>,
 }
 
 impl Report {
@@ -255,18 +274,19 @@ pub fn matches(pattern: &str, id: &str) -> bool {
     true
 }
 
-/// Cases for a rule: the option, else `PROPTEST_CASES`, else the rule's default.
+/// Cases for a rule: the option, else `PROPTEST_CASES`, else the rule's default; times the scale.
 #[must_use]
 pub fn cases_for(rule: &Rule, options: &Options) -> u32 {
     options
         .cases
         .or_else(|| std::env::var("PROPTEST_CASES").ok().and_then(|c| c.parse().ok()))
         .unwrap_or(rule.default_cases)
+        .saturating_mul(options.scale.max(1))
 }
 
 /// Runs one rule against `rasterizer` and reports it, writing a picture on failure.
 pub fn run_rule(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options) -> RuleReport {
-    let profile = rasterizer.profile();
+    let profile = guarded(|| rasterizer.profile());
     let mut report = RuleReport {
         id: rule.id.to_owned(),
         family: rule.family,
@@ -276,12 +296,20 @@ pub fn run_rule(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options)
         planned: 0,
         budget_spent: false,
         seed: options.seed,
-        tolerance_subpixels: profile.tolerance_subpixels.max(1),
+        tolerance_subpixels: profile.as_ref().map_or(1, |p| p.tolerance_subpixels.max(1)),
         message: None,
         details: Vec::new(),
         counts: None,
         counterexample: None,
         picture: None,
+    };
+    let profile = match profile {
+        Ok(profile) => profile,
+        Err(what) => {
+            report.status = Status::Fail;
+            report.message = Some(format!("profile() panicked: {what}"));
+            return report;
+        }
     };
     if let Err(reason) = rule.applies(&profile) {
         report.status = Status::NotApplicable;
@@ -344,21 +372,42 @@ pub fn certify(
     options: &Options,
     mut progress: impl FnMut(&RuleReport),
 ) -> Report {
-    let profile = rasterizer.profile();
-    let mut rules = Vec::new();
-    for rule in catalogue() {
-        if options.rule.as_deref().is_some_and(|p| !matches(p, rule.id)) {
-            continue;
-        }
-        let report = run_rule(&rule, rasterizer, options);
+    let profile = ProfileReport::of(rasterizer);
+    let run = |rule: &Rule| {
+        let report = run_rule(rule, rasterizer, options);
         progress(&report);
-        rules.push(report);
-    }
+        Ok::<_, std::convert::Infallible>(report)
+    };
+    let Ok((rules, not_run)) = run_selected(options, run);
     Report {
         implementation: profile.name.clone(),
-        profile: ProfileReport::of(rasterizer),
+        profile,
         rules,
+        not_run,
     }
+}
+
+/// Runs `run` on each rule `options` selects, in catalogue order, until one fails under
+/// [`Options::fail_fast`] or `run` gives an error: the reports, and the IDs of rules left unrun.
+pub fn run_selected<E>(
+    options: &Options,
+    mut run: impl FnMut(&Rule) -> Result<RuleReport, E>,
+) -> Result<(Vec<RuleReport>, Vec<String>), E> {
+    let selected: Vec<Rule> = catalogue()
+        .into_iter()
+        .filter(|rule| options.rule.as_deref().is_none_or(|p| matches(p, rule.id)))
+        .collect();
+    let mut reports = Vec::new();
+    for (i, rule) in selected.iter().enumerate() {
+        let report = run(rule)?;
+        let failed = report.status == Status::Fail;
+        reports.push(report);
+        if failed && options.fail_fast {
+            let not_run = selected[i + 1..].iter().map(|r| r.id.to_owned()).collect();
+            return Ok((reports, not_run));
+        }
+    }
+    Ok((reports, Vec::new()))
 }
 
 #[cfg(test)]

@@ -15,6 +15,7 @@
 use std::path::PathBuf;
 use std::process::Command;
 use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use libtest_mimic::{Arguments, Completion, Failed, Trial};
@@ -23,7 +24,7 @@ use refrast::Rasterizer;
 use crate::certify::{DEFAULT_CASE_TIMEOUT, Options, RuleReport, Status, run_rule};
 use crate::isolate::{Outcome, run_rule_isolated, serve_rule};
 use crate::rules::catalogue;
-use crate::runner::DEFAULT_SEED;
+use crate::runner::{DEFAULT_SEED, guarded};
 
 /// Set in a child of the harness: the one rule it runs.
 const RULE_ENV: &str = "REFRAST_RUN_RULE";
@@ -58,8 +59,10 @@ fn options_from_env() -> Options {
 /// `REFRAST_SEED` the seed; `REFRAST_REPORT` where counterexample pictures go (default
 /// `target/refrast-report`); `REFRAST_CASE_TIMEOUT` the seconds one case may take (default 20);
 /// `REFRAST_BUDGET` the seconds per rule after which no new case starts (for a slow rasterizer,
-/// such as a [`crate::Process`] running Python); `REFRAST_IN_PROCESS=1` runs the rules in this process instead (for a debugger or a profiler;
-/// a hang then hangs the test).
+/// such as a [`crate::Process`] running Python); `REFRAST_FAIL_FAST=1` fails every rule not yet
+/// started once one has failed, without running it (for a quick answer, and for mutation
+/// testing); `REFRAST_IN_PROCESS=1` runs the rules in this process instead (for a debugger or a
+/// profiler; a hang then hangs the test).
 pub fn run_as_tests<R, F>(make: F) -> !
 where
     R: Rasterizer + 'static,
@@ -70,17 +73,30 @@ where
         let served = serve_rule(&id, || Ok(Box::new(make())), &options);
         std::process::exit(if served { 0 } else { 2 });
     }
-    let in_process = std::env::var_os("REFRAST_IN_PROCESS").is_some_and(|v| v != "0");
+    let flag = |name: &str| std::env::var_os(name).is_some_and(|v| v != "0");
+    let (in_process, fail_fast) = (flag("REFRAST_IN_PROCESS"), flag("REFRAST_FAIL_FAST"));
+    let failed = Arc::new(AtomicBool::new(false));
     let args = Arguments::from_args();
     let make = Arc::new(make);
-    let profile = make().profile();
+    let profile = match guarded(|| make().profile()) {
+        Ok(profile) => profile,
+        Err(what) => {
+            eprintln!("error: the rasterizer's constructor or profile() panicked: {what}");
+            std::process::exit(101);
+        }
+    };
     let trials = catalogue()
         .into_iter()
         .map(|rule| {
             let ignored = rule.applies(&profile).is_err();
             let (id, family) = (rule.id, rule.family);
-            let (make, options) = (Arc::clone(&make), Arc::clone(&options));
+            let (make, options, failed) = (Arc::clone(&make), Arc::clone(&options), Arc::clone(&failed));
             Trial::ignorable_test(id, move || {
+                if fail_fast && failed.load(Ordering::SeqCst) {
+                    return Err(Failed::from(
+                        "not run: an earlier rule failed (REFRAST_FAIL_FAST)",
+                    ));
+                }
                 let report = if in_process {
                     run_rule(&rule, &mut make(), &options)
                 } else {
@@ -103,7 +119,10 @@ where
                         "n/a: {}",
                         report.message.as_deref().unwrap_or("")
                     ))),
-                    Status::Fail => Err(Failed::from(failure_text(&report))),
+                    Status::Fail => {
+                        failed.store(true, Ordering::SeqCst);
+                        Err(Failed::from(failure_text(&report)))
+                    }
                 }
             })
             .with_kind(family.name())

@@ -22,7 +22,7 @@ use std::time::Instant;
 use refrast::Rasterizer;
 use serde::{Deserialize, Serialize};
 
-use crate::certify::{Options, ProfileReport, Report, RuleReport, Status, cases_for, matches, run_rule};
+use crate::certify::{Options, ProfileReport, Report, RuleReport, Status, cases_for, run_rule, run_selected};
 use crate::impls::Unavailable;
 use crate::process::{Tail, status_words};
 use crate::rules::{Rule, catalogue};
@@ -104,27 +104,23 @@ pub fn certify_isolated(
     options: &Options,
     mut progress: impl FnMut(&RuleReport),
 ) -> Result<Report, Unavailable> {
-    let mut rules = Vec::new();
     let mut profile = None;
-    for rule in catalogue() {
-        if options.rule.as_deref().is_some_and(|p| !matches(p, rule.id)) {
-            continue;
-        }
-        let report = match run_rule_isolated(&rule, command(&rule), options) {
-            Outcome::Unavailable(why) => return Err(why),
+    let (rules, not_run) = run_selected(options, |rule| {
+        match run_rule_isolated(rule, command(rule), options) {
+            Outcome::Unavailable(why) => Err(why),
             Outcome::Ran(report, reported) => {
-                profile = profile.or(reported);
-                report
+                profile = profile.take().or(reported);
+                progress(&report);
+                Ok(*report)
             }
-        };
-        progress(&report);
-        rules.push(*report);
-    }
+        }
+    })?;
     let profile = profile.map_or_else(ProfileReport::unknown, |p| *p);
     Ok(Report {
         implementation: profile.name.clone(),
         profile,
         rules,
+        not_run,
     })
 }
 

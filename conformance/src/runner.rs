@@ -3,6 +3,7 @@
 use std::cell::{Cell, RefCell};
 use std::fmt::Debug;
 use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::Once;
 use std::time::{Duration, Instant};
 
 use proptest::strategy::Strategy;
@@ -84,7 +85,16 @@ where
         ..Config::default()
     };
     // Every case asks only for draw states the rasterizer declares it supports.
-    let profile = rasterizer.profile();
+    let profile = match guarded(|| rasterizer.profile()) {
+        Ok(profile) => profile,
+        Err(what) => {
+            return Verdict::Fail {
+                cases: 0,
+                counterexample: String::new(),
+                violation: Violation::new(format!("profile() panicked: {what}")),
+            };
+        }
+    };
     let strategy = strategy.prop_map(move |mut input| {
         let scene = input.scene_mut();
         scene.state = profile.fit(scene.state);
@@ -179,7 +189,7 @@ fn reduce<T: Case + Debug>(
 
 /// The rasterizer's coverage of `scene` with the outlines, `samples` marked as wrong (red).
 fn coverage_picture(r: &mut dyn Rasterizer, scene: &Scene, samples: &[(u32, u32)]) -> Picture {
-    let fragments = catch_unwind(AssertUnwindSafe(|| r.rasterize(&scene.draw())))
+    let fragments = guarded(|| r.rasterize(&scene.draw()))
         .ok()
         .and_then(Result::ok)
         .unwrap_or_default();
@@ -201,17 +211,51 @@ fn run_announced<T: Debug>(
 
 /// Runs one check, turning a panic of the rasterizer into a violation.
 fn run_check<T>(r: &mut dyn Rasterizer, check: Check<T>, input: &T) -> Result<(), Violation> {
-    match catch_unwind(AssertUnwindSafe(|| check(r, input))) {
-        Ok(result) => result,
-        Err(payload) => {
-            let what = payload
-                .downcast_ref::<&str>()
-                .map(|s| (*s).to_owned())
-                .or_else(|| payload.downcast_ref::<String>().cloned())
-                .unwrap_or_else(|| "a non-string payload".into());
-            Err(Violation::new(format!("the rasterizer panicked: {what}")))
+    guarded(|| check(r, input))
+        .unwrap_or_else(|what| Err(Violation::new(format!("the rasterizer panicked: {what}"))))
+}
+
+thread_local! {
+    /// How many [`guarded`] calls this thread is inside: their panics are not printed.
+    static GUARD_DEPTH: Cell<u32> = const { Cell::new(0) };
+    /// Where the last guarded panic on this thread happened, kept by the quiet hook.
+    static PANIC_AT: RefCell<Option<String>> = const { RefCell::new(None) };
+}
+
+/// Runs `f`, turning a panic into its message and place (`Err("boom at src/x.rs:3:5")`).
+///
+/// A panic the suite catches is a finding it reports, so it is not also printed by the default
+/// panic hook: the first call installs a hook that stays quiet inside `guarded` on this thread
+/// and passes every other panic to the hook that was there before.
+pub fn guarded<T>(f: impl FnOnce() -> T) -> Result<T, String> {
+    static QUIET_HOOK: Once = Once::new();
+    QUIET_HOOK.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if GUARD_DEPTH.with(Cell::get) > 0 {
+                let at = info
+                    .location()
+                    .map(|l| format!("{}:{}:{}", l.file(), l.line(), l.column()));
+                PANIC_AT.with(|p| *p.borrow_mut() = at);
+            } else {
+                previous(info);
+            }
+        }));
+    });
+    GUARD_DEPTH.with(|d| d.set(d.get() + 1));
+    let result = catch_unwind(AssertUnwindSafe(f));
+    GUARD_DEPTH.with(|d| d.set(d.get() - 1));
+    result.map_err(|payload| {
+        let what = payload
+            .downcast_ref::<&str>()
+            .map(|s| (*s).to_owned())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "a non-string payload".into());
+        match PANIC_AT.with(|p| p.borrow_mut().take()) {
+            Some(at) => format!("{what} at {at}"),
+            None => what,
         }
-    }
+    })
 }
 
 /// Spreads a u64 seed over ChaCha's 32 seed bytes.

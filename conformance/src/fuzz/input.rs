@@ -6,6 +6,7 @@
 use std::fmt;
 
 use arbitrary::Arbitrary;
+use refrast::{CompareOp, CullMode, DepthRange, DepthState, DrawState, FrontFace};
 
 use crate::scene::{Scene, clip_of, rust_f32};
 use crate::strategy::{GRID, triangulate};
@@ -15,9 +16,11 @@ fn square_side(b: u8) -> u32 {
     16 << (b % 3)
 }
 
-/// Any draw: raw f32 bit patterns (NaN, Inf, subnormals, huge, w = 0) and any indices.
+/// Any draw: raw f32 bit patterns (NaN, Inf, subnormals, huge, w = 0), any indices, any state.
 #[derive(Arbitrary)]
 pub struct RawDraw {
+    /// The draw state's bits ([`draw_state`]).
+    state: u16,
     width: u8,
     height: u8,
     vertices: Vec<[u32; 4]>,
@@ -46,12 +49,43 @@ impl RawDraw {
             .map(|t| t.map(|i| u32::from(i) % n))
             .collect();
         let side = |b: u8| u32::from(b % 64) + 1;
-        Some(Scene::new(
-            side(self.width),
-            side(self.height),
-            positions,
-            triangles,
-        ))
+        let mut scene = Scene::new(side(self.width), side(self.height), positions, triangles);
+        scene.state = draw_state(self.state);
+        Some(scene)
+    }
+
+    /// The draw state these bytes ask for ([`draw_state`]).
+    #[must_use]
+    pub fn state(&self) -> DrawState {
+        draw_state(self.state)
+    }
+}
+
+/// Every draw state from 16 bits: cull mode, front face, compare op, depth writes, depth range,
+/// far clipping, and a clear value of 1, 0 or ½.
+#[must_use]
+pub fn draw_state(bits: u16) -> DrawState {
+    const OPS: [CompareOp; 8] = [
+        CompareOp::Less,
+        CompareOp::Never,
+        CompareOp::Equal,
+        CompareOp::LessOrEqual,
+        CompareOp::Greater,
+        CompareOp::NotEqual,
+        CompareOp::GreaterOrEqual,
+        CompareOp::Always,
+    ];
+    let field = |shift: u16, n: u16| usize::from((bits >> shift) % n);
+    DrawState {
+        cull: [CullMode::None, CullMode::Back, CullMode::Front][field(0, 4) % 3],
+        front_face: [FrontFace::CounterClockwise, FrontFace::Clockwise][field(2, 2)],
+        depth: DepthState {
+            compare: OPS[field(3, 8)],
+            write: field(6, 2) == 0,
+            clear: [1.0, 0.0, 0.5][field(7, 4) % 3],
+        },
+        depth_range: [DepthRange::ZeroToOne, DepthRange::NegativeOneToOne][field(9, 2)],
+        clip_far: field(10, 2) == 1,
     }
 }
 
@@ -284,5 +318,19 @@ impl fmt::Debug for Points {
 impl fmt::Debug for Clipping {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write_scene(f, Some(self.scene()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::HashSet;
+
+    use super::draw_state;
+
+    #[test]
+    fn sixteen_bits_reach_every_draw_state() {
+        let states: HashSet<String> = (0..=u16::MAX).map(|b| format!("{:?}", draw_state(b))).collect();
+        // 3 cull modes × 2 front faces × 8 compare ops × 2 write masks × 3 clears × 2 ranges × 2.
+        assert_eq!(states.len(), 3 * 2 * 8 * 2 * 3 * 2 * 2);
     }
 }

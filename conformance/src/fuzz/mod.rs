@@ -144,7 +144,10 @@ pub fn pipeline(input: &RawPipeline) -> Result<(), Failure> {
             triangles: scene.triangles.clone(),
         };
         let mvp = Mat4::from_cols_array(&input.matrix());
-        let renderer = Renderer::default();
+        let renderer = Renderer {
+            state: input.draw.state(),
+            ..Renderer::default()
+        };
         renderer
             .draw_mesh(&mut target, &mesh, Mat4::IDENTITY, mvp, |s| Some(s.color))
             .map_err(|e| Violation::new(format!("draw_mesh returned an error on in-range indices: {e}")))?;

@@ -26,10 +26,37 @@ pub fn precision(profile: &Profile) -> f64 {
     0.5f64.powi(i32::from(profile.precision_bits.min(52)))
 }
 
-/// The rasterizer's fragments for `scene`; an error becomes a violation.
+/// The rasterizer's fragments for `scene`; an error, a fragment outside the viewport or one
+/// naming a primitive the draw does not have becomes a violation.
+///
+/// Checked here, before any rule counts coverage, because counting drops such fragments and
+/// would then report a difference that is not the one that happened.
 pub fn fragments(r: &mut dyn Rasterizer, scene: &Scene) -> Result<Vec<Fragment>, Violation> {
-    r.rasterize(&scene.draw())
-        .map_err(|e| Violation::new(format!("rasterize returned an error: {e}")))
+    let frags = r
+        .rasterize(&scene.draw())
+        .map_err(|e| Violation::new(format!("rasterize returned an error: {e}")))?;
+    let (w, h) = (scene.width, scene.height);
+    let outside: Vec<&Fragment> = frags.iter().filter(|f| f.x >= w || f.y >= h).collect();
+    if let Some(f) = outside.first() {
+        return Err(Violation::new(format!(
+            "{} fragments outside the {w}×{h} viewport, the first at ({}, {}) of primitive {}",
+            outside.len(),
+            f.x,
+            f.y,
+            f.primitive
+        )));
+    }
+    let n = scene.triangles.len();
+    if let Some(f) = frags.iter().find(|f| f.primitive as usize >= n) {
+        return Err(Violation::at(
+            (f.x, f.y),
+            format!(
+                "the fragment at ({}, {}) names primitive {} of a draw of {n} triangles",
+                f.x, f.y, f.primitive
+            ),
+        ));
+    }
+    Ok(frags)
 }
 
 /// The reference configured as the profile says, for exact rules: `None` without a grid of
@@ -201,9 +228,34 @@ pub fn compare_sets(scene: &Scene, got: &[Fragment], want: &[Fragment], what: &s
         what,
     ) {
         Err(v) => Err(v),
-        // Same per-pixel counts but different owners: still a difference, named as such.
-        Ok(()) => Err(Violation::new(format!(
-            "{what}: same samples covered, but by different primitives"
-        ))),
+        // Same per-pixel counts but different owners: name the first sample whose owners differ.
+        Ok(()) => {
+            let owners = |frags: &[Fragment], x, y| -> Vec<u32> {
+                let mut ids: Vec<u32> = frags
+                    .iter()
+                    .filter(|f| (f.x, f.y) == (x, y))
+                    .map(|f| f.primitive)
+                    .collect();
+                ids.sort_unstable();
+                ids
+            };
+            let first = coverage_set(got)
+                .into_iter()
+                .chain(coverage_set(want))
+                .map(|(_, x, y)| (y, x))
+                .filter(|&(y, x)| owners(got, x, y) != owners(want, x, y))
+                .min();
+            Err(match first {
+                Some((y, x)) => Violation::at(
+                    (x, y),
+                    format!(
+                        "{what}: same samples covered, but by different primitives: ({x}, {y}) by {:?}, expected {:?}",
+                        owners(got, x, y),
+                        owners(want, x, y)
+                    ),
+                ),
+                None => Violation::new(format!("{what}: the same fragments in another multiplicity")),
+            })
+        }
     }
 }

@@ -109,6 +109,23 @@ pub fn perspective_inside_scene() -> impl Strategy<Value = Scene> {
     perspective(inside_triangle())
 }
 
+/// `scenes` under either clip volume: half of them move to OpenGL's `−w ≤ z ≤ w`, each `z`
+/// mapped to `2z − w` so that every vertex keeps its window depth.
+///
+/// For the depth rules, which otherwise would never see the OpenGL range's window depth
+/// `(z/w + 1)/2` (mutation testing found it unjudged).
+pub fn either_depth_range(scenes: impl Strategy<Value = Scene>) -> impl Strategy<Value = Scene> {
+    (scenes, any::<bool>()).prop_map(|(mut scene, gl)| {
+        if gl {
+            scene.state.depth_range = refrast::DepthRange::NegativeOneToOne;
+            for p in &mut scene.positions {
+                p[2] = 2.0 * p[2] - p[3];
+            }
+        }
+        scene
+    })
+}
+
 /// A clip-space triangle anywhere near the view volume, off any grid, with `w` in [0.1, 4].
 pub fn float_scene() -> impl Strategy<Value = Scene> {
     let vertex = (-1.6f32..1.6, -1.6f32..1.6, 0.0f32..1.0, 0.1f32..4.0)

@@ -51,11 +51,14 @@ pub enum Bug {
     RotatedEdgeOrigin,
     /// Zero-area triangles emit the samples on their line.
     DegenerateFragments,
+    /// Under OpenGL's `−w ≤ z ≤ w` range, window depth taken as `z/w` instead of
+    /// `(z/w + 1)/2` (found by mutation testing of the reference: no rule judged it).
+    UnmappedGlDepth,
 }
 
 impl Bug {
     /// Every bug.
-    pub const ALL: [Bug; 18] = [
+    pub const ALL: [Bug; 19] = [
         Self::InclusiveEdges,
         Self::ExclusiveEdges,
         Self::BottomRightAsTopLeft,
@@ -74,6 +77,7 @@ impl Bug {
         Self::InvertedFacing,
         Self::RotatedEdgeOrigin,
         Self::DegenerateFragments,
+        Self::UnmappedGlDepth,
     ];
 
     /// The name after `mutant:` in `--impl`.
@@ -98,6 +102,7 @@ impl Bug {
             Self::InvertedFacing => "inverted-facing",
             Self::RotatedEdgeOrigin => "rotated-edge-origin",
             Self::DegenerateFragments => "degenerate-fragments",
+            Self::UnmappedGlDepth => "unmapped-gl-depth",
         }
     }
 
@@ -114,7 +119,7 @@ impl Bug {
             // triangle's winding shows the same on a single triangle.
             Self::FloatEdges => Family::Meta,
             Self::AffineAttributes | Self::WrongArea => Family::Bary,
-            Self::DepthWithoutTest | Self::PerspectiveDepth => Family::Depth,
+            Self::DepthWithoutTest | Self::PerspectiveDepth | Self::UnmappedGlDepth => Family::Depth,
             Self::NoNearClip | Self::DirectionalClip => Family::Clip,
             Self::OneWinding | Self::InvertedFacing | Self::RotatedEdgeOrigin | Self::DegenerateFragments => {
                 Family::Meta
@@ -264,7 +269,11 @@ impl Mutant {
                 Some(Vert {
                     raster: [x, y],
                     fixed: [snap(x)?, snap(y)?],
-                    depth: draw.state.depth_range.window_depth(p.z, p.w),
+                    depth: if self.bug == Bug::UnmappedGlDepth {
+                        p.z / p.w
+                    } else {
+                        draw.state.depth_range.window_depth(p.z, p.w)
+                    },
                     inv_w: 1.0 / p.w,
                     bary: c.barycentric,
                 })

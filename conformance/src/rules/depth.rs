@@ -22,7 +22,7 @@ pub(super) fn rules() -> Vec<Rule> {
                 property(
                     r,
                     cfg,
-                    strategy::perspective_inside_scene(),
+                    strategy::either_depth_range(strategy::perspective_inside_scene()),
                     check_within_vertices,
                 )
             }),
@@ -35,7 +35,7 @@ pub(super) fn rules() -> Vec<Rule> {
                 property(
                     r,
                     cfg,
-                    strategy::perspective_inside_scene(),
+                    strategy::either_depth_range(strategy::perspective_inside_scene()),
                     check_depth_matches_raycast,
                 )
             }),

@@ -7,8 +7,8 @@
 use glam::{DVec3, DVec4};
 use refrast::stage::{ClipOutcome, ClipPlane, ClipVertex, clip_planes, clip_triangle};
 use refrast::{
-    ClipMode, Draw, DrawError, FillConvention, FixedPoint, Fragment, FrontFace, Profile, Rasterizer,
-    Reference, Resolved, Viewport, is_top_left,
+    ClipMode, CompareOp, Draw, DrawError, FillConvention, FixedPoint, Fragment, FrontFace, Profile,
+    Rasterizer, Reference, Resolved, Viewport, is_top_left,
 };
 use refrast_conformance::{BuiltIn, Family, Origin};
 
@@ -54,11 +54,15 @@ pub enum Bug {
     /// Under OpenGL's `−w ≤ z ≤ w` range, window depth taken as `z/w` instead of
     /// `(z/w + 1)/2` (found by mutation testing of the reference: no rule judged it).
     UnmappedGlDepth,
+    /// `LessOrEqual` tested as `Less` and `GreaterOrEqual` as `Greater`: ties lost (found by
+    /// mutation testing of the reference: the depth rules met no tie and replayed fragments
+    /// through the reference's own compare).
+    StrictCompare,
 }
 
 impl Bug {
     /// Every bug.
-    pub const ALL: [Bug; 19] = [
+    pub const ALL: [Bug; 20] = [
         Self::InclusiveEdges,
         Self::ExclusiveEdges,
         Self::BottomRightAsTopLeft,
@@ -78,6 +82,7 @@ impl Bug {
         Self::RotatedEdgeOrigin,
         Self::DegenerateFragments,
         Self::UnmappedGlDepth,
+        Self::StrictCompare,
     ];
 
     /// The name after `mutant:` in `--impl`.
@@ -103,6 +108,7 @@ impl Bug {
             Self::RotatedEdgeOrigin => "rotated-edge-origin",
             Self::DegenerateFragments => "degenerate-fragments",
             Self::UnmappedGlDepth => "unmapped-gl-depth",
+            Self::StrictCompare => "strict-compare",
         }
     }
 
@@ -119,7 +125,9 @@ impl Bug {
             // triangle's winding shows the same on a single triangle.
             Self::FloatEdges => Family::Meta,
             Self::AffineAttributes | Self::WrongArea => Family::Bary,
-            Self::DepthWithoutTest | Self::PerspectiveDepth | Self::UnmappedGlDepth => Family::Depth,
+            Self::DepthWithoutTest | Self::PerspectiveDepth | Self::UnmappedGlDepth | Self::StrictCompare => {
+                Family::Depth
+            }
             Self::NoNearClip | Self::DirectionalClip => Family::Clip,
             Self::OneWinding | Self::InvertedFacing | Self::RotatedEdgeOrigin | Self::DegenerateFragments => {
                 Family::Meta
@@ -226,6 +234,16 @@ impl Rasterizer for Mutant {
 
     fn resolve(&mut self, draw: &Draw) -> Result<Resolved, DrawError> {
         let fragments = self.rasterize(draw)?;
+        if self.bug == Bug::StrictCompare {
+            let mut strict = draw.clone();
+            let op = &mut strict.state.depth.compare;
+            *op = match *op {
+                CompareOp::LessOrEqual => CompareOp::Less,
+                CompareOp::GreaterOrEqual => CompareOp::Greater,
+                other => other,
+            };
+            return Ok(Resolved::from_fragments(&strict, fragments));
+        }
         if self.bug != Bug::DepthWithoutTest {
             return Ok(Resolved::from_fragments(draw, fragments));
         }

@@ -6,7 +6,7 @@
 
 use std::ops::Add;
 
-use refrast::DepthRange;
+use refrast::{CompareOp, DepthRange, DepthState, Fragment};
 
 /// A point in subpixel units.
 pub type Point = (i128, i128);
@@ -93,6 +93,50 @@ pub fn unclipped(p: &[[f32; 4]; 3], range: DepthRange, far: bool) -> bool {
     p.iter().all(|&[x, y, z, w]| {
         w > 0.0 && near_distance(range, z, w) >= 0.0 && (!far || z <= w) && x.abs() <= w && y.abs() <= w
     })
+}
+
+/// Whether a fragment at depth `new` passes `op` against `stored` (Vulkan 1.4 §29.8).
+///
+/// Written apart from the reference's `CompareOp::passes`, so that a wrong compare op cannot
+/// hide behind its own replay.
+#[must_use]
+pub fn depth_passes(op: CompareOp, new: f32, stored: f32) -> bool {
+    match op {
+        CompareOp::Never => false,
+        CompareOp::Always => true,
+        CompareOp::Less => new < stored,
+        CompareOp::LessOrEqual => new <= stored,
+        CompareOp::Equal => new == stored,
+        CompareOp::NotEqual => new != stored,
+        CompareOp::Greater => new > stored,
+        CompareOp::GreaterOrEqual => new >= stored,
+    }
+}
+
+/// Fragments replayed through the depth test in primitive order (API order), fragments of one
+/// primitive in the order given: the depth and id buffers, row by row. Fragments outside the
+/// `width × height` viewport are left out.
+#[must_use]
+pub fn replay_depth(
+    depth: DepthState,
+    width: u32,
+    height: u32,
+    fragments: &[Fragment],
+) -> (Vec<f32>, Vec<Option<u32>>) {
+    let pixels = width as usize * height as usize;
+    let (mut depths, mut ids) = (vec![depth.clear; pixels], vec![None; pixels]);
+    let mut ordered: Vec<&Fragment> = fragments.iter().filter(|f| f.x < width && f.y < height).collect();
+    ordered.sort_by_key(|f| f.primitive);
+    for f in ordered {
+        let i = f.y as usize * width as usize + f.x as usize;
+        if depth_passes(depth.compare, f.depth, depths[i]) {
+            ids[i] = Some(f.primitive);
+            if depth.write {
+                depths[i] = f.depth;
+            }
+        }
+    }
+    (depths, ids)
 }
 
 #[cfg(test)]

@@ -1,6 +1,6 @@
 //! Helpers shared by the rule families: running the rasterizer, oracles over scenes, tolerances.
 
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 
 use refrast::{Fragment, Profile, Rasterizer, Reference, ReferenceConfig, Snapping, SubpixelBits};
 
@@ -230,28 +230,28 @@ pub fn compare_sets(scene: &Scene, got: &[Fragment], want: &[Fragment], what: &s
         Err(v) => Err(v),
         // Same per-pixel counts but different owners: name the first sample whose owners differ.
         Ok(()) => {
-            let owners = |frags: &[Fragment], x, y| -> Vec<u32> {
-                let mut ids: Vec<u32> = frags
-                    .iter()
-                    .filter(|f| (f.x, f.y) == (x, y))
-                    .map(|f| f.primitive)
-                    .collect();
-                ids.sort_unstable();
-                ids
+            let owners = |frags: &[Fragment]| {
+                let mut by_sample: BTreeMap<(u32, u32), Vec<u32>> = BTreeMap::new();
+                for f in frags {
+                    by_sample.entry((f.y, f.x)).or_default().push(f.primitive);
+                }
+                by_sample.values_mut().for_each(|ids| ids.sort_unstable());
+                by_sample
             };
-            let first = coverage_set(got)
-                .into_iter()
-                .chain(coverage_set(want))
-                .map(|(_, x, y)| (y, x))
-                .filter(|&(y, x)| owners(got, x, y) != owners(want, x, y))
+            let (got, want) = (owners(got), owners(want));
+            let none = Vec::new();
+            let first = got
+                .keys()
+                .chain(want.keys())
+                .filter(|k| got.get(k).unwrap_or(&none) != want.get(k).unwrap_or(&none))
                 .min();
             Err(match first {
-                Some((y, x)) => Violation::at(
+                Some(&(y, x)) => Violation::at(
                     (x, y),
                     format!(
                         "{what}: same samples covered, but by different primitives: ({x}, {y}) by {:?}, expected {:?}",
-                        owners(got, x, y),
-                        owners(want, x, y)
+                        got.get(&(y, x)).unwrap_or(&none),
+                        want.get(&(y, x)).unwrap_or(&none)
                     ),
                 ),
                 None => Violation::new(format!("{what}: the same fragments in another multiplicity")),

@@ -141,8 +141,8 @@ pub fn check_poisoned(r: &mut dyn Rasterizer, p: &Poisoned) -> Result<(), Violat
     )
 }
 
-/// Fragments are in the viewport, name real primitives, are unique, have depth in [0, 1]
-/// within [`precision`].
+/// Fragments are unique, have depth in [0, 1] within [`precision`] and finite barycentrics
+/// (that they lie in the viewport and name real primitives, [`fragments`] checks for every rule).
 pub fn check_well_formed(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     // Window depth is claimed within the precision of its exact value, which lies in [0, 1].
     let eps = precision(&r.profile()) as f32;
@@ -150,11 +150,7 @@ pub fn check_well_formed(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Vi
     let mut seen = std::collections::HashSet::new();
     let mut found = Findings::new();
     for f in &frags {
-        let problem = if f.x >= scene.width || f.y >= scene.height {
-            "lies outside the viewport"
-        } else if f.primitive as usize >= scene.triangles.len() {
-            "names a primitive that does not exist"
-        } else if !(-eps..=1.0 + eps).contains(&f.depth) {
+        let problem = if !(-eps..=1.0 + eps).contains(&f.depth) {
             "has depth outside [0, 1] by more than the claimed precision"
         } else if f.barycentric.iter().any(|b| !b.is_finite()) {
             "has a non-finite barycentric"

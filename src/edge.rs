@@ -124,13 +124,6 @@ impl EdgeFunction {
     pub fn biased(&self, value: i64) -> i64 {
         value + self.bias
     }
-
-    /// Whether an edge value means the sample is on the inside under the fill rule.
-    #[must_use]
-    #[inline]
-    pub fn is_inside(&self, value: i64) -> bool {
-        self.biased(value) >= 0
-    }
 }
 
 #[cfg(test)]
@@ -154,6 +147,13 @@ mod tests {
         let (a, b, q) = (p(-7, 3), p(11, -5), p(4, 9));
         let e = EdgeFunction::new(a, b, FillConvention::TopLeft);
         assert_eq!(e.value(q), orient2d(a, b, q));
+    }
+
+    /// The names are the words the pipe protocol (`fill top-left`) and the reports use.
+    #[test]
+    fn conventions_are_named_as_the_protocol_spells_them() {
+        let names = FillConvention::ALL.map(FillConvention::name);
+        assert_eq!(names, ["top-left", "top-right", "bottom-left", "bottom-right"]);
     }
 
     #[test]

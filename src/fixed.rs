@@ -133,3 +133,29 @@ pub fn snap(v: f64, bits: SubpixelBits) -> Option<i64> {
     let scaled = v * bits.one() as f64;
     Some(scaled.round_ties_even() as i64)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_snapped_point_reads_back_its_units() {
+        // (2.25, −3.5) px at 8 bits: 576 and −896 units; the sample of pixel (1, 2) at its centre.
+        let p = FixedPoint::snap(2.25, -3.5, SubpixelBits::DEFAULT).unwrap();
+        assert_eq!((p.x(), p.y()), (576, -896));
+        let s = FixedPoint::sample(1, 2, SubpixelBits::DEFAULT).unwrap();
+        assert_eq!((s.x(), s.y()), (384, 640));
+        assert_eq!(p.to_raster(SubpixelBits::DEFAULT), (2.25, -3.5));
+    }
+
+    /// A pixel's sample exists only while it stays within [`FixedPoint::LIMIT`]: pixel 32768
+    /// would put its centre half a pixel beyond it.
+    #[test]
+    fn samples_end_at_the_coordinate_limit() {
+        let bits = SubpixelBits::DEFAULT;
+        let last = COORD_LIMIT as i64 - 1;
+        assert!(FixedPoint::sample(last, -last, bits).is_some());
+        assert!(FixedPoint::sample(last + 1, 0, bits).is_none());
+        assert!(FixedPoint::sample(0, -(last + 1), bits).is_none());
+    }
+}

@@ -20,6 +20,13 @@ pub fn side() -> impl Strategy<Value = u32> {
     prop_oneof![Just(16u32), Just(32), Just(64)]
 }
 
+/// Viewport sides of any shape, for rules whose oracle is a ray cast with a band: mostly
+/// [`side`], and a quarter of the time any side from 1 to 100 px (odd, prime, not a multiple of
+/// 8 or of a tile), where the NDC-to-raster transform is no longer exact in binary.
+pub fn any_side() -> impl Strategy<Value = u32> {
+    prop_oneof![3 => side(), 1 => 1u32..=100]
+}
+
 /// An offset in grid units: often on whole or half pixels (ties for the fill rule), at every
 /// scale from a subpixel to far outside any viewport.
 pub fn grid_offset() -> impl Strategy<Value = i64> {
@@ -29,6 +36,8 @@ pub fn grid_offset() -> impl Strategy<Value = i64> {
         2 => (-32i64..32).prop_map(|p| p * GRID / 2),
         2 => -48 * GRID..48 * GRID,
         1 => -(1500 * GRID)..(1500 * GRID),
+        // Sub-pixel triangles, which the wider branches almost never make.
+        1 => -GRID..GRID,
     ]
 }
 
@@ -130,7 +139,7 @@ pub fn either_depth_range(scenes: impl Strategy<Value = Scene>) -> impl Strategy
 pub fn float_scene() -> impl Strategy<Value = Scene> {
     let vertex = (-1.6f32..1.6, -1.6f32..1.6, 0.0f32..1.0, 0.1f32..4.0)
         .prop_map(|(x, y, z, w)| [x * w, y * w, z * w, w]);
-    (side(), side(), prop::array::uniform3(vertex))
+    (any_side(), any_side(), prop::array::uniform3(vertex))
         .prop_map(|(w, h, v)| Scene::new(w, h, v.to_vec(), vec![[0, 1, 2]]))
 }
 
@@ -199,8 +208,8 @@ pub fn clipped_mesh_scene() -> impl Strategy<Value = Scene> {
         mesh_points(16),
         prop::collection::vec(0.3f32..3.0, 1..6),
         prop::collection::vec(-1.0f32..1.0, 2..9),
-        side(),
-        side(),
+        any_side(),
+        any_side(),
     )
         .prop_map(|(points, ws, zs, w, h)| triangulate(w, h, &points, &ws, &zs))
 }
@@ -283,23 +292,35 @@ pub fn rotated_quad_scene() -> impl Strategy<Value = Scene> {
         })
 }
 
-/// A triangle crossing clip planes: some vertices behind the eye (w < 0), before the near
-/// plane, or far outside the view at up to ±30000·w (as dEQP's clipping tests).
+/// A triangle crossing clip planes: some vertices behind the eye (w < 0), at the eye's plane
+/// (w = 0), exactly on the near or far plane, before the near plane, or far outside the view at
+/// up to ±30000·w (as dEQP's clipping tests), on a viewport of any shape.
 pub fn crossing_scene() -> impl Strategy<Value = Scene> {
     let coordinate = prop_oneof![
         3 => -1.5f32..1.5,
         1 => -30000.0f32..30000.0,
         1 => prop_oneof![Just(-30000.0f32), Just(30000.0)],
     ];
-    let vertex = (
+    // z/w: anywhere from before the near plane to past the far one, or exactly on either.
+    let depth = prop_oneof![4 => -1.0f32..1.2, 1 => Just(0.0f32), 1 => Just(1.0f32)];
+    let scaled = (
         coordinate.clone(),
-        coordinate,
-        -1.0f32..1.2,
+        coordinate.clone(),
+        depth,
         prop_oneof![3 => 0.2f32..3.0, 1 => -2.0f32..-0.1],
     )
         .prop_map(|(x, y, z, w)| [x * w.abs(), y * w.abs(), z * w.abs(), w]);
-    (side(), side(), prop::array::uniform3(vertex))
+    // A vertex at w = 0 has no projection: its x, y, z are taken as they are, not scaled by w.
+    let at_eye_plane = (coordinate.clone(), coordinate, -1.0f32..1.0).prop_map(|(x, y, z)| [x, y, z, 0.0]);
+    let vertex = prop_oneof![6 => scaled, 1 => at_eye_plane];
+    (any_side(), any_side(), prop::array::uniform3(vertex))
         .prop_map(|(w, h, v)| Scene::new(w, h, v.to_vec(), vec![[0, 1, 2]]))
+}
+
+/// Half [`perspective_inside_scene`], which nothing clips, half [`crossing_scene`]: for the
+/// rules that compare interpolation with the ray cast, and the culling rule, clipped or not.
+pub fn inside_or_crossing_scene() -> impl Strategy<Value = Scene> {
+    prop_oneof![perspective_inside_scene(), crossing_scene()]
 }
 
 /// A few overlapping and intersecting grid triangles with random depth per vertex.

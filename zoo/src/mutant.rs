@@ -58,11 +58,18 @@ pub enum Bug {
     /// mutation testing of the reference: the depth rules met no tie and replayed fragments
     /// through the reference's own compare).
     StrictCompare,
+    /// Clipped triangles' attributes interpolated affinely (screen space), as if the clipped
+    /// fan's code path forgot the perspective correction: no rule compared clipped triangles'
+    /// barycentrics with the ray cast, and they stay in [0, 1] and sum to 1.
+    AffineClipped,
+    /// A cut vertex's window depth taken as the corners' window depths mixed by its
+    /// barycentrics instead of its own z/w: depth goes wrong on clipped triangles only.
+    LerpedCutDepth,
 }
 
 impl Bug {
     /// Every bug.
-    pub const ALL: [Bug; 20] = [
+    pub const ALL: [Bug; 22] = [
         Self::InclusiveEdges,
         Self::ExclusiveEdges,
         Self::BottomRightAsTopLeft,
@@ -83,6 +90,8 @@ impl Bug {
         Self::DegenerateFragments,
         Self::UnmappedGlDepth,
         Self::StrictCompare,
+        Self::AffineClipped,
+        Self::LerpedCutDepth,
     ];
 
     /// The name after `mutant:` in `--impl`.
@@ -109,6 +118,8 @@ impl Bug {
             Self::DegenerateFragments => "degenerate-fragments",
             Self::UnmappedGlDepth => "unmapped-gl-depth",
             Self::StrictCompare => "strict-compare",
+            Self::AffineClipped => "affine-clipped",
+            Self::LerpedCutDepth => "lerped-cut-depth",
         }
     }
 
@@ -124,10 +135,12 @@ impl Bug {
             // Its cracks come from evaluating a shared edge from either end in f32: reversing one
             // triangle's winding shows the same on a single triangle.
             Self::FloatEdges => Family::Meta,
-            Self::AffineAttributes | Self::WrongArea => Family::Bary,
-            Self::DepthWithoutTest | Self::PerspectiveDepth | Self::UnmappedGlDepth | Self::StrictCompare => {
-                Family::Depth
-            }
+            Self::AffineAttributes | Self::WrongArea | Self::AffineClipped => Family::Bary,
+            Self::DepthWithoutTest
+            | Self::PerspectiveDepth
+            | Self::UnmappedGlDepth
+            | Self::StrictCompare
+            | Self::LerpedCutDepth => Family::Depth,
             Self::NoNearClip | Self::DirectionalClip => Family::Clip,
             Self::OneWinding | Self::InvertedFacing | Self::RotatedEdgeOrigin | Self::DegenerateFragments => {
                 Family::Meta
@@ -197,7 +210,7 @@ impl Rasterizer for Mutant {
                     }
                 }
             };
-            let Some(verts) = self.project(draw, &polygon) else {
+            let Some(verts) = self.project(draw, &input, &polygon) else {
                 continue;
             };
             if verts.len() < 3 {
@@ -265,7 +278,14 @@ impl Rasterizer for Mutant {
 
 impl Mutant {
     /// Divides by w and snaps; `None` when a vertex has no finite raster position in range.
-    fn project(&self, draw: &Draw, polygon: &[ClipVertex]) -> Option<Vec<Vert>> {
+    fn project(&self, draw: &Draw, corners: &[ClipVertex; 3], polygon: &[ClipVertex]) -> Option<Vec<Vert>> {
+        let range = draw.state.depth_range;
+        // What the bug mixes: the corners' window depths, by a cut vertex's barycentrics.
+        let lerped_depth = |b: DVec3| {
+            (0..3)
+                .map(|k| b[k] * range.window_depth(corners[k].position.z, corners[k].position.w))
+                .sum::<f64>()
+        };
         // The dropped bit: snap to 1/128 px, kept in 1/256 px units like everything else.
         let step = if self.bug == Bug::DroppedSubpixelBit {
             2.0
@@ -287,10 +307,10 @@ impl Mutant {
                 Some(Vert {
                     raster: [x, y],
                     fixed: [snap(x)?, snap(y)?],
-                    depth: if self.bug == Bug::UnmappedGlDepth {
-                        p.z / p.w
-                    } else {
-                        draw.state.depth_range.window_depth(p.z, p.w)
+                    depth: match self.bug {
+                        Bug::UnmappedGlDepth => p.z / p.w,
+                        Bug::LerpedCutDepth => lerped_depth(c.barycentric),
+                        _ => range.window_depth(p.z, p.w),
                     },
                     inv_w: 1.0 / p.w,
                     bary: c.barycentric,
@@ -346,11 +366,12 @@ impl Mutant {
                 let persp = [0, 1, 2].map(|k| q[k] / qs);
                 let mix = |wt: [f64; 3]| (0..3).map(|k| t[k].bary * wt[k]).sum::<DVec3>();
                 let screen = mix(weights);
-                let bary = if self.bug == Bug::AffineAttributes {
-                    screen
-                } else {
-                    mix(persp)
+                let affine = match self.bug {
+                    Bug::AffineAttributes => true,
+                    Bug::AffineClipped => !unclipped,
+                    _ => false,
                 };
+                let bary = if affine { screen } else { mix(persp) };
                 let dw = if self.bug == Bug::PerspectiveDepth {
                     persp
                 } else {

@@ -48,11 +48,15 @@ pub(super) fn rules() -> Vec<Rule> {
 }
 
 /// Triangles all behind the eye, or all in front of it but before the near plane.
+///
+/// Before the near plane means `z < −w`, which is before it under both clip volumes: a
+/// profile supporting only OpenGL's `−w ≤ z` has `fit` move the draw to that range, and a
+/// vertex with `−w ≤ z < 0` would then be visible.
 fn behind_scene() -> impl Strategy<Value = Scene> {
     let behind =
         (-2.0f32..2.0, -2.0f32..2.0, -1.0f32..1.0, -4.0f32..-0.01).prop_map(|(x, y, z, w)| [x, y, z, w]);
-    let before_near = (-2.0f32..2.0, -2.0f32..2.0, -4.0f32..-0.001, 0.01f32..4.0)
-        .prop_map(|(x, y, z, w)| [x * w, y * w, z, w]);
+    let before_near = (-2.0f32..2.0, -2.0f32..2.0, 0.001f32..4.0, 0.01f32..4.0)
+        .prop_map(|(x, y, k, w)| [x * w, y * w, -w - k, w]);
     (
         strategy::side(),
         prop_oneof![prop::array::uniform3(behind), prop::array::uniform3(before_near)],
@@ -90,24 +94,39 @@ fn crossing_quad_scene() -> impl Strategy<Value = Scene> {
         })
 }
 
-/// Crossing triangles with far clipping on and depths reaching past the far plane.
+/// Crossing triangles with far clipping on and depths reaching past the far plane, and before
+/// the near one, under either clip volume (the far plane is `z = w` in both).
 fn far_scene() -> impl Strategy<Value = Scene> {
-    (strategy::float_scene(), prop::array::uniform3(0.0f32..2.5)).prop_map(|(mut s, z)| {
-        for (p, z) in s.positions.iter_mut().zip(z) {
-            p[2] = z * p[3];
-        }
-        s.state.clip_far = true;
-        s
-    })
+    (
+        strategy::float_scene(),
+        prop::array::uniform3(-0.5f32..2.5),
+        any::<bool>(),
+    )
+        .prop_map(|(mut s, z, gl)| {
+            for (p, z) in s.positions.iter_mut().zip(z) {
+                p[2] = z * p[3];
+            }
+            s.state.clip_far = true;
+            if gl {
+                s.state.depth_range = DepthRange::NegativeOneToOne;
+            }
+            s
+        })
 }
 
-/// Triangles under the OpenGL clip volume with depths crossing z = −w.
+/// Triangles under the OpenGL clip volume with depths crossing z = −w, with far clipping on or off.
 fn gl_scene() -> impl Strategy<Value = Scene> {
-    (strategy::float_scene(), prop::array::uniform3(-2.0f32..1.0)).prop_map(|(mut s, z)| {
-        for (p, z) in s.positions.iter_mut().zip(z) {
-            p[2] = z * p[3];
-        }
-        s.state.depth_range = DepthRange::NegativeOneToOne;
-        s
-    })
+    (
+        strategy::float_scene(),
+        prop::array::uniform3(-2.0f32..1.5),
+        any::<bool>(),
+    )
+        .prop_map(|(mut s, z, far)| {
+            for (p, z) in s.positions.iter_mut().zip(z) {
+                p[2] = z * p[3];
+            }
+            s.state.depth_range = DepthRange::NegativeOneToOne;
+            s.state.clip_far = far;
+            s
+        })
 }

@@ -5,8 +5,8 @@ use std::collections::{BTreeMap, HashMap};
 use refrast::{Fragment, Profile, Rasterizer, Reference, ReferenceConfig, Snapping, SubpixelBits};
 
 use crate::oracle::outline::{OutlinePoint, distance_to_outline, visible_outline};
-use crate::oracle::raster::{sample_centre, sample_ndc, snap, to_ndc};
-use crate::oracle::ray_cast::{Hit, ray_cast};
+use crate::oracle::raster::{ndc_offset, sample_centre, sample_ndc, snap, to_ndc, unclipped};
+use crate::oracle::ray_cast::{Hit, ray_cast, spread};
 use crate::picture::{finite_outlines, scene_outlines};
 use crate::scene::Scene;
 use crate::violation::{Expect, Violation, compare_coverage, count_fragments};
@@ -96,21 +96,104 @@ pub fn snapped_triangle(scene: &Scene, t: usize, snapping: Snapping) -> Option<[
     Some(out)
 }
 
-/// Each fragment paired with the ray cast of the snapped triangle 0 at its sample.
+/// What the ray cast expects of one fragment: its barycentrics and window depth (unclamped),
+/// each within a slack on top of the profile's precision.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Expected {
+    /// Perspective-correct barycentrics.
+    pub barycentric: [f64; 3],
+    /// Window depth, unclamped.
+    pub depth: f64,
+    /// How far the barycentrics may be off besides the precision: 0 when nothing is clipped.
+    pub barycentric_slack: f64,
+    /// How far the depth may be off besides the precision: 0 when nothing is clipped.
+    pub depth_slack: f64,
+}
+
+/// Each fragment of triangle 0 paired with what the ray cast expects at its sample.
 ///
-/// Fragments whose ray misses (a covered sample on an edge, a hair outside in f64) are left
-/// out; empty when a vertex has no projection.
-pub fn raycast_fragments(r: &mut dyn Rasterizer, scene: &Scene) -> Result<Vec<(Fragment, Hit)>, Violation> {
-    let Some(tri) = snapped_triangle(scene, 0, r.profile().snapping) else {
+/// A triangle inside the clip volume is cast exactly as drawn (snapped, [`snapped_triangle`]);
+/// fragments whose ray misses (a covered sample on an edge, a hair outside in f64) are left
+/// out. A triangle that may be clipped is cast unsnapped, and the slack is the ray cast's
+/// [`spread`] over one grid step around the sample: the cut vertices are snapped, and every
+/// vertex of the polygon may move by that much (one step whichever way the grid rounds, or the
+/// band's unit without a grid). Fragments are left out where no bound exists (the box reaches
+/// the plane's horizon) or where the ray cast sees the triangle neither at the sample nor at a
+/// corner of the box (a covered sample there is for the coverage rules to judge).
+pub fn raycast_fragments(
+    r: &mut dyn Rasterizer,
+    scene: &Scene,
+) -> Result<Vec<(Fragment, Expected)>, Violation> {
+    let profile = r.profile();
+    let frags = fragments(r, scene)?;
+    let state = &scene.state;
+    let (w, h) = (scene.width, scene.height);
+    let corners = scene
+        .triangles
+        .first()
+        .map(|t| t.map(|i| scene.positions[i as usize]));
+    let Some(corners) = corners else {
         return Ok(Vec::new());
     };
-    Ok(fragments(r, scene)?
+    if unclipped(&corners, state.depth_range, state.clip_far) {
+        let Some(tri) = snapped_triangle(scene, 0, profile.snapping) else {
+            return Ok(Vec::new());
+        };
+        return Ok(frags
+            .into_iter()
+            .filter(|f| f.primitive == 0)
+            .filter_map(|f| {
+                let [nx, ny] = sample_ndc(w, h, f.x, f.y);
+                let hit = ray_cast(&tri, nx, ny, state)?;
+                Some((f, Expected::exact(hit)))
+            })
+            .collect());
+    }
+    let tri = scene.positions_of(0);
+    let step = profile.snapping.unit_px();
+    let half = ndc_offset(w, h, step, step).map(f64::abs);
+    Ok(frags
         .into_iter()
+        .filter(|f| f.primitive == 0)
         .filter_map(|f| {
-            let [nx, ny] = sample_ndc(scene.width, scene.height, f.x, f.y);
-            ray_cast(&tri, nx, ny, &scene.state).map(|hit| (f, hit))
+            let [nx, ny] = sample_ndc(w, h, f.x, f.y);
+            // The bound speaks of a visible point within the box; where the ray cast sees none
+            // at the sample or a corner, the fragment is the coverage rules' business.
+            let corners = [(0.0, 0.0), (-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0)];
+            corners
+                .iter()
+                .find_map(|(sx, sy)| ray_cast(&tri, nx + sx * half[0], ny + sy * half[1], state))?;
+            let s = spread(&tri, nx, ny, half, state.depth_range)?;
+            let expected = Expected {
+                barycentric: s.at.barycentric,
+                depth: s.at.depth,
+                barycentric_slack: s.barycentric,
+                depth_slack: s.depth,
+            };
+            Some((f, expected))
         })
         .collect())
+}
+
+/// ", allowed …" naming the slack a clipped triangle's snapped cut vertices earn, if any.
+pub fn slack_note(slack: f64) -> String {
+    if slack > 0.0 {
+        format!(", allowed {slack:.3e} more because the clipped polygon's vertices are snapped")
+    } else {
+        String::new()
+    }
+}
+
+impl Expected {
+    /// An exact ray-cast hit: no slack.
+    fn exact(hit: Hit) -> Self {
+        Self {
+            barycentric: hit.barycentric,
+            depth: hit.depth,
+            barycentric_slack: 0.0,
+            depth_slack: 0.0,
+        }
+    }
 }
 
 /// Ray-cast expectations for a scene whose triangles do not overlap (one triangle, or a mesh).

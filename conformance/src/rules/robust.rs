@@ -15,7 +15,7 @@ use crate::violation::{Findings, Violation, plural};
 /// A scene with one coordinate of triangle 0 replaced by a non-finite value.
 #[derive(Clone)]
 pub struct Poisoned {
-    /// The scene before poisoning; its triangles share no vertices.
+    /// The scene before poisoning; triangle 1 may share the poisoned vertex, the rest share none.
     pub scene: Scene,
     /// Which vertex of triangle 0 (0..3) and which component (0..4).
     pub at: (usize, usize),
@@ -58,7 +58,7 @@ impl crate::scene::Case for Poisoned {
 pub(super) fn rules() -> Vec<Rule> {
     vec![
         Rule::invariant(Family::Robust, "robust.non-finite.discarded")
-            .sentence("A NaN or infinite coordinate discards its triangle and nothing else, without an error.")
+            .sentence("A NaN or infinite coordinate discards every triangle using its vertex and nothing else, without an error.")
             .source("D3D11.3 §3.3.1 (NaN positions are discarded); design.md")
             .cases(3000)
             .run(|r, cfg| property(r, cfg, poisoned(), check_poisoned)),
@@ -82,11 +82,24 @@ pub(super) fn rules() -> Vec<Rule> {
 
 fn poisoned() -> impl Strategy<Value = Poisoned> {
     let value = prop_oneof![Just(f32::NAN), Just(f32::INFINITY), Just(f32::NEG_INFINITY)];
-    (strategy::overlapping_scene(), 0..3usize, 0..4usize, value).prop_map(|(scene, v, c, value)| Poisoned {
-        scene,
-        at: (v, c),
+    (
+        strategy::overlapping_scene(),
+        0..3usize,
+        0..4usize,
         value,
-    })
+        any::<bool>(),
+    )
+        .prop_map(|(mut scene, v, c, value, share)| {
+            // Half the time triangle 1 uses the poisoned vertex too: both must go.
+            if share && scene.triangles.len() > 1 {
+                scene.triangles[1][0] = scene.triangles[0][v];
+            }
+            Poisoned {
+                scene,
+                at: (v, c),
+                value,
+            }
+        })
 }
 
 fn bit_pattern_scene() -> impl Strategy<Value = Scene> {
@@ -97,27 +110,48 @@ fn bit_pattern_scene() -> impl Strategy<Value = Scene> {
     })
 }
 
+/// A grid triangle and a triangle naming a vertex past the last, before or after it: often
+/// exactly one past (the `>` for `>=` slip), or `u32::MAX`.
 fn bad_index_scene() -> impl Strategy<Value = Scene> {
-    (strategy::grid_scene(), 3u32..u32::MAX).prop_map(|(mut s, bad)| {
-        s.triangles.push([0, bad, 1]);
+    let bad = prop_oneof![
+        2 => Just(3u32),
+        1 => 3u32..8,
+        1 => Just(u32::MAX),
+        2 => 3u32..=u32::MAX,
+    ];
+    (strategy::grid_scene(), bad, any::<bool>()).prop_map(|(mut s, bad, first)| {
+        if first {
+            s.triangles.insert(0, [0, bad, 1]);
+        } else {
+            s.triangles.push([0, bad, 1]);
+        }
         s
     })
 }
 
-/// A non-finite coordinate discards its triangle and nothing else.
+/// A non-finite coordinate discards every triangle using its vertex and nothing else.
 pub fn check_poisoned(r: &mut dyn Rasterizer, p: &Poisoned) -> Result<(), Violation> {
     let clean = fragments(r, &p.scene)?;
     let mut bad = p.scene.clone();
-    let vertex = p.scene.triangles[0][p.at.0] as usize;
-    bad.positions[vertex][p.at.1] = p.value;
+    let vertex = p.scene.triangles[0][p.at.0];
+    bad.positions[vertex as usize][p.at.1] = p.value;
+    let poisoned: Vec<bool> = p.scene.triangles.iter().map(|t| t.contains(&vertex)).collect();
+    let is_poisoned = |f: &Fragment| poisoned.get(f.primitive as usize).copied().unwrap_or(false);
     let got = fragments(r, &bad)?;
     let mut found = Findings::new();
-    for f in got.iter().filter(|f| f.primitive == 0) {
-        found.add((f.x, f.y), || format!("{:?} at depth {}", (f.x, f.y), f.depth));
+    for f in got.iter().filter(|f| is_poisoned(f)) {
+        found.add((f.x, f.y), || {
+            format!(
+                "{:?} of triangle {} at depth {}",
+                (f.x, f.y),
+                f.primitive,
+                f.depth
+            )
+        });
     }
     if let Err(mut violation) = found.verdict(|n| {
         format!(
-            "the triangle with a {} coordinate (vertex {}, component {}) drew {}",
+            "the triangles using a {} coordinate (vertex {}, component {}) drew {}",
             rust_f32(p.value),
             p.at.0,
             p.at.1,
@@ -132,7 +166,7 @@ pub fn check_poisoned(r: &mut dyn Rasterizer, p: &Poisoned) -> Result<(), Violat
         )));
         return Err(violation);
     }
-    let others: Vec<Fragment> = clean.into_iter().filter(|f| f.primitive != 0).collect();
+    let others: Vec<Fragment> = clean.into_iter().filter(|f| !is_poisoned(f)).collect();
     compare_sets(
         &p.scene,
         &got,

@@ -7,6 +7,9 @@
 //! this works for triangles crossing `w = 0` as it does for any other.
 
 mod exact;
+mod spread;
+
+pub use spread::{PlaneValue, Spread, spread};
 
 use refrast::DrawState;
 

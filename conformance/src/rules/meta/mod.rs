@@ -57,7 +57,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .source("dEQP-VK.rasterization.culling.*; seed 003 (back-face culling)")
             .cases(3000)
             .needs(CULLING)
-            .run(|r, cfg| property(r, cfg, strategy::overlapping_scene(), check_culling)),
+            .run(|r, cfg| property(r, cfg, cull_scene(), check_culling)),
         Rule::invariant(Family::Meta, "meta.facing.from-winding")
             .sentence("A fragment is front-facing exactly when its triangle turns on screen the way the front face says: by its snapped signed area, or by the sign of det[x y w] when it is clipped.")
             .source("Vulkan 1.4 §28.7.1 (polygon facing from the signed area); Olano and Greer 1997 (facing of clipped triangles); seed 003 (back-face culling)")
@@ -69,6 +69,12 @@ pub(super) fn rules() -> Vec<Rule> {
             .cases(10000)
             .run(|r, cfg| property(r, cfg, degenerate_scene(), check_degenerate)),
     ]
+}
+
+/// Overlapping grid triangles, or one across clip planes (w of either sign or 0): culling must
+/// follow the facing of clipped triangles too, not a wrongly signed area before clipping.
+fn cull_scene() -> impl Strategy<Value = Scene> {
+    prop_oneof![strategy::overlapping_scene(), strategy::crossing_scene()]
 }
 
 /// Unclipped grid triangles, and triangles across clip planes with `w` of either sign, under
@@ -160,7 +166,9 @@ fn degenerate_scene() -> impl Strategy<Value = Scene> {
     // Half-pixel points stay collinear on every grid of one subpixel bit or more.
     let half = strategy::GRID / 2;
     let point = || (-8i64..72, -8i64..72);
-    (point(), point(), -3i64..4, 0..2u8, strategy::side()).prop_map(move |(a, b, k, shape, s)| {
+    let ws = prop::array::uniform3(0.1f32..4.0);
+    let shape = (point(), point(), -3i64..4, 0..2u8);
+    (shape, ws, any::<bool>(), strategy::side()).prop_map(move |((a, b, k, shape), ws, cw, s)| {
         let a = (a.0 * half, a.1 * half);
         let b = (b.0 * half, b.1 * half);
         // c on the line through a and b at a whole multiple of b − a, or a repeated vertex.
@@ -169,7 +177,16 @@ fn degenerate_scene() -> impl Strategy<Value = Scene> {
         } else {
             a
         };
-        Scene::from_subpixels(s, s, 8, &[[a, b, c]], 0.5)
+        let mut scene = Scene::from_subpixels(s, s, 8, &[[a, b, c]], 0.5);
+        // Each vertex at its own w: the same screen points (half pixels survive the f32
+        // products), so still zero area, but no longer an affine triangle.
+        for (p, w) in scene.positions.iter_mut().zip(ws) {
+            *p = p.map(|v| v * w);
+        }
+        if cw {
+            scene.state.front_face = FrontFace::Clockwise;
+        }
+        scene
     })
 }
 

@@ -20,12 +20,15 @@ const FAIL: &str = "fill.mesh.exactly-once fill.fan.exactly-once fill.projected-
     bary.perspective.matches-raycast \
     depth.screen-linear.matches-raycast clip.behind-eye.empty clip.interior.matches-raycast \
     clip.mesh.watertight clip.crossing-quad.watertight meta.reversal.flips-facing meta.facing.from-winding meta.degenerate.empty \
-    robust.non-finite.discarded robust.bit-patterns.sane-output robust.output.well-formed";
-const PASS: &str = "fill.rotated-quad.exactly-once fill.interior.matches-raycast bary.sum.one bary.range.unit \
-    bary.vertex.one depth.range.vertices meta.rotation.same-coverage \
+    robust.non-finite.discarded robust.bit-patterns.sane-output robust.output.well-formed \
+    bary.range.unit meta.rotation.same-coverage meta.cull.by-facing";
+// The last three failed once the generators reached w = 0 vertices and sub-pixel triangles
+// (issue 12): euc panics there in debug builds (findings.rs, findings 6 and 7).
+const PASS: &str = "fill.rotated-quad.exactly-once fill.interior.matches-raycast bary.sum.one \
+    bary.vertex.one depth.range.vertices \
     depth.order.independent depth.resolve.matches-fragments meta.translate.whole-pixels \
     meta.translate.one-subpixel \
-    meta.viewport.neutral meta.batch.independent meta.cull.by-facing robust.bad-index.error";
+    meta.viewport.neutral meta.batch.independent robust.bad-index.error";
 const NOT_APPLICABLE: &str = "fill.top-left.exact fill.guard-band.exact fill.brute-force.exact \
     bary.screen.reconstructs-sample bary.equal-w.affine clip.far.respected clip.gl-range.matches-raycast";
 

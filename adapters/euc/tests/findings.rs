@@ -212,6 +212,65 @@ fn depth_is_off_by_a_hundredth_near_an_edge() {
     assert!(off > 1.0e-2 && off < 1.1e-2, "off by {off}");
 }
 
+/// Whether euc panics drawing `d` (its debug assertions and overflow checks are on in tests).
+#[cfg(debug_assertions)]
+fn panics(d: &Draw) -> Option<String> {
+    let caught = std::panic::catch_unwind(|| Euc.rasterize(d));
+    caught.err().map(|p| {
+        p.downcast_ref::<String>()
+            .cloned()
+            .or_else(|| p.downcast_ref::<&str>().map(|s| (*s).to_string()))
+            .unwrap_or_default()
+    })
+}
+
+/// Finding 6. A vertex at w = 0 (valid input: clipping at the near plane removes it, Vulkan
+/// §27.4) makes x/w infinite; euc casts it to i32, which saturates at `i32::MAX`, and the
+/// bounding box's `e + 1` overflows (triangles.rs:129): a panic in debug builds, the same path
+/// as the vertex at x = 10¹⁰·w that crashes release builds. Found by `bary.range.unit` and
+/// `meta.cull.by-facing` once `crossing_scene` made vertices at w = 0.
+#[test]
+#[cfg(debug_assertions)] // The overflow check and the assertion exist only in debug builds.
+fn a_vertex_at_w_zero_overflows_the_bounding_box() {
+    let d = draw(
+        16,
+        vec![
+            [1.3765194, 0.0, 0.0, 0.0],
+            [0.0, 0.0, 0.0, 0.2],
+            [0.0, 0.0, 0.0, 0.2],
+        ],
+        vec![[0, 1, 2]],
+    );
+    let message = panics(&d).expect("euc panics in a debug build");
+    assert!(message.contains("overflow"), "{message}");
+}
+
+/// Finding 7. A zero-area triangle whose coinciding vertices have different w: vertices 0 and
+/// 2 both project to NDC (−1.15625, 0.9375), so det[x y w] = 0 while the normal of the
+/// (x, y, w) plane is not zero; euc divides by that determinant and its debug assertion that
+/// the weights are finite fires (triangles.rs:97). With equal w (finding 3) the normal is zero
+/// and euc draws NaN fragments instead. Found by `meta.rotation.same-coverage` once
+/// `grid_offset` made sub-pixel (here zero) offsets.
+#[test]
+#[cfg(debug_assertions)]
+fn a_zero_area_triangle_with_different_w_trips_an_assertion() {
+    let d = Draw::new(
+        Viewport::new(32, 16).expect("a valid viewport"),
+        vec![
+            [-1.131672, 0.9175719, 0.0, 0.9787434],
+            [-4.1690516, -2.951541, 0.0, 3.1483104],
+            [-0.115625, 0.09375, 0.0, 0.1],
+        ],
+        vec![[0, 1, 2]],
+    );
+    let p = [[-1.131672f64, 0.9175719, 0.9787434], [-0.115625, 0.09375, 0.1]];
+    // The two vertices project to the same point (to f32 rounding of the inputs).
+    assert!((p[0][0] / p[0][2] - p[1][0] / p[1][2]).abs() < 1e-6);
+    assert!((p[0][1] / p[0][2] - p[1][1] / p[1][2]).abs() < 1e-6);
+    let message = panics(&fitted(d)).expect("euc panics in a debug build");
+    assert!(message.contains("is_finite"), "{message}");
+}
+
 /// Not a finding, a false positive fixed: a sample within 10⁻⁶ px of an edge goes in or out
 /// depending on the vertex order in euc's f32 weights. Without a tie rule that is allowed, so
 /// `meta.rotation.same-coverage` no longer judges the coverage of samples within the band of

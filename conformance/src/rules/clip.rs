@@ -130,3 +130,35 @@ fn gl_scene() -> impl Strategy<Value = Scene> {
             s
         })
 }
+
+#[cfg(test)]
+mod tests {
+    use proptest::strategy::ValueTree;
+    use proptest::test_runner::TestRunner;
+
+    use super::*;
+    use crate::oracle::raster::near_distance;
+
+    /// Every vertex `behind_scene` makes is outside the near plane of both clip volumes, so a
+    /// profile that only has OpenGL's `−w ≤ z` (to which `fit` moves the draw) must draw
+    /// nothing too. Before, "before the near plane" meant `z < 0`, visible under GL.
+    #[test]
+    fn behind_scenes_are_invisible_under_either_volume() {
+        let mut runner = TestRunner::deterministic();
+        for _ in 0..2000 {
+            let scene = behind_scene()
+                .new_tree(&mut runner)
+                .expect("the strategy makes scenes")
+                .current();
+            for p in &scene.positions {
+                let [_, _, z, w] = *p;
+                for range in [DepthRange::ZeroToOne, DepthRange::NegativeOneToOne] {
+                    assert!(
+                        w < 0.0 || near_distance(range, z, w) < 0.0,
+                        "{p:?} under {range:?}"
+                    );
+                }
+            }
+        }
+    }
+}

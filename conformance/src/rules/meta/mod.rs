@@ -166,7 +166,10 @@ fn degenerate_scene() -> impl Strategy<Value = Scene> {
     // Half-pixel points stay collinear on every grid of one subpixel bit or more.
     let half = strategy::GRID / 2;
     let point = || (-8i64..72, -8i64..72);
-    let ws = prop::array::uniform3(0.1f32..4.0);
+    // Powers of two, so that x·w and (x·w)/w are exact in f32: with any other w a driver that
+    // divides in f32 and snaps by truncation can land a vertex one unit off and give the
+    // triangle area (softpipe did, a false positive; `degenerate_scenes_project_exactly`).
+    let ws = prop::array::uniform3((-3i32..=2).prop_map(|k| 2.0f32.powi(k)));
     let shape = (point(), point(), -3i64..4, 0..2u8);
     (shape, ws, any::<bool>(), strategy::side()).prop_map(move |((a, b, k, shape), ws, cw, s)| {
         let a = (a.0 * half, a.1 * half);
@@ -178,8 +181,8 @@ fn degenerate_scene() -> impl Strategy<Value = Scene> {
             a
         };
         let mut scene = Scene::from_subpixels(s, s, 8, &[[a, b, c]], 0.5);
-        // Each vertex at its own w: the same screen points (half pixels survive the f32
-        // products), so still zero area, but no longer an affine triangle.
+        // Each vertex at its own w: the same screen points exactly, so still zero area, but no
+        // longer an affine triangle.
         for (p, w) in scene.positions.iter_mut().zip(ws) {
             *p = p.map(|v| v * w);
         }
@@ -373,4 +376,37 @@ pub fn check_culling(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violat
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::strategy::ValueTree;
+    use proptest::test_runner::TestRunner;
+
+    use super::*;
+
+    /// Regression (softpipe, issue 12): with w from a continuous range, a vertex of a
+    /// "zero-area" triangle projected to 383.9995 of 1/256 px in f32, which truncating snaps to
+    /// 383 and rounding to 384, so the triangle had area for some drivers. Every vertex must
+    /// project, in f32 as in f64, exactly onto the half-pixel lattice it was built on.
+    #[test]
+    fn degenerate_scenes_project_exactly() {
+        let mut runner = TestRunner::deterministic();
+        for _ in 0..2000 {
+            let scene = degenerate_scene()
+                .new_tree(&mut runner)
+                .expect("the strategy makes scenes")
+                .current();
+            let (w, h) = (scene.width as f32, scene.height as f32);
+            for p in &scene.positions {
+                let (nx, ny) = (p[0] / p[3], p[1] / p[3]);
+                let raster = [(nx + 1.0) * 0.5 * w, (1.0 - ny) * 0.5 * h];
+                for c in raster {
+                    assert_eq!((c * 2.0).fract(), 0.0, "{p:?} projects to {raster:?}");
+                    assert_eq!(f64::from(c), f64::from(c * 2.0) / 2.0);
+                }
+                assert_eq!(f64::from(nx), f64::from(p[0]) / f64::from(p[3]), "{p:?}");
+            }
+        }
+    }
 }

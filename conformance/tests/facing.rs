@@ -39,13 +39,17 @@ fn facing_of_a_triangle_reaching_behind_the_eye_is_judged() {
     let rule = &report.rules[0];
     assert_eq!(rule.status, Status::Fail, "{rule:#?}");
     let input = rule.counterexample.as_deref().unwrap_or("");
-    // Position lines read `[x, y, z, w],`: one of them has w < 0.
+    // Position lines read `[x, y, z, w],`: one of them has w < 0, or w = 0 (on the eye's
+    // plane, where dividing by w fails as badly), which crossing scenes make too.
     let behind = input
         .lines()
         .filter_map(|l| l.trim().strip_prefix('[')?.strip_suffix("],"))
         .filter_map(|l| l.rsplit(", ").next()?.parse::<f32>().ok())
-        .any(|w| w < 0.0);
-    assert!(behind, "the counterexample has a vertex behind the eye:\n{input}");
+        .any(|w| w <= 0.0);
+    assert!(
+        behind,
+        "the counterexample has a vertex behind the eye or on its plane:\n{input}"
+    );
     // The same rule passes the reference, whose clipped triangles take det[x y w]'s sign.
     let report = certify(&mut Reference::default(), &options, |_| {});
     assert!(report.passed(), "{report:#?}");

@@ -199,9 +199,13 @@ const EXPECTED: [Expected; 3] = [
         fail: "fill.mesh.exactly-once fill.fan.exactly-once fill.rotated-quad.exactly-once \
                fill.projected-mesh.exactly-once fill.interior.matches-raycast \
                bary.screen.reconstructs-sample clip.behind-eye.empty clip.interior.matches-raycast clip.mesh.watertight \
-               clip.crossing-quad.watertight meta.reversal.flips-facing meta.translate.one-subpixel",
+               clip.crossing-quad.watertight meta.reversal.flips-facing meta.translate.one-subpixel \
+               meta.facing.from-winding",
+        // meta.facing.from-winding: dividing by a negative w mirrors a vertex (no clipping), so a
+        // triangle reaching behind the eye gets the wrong facing; found at 300 cases once
+        // crossing scenes changed (issue 12).
         pass: "meta.rotation.same-coverage meta.translate.whole-pixels meta.viewport.neutral \
-               meta.batch.independent meta.facing.from-winding meta.degenerate.empty \
+               meta.batch.independent meta.degenerate.empty \
                robust.non-finite.discarded robust.bit-patterns.sane-output robust.output.well-formed \
                robust.bad-index.error",
         not_applicable: "fill.top-left.exact fill.guard-band.exact fill.brute-force.exact \

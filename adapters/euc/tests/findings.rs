@@ -249,8 +249,8 @@ fn a_vertex_at_w_zero_overflows_the_bounding_box() {
 /// 2 both project to NDC (−1.15625, 0.9375), so det[x y w] = 0 while the normal of the
 /// (x, y, w) plane is not zero; euc divides by that determinant and its debug assertion that
 /// the weights are finite fires (triangles.rs:97). With equal w (finding 3) the normal is zero
-/// and euc draws NaN fragments instead. Found by `meta.rotation.same-coverage` once
-/// `grid_offset` made sub-pixel (here zero) offsets.
+/// and euc draws NaN fragments instead. Found by `meta.rotation.same-coverage` while a
+/// version of `grid_offset` made sub-pixel (here zero) offsets.
 #[test]
 #[cfg(debug_assertions)]
 fn a_zero_area_triangle_with_different_w_trips_an_assertion() {

@@ -22,7 +22,9 @@ const UNAVAILABLE: i32 = 3;
 /// The verdicts the hand checks confirm at [`CASES`] cases a rule, per driver: the failures;
 /// `n/a` below; every other rule passes.
 const LLVMPIPE_FAIL: &str = "robust.bit-patterns.sane-output";
-const LAVAPIPE_FAIL: &str = "robust.non-finite.discarded robust.bit-patterns.sane-output";
+/// At the default cases also `robust.non-finite.discarded` fails (at case 315 of the default
+/// seed since issue 12 reshuffled its generator); the w = +∞ finding below pins it.
+const LAVAPIPE_FAIL: &str = "robust.bit-patterns.sane-output";
 /// At the default cases also `clip.mesh.watertight`, `meta.rotation.same-coverage` and
 /// `meta.reversal.flips-facing` fail (README); the zero-area finding below pins the latter two.
 const SOFTPIPE_FAIL: &str = "fill.mesh.exactly-once fill.fan.exactly-once fill.projected-mesh.exactly-once \

@@ -1,0 +1,141 @@
+//! The bugs the mutants carry, their names and the rule family that must catch each.
+
+use refrast_conformance::Family;
+
+/// A classic rasterizer bug.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Bug {
+    /// Every edge owns its samples (`E ≥ 0`): shared edges are drawn twice.
+    InclusiveEdges,
+    /// No edge owns its samples (`E > 0`): gaps where shared edges pass through samples.
+    ExclusiveEdges,
+    /// A consistent bottom-right rule, declared as top-left: watertight, wrong owner.
+    BottomRightAsTopLeft,
+    /// Edge functions in f32 on unsnapped coordinates: cracks and order effects at large coordinates.
+    FloatEdges,
+    /// Snaps to 7 subpixel bits while declaring 8.
+    DroppedSubpixelBit,
+    /// Attributes interpolated affinely (screen space) while declaring perspective-correct.
+    AffineAttributes,
+    /// Barycentrics divided by the triangle's area instead of twice it: they sum to 2.
+    WrongArea,
+    /// Depth written without the depth test: the last fragment wins, whatever its depth.
+    DepthWithoutTest,
+    /// Depth interpolated perspective-correctly instead of linearly in screen space.
+    PerspectiveDepth,
+    /// No near-plane clipping: vertices behind the eye are divided by negative w.
+    NoNearClip,
+    /// Clip intersections computed in f32 from the vertex met first: shared edges cut differently.
+    DirectionalClip,
+    /// The bounding box stops one pixel short of its maximum.
+    ExclusiveBboxMax,
+    /// The bounding box is clamped to the viewport size instead of its last pixel.
+    UnclampedBbox,
+    /// Edge functions in 32-bit integers: products overflow at large coordinates.
+    Edge32Bit,
+    /// Only one winding handled: clockwise triangles are lost even with culling off.
+    OneWinding,
+    /// Front and back facing swapped.
+    InvertedFacing,
+    /// Each edge evaluated in f32 from the first vertex: coverage changes when vertices rotate.
+    RotatedEdgeOrigin,
+    /// Zero-area triangles emit the samples on their line.
+    DegenerateFragments,
+    /// Under OpenGL's `−w ≤ z ≤ w` range, window depth taken as `z/w` instead of
+    /// `(z/w + 1)/2` (found by mutation testing of the reference: no rule judged it).
+    UnmappedGlDepth,
+    /// `LessOrEqual` tested as `Less` and `GreaterOrEqual` as `Greater`: ties lost (found by
+    /// mutation testing of the reference: the depth rules met no tie and replayed fragments
+    /// through the reference's own compare).
+    StrictCompare,
+    /// Clipped triangles' attributes interpolated affinely (screen space), as if the clipped
+    /// fan's code path forgot the perspective correction: no rule compared clipped triangles'
+    /// barycentrics with the ray cast, and they stay in [0, 1] and sum to 1.
+    AffineClipped,
+    /// A cut vertex's window depth taken as the corners' window depths mixed by its
+    /// barycentrics instead of its own z/w: depth goes wrong on clipped triangles only.
+    LerpedCutDepth,
+}
+
+impl Bug {
+    /// Every bug.
+    pub const ALL: [Bug; 22] = [
+        Self::InclusiveEdges,
+        Self::ExclusiveEdges,
+        Self::BottomRightAsTopLeft,
+        Self::FloatEdges,
+        Self::DroppedSubpixelBit,
+        Self::AffineAttributes,
+        Self::WrongArea,
+        Self::DepthWithoutTest,
+        Self::PerspectiveDepth,
+        Self::NoNearClip,
+        Self::DirectionalClip,
+        Self::ExclusiveBboxMax,
+        Self::UnclampedBbox,
+        Self::Edge32Bit,
+        Self::OneWinding,
+        Self::InvertedFacing,
+        Self::RotatedEdgeOrigin,
+        Self::DegenerateFragments,
+        Self::UnmappedGlDepth,
+        Self::StrictCompare,
+        Self::AffineClipped,
+        Self::LerpedCutDepth,
+    ];
+
+    /// The name after `mutant:` in `--impl`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::InclusiveEdges => "inclusive-edges",
+            Self::ExclusiveEdges => "exclusive-edges",
+            Self::BottomRightAsTopLeft => "bottom-right-as-top-left",
+            Self::FloatEdges => "float-edges",
+            Self::DroppedSubpixelBit => "dropped-subpixel-bit",
+            Self::AffineAttributes => "affine-attributes",
+            Self::WrongArea => "wrong-area",
+            Self::DepthWithoutTest => "depth-without-test",
+            Self::PerspectiveDepth => "perspective-depth",
+            Self::NoNearClip => "no-near-clip",
+            Self::DirectionalClip => "directional-clip",
+            Self::ExclusiveBboxMax => "exclusive-bbox-max",
+            Self::UnclampedBbox => "unclamped-bbox",
+            Self::Edge32Bit => "edge-32-bit",
+            Self::OneWinding => "one-winding",
+            Self::InvertedFacing => "inverted-facing",
+            Self::RotatedEdgeOrigin => "rotated-edge-origin",
+            Self::DegenerateFragments => "degenerate-fragments",
+            Self::UnmappedGlDepth => "unmapped-gl-depth",
+            Self::StrictCompare => "strict-compare",
+            Self::AffineClipped => "affine-clipped",
+            Self::LerpedCutDepth => "lerped-cut-depth",
+        }
+    }
+
+    /// The rule family whose rules must catch it.
+    #[must_use]
+    pub fn caught_by(self) -> Family {
+        match self {
+            Self::InclusiveEdges
+            | Self::ExclusiveEdges
+            | Self::BottomRightAsTopLeft
+            | Self::DroppedSubpixelBit => Family::Fill,
+            Self::ExclusiveBboxMax | Self::Edge32Bit => Family::Fill,
+            // Its cracks come from evaluating a shared edge from either end in f32: reversing one
+            // triangle's winding shows the same on a single triangle.
+            Self::FloatEdges => Family::Meta,
+            Self::AffineAttributes | Self::WrongArea | Self::AffineClipped => Family::Bary,
+            Self::DepthWithoutTest
+            | Self::PerspectiveDepth
+            | Self::UnmappedGlDepth
+            | Self::StrictCompare
+            | Self::LerpedCutDepth => Family::Depth,
+            Self::NoNearClip | Self::DirectionalClip => Family::Clip,
+            Self::OneWinding | Self::InvertedFacing | Self::RotatedEdgeOrigin | Self::DegenerateFragments => {
+                Family::Meta
+            }
+            Self::UnclampedBbox => Family::Robust,
+        }
+    }
+}

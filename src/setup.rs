@@ -393,4 +393,22 @@ mod tests {
         assert_eq!(clipped_winding(&edge_on, fallback), Winding::Degenerate);
         assert!(asked.get());
     }
+
+    /// Found by mutation testing (the threshold's scale was unjudged): vertex c = 2a, so the
+    /// eye lies in the triangle's plane and det[x y w] is exactly 0, but f64 evaluates it to
+    /// 3.6e-15 (1e-16 of the terms' size). That noise must not decide the winding; the
+    /// snapped polygon does. A scale of the wrong sign or size would trust it.
+    #[test]
+    fn rounding_noise_in_the_determinant_defers_to_the_polygon() {
+        let (a, b) = (
+            [0.909_557_8, 1.732_340_1, -1.624_561_7],
+            [-2.829_915, 2.014_590_7, -0.268_931_72],
+        );
+        let edge_on = triangle([
+            [a[0], a[1], 0.5, a[2]],
+            [b[0], b[1], 0.5, b[2]],
+            [2.0 * a[0], 2.0 * a[1], 0.5, 2.0 * a[2]],
+        ]);
+        assert_eq!(clipped_winding(&edge_on, || 0), Winding::Degenerate);
+    }
 }

@@ -341,3 +341,18 @@ pub fn overlapping_scene() -> impl Strategy<Value = Scene> {
             Scene::new(s, s, positions, indices)
         })
 }
+
+/// `n` values of `strategy` from proptest's deterministic runner, for tests of the generators.
+#[cfg(test)]
+pub(crate) fn samples<S: Strategy>(strategy: S, n: usize) -> Vec<S::Value> {
+    use proptest::strategy::ValueTree;
+    let mut runner = proptest::test_runner::TestRunner::deterministic();
+    (0..n)
+        .map(|_| {
+            strategy
+                .new_tree(&mut runner)
+                .expect("the strategy makes values")
+                .current()
+        })
+        .collect()
+}

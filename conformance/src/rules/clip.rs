@@ -97,45 +97,36 @@ fn crossing_quad_scene() -> impl Strategy<Value = Scene> {
 /// Crossing triangles with far clipping on and depths reaching past the far plane, and before
 /// the near one, under either clip volume (the far plane is `z = w` in both).
 fn far_scene() -> impl Strategy<Value = Scene> {
-    (
-        strategy::float_scene(),
-        prop::array::uniform3(-0.5f32..2.5),
-        any::<bool>(),
-    )
-        .prop_map(|(mut s, z, gl)| {
-            for (p, z) in s.positions.iter_mut().zip(z) {
-                p[2] = z * p[3];
-            }
-            s.state.clip_far = true;
-            if gl {
-                s.state.depth_range = DepthRange::NegativeOneToOne;
-            }
-            s
-        })
+    (float_scene_with_z(-0.5..2.5), any::<bool>()).prop_map(|(mut s, gl)| {
+        s.state.clip_far = true;
+        if gl {
+            s.state.depth_range = DepthRange::NegativeOneToOne;
+        }
+        s
+    })
 }
 
 /// Triangles under the OpenGL clip volume with depths crossing z = −w, with far clipping on or off.
 fn gl_scene() -> impl Strategy<Value = Scene> {
-    (
-        strategy::float_scene(),
-        prop::array::uniform3(-2.0f32..1.5),
-        any::<bool>(),
-    )
-        .prop_map(|(mut s, z, far)| {
-            for (p, z) in s.positions.iter_mut().zip(z) {
-                p[2] = z * p[3];
-            }
-            s.state.depth_range = DepthRange::NegativeOneToOne;
-            s.state.clip_far = far;
-            s
-        })
+    (float_scene_with_z(-2.0..1.5), any::<bool>()).prop_map(|(mut s, far)| {
+        s.state.depth_range = DepthRange::NegativeOneToOne;
+        s.state.clip_far = far;
+        s
+    })
+}
+
+/// A [`strategy::float_scene`] whose vertices get z/w from `z_over_w` instead.
+fn float_scene_with_z(z_over_w: std::ops::Range<f32>) -> impl Strategy<Value = Scene> {
+    (strategy::float_scene(), prop::array::uniform3(z_over_w)).prop_map(|(mut s, z)| {
+        for (p, z) in s.positions.iter_mut().zip(z) {
+            p[2] = z * p[3];
+        }
+        s
+    })
 }
 
 #[cfg(test)]
 mod tests {
-    use proptest::strategy::ValueTree;
-    use proptest::test_runner::TestRunner;
-
     use super::*;
     use crate::oracle::raster::near_distance;
 
@@ -144,12 +135,7 @@ mod tests {
     /// nothing too. Before, "before the near plane" meant `z < 0`, visible under GL.
     #[test]
     fn behind_scenes_are_invisible_under_either_volume() {
-        let mut runner = TestRunner::deterministic();
-        for _ in 0..2000 {
-            let scene = behind_scene()
-                .new_tree(&mut runner)
-                .expect("the strategy makes scenes")
-                .current();
+        for scene in strategy::samples(behind_scene(), 2000) {
             for p in &scene.positions {
                 let [_, _, z, w] = *p;
                 for range in [DepthRange::ZeroToOne, DepthRange::NegativeOneToOne] {

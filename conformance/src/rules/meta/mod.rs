@@ -380,9 +380,6 @@ pub fn check_culling(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violat
 
 #[cfg(test)]
 mod tests {
-    use proptest::strategy::ValueTree;
-    use proptest::test_runner::TestRunner;
-
     use super::*;
 
     /// Regression (softpipe, issue 12): with w from a continuous range, a vertex of a
@@ -391,12 +388,7 @@ mod tests {
     /// project, in f32 as in f64, exactly onto the half-pixel lattice it was built on.
     #[test]
     fn degenerate_scenes_project_exactly() {
-        let mut runner = TestRunner::deterministic();
-        for _ in 0..2000 {
-            let scene = degenerate_scene()
-                .new_tree(&mut runner)
-                .expect("the strategy makes scenes")
-                .current();
+        for scene in strategy::samples(degenerate_scene(), 2000) {
             let (w, h) = (scene.width as f32, scene.height as f32);
             for p in &scene.positions {
                 let (nx, ny) = (p[0] / p[3], p[1] / p[3]);

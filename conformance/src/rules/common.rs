@@ -6,7 +6,7 @@ use refrast::{Fragment, Profile, Rasterizer, Reference, ReferenceConfig, Snappin
 
 use crate::oracle::outline::{OutlinePoint, distance_to_outline, visible_outline};
 use crate::oracle::raster::{ndc_offset, sample_centre, sample_ndc, snap, to_ndc, unclipped};
-use crate::oracle::ray_cast::{Hit, ray_cast, spread};
+use crate::oracle::ray_cast::{Hit, cut_rounding_px, ray_cast, spread};
 use crate::picture::{finite_outlines, scene_outlines};
 use crate::scene::Scene;
 use crate::violation::{Expect, Violation, compare_coverage, count_fragments};
@@ -201,7 +201,8 @@ impl Expected {
 /// A sample inside some triangle should be covered exactly once, one outside all should not
 /// be covered, except within `band` pixels of an outline segment that is not a shared edge:
 /// the mesh boundary and the cuts made by clip planes (there, any count is accepted: a cut
-/// vertex snapped over a neighbour's sample makes it count twice). Shared edges get no band,
+/// vertex snapped over a neighbour's sample makes it count twice); cuts are widened by how far
+/// an f32 clipper may move them ([`cut_rounding_px`]). Shared edges get no band,
 /// so a crack along them is caught exactly, and so is an overlap, except within the band of a
 /// shared edge ending at a cut vertex, where one or two is right ([`Expect::OneOrTwo`]).
 #[must_use]
@@ -242,6 +243,10 @@ pub fn mesh_expectation(scene: &Scene, band: f64) -> (Vec<Expect>, Vec<Vec<[f64;
             let near_boundary = outlines.iter().zip(&shared).any(|(o, &sh)| {
                 // Segments not lying on a shared input edge: the boundary and the cuts.
                 distance_to_outline(o, s, |a, b| a.edges & b.edges & sh == 0) < band
+            }) || outlines.iter().zip(&tris).any(|(o, t)| {
+                // Cuts by a plane also move by an f32 clipper's rounding.
+                let d = distance_to_outline(o, s, |a, b| a.edges & b.edges == 0);
+                d.is_finite() && d < band + cut_rounding_px(t, scene.width, scene.height, s, &scene.state)
             });
             let near_cut_vertex = outlines
                 .iter()

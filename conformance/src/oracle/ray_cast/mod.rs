@@ -6,9 +6,11 @@
 //! `bᵢ ≥ 0`, `w > 0` and it lies inside the near (and far) plane. No clipping is involved, so
 //! this works for triangles crossing `w = 0` as it does for any other.
 
+mod cut_rounding;
 mod exact;
 mod spread;
 
+pub use cut_rounding::{CLIP_ROUNDING, cut_rounding_px};
 pub use spread::{PlaneValue, Spread, spread};
 
 use refrast::DrawState;

@@ -54,7 +54,12 @@ fn settled(sum: f64, magnitude: f64) -> bool {
 
 /// The plane at NDC `(nx, ny)` with the signs of its two denominators (barycentric, depth);
 /// `None` where the ray is (nearly) parallel to the plane or rounding could decide a sign.
-fn plane_at(tri: &[[f64; 4]; 3], nx: f64, ny: f64, range: DepthRange) -> Option<(PlaneValue, [bool; 2])> {
+pub(super) fn plane_at(
+    tri: &[[f64; 4]; 3],
+    nx: f64,
+    ny: f64,
+    range: DepthRange,
+) -> Option<(PlaneValue, [bool; 2])> {
     let u = tri.map(|p| p[0] - nx * p[3]);
     let v = tri.map(|p| p[1] - ny * p[3]);
     // Magnitudes of u and v before cancellation, which bound their rounding and their products'.

@@ -297,25 +297,45 @@ pub fn rotated_quad_scene() -> impl Strategy<Value = Scene> {
 /// (w = 0), exactly on the near or far plane, before the near plane, or far outside the view at
 /// up to ±30000·w (as dEQP's clipping tests), on a viewport of any shape.
 pub fn crossing_scene() -> impl Strategy<Value = Scene> {
-    let coordinate = prop_oneof![
-        3 => -1.5f32..1.5,
-        1 => -30000.0f32..30000.0,
-        1 => prop_oneof![Just(-30000.0f32), Just(30000.0)],
-    ];
-    // z/w: anywhere from before the near plane to past the far one, or exactly on either.
-    let depth = prop_oneof![4 => -1.0f32..1.2, 1 => Just(0.0f32), 1 => Just(1.0f32)];
     let scaled = (
-        coordinate.clone(),
-        coordinate.clone(),
-        depth,
+        crossing_coordinate(),
+        crossing_coordinate(),
+        crossing_depth(),
         prop_oneof![3 => 0.2f32..3.0, 1 => -2.0f32..-0.1],
     )
         .prop_map(|(x, y, z, w)| [x * w.abs(), y * w.abs(), z * w.abs(), w]);
     // A vertex at w = 0 has no projection: its x, y, z are taken as they are, not scaled by w.
-    let at_eye_plane = (coordinate.clone(), coordinate, -1.0f32..1.0).prop_map(|(x, y, z)| [x, y, z, 0.0]);
+    let at_eye_plane =
+        (crossing_coordinate(), crossing_coordinate(), -1.0f32..1.0).prop_map(|(x, y, z)| [x, y, z, 0.0]);
     let vertex = prop_oneof![6 => scaled, 1 => at_eye_plane];
     (any_side(), any_side(), prop::array::uniform3(vertex))
         .prop_map(|(w, h, v)| Scene::new(w, h, v.to_vec(), vec![[0, 1, 2]]))
+}
+
+/// [`crossing_scene`]'s x/w, y/w and z/w with one `w > 0` for all three vertices: clipped by
+/// the x, y, near and far planes, and interpolated alike perspective-correctly or not.
+pub fn equal_w_crossing_scene() -> impl Strategy<Value = Scene> {
+    let vertex = (crossing_coordinate(), crossing_coordinate(), crossing_depth());
+    (any_side(), any_side(), prop::array::uniform3(vertex), 0.2f32..3.0).prop_map(|(width, height, v, w)| {
+        let positions = v.iter().map(|&(x, y, z)| [x * w, y * w, z * w, w]).collect();
+        Scene::new(width, height, positions, vec![[0, 1, 2]])
+    })
+}
+
+/// x/w or y/w for [`crossing_scene`]: mostly near the view volume, else up to ±30000 or exactly
+/// there (dEQP's clipping extent).
+fn crossing_coordinate() -> impl Strategy<Value = f32> + Clone {
+    prop_oneof![
+        3 => -1.5f32..1.5,
+        1 => -30000.0f32..30000.0,
+        1 => prop_oneof![Just(-30000.0f32), Just(30000.0)],
+    ]
+}
+
+/// z/w for [`crossing_scene`]: anywhere from before the near plane to past the far one, or
+/// exactly on either.
+fn crossing_depth() -> impl Strategy<Value = f32> {
+    prop_oneof![4 => -1.0f32..1.2, 1 => Just(0.0f32), 1 => Just(1.0f32)]
 }
 
 /// Half [`perspective_inside_scene`], which nothing clips, half [`crossing_scene`]: for the

@@ -21,14 +21,16 @@ const UNAVAILABLE: i32 = 3;
 
 /// The verdicts the hand checks confirm at [`CASES`] cases a rule, per driver: the failures;
 /// `n/a` below; every other rule passes.
-const LLVMPIPE_FAIL: &str = "robust.bit-patterns.sane-output";
+const LLVMPIPE_FAIL: &str =
+    "bary.screen.reconstructs-sample bary.equal-w.affine robust.bit-patterns.sane-output";
 /// At the default cases also `robust.non-finite.discarded` fails (at case 315 of the default
 /// seed since issue 12 reshuffled its generator); the w = +∞ finding below pins it.
-const LAVAPIPE_FAIL: &str = "robust.bit-patterns.sane-output";
+const LAVAPIPE_FAIL: &str =
+    "bary.screen.reconstructs-sample bary.equal-w.affine robust.bit-patterns.sane-output";
 /// At the default cases also `clip.mesh.watertight`, `meta.rotation.same-coverage` and
 /// `meta.reversal.flips-facing` fail (README); the zero-area finding below pins the latter two.
 const SOFTPIPE_FAIL: &str = "fill.mesh.exactly-once fill.fan.exactly-once fill.projected-mesh.exactly-once \
-    robust.bit-patterns.sane-output";
+    bary.screen.reconstructs-sample bary.equal-w.affine robust.bit-patterns.sane-output";
 const NOT_APPLICABLE: &str = "fill.guard-band.exact clip.gl-range.matches-raycast";
 /// Also n/a for softpipe, which claims no tie rule.
 const SOFTPIPE_NOT_APPLICABLE: &str = "fill.top-left.exact fill.brute-force.exact";
@@ -227,6 +229,64 @@ fn findings(d: Driver, gpu: &mut Gpu) {
         "{}: the extreme triangle gives {} fragments, {outside} outside the 2×2 target, {non_finite} with non-finite weights",
         d.name(),
         frags.len()
+    );
+
+    // Screen-space weights on a triangle clipped by x = w and then the near plane, all w equal
+    // (so they must equal the perspective weights): Mesa's draw clipper (`draw_pipe_clip.c`,
+    // `interp()`) takes a noperspective output's t from the first axis whose clip coordinates
+    // differ, here x, on which both ends of the near cut lie one ulp apart, so t = 0 there.
+    let equal_w = draw(
+        16,
+        16,
+        vec![
+            [0.034_362_59, -0.156_878_2, 0.095_027_015, 0.2],
+            [0.289_709_93, 0.0, 0.0, 0.2],
+            [0.0, 0.0, -0.036_756_188, 0.2],
+        ],
+        vec![[0, 1, 2]],
+    );
+    let drawn = at(&run(&equal_w), 15, 9);
+    let want = at(&expected(&equal_w), 15, 9);
+    let (Some(got), Some(want)) = (drawn.first(), want.first()) else {
+        panic!("{}: (15, 9) covered by the driver and the reference", d.name());
+    };
+    let screen = got.screen_barycentric.expect("screen weights");
+    let apart = |a: [f32; 3], b: [f32; 3]| (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0, f32::max);
+    println!(
+        "{}: clipped, equal w, at (15, 9): perspective {:?}, screen {screen:?} (reference {:?})",
+        d.name(),
+        got.barycentric,
+        want.barycentric
+    );
+    assert!(
+        apart(got.barycentric, want.barycentric) < 0.5f32.powi(8)
+            && apart(screen, [0.18407, 0.62537, 0.19056]) < 1e-4,
+        "{}: clipped screen weights",
+        d.name()
+    );
+
+    // The same choice of axis, when both ends of the cut project to x = 1 exactly but differ in
+    // w: t = 0/0, and every screen weight of the fragments beside that cut is NaN.
+    let nan = draw(
+        16,
+        16,
+        vec![
+            [0.160_769_08, 0.0, -0.097_080_015, 0.2],
+            [0.235_439_35, 0.0, 0.0, 0.2],
+            [0.0, -0.362_214_3, 0.897_783_8, 0.897_783_8],
+        ],
+        vec![[0, 1, 2]],
+    );
+    let drawn = at(&run(&nan), 15, 8);
+    let screen = drawn.first().and_then(|f| f.screen_barycentric);
+    println!(
+        "{}: clipped at x = w and z = 0, at (15, 8): screen {screen:?}",
+        d.name()
+    );
+    assert!(
+        screen.is_some_and(|b| b.iter().all(|w| w.is_nan())) && !at(&expected(&nan), 15, 8).is_empty(),
+        "{}: NaN screen weights beside the near cut",
+        d.name()
     );
 
     if d == Driver::Softpipe {

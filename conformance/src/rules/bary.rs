@@ -5,7 +5,7 @@ use refrast::Rasterizer;
 use super::common::{fragments, precision, raycast_fragments, slack_note, snapped_triangle};
 use super::{Family, PERSPECTIVE_BARYCENTRICS, Rule, SCREEN_BARYCENTRICS};
 use crate::oracle::outline::{distance_to_outline, visible_outline};
-use crate::oracle::raster::{project, sample_centre};
+use crate::oracle::raster::{project, sample_centre, unclipped};
 use crate::runner::property;
 use crate::scene::Scene;
 use crate::strategy;
@@ -45,14 +45,14 @@ pub(super) fn rules() -> Vec<Rule> {
                 )
             }),
         Rule::invariant(Family::Bary, "bary.screen.reconstructs-sample")
-            .sentence("Screen-space barycentrics weight the projected vertices to the sample position.")
-            .source("seed 000 (P = W0·V0 + W1·V1 + W2·V2)")
+            .sentence("Screen-space barycentrics weight the projected vertices to the sample position; on a clipped triangle (half the cases) to within one grid step per axis of it, since its cut vertices are snapped.")
+            .source("seed 000 (P = W0·V0 + W1·V1 + W2·V2); Vulkan 1.4, Clipping Shader Outputs (NoPerspective outputs at cut vertices vary linearly in framebuffer space)")
             .cases(5000)
             .needs(SCREEN_BARYCENTRICS)
-            .run(|r, cfg| property(r, cfg, strategy::perspective_inside_scene(), check_reconstructs)),
+            .run(|r, cfg| property(r, cfg, strategy::inside_or_crossing_scene(), check_reconstructs)),
         Rule::invariant(Family::Bary, "bary.equal-w.affine")
-            .sentence("With equal w at every vertex, perspective-correct and screen-space barycentrics agree within the claimed precision.")
-            .source("conformance-anchors (d5: perspective equals linear when all w are equal)")
+            .sentence("With equal w at every vertex, perspective-correct and screen-space barycentrics agree within the claimed precision, on clipped triangles (half the cases) too.")
+            .source("conformance-anchors (d5: perspective equals linear when all w are equal); Vulkan 1.4, Clipping Shader Outputs")
             .cases(5000)
             .needs(SCREEN_BARYCENTRICS)
             .needs(PERSPECTIVE_BARYCENTRICS)
@@ -63,12 +63,13 @@ pub(super) fn rules() -> Vec<Rule> {
 /// Grid scenes with one `w` for all three vertices.
 fn equal_w_scene() -> impl proptest::strategy::Strategy<Value = Scene> {
     use proptest::prelude::*;
-    (strategy::inside_scene(), 0.1f32..4.0).prop_map(|(mut s, w)| {
+    let inside = (strategy::inside_scene(), 0.1f32..4.0).prop_map(|(mut s, w)| {
         for p in &mut s.positions {
             *p = p.map(|c| c * w);
         }
         s
-    })
+    });
+    prop_oneof![inside, strategy::equal_w_crossing_scene()]
 }
 
 /// Every fragment's barycentrics sum to 1 within three times [`precision`].
@@ -170,10 +171,29 @@ pub fn check_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<()
     })
 }
 
-/// Screen-space barycentrics weight the snapped vertices to the sample position.
+/// Screen-space barycentrics weight the snapped vertices to the sample position; on a clipped
+/// triangle, the unsnapped ones to within one grid step per axis of it.
+///
+/// Why the step: a rasterizer that clips then snaps reports at sample `s` the weights `μⱼ` of
+/// the snapped polygon vertices `p'ⱼ` (`s = Σ μⱼ p'ⱼ`) applied to their exact screen weights,
+/// which give back the exact vertices `pⱼ`; so the weights give back `Σ μⱼ pⱼ`, within
+/// `max |pⱼ − p'ⱼ|` (one grid step per axis) of `s`. Triangles with a vertex at `w ≤ 0` have no
+/// screen shape and are not judged.
 pub fn check_reconstructs(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let eps = precision(&r.profile());
-    let Some(tri) = snapped_triangle(scene, 0, r.profile().snapping) else {
+    let profile = r.profile();
+    let eps = precision(&profile);
+    let exact = scene.triangles[0].map(|i| scene.positions[i as usize]);
+    let (tri, slack) = if unclipped(&exact, scene.state.depth_range, scene.state.clip_far) {
+        let Some(tri) = snapped_triangle(scene, 0, profile.snapping) else {
+            return Ok(());
+        };
+        (tri, 0.0)
+    } else if exact.iter().all(|v| v[3] > 0.0) {
+        (
+            scene.positions_of(0),
+            std::f64::consts::SQRT_2 * profile.snapping.unit_px(),
+        )
+    } else {
         return Ok(());
     };
     let p = tri.map(|v| project(scene.width, scene.height, v));
@@ -189,9 +209,9 @@ pub fn check_reconstructs(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), V
         let b = b.map(f64::from);
         let at = [0, 1].map(|c| b[0] * p[0][c] + b[1] * p[1][c] + b[2] * p[2][c]);
         let s = sample_centre(f.x, f.y);
-        // Weights within eps each move the point by at most 3·eps·extent.
+        // Weights within eps each move the point by at most 3·eps·extent; NaN weights fail.
         let off = (at[0] - s[0]).hypot(at[1] - s[1]);
-        if off > 3.0 * eps * extent {
+        if off.is_nan() || off > 3.0 * eps * extent + slack {
             found.add((f.x, f.y), || {
                 format!(
                     "{:?}: screen barycentrics {b:?} give {at:?}, {off:.3e} px away",
@@ -219,7 +239,8 @@ pub fn check_equal_w(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violat
                 "the profile declares screen-space barycentrics, but a fragment has none",
             ));
         };
-        if (0..3).any(|k| f64::from((f.barycentric[k] - s[k]).abs()) > eps) {
+        let apart = |k: usize| f64::from((f.barycentric[k] - s[k]).abs());
+        if (0..3).any(|k| apart(k).is_nan() || apart(k) > eps) {
             found.add((f.x, f.y), || {
                 format!("{:?}: perspective {:?}, screen {s:?}", (f.x, f.y), f.barycentric)
             });

@@ -55,11 +55,16 @@ pub enum Bug {
     /// A cut vertex's window depth taken as the corners' window depths mixed by its
     /// barycentrics instead of its own z/w: depth goes wrong on clipped triangles only.
     LerpedCutDepth,
+    /// A cut vertex's screen-space weights taken as its clip-space (perspective) ones: one `t`
+    /// for both kinds of output, which Vulkan's "Clipping Shader Outputs" forbids for
+    /// `NoPerspective` ones (found by mutation testing: no rule judged clipped triangles' screen
+    /// weights).
+    PerspectiveCutScreen,
 }
 
 impl Bug {
     /// Every bug.
-    pub const ALL: [Bug; 22] = [
+    pub const ALL: [Bug; 23] = [
         Self::InclusiveEdges,
         Self::ExclusiveEdges,
         Self::BottomRightAsTopLeft,
@@ -82,6 +87,7 @@ impl Bug {
         Self::StrictCompare,
         Self::AffineClipped,
         Self::LerpedCutDepth,
+        Self::PerspectiveCutScreen,
     ];
 
     /// The name after `mutant:` in `--impl`.
@@ -110,6 +116,7 @@ impl Bug {
             Self::StrictCompare => "strict-compare",
             Self::AffineClipped => "affine-clipped",
             Self::LerpedCutDepth => "lerped-cut-depth",
+            Self::PerspectiveCutScreen => "perspective-cut-screen",
         }
     }
 
@@ -125,7 +132,9 @@ impl Bug {
             // Its cracks come from evaluating a shared edge from either end in f32: reversing one
             // triangle's winding shows the same on a single triangle.
             Self::FloatEdges => Family::Meta,
-            Self::AffineAttributes | Self::WrongArea | Self::AffineClipped => Family::Bary,
+            Self::AffineAttributes | Self::WrongArea | Self::AffineClipped | Self::PerspectiveCutScreen => {
+                Family::Bary
+            }
             Self::DepthWithoutTest
             | Self::PerspectiveDepth
             | Self::UnmappedGlDepth

@@ -38,6 +38,8 @@ struct Vert {
     depth: f64,
     inv_w: f64,
     bary: DVec3,
+    /// Screen-space weights of the corners, `None` when a corner has `w ≤ 0` (no screen shape).
+    screen: Option<DVec3>,
 }
 
 impl Rasterizer for Mutant {
@@ -152,6 +154,18 @@ impl Mutant {
                 .map(|k| b[k] * range.window_depth(corners[k].position.z, corners[k].position.w))
                 .sum::<f64>()
         };
+        // A point with homogeneous weights b projects to screen weights bₖwₖ / Σ bⱼwⱼ (the
+        // bug keeps b, the clip-space weights, as if the cut's t served both).
+        let corner_w = DVec3::from(corners.map(|c| c.position.w));
+        let screen = |b: DVec3| {
+            (corner_w.min_element() > 0.0).then(|| {
+                if self.bug == Bug::PerspectiveCutScreen {
+                    b
+                } else {
+                    b * corner_w / b.dot(corner_w)
+                }
+            })
+        };
         // The dropped bit: snap to 1/128 px, kept in 1/256 px units like everything else.
         let step = if self.bug == Bug::DroppedSubpixelBit {
             2.0
@@ -180,6 +194,7 @@ impl Mutant {
                     },
                     inv_w: 1.0 / p.w,
                     bary: c.barycentric,
+                    screen: screen(c.barycentric),
                 })
             })
             .collect()
@@ -231,13 +246,16 @@ impl Mutant {
                 let qs: f64 = q.iter().sum();
                 let persp = [0, 1, 2].map(|k| q[k] / qs);
                 let mix = |wt: [f64; 3]| (0..3).map(|k| t[k].bary * wt[k]).sum::<DVec3>();
-                let screen = mix(weights);
+                let affine_mix = mix(weights);
+                let screen = (0..3)
+                    .map(|k| t[k].screen.map(|s| s * weights[k]))
+                    .sum::<Option<DVec3>>();
                 let affine = match self.bug {
                     Bug::AffineAttributes => true,
                     Bug::AffineClipped => !unclipped,
                     _ => false,
                 };
-                let bary = if affine { screen } else { mix(persp) };
+                let bary = if affine { affine_mix } else { mix(persp) };
                 let dw = if self.bug == Bug::PerspectiveDepth {
                     persp
                 } else {
@@ -250,7 +268,7 @@ impl Mutant {
                     primitive,
                     depth: depth as f32,
                     barycentric: bary.as_vec3().to_array(),
-                    screen_barycentric: unclipped.then(|| screen.as_vec3().to_array()),
+                    screen_barycentric: screen.map(|s| s.as_vec3().to_array()),
                     front_facing: front,
                 });
             }

@@ -411,4 +411,33 @@ mod tests {
         ]);
         assert_eq!(clipped_winding(&edge_on, || 0), Winding::Degenerate);
     }
+
+    /// The threshold sits at 1e-10 of the determinant's terms, from either side: at 2e-10 the
+    /// determinant's sign decides (counter-clockwise) against a snapped polygon that winds the
+    /// other way, at 0.5e-10 the polygon does. The vertices are chosen so that any change to
+    /// how the terms' size is summed moves the threshold by more than those factors
+    /// (cargo-mutants' 12 survivors of the scale, docs/mutants.md).
+    #[test]
+    fn the_determinant_decides_above_its_threshold_and_the_polygon_below() {
+        let vertex = |x: f64, y: f64, w: f64| ClipVertex {
+            position: DVec4::new(x, y, 0.5, w),
+            barycentric: glam::DVec3::ZERO,
+        };
+        let near_edge_on = |cy: f64| {
+            [
+                vertex(-2.704, -2.796, -1.556),
+                vertex(-0.51, -0.076, 0.093),
+                vertex(0.246_478, cy, -0.033_021),
+            ]
+        };
+        let clockwise_polygon = || 5;
+        // det = 2.000003e-10 and 5.000003e-11 of the terms' size (f64, as computed there).
+        let above = near_edge_on(0.050_656_827_924_317_97);
+        let below = near_edge_on(0.050_656_827_907_520_01);
+        assert_eq!(
+            clipped_winding(&above, clockwise_polygon),
+            Winding::CounterClockwise
+        );
+        assert_eq!(clipped_winding(&below, clockwise_polygon), Winding::Clockwise);
+    }
 }

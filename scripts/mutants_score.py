@@ -26,7 +26,8 @@ def explained(path):
     for line in open(path, encoding="utf-8"):
         m = re.match(r"\|\s*`([^`]+)`\s*\|\s*(\w+)\s*\|", line)
         if m:
-            known[m.group(1)] = m.group(2)
+            # A `|` in a mutant's name is written `\|` so that the table keeps its columns.
+            known[m.group(1).replace("\\|", "|")] = m.group(2)
     return known
 
 

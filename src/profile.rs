@@ -277,6 +277,23 @@ impl Profile {
 mod tests {
     use super::*;
 
+    /// Two sets are equal when they hold the same settings, whatever order they were listed in
+    /// (`Profile` and `Features` derive their equality from it).
+    #[test]
+    fn sets_are_equal_by_their_settings() {
+        let both = Supported::only(&[CullMode::Back, CullMode::None]);
+        assert_eq!(both, Supported::only(&[CullMode::None, CullMode::Back]));
+        assert_ne!(both, Supported::only(&[CullMode::None]));
+        assert_ne!(both, Supported::<CullMode>::ALL);
+    }
+
+    /// The words `certify` prints for a profile's snapping (README, "Certified implementations").
+    #[test]
+    fn snapping_reads_as_certify_prints_it() {
+        assert_eq!(Snapping::Grid(8).to_string(), "8 subpixel bits");
+        assert_eq!(Snapping::Float.to_string(), "no grid (float)");
+    }
+
     #[test]
     fn a_set_keeps_what_it_supports_and_falls_back_in_order() {
         let ops = Supported::only(&[CompareOp::GreaterOrEqual, CompareOp::LessOrEqual]);

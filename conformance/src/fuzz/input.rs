@@ -168,7 +168,15 @@ pub struct Perspective {
 }
 
 impl Perspective {
-    /// The scene: needs no clipping, w in [0.1, 4] and z in [0, 1] per vertex.
+    /// Whether every vertex has the same w (then perspective and screen weights agree).
+    #[must_use]
+    pub fn equal_w(&self) -> bool {
+        let [a, b, c] = self.vertices.map(|v| v.2);
+        a == b && b == c
+    }
+
+    /// The scene: w in [0.1, 4] and z/w in [−0.25, 1] per vertex, so that a sixth of the
+    /// vertices lie before the near plane and the triangle is clipped there.
     #[must_use]
     pub fn scene(&self) -> Scene {
         let s = square_side(self.side);
@@ -178,7 +186,15 @@ impl Perspective {
             .iter()
             .map(|&(x, y, w, z)| {
                 let w = 0.1 + f32::from(w) / 255.0 * 3.9;
-                clip_of(s, s, 8, inside(x), inside(y), f32::from(z) / 255.0, w)
+                clip_of(
+                    s,
+                    s,
+                    8,
+                    inside(x),
+                    inside(y),
+                    f32::from(z) / 255.0 * 1.25 - 0.25,
+                    w,
+                )
             })
             .collect();
         Scene::new(s, s, positions, vec![[0, 1, 2]])

@@ -16,11 +16,14 @@ use refrast::{Profile, Rasterizer};
 
 pub use input::{Clipping, GridTriangles, Overlapping, Perspective, Points, RawDraw, RawPipeline};
 
-use crate::rules::bary::{check_matches_raycast, check_sum_one};
+use crate::rules::bary::{check_equal_w, check_matches_raycast, check_reconstructs, check_sum_one};
 use crate::rules::depth::{check_depth_matches_raycast, check_order_independent};
 use crate::rules::fill::{check_exactly_once, check_guard_band};
 use crate::rules::robust::check_well_formed;
-use crate::rules::{EXACT_COVERAGE, GUARD_BAND, NEARER_WINS, Need, PERSPECTIVE_BARYCENTRICS, Z_OVER_W_DEPTH};
+use crate::rules::{
+    EXACT_COVERAGE, GUARD_BAND, NEARER_WINS, Need, PERSPECTIVE_BARYCENTRICS, SCREEN_BARYCENTRICS,
+    Z_OVER_W_DEPTH,
+};
 use crate::violation::Violation;
 
 /// A check that failed on a fuzz input.
@@ -108,7 +111,9 @@ pub fn depth_order(r: &mut dyn Rasterizer, input: &Overlapping) -> Result<(), Fa
 }
 
 /// Barycentrics sum to one and, where the profile declares them, perspective-correct
-/// barycentrics and z/w depth equal the ray cast's within 2^-18.
+/// barycentrics and z/w depth equal the ray cast's within the claimed precision, screen-space
+/// barycentrics give back the sample, and with equal w both kinds agree; clipped triangles
+/// (at the near plane) included.
 pub fn interpolation(r: &mut dyn Rasterizer, input: &Perspective) -> Result<(), Failure> {
     let profile = r.profile();
     let scene = input.scene().fitted(&profile);
@@ -116,6 +121,12 @@ pub fn interpolation(r: &mut dyn Rasterizer, input: &Perspective) -> Result<(), 
         check_sum_one(r, &scene)?;
         if applies(&[PERSPECTIVE_BARYCENTRICS], &profile) {
             check_matches_raycast(r, &scene)?;
+        }
+        if applies(&[SCREEN_BARYCENTRICS], &profile) {
+            check_reconstructs(r, &scene)?;
+            if input.equal_w() && applies(&[PERSPECTIVE_BARYCENTRICS], &profile) {
+                check_equal_w(r, &scene)?;
+            }
         }
         if applies(&[Z_OVER_W_DEPTH], &profile) {
             check_depth_matches_raycast(r, &scene)?;

@@ -180,3 +180,52 @@ pub trait Rasterizer {
         Ok(Resolved::from_fragments(draw, fragments))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Viewport;
+
+    /// A rasterizer that answers with fixed fragments and declares only what it must.
+    struct Fixed(Vec<Fragment>);
+
+    impl Rasterizer for Fixed {
+        fn profile(&self) -> Profile {
+            crate::Reference::default().profile()
+        }
+
+        fn rasterize(&mut self, _: &Draw) -> Result<Vec<Fragment>, DrawError> {
+            Ok(self.0.clone())
+        }
+    }
+
+    fn at(x: u32, y: u32) -> Fragment {
+        Fragment {
+            x,
+            y,
+            primitive: 0,
+            depth: 0.25,
+            barycentric: [1.0, 0.0, 0.0],
+            screen_barycentric: None,
+            front_facing: true,
+        }
+    }
+
+    /// A fragment outside the target (a driver may send one) is dropped by the default
+    /// `resolve`, not wrapped into the next row or the one above.
+    #[test]
+    fn resolving_drops_fragments_outside_the_target() {
+        let draw = Draw::new(Viewport::new(4, 4).expect("4×4"), Vec::new(), Vec::new());
+        let mut r = Fixed(vec![at(4, 0), at(0, 4), at(1, 1)]);
+        let resolved = r.resolve(&draw).expect("resolves");
+        let drawn: Vec<usize> = (0..16).filter(|&i| resolved.primitive[i].is_some()).collect();
+        assert_eq!(drawn, [5]);
+        assert_eq!(resolved.depth[5], 0.25);
+    }
+
+    /// Implementations that say nothing about themselves report nothing.
+    #[test]
+    fn about_is_empty_unless_said() {
+        assert_eq!(Fixed(Vec::new()).about(), "");
+    }
+}

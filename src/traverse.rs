@@ -132,3 +132,39 @@ fn traverse_triangle(t: &FanTriangle, rect: PixelRect, bits: SubpixelBits, mut v
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A set-up triangle on the 8-bit grid, vertices in 1/256 px.
+    fn triangle(v: [(i64, i64); 3]) -> FanTriangle {
+        let points = v.map(|(x, y)| FixedPoint::new(x, y).expect("in range"));
+        FanTriangle::whole(TriangleSetup::new(points, FillConvention::TopLeft).expect("nonzero area"))
+    }
+
+    /// Where a fold puts a turned-over triangle over two that agree with the polygon, the
+    /// sample has winding number one: it is drawn once, by the first agreeing triangle, even
+    /// when the turned-over one comes first in the fan.
+    #[test]
+    fn a_turned_over_triangle_cancels_one_agreeing_cover() {
+        let big = [(0, 0), (4096, 0), (0, 4096)];
+        let turned = triangle([big[0], big[2], big[1]]);
+        let (first, second) = (triangle(big), triangle([(0, 0), (2048, 0), (0, 2048)]));
+        let winding = first.setup.winding();
+        assert_ne!(turned.setup.winding(), winding);
+        assert_eq!(second.setup.winding(), winding);
+        let rect = PixelRect {
+            x0: 0,
+            y0: 0,
+            x1: 2,
+            y1: 2,
+        };
+        let mut hits = Vec::new();
+        let fan = [turned, first, second];
+        traverse(&fan, winding, rect, SubpixelBits::DEFAULT, &mut Vec::new(), |h| {
+            hits.push((h.x, h.y, h.triangle));
+        });
+        assert_eq!(hits, [(0, 0, 1), (1, 0, 1), (0, 1, 1), (1, 1, 1)]);
+    }
+}

@@ -4,7 +4,11 @@
 # first failing rule (REFRAST_FAIL_FAST). Then prints the score and every survivor not yet
 # explained in docs/mutants.md.
 #
-# Usage: scripts/mutants.sh [MINUTES] [cargo-mutants arguments...]
+# Usage: [REFRAST_MUTATE=reference|oracles] scripts/mutants.sh [MINUTES] [cargo-mutants arguments...]
+#   REFRAST_MUTATE=oracles mutates the suite's ground truth instead (conformance/src/oracle/:
+#            brute force, ray cast, outlines), judged by the conformance crate's tests and the
+#            reference's catalogue: a wrong oracle fails the correct reference. Output then
+#            goes to oracles/mutants.out/.
 #   MINUTES  wall-time budget (default 240); when it runs out the mutants not yet tried are
 #            counted as untested, and the score covers those tried.
 #   e.g.     scripts/mutants.sh 30 --file src/edge.rs
@@ -25,17 +29,33 @@ if ! cargo mutants --version >/dev/null 2>&1; then
 fi
 
 echo "== cargo mutants (config in .cargo/mutants.toml), ${minutes} min budget"
+case "${REFRAST_MUTATE:-reference}" in
+  reference)
+    scope=(--package refrast)
+    out=.
+    ;;
+  oracles)
+    scope=(--package refrast-conformance --test-package refrast --test-package refrast-conformance
+      -f 'conformance/src/oracle/**/*.rs')
+    out=oracles
+    mkdir -p "$out"
+    ;;
+  *)
+    echo "mutants: REFRAST_MUTATE is reference or oracles, not '$REFRAST_MUTATE'" >&2
+    exit 2
+    ;;
+esac
 started=$(date +%s)
 status=0
 REFRAST_FAIL_FAST=1 timeout --signal=INT --kill-after=60 "$((minutes * 60))" \
-  cargo mutants --package refrast --output . --no-shuffle "$@" || status=$?
+  cargo mutants "${scope[@]}" --output "$out" --no-shuffle "$@" || status=$?
 elapsed=$(($(date +%s) - started))
 # cargo-mutants: 0 all caught, 2 some missed, 3 some timed out, 4 baseline failed; timeout: 124/130.
 case $status in
   0 | 2 | 3 | 124 | 130) ;;
   *)
-    echo "mutants: cargo mutants failed (exit $status); see mutants.out/debug.log" >&2
+    echo "mutants: cargo mutants failed (exit $status); see $out/mutants.out/debug.log" >&2
     exit "$status"
     ;;
 esac
-python3 scripts/mutants_score.py mutants.out docs/mutants.md "$elapsed"
+python3 scripts/mutants_score.py "$out/mutants.out" docs/mutants.md "$elapsed"

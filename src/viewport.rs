@@ -81,3 +81,21 @@ impl Viewport {
         )
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The guard band's edge lies `GUARD_BAND` pixels from the viewport's centre on each axis,
+    /// whatever the viewport's shape.
+    #[test]
+    fn the_guard_band_reaches_its_pixels_from_the_centre() {
+        for (w, h) in [(64, 32), (7, 1), (MAX_VIEWPORT, 3)] {
+            let vp = Viewport::new(w, h).expect("a valid viewport");
+            let (gx, gy) = vp.guard_band_ndc();
+            let (x, y) = vp.to_raster(gx, gy);
+            assert_eq!(x - f64::from(w) / 2.0, GUARD_BAND, "{w}×{h}");
+            assert_eq!(f64::from(h) / 2.0 - y, GUARD_BAND, "{w}×{h}");
+        }
+    }
+}

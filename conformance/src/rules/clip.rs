@@ -18,12 +18,12 @@ pub(super) fn rules() -> Vec<Rule> {
             .cases(10000)
             .run(|r, cfg| property(r, cfg, behind_scene(), check_draws_nothing)),
         Rule::invariant(Family::Clip, "clip.interior.matches-raycast")
-            .sentence("A triangle crossing clip planes, w = 0, or reaching ±30000·w covers exactly the samples its ray cast hits, outside the tolerance band (widened along cuts by what an f32 clipper's rounding may move them: 2^-19 of the coordinates they come from). Known limit: clipping x and y at the viewport and snapping the vertices that makes (reference-full-clip) can miss samples along such a cut (seen at seed 8 before the generator reached w = 0 and any viewport side; not at seeds 1–17 since).")
+            .sentence("A triangle crossing clip planes, w = 0, or reaching ±30000·w covers exactly the samples its ray cast hits, outside the tolerance band (widened along cuts by what an f32 clipper's rounding may move them: 2^-19 of the coordinates they come from). Known limit: clipping x and y at the viewport and snapping the vertices that makes (reference-full-clip) can miss samples along such a cut (seen at seed 8 before the generator reached w = 0 and any viewport side; not at seeds 1–20 since).")
             .source("dEQP-GLES3.functional.clipping.*; conformance-anchors d4")
             .cases(5000)
             .run(|r, cfg| property(r, cfg, strategy::crossing_scene(), check_exactly_once)),
         Rule::invariant(Family::Clip, "clip.mesh.watertight")
-            .sentence("A viewport-covering mesh whose shared edges cross the near plane covers each visible sample exactly once. Known limit: at 4 subpixel bits, snapping the vertices the near plane makes on a sliver can fold its clipped polygon and open a hole (reference-4bit, seed 13).")
+            .sentence("A viewport-covering mesh whose shared edges cross the near plane covers each visible sample exactly once. Known limit: at 4 subpixel bits, snapping the vertices the near plane makes on a sliver can fold its clipped polygon and open a hole (reference-4bit, at seeds 13 and 15 of 1–20).")
             .source("dEQP fill_rules.clipped_*; nvdiffrast #225; seed 004 (Sutherland–Hodgman)")
             .cases(1500)
             .run(|r, cfg| property(r, cfg, strategy::clipped_mesh_scene(), check_exactly_once)),

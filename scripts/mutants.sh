@@ -4,11 +4,15 @@
 # first failing rule (REFRAST_FAIL_FAST). Then prints the score and every survivor not yet
 # explained in docs/mutants.md.
 #
-# Usage: [REFRAST_MUTATE=reference|oracles] scripts/mutants.sh [MINUTES] [cargo-mutants arguments...]
+# Usage: [REFRAST_MUTATE=reference|oracles|lab] scripts/mutants.sh [MINUTES] [cargo-mutants arguments...]
 #   REFRAST_MUTATE=oracles mutates the suite's ground truth instead (conformance/src/oracle/:
 #            brute force, ray cast, outlines), judged by the conformance crate's tests and the
 #            reference's catalogue: a wrong oracle fails the correct reference. Output then
 #            goes to oracles/mutants.out/.
+#   REFRAST_MUTATE=lab mutates only the lab pipeline (camera, lines, the render pipeline, the
+#            scenes), which the Rasterizer trait does not reach, judged by the tests that do
+#            (the unit tests, tests/lines.rs, tests/golden.rs) and not the catalogue, so each
+#            mutant takes seconds instead of a minute. Output goes to lab/mutants.out/.
 #   MINUTES  wall-time budget (default 240); when it runs out the mutants not yet tried are
 #            counted as untested, and the score covers those tried.
 #   e.g.     scripts/mutants.sh 30 --file src/edge.rs
@@ -40,8 +44,16 @@ case "${REFRAST_MUTATE:-reference}" in
     out=oracles
     mkdir -p "$out"
     ;;
+  lab)
+    # .cargo/mutants.toml would add every integration test; name the lab's own instead.
+    scope=(--no-config --package refrast --test-package refrast --profile mutants
+      --cargo-test-arg=--lib --cargo-test-arg=--test=lines --cargo-test-arg=--test=golden
+      -f src/camera.rs -f src/line.rs -f src/pipeline.rs -f src/scenes.rs)
+    out=lab
+    mkdir -p "$out"
+    ;;
   *)
-    echo "mutants: REFRAST_MUTATE is reference or oracles, not '$REFRAST_MUTATE'" >&2
+    echo "mutants: REFRAST_MUTATE is reference, oracles or lab, not '$REFRAST_MUTATE'" >&2
     exit 2
     ;;
 esac

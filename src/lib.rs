@@ -113,4 +113,4 @@ pub use profile::{DepthConvention, Features, Profile, Setting, Snapping, Support
 pub use rasterizer::{Draw, DrawState, Fragment, Rasterizer, Resolved};
 pub use reference::{DrawStats, Reference, ReferenceConfig, Sample, Traversal};
 pub use setup::{CullMode, FrontFace, Winding};
-pub use viewport::{MAX_VIEWPORT, Viewport};
+pub use viewport::{GUARD_BAND_REACH, MAX_VIEWPORT, Viewport};

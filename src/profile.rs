@@ -8,6 +8,7 @@ use crate::depth::{CompareOp, DepthRange};
 use crate::edge::FillConvention;
 use crate::rasterizer::DrawState;
 use crate::setup::{CullMode, FrontFace};
+use crate::viewport::GUARD_BAND_REACH;
 
 /// How an implementation places vertices before it decides coverage.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -195,9 +196,14 @@ pub struct Features {
     pub far_clipping: Supported<bool>,
     /// The clip volumes' z ranges.
     pub depth_ranges: Supported<DepthRange>,
-    /// x/y clipping never moves an edge inside the viewport (a guard band), so coverage of a
-    /// triangle reaching outside it can be exact.
-    pub guard_band: bool,
+    /// How far beyond each side of the viewport, in pixels, a triangle may reach while x/y
+    /// clipping still moves no edge inside it (a guard band, so its coverage can be exact); 0 when
+    /// any reach outside may move one.
+    pub guard_band: u32,
+    /// Snapping rounds a coordinate exactly halfway between two grid points to the even one
+    /// (D3D11 §3.2.4.1); Vulkan leaves ties to the implementation, so without this claim the
+    /// suite moves every vertex off such a tie before drawing.
+    pub ties_to_even: bool,
 }
 
 impl Features {
@@ -212,7 +218,8 @@ impl Features {
         depth_writes: Supported::ALL,
         far_clipping: Supported::ALL,
         depth_ranges: Supported::ALL,
-        guard_band: true,
+        guard_band: GUARD_BAND_REACH,
+        ties_to_even: true,
     };
 }
 

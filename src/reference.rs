@@ -11,6 +11,7 @@ use crate::project::{RasterVertex, ViewportTransform, input_w};
 use crate::rasterizer::{Draw, Fragment, Rasterizer};
 use crate::setup::{PixelRect, SnappedTriangle, ZeroArea, drawn_winding, snap_before_clipping};
 use crate::traverse::{FanTriangle, Hit, build_fan, traverse};
+use crate::viewport::GUARD_BAND_REACH;
 
 /// Which pixels are tested against a triangle; both give identical output.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -321,7 +322,10 @@ impl Rasterizer for Reference {
             // f64 on exact edge values, rounded to f32 once: within 2^-24, claimed with room.
             precision_bits: 18,
             features: Features {
-                guard_band: self.config.clip == ClipMode::GuardBand,
+                guard_band: match self.config.clip {
+                    ClipMode::GuardBand => GUARD_BAND_REACH,
+                    ClipMode::Full => 0,
+                },
                 ..Features::ALL
             },
         }

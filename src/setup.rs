@@ -337,6 +337,17 @@ mod tests {
         [0, 1, 2].map(|k| ClipVertex::corner(p[k], k))
     }
 
+    /// The box of samples between (2.5, 3.2) and (4.6, 6.5) px on 8 bits: columns 2..5 and
+    /// rows 3..7, as `bounds()` reads them back (first, end, first, end); a public accessor the
+    /// reference never calls.
+    #[test]
+    fn a_bounding_box_reads_back_its_columns_and_rows() {
+        let bits = SubpixelBits::DEFAULT;
+        let points = [(2.5, 3.2), (4.6, 6.5)].map(|(x, y)| FixedPoint::snap(x, y, bits).unwrap());
+        let rect = PixelRect::bounding(points, bits, Viewport::new(16, 16).unwrap()).unwrap();
+        assert_eq!(rect.bounds(), (2, 5, 3, 7));
+    }
+
     #[test]
     fn zero_area_is_decided_before_clipping_when_every_vertex_projects() {
         let fill = FillConvention::TopLeft;

@@ -11,6 +11,12 @@ pub const MAX_VIEWPORT: u32 = 16384;
 /// [`COORD_LIMIT`](crate::COORD_LIMIT) with a margin that absorbs the clipper's rounding.
 pub const GUARD_BAND: f64 = 16384.0;
 
+/// How far beyond every side of every viewport the guard band reaches, in pixels: its half-side
+/// less half the largest viewport, what the reference declares ([`Features::guard_band`]).
+///
+/// [`Features::guard_band`]: crate::Features::guard_band
+pub const GUARD_BAND_REACH: u32 = GUARD_BAND as u32 - MAX_VIEWPORT / 2;
+
 /// A render target's size in pixels; pixel (x, y) has its sample at (x + ½, y + ½).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Viewport {

@@ -32,7 +32,10 @@ PROFILE = {
     "depth": "z-over-w",
     "tolerance": 1,
     "precision": 18,
-    "features": "perspective-barycentrics screen-barycentrics depth-test guard-band",
+    "features": "perspective-barycentrics screen-barycentrics depth-test ties-to-even",
+    # The guard band's half-side less half the largest viewport (16384 px): its reach beyond
+    # every side of every viewport.
+    "guard-band": int(GUARD_BAND) - 16384 // 2,
     "cull": "none front back",
     "front-face": "ccw cw",
     "depth-compare": "never less equal less-equal greater not-equal greater-equal always",

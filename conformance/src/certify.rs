@@ -208,13 +208,18 @@ pub fn feature_list(f: &Features) -> Vec<String> {
         (f.perspective_barycentrics, "perspective-barycentrics"),
         (f.screen_barycentrics, "screen-barycentrics"),
         (f.depth_test, "depth-test"),
-        (f.guard_band, "guard-band"),
+        (f.ties_to_even, "ties-to-even"),
     ];
     let mut list: Vec<String> = abilities
         .iter()
         .filter(|(on, _)| *on)
         .map(|(_, name)| (*name).to_owned())
         .collect();
+    match f.guard_band {
+        0 => {}
+        u32::MAX => list.push("guard-band unbounded".to_owned()),
+        px => list.push(format!("guard-band {px} px")),
+    }
     list.push(format!("cull {:?}", f.cull_modes));
     list.push(format!("front faces {:?}", f.front_faces));
     list.push(format!("compare {:?}", f.compare_ops));

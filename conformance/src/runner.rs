@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 
 use proptest::strategy::Strategy;
 use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestError, TestRng, TestRunner};
-use refrast::Rasterizer;
+use refrast::{Profile, Rasterizer};
 
 use crate::picture;
 use crate::scene::{Case, Scene};
@@ -70,6 +70,21 @@ where
     T: Debug + Clone + Case,
     S: Strategy<Value = T>,
 {
+    property_for(rasterizer, cfg, |_| strategy, check)
+}
+
+/// [`property`] with the strategy built from the rasterizer's profile, for inputs that depend on
+/// a claim: snap ties only for a declared tie rule, reach only as far as the declared guard band.
+pub fn property_for<T, S>(
+    rasterizer: &mut dyn Rasterizer,
+    cfg: &RunConfig,
+    strategy_for: impl FnOnce(&Profile) -> S,
+    check: Check<T>,
+) -> Verdict
+where
+    T: Debug + Clone + Case,
+    S: Strategy<Value = T>,
+{
     let deadline = cfg.budget.map(|b| Instant::now() + b);
     let spent = || deadline.is_some_and(|d| Instant::now() >= d);
     let config = Config {
@@ -95,7 +110,7 @@ where
             };
         }
     };
-    let strategy = strategy.prop_map(move |mut input| {
+    let strategy = strategy_for(&profile).prop_map(move |mut input| {
         let scene = input.scene_mut();
         scene.state = profile.fit(scene.state);
         input

@@ -100,7 +100,14 @@ impl Scene {
     /// The clip-space positions of triangle `t`'s vertices, widened to f64 (indices must be in range).
     #[must_use]
     pub fn positions_of(&self, t: usize) -> [[f64; 4]; 3] {
-        self.triangles[t].map(|i| self.positions[i as usize].map(f64::from))
+        self.corners(t).map(|p| p.map(f64::from))
+    }
+
+    /// The clip-space positions of triangle `t`'s vertices as drawn, in f32 (indices must be in
+    /// range).
+    #[must_use]
+    pub fn corners(&self, t: usize) -> [[f32; 4]; 3] {
+        self.triangles[t].map(|i| self.positions[i as usize])
     }
 
     /// The scene without triangle `t`, its unused vertices dropped.

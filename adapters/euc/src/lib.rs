@@ -142,7 +142,9 @@ impl Rasterizer for Euc {
                 far_clipping: Supported::only(&[false]),
                 depth_ranges: Supported::only(&[DepthRange::ZeroToOne]),
                 // No x/y clipping at all, so none moves an edge.
-                guard_band: true,
+                guard_band: u32::MAX,
+                // No grid, so no snap ties.
+                ties_to_even: false,
             },
         }
     }

@@ -169,7 +169,10 @@ impl Rasterizer for Gpu {
                 depth_ranges: Supported::only(&[DepthRange::ZeroToOne]),
                 // Mesa clips x/y against the viewport for a triangle reaching outside it: a tie
                 // sample on an edge crossing the boundary can flip (tests/drivers.rs).
-                guard_band: false,
+                guard_band: 0,
+                // llvmpipe rounds to nearest with the CPU's default rounding (`util_iround`), but
+                // the adapter cannot know what every driver does, and Vulkan leaves ties open.
+                ties_to_even: false,
             },
         }
     }

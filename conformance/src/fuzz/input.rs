@@ -128,15 +128,27 @@ impl GridTriangles {
     /// implementation that drops a subpixel bit differs from the oracle.
     #[must_use]
     pub fn scene(&self) -> Option<Scene> {
+        self.scene_at(8)
+    }
+
+    /// [`scene`](Self::scene) with coordinates in 1/512 px, for a profile that declares
+    /// `ties_to_even`: an odd coordinate lies exactly halfway between two 8-bit grid points.
+    #[must_use]
+    pub fn scene_with_ties(&self) -> Option<Scene> {
+        self.scene_at(9)
+    }
+
+    fn scene_at(&self, bits: u8) -> Option<Scene> {
         let s = square_side(self.side);
-        let wrap = |c: i32| (i64::from(c) + REACH).rem_euclid(2 * REACH + 1) - REACH;
+        let reach = REACH << (bits - 8);
+        let wrap = |c: i32| (i64::from(c) + reach).rem_euclid(2 * reach + 1) - reach;
         let tris: Vec<[(i64, i64); 3]> = self
             .triangles
             .iter()
             .take(6)
             .map(|t| t.map(|(x, y)| (wrap(x), wrap(y))))
             .collect();
-        (!tris.is_empty()).then(|| Scene::from_subpixels(s, s, 8, &tris, 0.5))
+        (!tris.is_empty()).then(|| Scene::from_subpixels(s, s, bits, &tris, 0.5))
     }
 }
 

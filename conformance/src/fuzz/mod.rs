@@ -69,13 +69,19 @@ pub fn robustness(r: &mut dyn Rasterizer, input: &RawDraw) -> Result<(), Failure
 }
 
 /// Each grid triangle alone against the brute-force oracle, bit for bit (where the profile has
-/// exact coverage and a guard band, as `fill.guard-band.exact` needs).
+/// exact coverage and a guard band, as `fill.guard-band.exact` needs), on snap ties where the
+/// profile declares how they round.
 pub fn differential(r: &mut dyn Rasterizer, input: &GridTriangles) -> Result<(), Failure> {
     let profile = r.profile();
     if !applies(&[EXACT_COVERAGE, GUARD_BAND], &profile) {
         return Ok(());
     }
-    let Some(scene) = input.scene() else { return Ok(()) };
+    let scene = if profile.features.ties_to_even {
+        input.scene_with_ties()
+    } else {
+        input.scene()
+    };
+    let Some(scene) = scene else { return Ok(()) };
     let scene = scene.fitted(&profile);
     for t in 0..scene.triangles.len() {
         let mut one = scene.clone();

@@ -114,6 +114,16 @@ impl Word for bool {
 /// The key of far clipping, whose values are `on` and `off` like depth writes'.
 pub const FAR_CLIPPING: &str = "far-clipping";
 
+/// The key of the guard band's reach: pixels beyond each side of the viewport.
+pub const GUARD_BAND: &str = "guard-band";
+
+/// The reach the feature word `guard-band` alone declares: what `fill.guard-band.exact` drew
+/// before a guard band had a size.
+pub const LEGACY_GUARD_BAND: u32 = 1500;
+
+/// The largest reach a profile may declare: [`COORD_LIMIT`](refrast::COORD_LIMIT) pixels.
+pub const GUARD_BAND_LIMIT: u32 = 32768;
+
 /// The request for `op` on `draw`: its header line, then positions and indices.
 #[must_use]
 pub fn request(op: Op, draw: &Draw) -> Vec<u8> {
@@ -216,7 +226,8 @@ pub fn default_profile(name: &str) -> Profile {
             depth_writes: Supported::only(&[true]),
             far_clipping: Supported::only(&[false]),
             depth_ranges: Supported::only(&[DepthRange::ZeroToOne]),
-            guard_band: false,
+            guard_band: 0,
+            ties_to_even: false,
         },
     }
 }
@@ -238,6 +249,7 @@ pub fn parse_profile(lines: &[String], fallback_name: &str) -> Result<Declared, 
     let mut profile = default_profile(fallback_name);
     let mut about = String::new();
     let mut seen: Vec<&str> = Vec::new();
+    let mut guard_band_word = false;
     for line in lines {
         let line = line.trim();
         if line.is_empty() || line.starts_with('#') {
@@ -303,23 +315,33 @@ pub fn parse_profile(lines: &[String], fallback_name: &str) -> Result<Declared, 
                     f.perspective_barycentrics,
                     f.screen_barycentrics,
                     f.depth_test,
-                    f.guard_band,
+                    f.ties_to_even,
                 ) = (false, false, false, false);
                 for word in &words {
                     let flag = match *word {
                         "perspective-barycentrics" => &mut f.perspective_barycentrics,
                         "screen-barycentrics" => &mut f.screen_barycentrics,
                         "depth-test" => &mut f.depth_test,
-                        "guard-band" => &mut f.guard_band,
+                        "ties-to-even" => &mut f.ties_to_even,
+                        // The word alone, from before the guard band had a size: the reach the
+                        // rule drew then. A `guard-band PIXELS` line says more.
+                        "guard-band" => &mut guard_band_word,
                         _ => {
                             return Err(bad(
                                 "features are perspective-barycentrics, screen-barycentrics, \
-                                 depth-test and guard-band",
+                                 depth-test, ties-to-even and guard-band",
                             ));
                         }
                     };
                     *flag = true;
                 }
+            }
+            GUARD_BAND => {
+                f.guard_band = rest
+                    .parse()
+                    .ok()
+                    .filter(|&px| px <= GUARD_BAND_LIMIT)
+                    .ok_or_else(|| bad("pixels beyond each side of the viewport, 0 to 32768"))?;
             }
             CullMode::KEY => f.cull_modes = supported(&words, &bad)?,
             FrontFace::KEY => f.front_faces = supported(&words, &bad)?,
@@ -335,6 +357,15 @@ pub fn parse_profile(lines: &[String], fallback_name: &str) -> Result<Declared, 
             }
         }
         seen.push(key);
+    }
+    if guard_band_word {
+        if seen.contains(&GUARD_BAND) {
+            return Err(format!(
+                "the profile says `guard-band` as a feature and as a line; keep the line `{GUARD_BAND} PIXELS`"
+            ));
+        }
+        // The word alone, from before a guard band had a size: the reach the rule drew then.
+        profile.features.guard_band = LEGACY_GUARD_BAND;
     }
     Ok(Declared { profile, about })
 }
@@ -356,4 +387,40 @@ pub fn shown(line: &str) -> String {
         s.push('…');
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parsed(lines: &[&str]) -> Result<Profile, String> {
+        let lines: Vec<String> = lines.iter().map(|&l| l.to_owned()).collect();
+        parse_profile(&lines, "child").map(|d| d.profile)
+    }
+
+    /// The guard band is a line with its reach, or the feature word alone for the reach the rule
+    /// drew before it had a size; saying both is an error that names the fix.
+    #[test]
+    fn the_guard_band_is_declared_with_its_reach() {
+        assert_eq!(parsed(&[]).unwrap().features.guard_band, 0);
+        assert_eq!(parsed(&["guard-band 8192"]).unwrap().features.guard_band, 8192);
+        let word = parsed(&["features depth-test guard-band"]).unwrap().features;
+        assert_eq!((word.guard_band, word.depth_test), (LEGACY_GUARD_BAND, true));
+        let both = parsed(&["features guard-band", "guard-band 8192"]).unwrap_err();
+        assert!(both.contains("keep the line `guard-band PIXELS`"), "{both}");
+        let far = parsed(&["guard-band 40000"]).unwrap_err();
+        assert!(far.contains("0 to 32768"), "{far}");
+    }
+
+    /// Ties round to even only when the child says so.
+    #[test]
+    fn ties_to_even_is_a_feature_word() {
+        assert!(!parsed(&["snapping grid 8"]).unwrap().features.ties_to_even);
+        let f = parsed(&["snapping grid 8", "features ties-to-even"])
+            .unwrap()
+            .features;
+        assert!(f.ties_to_even && !f.depth_test);
+        let bad = parsed(&["features ties-up"]).unwrap_err();
+        assert!(bad.contains("ties-to-even"), "{bad}");
+    }
 }

@@ -182,7 +182,7 @@ pub fn check_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<()
 pub fn check_reconstructs(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let profile = r.profile();
     let eps = precision(&profile);
-    let exact = scene.triangles[0].map(|i| scene.positions[i as usize]);
+    let exact = scene.corners(0);
     let (tri, slack) = if unclipped(&exact, scene.state.depth_range, scene.state.clip_far) {
         let Some(tri) = snapped_triangle(scene, 0, profile.snapping) else {
             return Ok(());

@@ -5,7 +5,7 @@ use refrast::{Fragment, Rasterizer};
 use super::common::{check_mesh_coverage, compare_sets, fragments, reference_for};
 use super::{EXACT_COVERAGE, Family, GUARD_BAND, REFERENCE_PROFILE, Rule};
 use crate::oracle::{brute_force, raster};
-use crate::runner::property;
+use crate::runner::{property, property_for};
 use crate::scene::Scene;
 use crate::strategy;
 use crate::violation::Violation;
@@ -38,24 +38,26 @@ pub(super) fn rules() -> Vec<Rule> {
             .cases(5000)
             .run(|r, cfg| property(r, cfg, strategy::float_scene(), check_exactly_once)),
         Rule::exact(Family::Fill, "fill.top-left.exact")
-            .sentence("Coverage of a triangle needing no clipping equals the reference's under the same subpixel bits and fill convention.")
-            .source("D3D11.3 §3.4 (top-left rule), §3.2.4.1 (16.8 snapping)")
+            .sentence("Coverage of a triangle needing no clipping, in perspective and off the grid (on snap ties if it rounds them to even), equals the reference's under the same subpixel bits and fill convention.")
+            .source("D3D11.3 §3.4 (top-left rule), §3.2.4.1 (16.8 snapping, ties to even)")
             .cases(20000)
             .needs(REFERENCE_PROFILE)
-            .run(|r, cfg| property(r, cfg, strategy::inside_scene(), check_matches_reference)),
+            .run(|r, cfg| property_for(r, cfg, strategy::exact_scene, check_matches_reference)),
         Rule::exact(Family::Fill, "fill.guard-band.exact")
-            .sentence("Coverage of a triangle reaching up to 1500 px outside the viewport equals the brute-force oracle, as a guard band promises.")
+            .sentence("Coverage of a triangle reaching outside the viewport as far as the declared guard band (up to 8192 px) equals the brute-force oracle, as a guard band promises.")
             .source("D3D11.3 §15.4 (guard band); ecosystem.md (32-bit edge overflow, float edges)")
             .cases(5000)
             .needs(EXACT_COVERAGE)
             .needs(GUARD_BAND)
-            .run(|r, cfg| property(r, cfg, strategy::grid_scene(), check_guard_band)),
+            .run(|r, cfg| {
+                property_for(r, cfg, |p| strategy::guard_band_scene(p.features.guard_band), check_guard_band)
+            }),
         Rule::exact(Family::Fill, "fill.brute-force.exact")
-            .sentence("Coverage of an unclipped triangle equals the brute-force oracle (i128 orient2d, explicit fill bias) at every pixel.")
-            .source("Giesen, Triangle rasterization in practice; piglit triangle-rasterization")
+            .sentence("Coverage of an unclipped triangle, in perspective and off the grid (on snap ties if it rounds them to even), equals the brute-force oracle (i128 orient2d, explicit fill bias) at every pixel.")
+            .source("Giesen, Triangle rasterization in practice; piglit triangle-rasterization; D3D11.3 §3.2.4.1")
             .cases(20000)
             .needs(EXACT_COVERAGE)
-            .run(|r, cfg| property(r, cfg, strategy::inside_scene(), check_matches_brute_force)),
+            .run(|r, cfg| property_for(r, cfg, strategy::exact_scene, check_matches_brute_force)),
     ]
 }
 
@@ -66,6 +68,10 @@ pub fn check_exactly_once(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), V
 
 /// Coverage bit-identical to the reference under the same profile.
 pub fn check_matches_reference(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    // Where the triangle needs clipping, the cut vertices are each implementation's own rounding.
+    if !raster::unclipped(&scene.corners(0), scene.state.depth_range, scene.state.clip_far) {
+        return Ok(());
+    }
     let profile = r.profile();
     let got = fragments(r, scene)?;
     let Some(mut reference) = reference_for(&profile) else {
@@ -77,7 +83,7 @@ pub fn check_matches_reference(r: &mut dyn Rasterizer, scene: &Scene) -> Result<
 
 /// Coverage of an unclipped triangle bit-identical to the brute-force oracle.
 pub fn check_matches_brute_force(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let p = [0, 1, 2].map(|k| scene.positions[scene.triangles[0][k] as usize]);
+    let p = scene.corners(0);
     // The oracle knows nothing of clipping: triangles leaving the view volume are not judged here.
     if !raster::unclipped(&p, scene.state.depth_range, scene.state.clip_far) {
         return Ok(());
@@ -85,13 +91,20 @@ pub fn check_matches_brute_force(r: &mut dyn Rasterizer, scene: &Scene) -> Resul
     compare_brute_force(r, scene)
 }
 
-/// Coverage of a triangle inside the guard band (x/y anywhere, z and w inside) equal to the oracle.
+/// Coverage of a triangle inside the guard band (x/y no farther out than the profile's reach, z
+/// and w inside) equal to the oracle.
 pub fn check_guard_band(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let range = scene.state.depth_range;
-    let inside = scene
-        .positions
-        .iter()
-        .all(|&[_, _, z, w]| w > 0.0 && raster::near_distance(range, z, w) >= 0.0 && z <= w);
+    let reach = f64::from(r.profile().features.guard_band);
+    let within = |c: f64, side: u32| (-reach..=f64::from(side) + reach).contains(&c);
+    let inside = scene.positions.iter().all(|&p @ [_, _, z, w]| {
+        let [x, y] = raster::project(scene.width, scene.height, p.map(f64::from));
+        w > 0.0
+            && raster::near_distance(range, z, w) >= 0.0
+            && z <= w
+            && within(x, scene.width)
+            && within(y, scene.height)
+    });
     if !inside {
         return Ok(());
     }
@@ -101,7 +114,7 @@ pub fn check_guard_band(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Vio
 fn compare_brute_force(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let profile = r.profile();
     let got = fragments(r, scene)?;
-    let p = [0, 1, 2].map(|k| scene.positions[scene.triangles[0][k] as usize]);
+    let p = scene.corners(0);
     let (Some(bits), Some(fill)) = (profile.snapping.grid_bits(), profile.fill) else {
         return Ok(());
     };

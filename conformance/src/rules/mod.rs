@@ -264,9 +264,9 @@ pub const GL_DEPTH_RANGE: Need = needs(
     |p| p.features.depth_ranges.contains(DepthRange::NegativeOneToOne),
     "no −w ≤ z clip volume",
 );
-/// x/y clipping never moves an edge inside the viewport.
+/// x/y clipping moves no edge inside the viewport of a triangle reaching some way outside it.
 pub const GUARD_BAND: Need = needs(
-    |p| p.features.guard_band,
+    |p| p.features.guard_band > 0,
     "x/y clipping may move edges (no guard band)",
 );
 /// Coverage decided exactly: a snapping grid and a tie rule, so an oracle can say bit for bit.

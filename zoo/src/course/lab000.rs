@@ -154,7 +154,9 @@ impl Rasterizer for Lab000 {
                 far_clipping: Supported::only(&[false]),
                 depth_ranges: Supported::only(&[DepthRange::ZeroToOne]),
                 // No x/y clipping at all, so none can move an edge.
-                guard_band: true,
+                guard_band: u32::MAX,
+                // No grid, so no snap ties.
+                ties_to_even: false,
             },
         }
     }

@@ -247,7 +247,9 @@ impl Rasterizer for Lab002 {
                 far_clipping: Supported::only(&[false]),
                 depth_ranges: Supported::only(&[DepthRange::ZeroToOne]),
                 // No x/y clipping at all, so none can move an edge.
-                guard_band: true,
+                guard_band: u32::MAX,
+                // It truncates to its grid: a tie rounds down, not to even.
+                ties_to_even: false,
             },
         }
     }

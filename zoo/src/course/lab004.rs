@@ -228,7 +228,9 @@ impl Rasterizer for Lab004 {
                 far_clipping: Supported::ALL,
                 depth_ranges: Supported::ALL,
                 // x and y are clipped at the viewport, cut points nudged inward.
-                guard_band: false,
+                guard_band: 0,
+                // No grid, so no snap ties.
+                ties_to_even: false,
             },
         }
     }

@@ -60,11 +60,15 @@ pub enum Bug {
     /// `NoPerspective` ones (found by mutation testing: no rule judged clipped triangles' screen
     /// weights).
     PerspectiveCutScreen,
+    /// Snapping as `floor(v·256 + ½)`, the rounding written by hand most often: a coordinate
+    /// halfway between two grid points rounds up, not to even as declared (no rule drew a snap
+    /// tie at 8 bits before the exact rules learnt to, when a profile declares `ties_to_even`).
+    HalfUpSnap,
 }
 
 impl Bug {
     /// Every bug.
-    pub const ALL: [Bug; 23] = [
+    pub const ALL: [Bug; 24] = [
         Self::InclusiveEdges,
         Self::ExclusiveEdges,
         Self::BottomRightAsTopLeft,
@@ -88,6 +92,7 @@ impl Bug {
         Self::AffineClipped,
         Self::LerpedCutDepth,
         Self::PerspectiveCutScreen,
+        Self::HalfUpSnap,
     ];
 
     /// The name after `mutant:` in `--impl`.
@@ -117,6 +122,7 @@ impl Bug {
             Self::AffineClipped => "affine-clipped",
             Self::LerpedCutDepth => "lerped-cut-depth",
             Self::PerspectiveCutScreen => "perspective-cut-screen",
+            Self::HalfUpSnap => "half-up-snap",
         }
     }
 
@@ -127,7 +133,8 @@ impl Bug {
             Self::InclusiveEdges
             | Self::ExclusiveEdges
             | Self::BottomRightAsTopLeft
-            | Self::DroppedSubpixelBit => Family::Fill,
+            | Self::DroppedSubpixelBit
+            | Self::HalfUpSnap => Family::Fill,
             Self::ExclusiveBboxMax | Self::Edge32Bit => Family::Fill,
             // Its cracks come from evaluating a shared edge from either end in f32: reversing one
             // triangle's winding shows the same on a single triangle.

@@ -180,8 +180,15 @@ impl Mutant {
                     return None;
                 }
                 let (x, y) = draw.viewport.to_raster(p.x / p.w, p.y / p.w);
+                let round = |u: f64| {
+                    if self.bug == Bug::HalfUpSnap {
+                        (u + 0.5).floor()
+                    } else {
+                        u.round_ties_even()
+                    }
+                };
                 let snap = |v: f64| {
-                    let s = (v * 256.0 / step).round_ties_even() * step;
+                    let s = round(v * 256.0 / step) * step;
                     (s.is_finite() && s.abs() <= FixedPoint::LIMIT as f64).then_some(s as i64)
                 };
                 Some(Vert {

@@ -96,7 +96,7 @@ fn facing_scene() -> impl Strategy<Value = Scene> {
 pub fn check_facing(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let profile = r.profile();
     let front_is_cw = scene.state.front_face == FrontFace::Clockwise;
-    let p = [0, 1, 2].map(|k| scene.positions[scene.triangles[0][k] as usize]);
+    let p = scene.corners(0);
     let frags = fragments(r, scene)?;
     let turn = |clockwise: bool| {
         if clockwise {
@@ -245,7 +245,7 @@ fn compare_permuted(
     // A clipped triangle is drawn as a fan that starts at another vertex once rotated, and its
     // new vertices snap differently: only unclipped barycentrics must match. Each draw is within
     // the claimed precision of the exact values, so the two are within twice that of each other.
-    let p = scene.triangles[0].map(|i| scene.positions[i as usize]);
+    let p = scene.corners(0);
     let unclipped = raster::unclipped(&p, scene.state.depth_range, scene.state.clip_far);
     // Fragment pairs by pixel (one triangle covers a pixel once), in row order.
     let by_pixel: HashMap<(u32, u32), &Fragment> = other.iter().map(|f| ((f.x, f.y), f)).collect();

@@ -8,6 +8,10 @@ use spade::{DelaunayTriangulation, Point2, Triangulation};
 
 use crate::scene::{Scene, clip_of};
 
+mod exact;
+
+pub use exact::{FINE, exact_scene, guard_band_scene};
+
 /// Subpixel units per pixel in grid strategies.
 pub const GRID: i64 = 256;
 

@@ -152,6 +152,33 @@ mod tests {
         approx::assert_relative_eq!(ts[10].1, 0.7);
     }
 
+    /// Nearest, ties to even, also for negative numerators and a denominator of one.
+    #[test]
+    fn division_rounds_to_nearest_and_ties_to_even() {
+        let cases = [
+            (5, 2, 2),
+            (7, 2, 4),
+            (-5, 2, -2),
+            (6, 2, 3),
+            (8, 3, 3),
+            (7, 3, 2),
+            (5, 1, 5),
+        ];
+        for (num, den, want) in cases {
+            assert_eq!(div_round_even(num, den), want, "{num}/{den}");
+        }
+    }
+
+    /// A line leaving the viewport on one side only stops at its last column, whatever its rows.
+    #[test]
+    fn a_line_stops_at_the_viewport_edge_it_crosses() {
+        let line = pixels(v(60.5, 5.5), v(70.5, 6.5));
+        assert_eq!(line.len(), 4, "{line:?}");
+        assert!(line.iter().all(|&(x, y)| x < 64 && y < 64), "{line:?}");
+        let down = pixels(v(5.5, 60.5), v(6.5, 70.5));
+        assert_eq!(down.len(), 4, "{down:?}");
+    }
+
     #[test]
     fn bad_endpoints_draw_nothing() {
         let vp = Viewport::new(8, 8).unwrap();

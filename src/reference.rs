@@ -9,8 +9,8 @@ use crate::interp::{Varyings, interpolate, interpolate_depth, screen_weights};
 use crate::profile::{DepthConvention, Features, Profile, Snapping};
 use crate::project::{RasterVertex, ViewportTransform, input_w};
 use crate::rasterizer::{Draw, Fragment, Rasterizer};
-use crate::setup::{PixelRect, SnappedTriangle, ZeroArea, drawn_winding, snap_before_clipping};
-use crate::traverse::{FanTriangle, Hit, build_fan, traverse};
+use crate::setup::{SnappedTriangle, ZeroArea, drawn_winding, snap_before_clipping};
+use crate::traverse::{FanTriangle, Hit, PixelRect, build_fan, traverse};
 use crate::viewport::GUARD_BAND_REACH;
 
 /// Which pixels are tested against a triangle; both give identical output.

@@ -31,7 +31,7 @@ pub use crate::interp::{Barycentrics, Varyings, interpolate, interpolate_depth, 
 pub use crate::line::{LineFragment, LineVertex, rasterize_line, rasterize_point};
 pub use crate::project::{RasterVertex, ViewportTransform, input_w};
 pub use crate::setup::{
-    PixelRect, SnappedTriangle, TriangleSetup, ZeroArea, clipped_winding, drawn_winding, snap_before_clipping,
+    SnappedTriangle, TriangleSetup, ZeroArea, clipped_winding, drawn_winding, snap_before_clipping,
 };
-pub use crate::traverse::{FanTriangle, Hit, build_fan, traverse};
+pub use crate::traverse::{FanTriangle, Hit, PixelRect, build_fan, traverse};
 pub use crate::viewport::GUARD_BAND;

@@ -3,7 +3,75 @@
 use crate::edge::FillConvention;
 use crate::fixed::{FixedPoint, SubpixelBits};
 use crate::project::RasterVertex;
-use crate::setup::{PixelRect, TriangleSetup, Winding};
+use crate::setup::{TriangleSetup, Winding};
+use crate::viewport::Viewport;
+
+/// A half-open rectangle of pixels, `x0..x1 × y0..y1`, always inside a viewport.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct PixelRect {
+    pub(crate) x0: u32,
+    pub(crate) y0: u32,
+    pub(crate) x1: u32,
+    pub(crate) y1: u32,
+}
+
+impl PixelRect {
+    /// First column, last column + 1, first row, last row + 1.
+    #[must_use]
+    pub fn bounds(self) -> (u32, u32, u32, u32) {
+        (self.x0, self.x1, self.y0, self.y1)
+    }
+
+    /// The whole viewport.
+    #[must_use]
+    pub fn of_viewport(viewport: Viewport) -> Self {
+        Self {
+            x0: 0,
+            y0: 0,
+            x1: viewport.width(),
+            y1: viewport.height(),
+        }
+    }
+
+    /// The pixels whose samples lie in the bounding box of `points`, clamped to the viewport.
+    ///
+    /// `None` when no sample of the viewport lies in the box.
+    #[must_use]
+    pub fn bounding(
+        points: impl IntoIterator<Item = FixedPoint>,
+        bits: SubpixelBits,
+        viewport: Viewport,
+    ) -> Option<Self> {
+        let (one, half) = (bits.one(), bits.one() / 2);
+        let mut points = points.into_iter();
+        let p = points.next()?;
+        let ((min_x, min_y), (max_x, max_y)) = points.fold(((p.x, p.y), (p.x, p.y)), |(lo, hi), p| {
+            ((lo.0.min(p.x), lo.1.min(p.y)), (hi.0.max(p.x), hi.1.max(p.y)))
+        });
+        // Pixel px has its sample at px·one + half: the first with sample ≥ min, the last with sample ≤ max.
+        let first = |min: i64| (min - half + one - 1).div_euclid(one);
+        let last = |max: i64| (max - half).div_euclid(one);
+        let clamp = |v: i64, side: u32| v.clamp(0, i64::from(side)) as u32;
+        let rect = Self {
+            x0: clamp(first(min_x), viewport.width()),
+            y0: clamp(first(min_y), viewport.height()),
+            x1: clamp(last(max_x) + 1, viewport.width()),
+            y1: clamp(last(max_y) + 1, viewport.height()),
+        };
+        (rect.x0 < rect.x1 && rect.y0 < rect.y1).then_some(rect)
+    }
+
+    /// The smallest rectangle holding both.
+    #[must_use]
+    pub fn union(self, other: Self) -> Self {
+        Self {
+            x0: self.x0.min(other.x0),
+            y0: self.y0.min(other.y0),
+            x1: self.x1.max(other.x1),
+            y1: self.y1.max(other.y1),
+        }
+    }
+}
 
 /// One triangle of a convex polygon's fan.
 ///
@@ -136,6 +204,25 @@ fn traverse_triangle(t: &FanTriangle, rect: PixelRect, bits: SubpixelBits, mut v
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The box of samples between (2.5, 3.2) and (4.6, 6.5) px on 8 bits: columns 2..5 and
+    /// rows 3..7, as `bounds()` reads them back (first, end, first, end; a public accessor the
+    /// reference never calls); a box holding no sample is none.
+    #[test]
+    fn a_bounding_box_reads_back_its_columns_and_rows() {
+        let bits = SubpixelBits::DEFAULT;
+        let points = [(2.5, 3.2), (4.6, 6.5)].map(|(x, y)| FixedPoint::snap(x, y, bits).unwrap());
+        let rect = PixelRect::bounding(points, bits, Viewport::new(16, 16).unwrap()).unwrap();
+        assert_eq!(rect.bounds(), (2, 5, 3, 7));
+        // Between two columns of samples there is no pixel, whatever the rows hold.
+        for thin in [[(2.6, 3.2), (2.9, 6.5)], [(2.5, 3.6), (4.6, 3.9)]] {
+            let thin = thin.map(|(x, y)| FixedPoint::snap(x, y, bits).unwrap());
+            assert_eq!(
+                PixelRect::bounding(thin, bits, Viewport::new(16, 16).unwrap()),
+                None
+            );
+        }
+    }
 
     /// A set-up triangle on the 8-bit grid, vertices in 1/256 px.
     fn triangle(v: [(i64, i64); 3]) -> FanTriangle {

@@ -169,7 +169,7 @@ mod tests {
         }
     }
 
-    /// A line leaving the viewport on one side only stops at its last column, whatever its rows.
+    /// A line leaving the viewport across one side stops at that side's last column or row.
     #[test]
     fn a_line_stops_at_the_viewport_edge_it_crosses() {
         let line = pixels(v(60.5, 5.5), v(70.5, 6.5));
@@ -177,6 +177,15 @@ mod tests {
         assert!(line.iter().all(|&(x, y)| x < 64 && y < 64), "{line:?}");
         let down = pixels(v(5.5, 60.5), v(6.5, 70.5));
         assert_eq!(down.len(), 4, "{down:?}");
+        let left = pixels(v(-5.5, 5.5), v(3.5, 6.5));
+        assert_eq!(left.len(), 4, "{left:?}");
+        let up = pixels(v(5.5, -5.5), v(6.5, 3.5));
+        assert_eq!(up.len(), 4, "{up:?}");
+        // The count returned is the pixels emitted.
+        assert_eq!(
+            rasterize_line(v(60.5, 5.5), v(70.5, 6.5), Viewport::new(64, 64).unwrap(), |_| {}),
+            4
+        );
     }
 
     #[test]

@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use approx::assert_abs_diff_eq;
 use glam::{DVec2, Vec3};
 use refrast::scenes::{self, CLEAR};
-use refrast::{Rasterizer, Viewport};
+use refrast::{Rasterizer, Traversal, Viewport};
 use refrast_conformance::oracle::raster;
 
 fn golden_path(name: &str) -> PathBuf {
@@ -139,6 +139,31 @@ fn lab000_bbox_png() {
 #[test]
 fn bounding_box_traversal_changes_nothing() {
     assert_eq!(mask("lab000-depth", 640, 480), mask("lab000-bbox", 640, 480));
+}
+
+/// Only `lab000-bbox` walks bounding boxes (the pictures cannot tell: the test above).
+#[test]
+fn the_bbox_scene_is_the_one_walking_bounding_boxes() {
+    let traversal = |scene| {
+        scenes::build(scene, 4.0 / 3.0)
+            .unwrap()
+            .renderer
+            .reference
+            .config()
+            .traversal
+    };
+    assert_eq!(traversal("lab000-bbox"), Traversal::BoundingBox);
+    assert_eq!(traversal("lab000-depth"), Traversal::Viewport);
+}
+
+/// An unknown scene's error names it and lists the scenes there are.
+#[test]
+fn an_unknown_scene_is_named_with_the_list() {
+    let message = scenes::render("lab999", 8, 8).unwrap_err().to_string();
+    assert!(
+        message.contains("'lab999'") && message.contains("lab000-bbox"),
+        "{message}"
+    );
 }
 
 #[test]

@@ -100,6 +100,22 @@ fn points_land_in_the_pixel_holding_them() {
     assert_eq!(t.pixel(16, 16), Some([255, 0, 0, 255]));
 }
 
+/// With w = 2 every position is halved on screen: a point at (0.5, 0.5) lands in pixel
+/// (20, 12), a line at y = 0.5 from x = −0.5 to 0.5 runs along row 12 from 12 to 20, and a
+/// point before the near plane is not drawn although it would project inside.
+#[test]
+fn points_and_lines_are_divided_by_w() {
+    let w2 = Mat4::from_cols(Vec4::X, Vec4::Y, Vec4::Z, Vec4::new(0.0, 0.0, 0.0, 2.0));
+    let mut t = target();
+    let points = [v(0.5, 0.5, 0.5, Vec3::X), v(0.0, 0.0, -0.5, Vec3::X)];
+    assert_eq!(Renderer::default().draw_points(&mut t, &points, w2), 1);
+    assert_eq!(lit(&t), vec![(20, 12)]);
+    let mut t = target();
+    let ends = [v(-0.5, 0.5, 0.5, Vec3::X), v(0.5, 0.5, 0.5, Vec3::X)];
+    assert_eq!(Renderer::default().draw_lines(&mut t, &ends, &[[0, 1]], w2), 9);
+    assert_eq!(lit(&t), (12..=20).map(|x| (x, 12)).collect::<Vec<_>>());
+}
+
 #[test]
 fn line_colour_is_perspective_correct() {
     let mut t = target();

@@ -116,6 +116,23 @@ fn points_and_lines_are_divided_by_w() {
     assert_eq!(lit(&t), (12..=20).map(|x| (x, 12)).collect::<Vec<_>>());
 }
 
+/// A w that overflows f32 is not finite, so the point is not drawn, though x/w, y/w and z/w
+/// are all 0 and it lies inside every clip plane.
+#[test]
+fn a_point_whose_w_overflows_is_not_drawn() {
+    // Clip position (0, 0, 0.5, 2y): y = 3e38 makes w = +∞.
+    let w_from_y = Mat4::from_cols(
+        Vec4::ZERO,
+        Vec4::new(0.0, 0.0, 0.0, 2.0),
+        Vec4::ZERO,
+        Vec4::new(0.0, 0.0, 0.5, 0.0),
+    );
+    let mut t = target();
+    let point = [Vertex::colored(Vec3::new(0.0, 3e38, 0.0), Vec3::X)];
+    assert_eq!(Renderer::default().draw_points(&mut t, &point, w_from_y), 0);
+    assert!(lit(&t).is_empty());
+}
+
 #[test]
 fn line_colour_is_perspective_correct() {
     let mut t = target();

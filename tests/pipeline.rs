@@ -1,6 +1,6 @@
 //! The lab pipeline's framebuffer and shading hook, through their public API.
 
-use glam::{DVec2, Mat4, Vec3, Vec4};
+use glam::{DVec2, Mat4, Vec2, Vec3, Vec4};
 use refrast::pipeline::{Framebuffer, Mesh, Renderer, Vertex};
 
 /// A new framebuffer is opaque black at depth 1; its slices hold every pixel, a write
@@ -36,12 +36,14 @@ fn the_shader_sees_attributes_mixed_by_the_fragment_weights() {
         [Vec3::X, Vec3::Y, Vec3::Z],
         [Vec3::X, Vec3::new(0.0, 1.0, 1.0), Vec3::ONE],
     );
+    // No weight meets a zero attribute, so every term of every mix shows.
+    let uv = [Vec2::new(1.0, 0.0), Vec2::new(0.0, 1.0), Vec2::new(2.0, 3.0)];
     let vertices = (0..3)
         .map(|k| Vertex {
             position: ndc[k],
             color: e[k].extend(1.0),
             normal: n[k],
-            uv: e[k].truncate(),
+            uv: uv[k],
         })
         .collect();
     let mesh = Mesh {
@@ -73,7 +75,12 @@ fn the_shader_sees_attributes_mixed_by_the_fragment_weights() {
             "{input:?} {w:?}"
         );
         assert!(
-            close(input.uv.extend(0.0).extend(0.0), Vec4::new(w[0], w[1], 0.0, 0.0)),
+            close(
+                input.uv.extend(0.0).extend(0.0),
+                (uv[0] * w[0] + uv[1] * w[1] + uv[2] * w[2])
+                    .extend(0.0)
+                    .extend(0.0)
+            ),
             "{input:?}"
         );
         let position = model.transform_point3(mix(ndc));

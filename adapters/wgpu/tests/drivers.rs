@@ -390,6 +390,33 @@ fn findings(d: Driver, gpu: &mut Gpu) {
         "{}: fragments of a triangle with w = ∞",
         d.name()
     );
+    // A snap tie: vertex 0's x is (0.21508789 + 1) / 2 · 16 = 9.720703125 px = 2488.5 units,
+    // exactly halfway. Rounded to even (2488) it covers what the reference covers, 55 pixels;
+    // rounded up (`mutant:half-up-snap`) one more. So the profile claims `ties_to_even`.
+    let tie = draw(
+        16,
+        16,
+        vec![
+            [0.215_087_89, -0.1875, 0.0, 1.0],
+            [-1.0, 1.0, 0.0, 1.0],
+            [0.6875, 0.875, 0.0, 1.0],
+        ],
+        vec![[0, 1, 2]],
+    );
+    assert_eq!((f64::from(tie.positions[0][0]) + 1.0) * 8.0 * 256.0, 2488.5);
+    let pixels = |f: Vec<Fragment>| {
+        let mut p: Vec<(u32, u32)> = f.iter().map(|f| (f.x, f.y)).collect();
+        p.sort_unstable();
+        p
+    };
+    let want = pixels(Reference::default().rasterize(&tie).expect("the reference draws"));
+    assert_eq!(want.len(), 55);
+    assert_eq!(
+        pixels(run(&tie)),
+        want,
+        "{}: a snap tie rounded to even",
+        d.name()
+    );
     println!("{}: every hand-checked finding holds", d.name());
 }
 

@@ -9,7 +9,7 @@ use arbitrary::Arbitrary;
 use refrast::{CompareOp, CullMode, DepthRange, DepthState, DrawState, FrontFace};
 
 use crate::scene::{Scene, clip_of, rust_f32};
-use crate::strategy::{GRID, triangulate};
+use crate::strategy::{self, GRID, triangulate};
 
 /// Square viewport sides 16, 32 or 64 from a byte: small enough for exact oracles per sample.
 fn square_side(b: u8) -> u32 {
@@ -135,7 +135,7 @@ impl GridTriangles {
     /// `ties_to_even`: an odd coordinate lies exactly halfway between two 8-bit grid points.
     #[must_use]
     pub fn scene_with_ties(&self) -> Option<Scene> {
-        self.scene_at(9)
+        self.scene_at(strategy::FINE_BITS)
     }
 
     fn scene_at(&self, bits: u8) -> Option<Scene> {

@@ -122,7 +122,7 @@ pub const GUARD_BAND: &str = "guard-band";
 pub const LEGACY_GUARD_BAND: u32 = 1500;
 
 /// The largest reach a profile may declare: [`COORD_LIMIT`](refrast::COORD_LIMIT) pixels.
-pub const GUARD_BAND_LIMIT: u32 = 32768;
+pub const GUARD_BAND_LIMIT: u32 = refrast::COORD_LIMIT as u32;
 
 /// The request for `op` on `draw`: its header line, then positions and indices.
 #[must_use]
@@ -341,7 +341,11 @@ pub fn parse_profile(lines: &[String], fallback_name: &str) -> Result<Declared, 
                     .parse()
                     .ok()
                     .filter(|&px| px <= GUARD_BAND_LIMIT)
-                    .ok_or_else(|| bad("pixels beyond each side of the viewport, 0 to 32768"))?;
+                    .ok_or_else(|| {
+                        bad(&format!(
+                            "pixels beyond each side of the viewport, 0 to {GUARD_BAND_LIMIT}"
+                        ))
+                    })?;
             }
             CullMode::KEY => f.cull_modes = supported(&words, &bad)?,
             FrontFace::KEY => f.front_faces = supported(&words, &bad)?,

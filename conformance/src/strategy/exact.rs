@@ -7,9 +7,9 @@ use refrast::{GUARD_BAND_REACH, Profile};
 use super::{GRID, grid_triangle, inside_triangle, side};
 use crate::scene::{Scene, clip_of};
 
-/// Units per pixel of [`exact_scene`]: one bit finer than [`GRID`], so that an odd coordinate
-/// lies exactly halfway between two points of an 8-bit grid.
-pub const FINE: i64 = 2 * GRID;
+/// Subpixel bits of [`exact_scene`]'s coordinates: one finer than [`GRID`]'s 8, so that an odd
+/// coordinate lies exactly halfway between two points of an 8-bit grid.
+pub const FINE_BITS: u8 = 9;
 
 /// One triangle needing no clipping, for the exact rules: off the profile's grid, on its exact
 /// snap ties if it declares how ties round (`ties_to_even`), and in perspective.
@@ -22,7 +22,7 @@ pub fn exact_scene(profile: &Profile) -> impl Strategy<Value = Scene> + use<> {
     let bits = profile.snapping.grid_bits().unwrap_or(8).min(16);
     let ties = profile.features.ties_to_even;
     // 1/512-px units between two points of the profile's grid (1 when it is finer).
-    let step = 1i64 << 9u8.saturating_sub(bits);
+    let step = 1i64 << FINE_BITS.saturating_sub(bits);
     let w = prop_oneof![
         2 => Just((1.0f32, false)),
         1 => (-3i32..=2).prop_map(|k| (2f32.powi(k), false)),
@@ -42,11 +42,11 @@ pub fn exact_scene(profile: &Profile) -> impl Strategy<Value = Scene> + use<> {
                     let ((w, on_grid), z) = wz[i];
                     let place = |c: i64, half: bool| {
                         // Half a 1/256-px unit down, never below 0: still inside the viewport.
-                        let c = (2 * c - i64::from(half)).max(0);
+                        let c = (c * ((1 << FINE_BITS) / GRID) - i64::from(half)).max(0);
                         fine_coordinate(c, step, on_grid, ties)
                     };
                     let (x, y) = (place(t[i].0, halves[i].0), place(t[i].1, halves[i].1));
-                    clip_of(width, height, 9, x, y, z, w)
+                    clip_of(width, height, FINE_BITS, x, y, z, w)
                 })
                 .collect();
             Scene::new(width, height, positions, vec![[0, 1, 2]])

@@ -10,7 +10,7 @@ use crate::scene::{Scene, clip_of};
 
 mod exact;
 
-pub use exact::{FINE, exact_scene, guard_band_scene};
+pub use exact::{FINE_BITS, exact_scene, guard_band_scene};
 
 /// Subpixel units per pixel in grid strategies.
 pub const GRID: i64 = 256;

@@ -1,0 +1,1 @@
+//! Mesh files: PLY and OBJ, read with well-kept crates and validated.

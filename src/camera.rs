@@ -11,6 +11,8 @@ pub struct Camera {
     pub origin: Vec3,
     /// Unit direction of view.
     pub forward: Vec3,
+    /// Which way is up in the world: the picture's up is this, made square to `forward`.
+    pub up: Vec3,
 }
 
 impl Camera {
@@ -20,6 +22,16 @@ impl Camera {
         Self {
             origin,
             forward: forward.try_normalize().unwrap_or(Vec3::Z),
+            up: Vec3::Y,
+        }
+    }
+
+    /// The same camera with another world up (normalised; `+y` if it is zero or not finite).
+    #[must_use]
+    pub fn with_up(self, up: Vec3) -> Self {
+        Self {
+            up: up.try_normalize().unwrap_or(Vec3::Y),
+            ..self
         }
     }
 
@@ -38,10 +50,14 @@ impl Camera {
 
     /// The basis `(right, up, forward)`: right = up_world × forward, up = forward × right.
     ///
-    /// When looking straight up or down, world x stands in for right.
+    /// When looking along the world up, a unit vector square to it stands in for right.
     #[must_use]
     pub fn basis(&self) -> (Vec3, Vec3, Vec3) {
-        let right = Vec3::Y.cross(self.forward).try_normalize().unwrap_or(Vec3::X);
+        let right = self
+            .up
+            .cross(self.forward)
+            .try_normalize()
+            .unwrap_or_else(|| self.up.any_orthonormal_vector());
         let up = self.forward.cross(right);
         (right, up, self.forward)
     }
@@ -167,10 +183,21 @@ mod tests {
         let cam = Camera::look_at(Vec3::ZERO, Vec3::new(0.0, 0.0, 5.0));
         assert_eq!(cam.forward, Vec3::Z);
         let straight_up = Camera::look_at(Vec3::ZERO, Vec3::Y);
-        assert_eq!(straight_up.basis().0, Vec3::X);
+        let (right, up, _) = straight_up.basis();
+        assert_relative_eq!(right.dot(Vec3::Y), 0.0);
+        assert_relative_eq!(up.dot(Vec3::Y), 0.0);
+        assert_relative_eq!(right.length(), 1.0);
         // Away from the origin the direction is target − origin (mutation testing: `+`, `/`).
         let cam = Camera::look_at(Vec3::new(1.0, 2.0, 3.0), Vec3::new(1.0, 2.0, -1.0));
         assert_eq!(cam.forward, -Vec3::Z);
+    }
+
+    #[test]
+    fn up_turns_the_picture() {
+        // Looking along +z with +x as the world up: the picture's up is +x, its right is −y.
+        let cam = Camera::new(Vec3::ZERO, Vec3::Z).with_up(Vec3::X);
+        assert_eq!(cam.basis(), (-Vec3::Y, Vec3::X, Vec3::Z));
+        assert_eq!(Camera::new(Vec3::ZERO, Vec3::Z).with_up(Vec3::ZERO).up, Vec3::Y);
     }
 
     #[test]

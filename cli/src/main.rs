@@ -1,12 +1,11 @@
 //! The refrast command line: certify rasterizers, list the rules, render built-in scenes.
 
 mod certify;
+mod render;
 
-use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use refrast::scenes::{self, DEFAULT_SIZE, SCENES};
 use refrast_conformance::{BuiltIn, catalogue};
 
 /// refrast: a reference triangle rasterizer and conformance suite.
@@ -29,20 +28,8 @@ enum Command {
     },
     /// List the built-in implementations and their profiles.
     Impls,
-    /// Render a built-in scene to a PNG with the reference rasterizer.
-    Render {
-        /// The scene (see `refrast scenes`).
-        scene: String,
-        /// Where to write the PNG [default: SCENE.png].
-        #[arg(short, long)]
-        output: Option<PathBuf>,
-        /// Width in pixels (1..=16384).
-        #[arg(long, default_value_t = DEFAULT_SIZE.0)]
-        width: u32,
-        /// Height in pixels (1..=16384).
-        #[arg(long, default_value_t = DEFAULT_SIZE.1)]
-        height: u32,
-    },
+    /// Render a built-in scene or a mesh file (PLY, OBJ) to a PNG, in any mode, through any rasterizer.
+    Render(render::Args),
     /// List the built-in scenes.
     Scenes,
     /// Run one rule for `certify` and speak to it on stdout (not for people).
@@ -94,17 +81,12 @@ fn main() -> ExitCode {
             ExitCode::SUCCESS
         }
         Command::Scenes => {
-            for scene in SCENES {
+            for scene in refrast_render::scene::scenes() {
                 say(&format!("{:<14} {}", scene.name, scene.description));
             }
             ExitCode::SUCCESS
         }
-        Command::Render {
-            scene,
-            output,
-            width,
-            height,
-        } => render(&scene, output, width, height),
+        Command::Render(args) => render::run(&args),
     }
 }
 
@@ -123,24 +105,4 @@ pub(crate) fn all_builtins() -> Vec<BuiltIn> {
     all.extend(refrast_euc::builtins());
     all.extend(refrast_wgpu::builtins());
     all
-}
-
-fn render(scene: &str, output: Option<PathBuf>, width: u32, height: u32) -> ExitCode {
-    let output = output.unwrap_or_else(|| PathBuf::from(format!("{scene}.png")));
-    let target = match scenes::render(scene, width, height) {
-        Ok(target) => target,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::from(2);
-        }
-    };
-    if let Err(e) = target.save_png(&output) {
-        eprintln!("error: could not write {}: {e}", output.display());
-        return ExitCode::FAILURE;
-    }
-    say(&format!(
-        "wrote {} ({width}x{height}, scene {scene})",
-        output.display()
-    ));
-    ExitCode::SUCCESS
 }

@@ -1,0 +1,151 @@
+//! `refrast render`: every built-in scene and a PLY and an OBJ file in every mode, and a
+//! one-line message with exit code 2 for each kind of bad input.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+const REFRAST: &str = env!("CARGO_BIN_EXE_refrast");
+
+/// A scratch folder of this test's own.
+fn scratch(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("render").join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn render(args: &[&str]) -> Output {
+    Command::new(REFRAST).arg("render").args(args).output().expect("refrast runs")
+}
+
+/// Asserts a refusal: exit code 2, and an error on stderr's first line containing `names`,
+/// with no panic or backtrace anywhere.
+fn refused(args: &[&str], names: &str) {
+    let out = render(args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+    let first = stderr.lines().next().unwrap_or("");
+    assert!(first.starts_with("error: ") && first.contains(names), "{args:?}: {stderr}");
+    assert!(!stderr.contains("panicked") && !stderr.contains("backtrace"), "{args:?}: {stderr}");
+}
+
+/// The PNG at `path`, decoded.
+fn png(path: &Path) -> image::RgbaImage {
+    image::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display())).to_rgba8()
+}
+
+/// How many pixels differ from the top-left corner's colour (the background in our scenes).
+fn drawn(image: &image::RgbaImage) -> usize {
+    let background = image.get_pixel(0, 0);
+    image.pixels().filter(|p| *p != background).count()
+}
+
+const MODES: [&str; 7] = ["points", "wire", "fill", "depth", "normals", "barycentric", "overdraw"];
+
+/// Renders `scene` in every mode into a fresh folder and checks each picture was drawn.
+fn every_mode(scene: &str, stem: &str, size: (u32, u32)) {
+    let dir = scratch(stem);
+    let out = render(&[scene, "--mode", "all", "-o", dir.to_str().unwrap()]);
+    assert!(out.status.success(), "{scene}: {}", String::from_utf8_lossy(&out.stderr));
+    for mode in MODES {
+        let file = if mode == "fill" { format!("{stem}.png") } else { format!("{stem}-{mode}.png") };
+        let image = png(&dir.join(&file));
+        assert_eq!(image.dimensions(), size, "{file}");
+        // lab000-ndc fills the corner pixel in no mode, so the corner is the background.
+        assert!(drawn(&image) > 0, "{file} is blank");
+    }
+}
+
+#[test]
+fn every_scene_renders_in_every_mode() {
+    let out = Command::new(REFRAST).arg("scenes").output().unwrap();
+    let listing = String::from_utf8(out.stdout).unwrap();
+    let names: Vec<_> = listing.lines().filter_map(|l| l.split_whitespace().next()).collect();
+    assert!(names.len() >= 16 && names.contains(&"room") && names.contains(&"clipped-torus"), "{names:?}");
+    for name in names {
+        let size = match name {
+            "room" => (500, 500),
+            "aligned-plane" => (512, 512),
+            _ => (640, 480),
+        };
+        every_mode(name, name, size);
+    }
+}
+
+/// A cube as an ASCII PLY with per-vertex colours, one quad face per side.
+const CUBE_PLY: &str = "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\n\
+property float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nelement face 6\n\
+property list uchar int vertex_indices\nend_header\n\
+-1 -1 -1 255 0 0\n1 -1 -1 0 255 0\n1 1 -1 0 0 255\n-1 1 -1 255 255 0\n\
+-1 -1 1 255 0 255\n1 -1 1 0 255 255\n1 1 1 255 255 255\n-1 1 1 40 40 40\n\
+4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 2 3 7 6\n4 1 2 6 5\n4 0 4 7 3\n";
+
+/// A textured, lit square as OBJ: positions, uv, normals, two triangles.
+const SQUARE_OBJ: &str = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n\
+vn 0 0 -1\nf 1/1/1 3/3/1 2/2/1\nf 1/1/1 4/4/1 3/3/1\n";
+
+#[test]
+fn ply_and_obj_files_render_in_every_mode() {
+    let dir = scratch("files");
+    let ply = dir.join("cube.ply");
+    let obj = dir.join("square.obj");
+    std::fs::write(&ply, CUBE_PLY).unwrap();
+    std::fs::write(&obj, SQUARE_OBJ).unwrap();
+    every_mode(ply.to_str().unwrap(), "cube", (640, 480));
+    every_mode(obj.to_str().unwrap(), "square", (640, 480));
+    // The OBJ's uv carries a texture: the checkerboard shows both its colours.
+    let out = render(&[obj.to_str().unwrap(), "--texture", "checker", "--shading", "none", "-o"]);
+    assert_eq!(out.status.code(), Some(2), "-o needs a value");
+    let textured = dir.join("textured.png");
+    let out = render(&[obj.to_str().unwrap(), "--texture", "checker", "--shading", "none", "--sampling", "nearest", "-o", textured.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let image = png(&textured);
+    let colours: std::collections::BTreeSet<_> = image.pixels().map(|p| p.0).collect();
+    assert!(colours.contains(&[255, 255, 255, 255]) && colours.contains(&[51, 51, 64, 255]), "{}", colours.len());
+}
+
+#[test]
+fn an_interrupted_or_failed_render_leaves_no_file() {
+    let dir = scratch("atomic");
+    let target = dir.join("room.png");
+    // A refused draw (euc culls back faces only) writes nothing.
+    let out = render(&["room", "--impl", "euc", "-o", target.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("euc refused the draw"));
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+    // A picture that is written leaves no temporary file beside it.
+    assert!(render(&["room", "-o", target.to_str().unwrap()]).status.success());
+    let names: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+    assert_eq!(names, vec![std::ffi::OsString::from("room.png")]);
+}
+
+#[test]
+fn bad_arguments_are_refused_with_one_line() {
+    let dir = scratch("bad-arguments");
+    let out = |name: &str| dir.join(name).to_str().unwrap().to_owned();
+    let o = out("x.png");
+    refused(&["no-such-scene", "-o", &o], "no scene or mesh file named 'no-such-scene'");
+    refused(&["room", "--size", "0x10", "-o", &o], "'0x10' is not a size");
+    refused(&["room", "--size", "99999x10", "-o", &o], "'99999x10' is not a size");
+    refused(&["room", "--size", "big", "-o", &o], "'big' is not a size");
+    refused(&["room", "--mode", "lines", "-o", &o], "no mode named 'lines'");
+    refused(&["room", "--shading", "toon", "-o", &o], "no shading named 'toon'");
+    refused(&["room", "--impl", "nope", "-o", &o], "no implementation named 'nope'");
+    refused(&["room", "--eye", "1,2", "-o", &o], "'1,2' is not three finite numbers");
+    refused(&["room", "--eye", "nan,0,0", "-o", &o], "is not three finite numbers");
+    refused(&["room", "--eye", "0,0,0", "--target", "0,0,0", "-o", &o], "--eye and --target are the same point");
+    refused(&["room", "--fov", "180", "-o", &o], "--fov 180 is out of range");
+    refused(&["room", "--near", "5", "--far", "1", "-o", &o], "need 0 < near < far");
+    refused(&["room", "--near", "-1", "-o", &o], "need 0 < near < far");
+    refused(&["room", "--ortho", "0", "-o", &o], "the window height must be positive");
+    refused(&["room", "--up", "0,0,0", "-o", &o], "--up must not be zero");
+    refused(&["room", "--cull", "sideways", "-o", &o], "no culling named 'sideways'");
+    refused(&["room", "--attenuation", "0,0,0", "-o", &o], "not all zero");
+    refused(&["room", "--specular", "-1", "-o", &o], "is negative");
+    refused(&["room", "-o", &out("missing-folder/x.png")], "could not write");
+    refused(&["room", "--texture", &out("no-such-texture.png"), "-o", &o], "could not read the texture");
+    let not_an_image = out("not-an-image.png");
+    std::fs::write(&not_an_image, "this is text").unwrap();
+    refused(&["room", "--texture", &not_an_image, "-o", &o], "could not read the texture");
+    assert!(!dir.join("x.png").exists());
+}

@@ -1,0 +1,217 @@
+//! A picture through any [`Rasterizer`]: its fragments, depth-tested in API order, coloured by
+//! the mode and the shading.
+
+use glam::{Mat4, Vec3, Vec4};
+use refrast::pipeline::{Framebuffer, Mesh, Renderer, to_rgba8};
+use refrast::{Draw, DrawError, DrawState, Fragment, Rasterizer, Reference};
+
+use crate::geometry::{edges, face_normal};
+use crate::mode::{Mode, depth_greys, normal_color, overdraw_color};
+use crate::shade::{Light, Shading};
+use crate::texture::{Sampling, Texture};
+
+/// Everything a picture needs besides the rasterizer and the target.
+#[derive(Clone, Copy, Debug)]
+pub struct Job<'a> {
+    /// The triangles, in world space.
+    pub mesh: &'a Mesh,
+    /// World to clip space.
+    pub view_projection: Mat4,
+    /// Where the eye is, for specular highlights and two-sided lighting.
+    pub eye: Vec3,
+    /// Culling, facing, depth test and clipping.
+    pub state: DrawState,
+    /// What to show.
+    pub mode: Mode,
+    /// Where lighting is evaluated (fill mode only).
+    pub shading: Shading,
+    /// The light.
+    pub light: Light,
+    /// A texture multiplied into the vertex colour at the fragment's uv (fill mode only).
+    pub texture: Option<&'a Texture>,
+    /// How the texture is sampled.
+    pub sampling: Sampling,
+    /// The background.
+    pub clear: [u8; 4],
+}
+
+/// What a picture took.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// Triangles (or, in points mode, vertices; in wire mode, edges) sent.
+    pub primitives: usize,
+    /// Fragments the rasterizer returned (before the depth test), or pixels of points and lines.
+    pub fragments: usize,
+    /// Pixels written.
+    pub written: usize,
+}
+
+/// Clears `target` and draws `job` into it with `rasterizer`.
+///
+/// Triangles go through `rasterizer`; points and lines through refrast's own line rasterizer,
+/// since the [`Rasterizer`] contract draws triangles only. Fragments outside the target or of
+/// a primitive the draw does not have (a misbehaving implementation) are skipped.
+pub fn render(
+    rasterizer: &mut dyn Rasterizer,
+    job: &Job<'_>,
+    target: &mut Framebuffer,
+) -> Result<Stats, DrawError> {
+    target.clear(job.clear, job.state.depth.clear);
+    let mesh = job.mesh;
+    let lines = Renderer {
+        reference: Reference::default(),
+        state: job.state,
+    };
+    match job.mode {
+        Mode::Points => {
+            let written = lines.draw_points(target, &mesh.vertices, job.view_projection);
+            return Ok(Stats {
+                primitives: mesh.vertices.len(),
+                fragments: written,
+                written,
+            });
+        }
+        Mode::Wire => {
+            let segments = edges(mesh);
+            let written = lines.draw_lines(target, &mesh.vertices, &segments, job.view_projection);
+            return Ok(Stats {
+                primitives: segments.len(),
+                fragments: written,
+                written,
+            });
+        }
+        _ => {}
+    }
+    let viewport = target.viewport();
+    let draw = Draw {
+        viewport,
+        positions: mesh
+            .vertices
+            .iter()
+            .map(|v| (job.view_projection * v.position.extend(1.0)).to_array())
+            .collect(),
+        triangles: mesh.triangles.clone(),
+        state: job.state,
+    };
+    draw.validate()?;
+    let mut fragments = rasterizer.rasterize(&draw)?;
+    // API order, as `Resolved::from_fragments` replays them: stable, so each primitive keeps its own.
+    fragments.sort_by_key(|f| f.primitive);
+    let fragments: Vec<Fragment> = fragments
+        .into_iter()
+        .filter(|f| {
+            f.x < viewport.width() && f.y < viewport.height() && (f.primitive as usize) < mesh.triangles.len()
+        })
+        .collect();
+    let mut stats = Stats {
+        primitives: mesh.triangles.len(),
+        fragments: fragments.len(),
+        written: 0,
+    };
+    if job.mode == Mode::Overdraw {
+        let mut counts = vec![0u32; viewport.pixel_count()];
+        for f in &fragments {
+            counts[viewport.index(f.x, f.y)] += 1;
+        }
+        for (pixel, &count) in target.color_mut().iter_mut().zip(&counts) {
+            if let Some(c) = overdraw_color(count) {
+                *pixel = c;
+                stats.written += 1;
+            }
+        }
+        return Ok(stats);
+    }
+    let shader = Shader::new(job);
+    for f in &fragments {
+        let i = viewport.index(f.x, f.y);
+        if job.state.depth.test_and_write(f.depth, &mut target.depth_mut()[i]) {
+            target.color_mut()[i] = to_rgba8(shader.color(f));
+            stats.written += 1;
+        }
+    }
+    if job.mode == Mode::Depth {
+        let greys = depth_greys(target.depth(), job.state.depth.clear);
+        for (pixel, grey) in target.color_mut().iter_mut().zip(greys) {
+            if let Some(g) = grey {
+                *pixel = [g, g, g, 255];
+            }
+        }
+    }
+    Ok(stats)
+}
+
+/// The colour of a fragment under a job's mode and shading, with what is computed once per
+/// vertex or per triangle computed up front.
+struct Shader<'a> {
+    job: &'a Job<'a>,
+    /// Per vertex (Gouraud) or per triangle (flat): the light as `(diffuse, specular)`.
+    lit: Vec<(Vec3, Vec3)>,
+    /// Per triangle (flat): the mean vertex colour.
+    flat_albedo: Vec<Vec4>,
+}
+
+impl<'a> Shader<'a> {
+    fn new(job: &'a Job<'a>) -> Self {
+        let (mesh, light, eye) = (job.mesh, &job.light, job.eye);
+        let (mut lit, mut flat_albedo) = (Vec::new(), Vec::new());
+        if job.mode == Mode::Fill {
+            match job.shading {
+                Shading::Gouraud => {
+                    lit = mesh.vertices.iter().map(|v| light.at(v.position, v.normal, eye)).collect();
+                }
+                Shading::Flat => {
+                    for &t in &mesh.triangles {
+                        let [a, b, c] = t.map(|i| &mesh.vertices[i as usize]);
+                        let centroid = (a.position + b.position + c.position) / 3.0;
+                        lit.push(light.at(centroid, face_normal(mesh, t), eye));
+                        flat_albedo.push((a.color + b.color + c.color) / 3.0);
+                    }
+                }
+                Shading::None | Shading::Phong => {}
+            }
+        }
+        Self {
+            job,
+            lit,
+            flat_albedo,
+        }
+    }
+
+    /// The linear colour of `f`.
+    fn color(&self, f: &Fragment) -> Vec4 {
+        let mesh = self.job.mesh;
+        let t = mesh.triangles[f.primitive as usize];
+        let [a, b, c] = t.map(|i| &mesh.vertices[i as usize]);
+        let [wa, wb, wc] = f.barycentric;
+        let mix3 = |pa: Vec3, pb: Vec3, pc: Vec3| pa * wa + pb * wb + pc * wc;
+        match self.job.mode {
+            Mode::Barycentric => return Vec4::new(wa, wb, wc, 1.0),
+            Mode::Normals => return normal_color(mix3(a.normal, b.normal, c.normal)),
+            Mode::Depth => return Vec4::ONE,
+            _ => {}
+        }
+        let mut albedo = if self.job.shading == Shading::Flat {
+            self.flat_albedo[f.primitive as usize]
+        } else {
+            a.color * wa + b.color * wb + c.color * wc
+        };
+        if let Some(texture) = self.job.texture {
+            let uv = a.uv * wa + b.uv * wb + c.uv * wc;
+            albedo *= texture.sample(uv, self.job.sampling);
+        }
+        let (diffuse, specular) = match self.job.shading {
+            Shading::None => return albedo,
+            Shading::Flat => self.lit[f.primitive as usize],
+            Shading::Gouraud => {
+                let [la, lb, lc] = t.map(|i| self.lit[i as usize]);
+                (mix3(la.0, lb.0, lc.0), mix3(la.1, lb.1, lc.1))
+            }
+            Shading::Phong => {
+                let position = mix3(a.position, b.position, c.position);
+                let normal = mix3(a.normal, b.normal, c.normal);
+                self.job.light.at(position, normal, self.job.eye)
+            }
+        };
+        (albedo.truncate() * diffuse + specular).extend(albedo.w)
+    }
+}

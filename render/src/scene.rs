@@ -1,0 +1,322 @@
+//! The built-in scenes of `refrast render`: lab 000's five steps, seed 002's room, and meshes
+//! like seed 004's, some reaching outside the view so that they must be clipped.
+
+use glam::{Mat4, Vec3};
+use refrast::pipeline::Mesh;
+use refrast::{CullMode, DepthState, DrawState, Traversal};
+
+use crate::geometry::{bounds, smooth_normals};
+use crate::load::Loaded;
+use crate::room;
+use crate::shade::{Light, Shading};
+use crate::shapes;
+use crate::view::{Lens, Overrides, View, ViewError};
+
+/// How a scene is looked at.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Framing {
+    /// The vertices are given in clip space already (lab 000's first step).
+    ClipSpace,
+    /// A fixed camera.
+    Fixed(View),
+    /// A camera that shows the whole mesh ([`View::frame`]).
+    Auto,
+}
+
+/// A scene ready to draw: the mesh and the defaults that the command line may override.
+#[derive(Clone, Debug)]
+pub struct Setup {
+    /// The triangles, in world space (clip space under [`Framing::ClipSpace`]).
+    pub mesh: Mesh,
+    /// The camera.
+    pub framing: Framing,
+    /// Culling, facing, depth test and clipping.
+    pub state: DrawState,
+    /// How the reference walks pixels (lab 000's fifth step walks bounding boxes).
+    pub traversal: Traversal,
+    /// The default shading.
+    pub shading: Shading,
+    /// The light; `None` for a headlight above the eye.
+    pub light: Option<Light>,
+    /// The background.
+    pub clear: [u8; 4],
+    /// The default picture size.
+    pub size: (u32, u32),
+}
+
+/// A camera and where its eye is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    /// World to clip space.
+    pub view_projection: Mat4,
+    /// The eye, for lighting.
+    pub eye: Vec3,
+    /// The view, unless the scene is in clip space already.
+    pub view: Option<View>,
+}
+
+impl Setup {
+    /// The scene's camera for a target of the given aspect ratio, with the command line's
+    /// choices applied (a clip-space scene gets a framed camera once any is given).
+    pub fn camera(&self, aspect: f32, overrides: &Overrides) -> Result<Camera, ViewError> {
+        let bounds = bounds(&self.mesh).unwrap_or((Vec3::splat(-1.0), Vec3::ONE));
+        let base = match self.framing {
+            Framing::ClipSpace if !overrides.any() => {
+                return Ok(Camera {
+                    view_projection: Mat4::IDENTITY,
+                    eye: Vec3::new(0.0, 0.0, -1.0),
+                    view: None,
+                });
+            }
+            Framing::Fixed(view) => view,
+            Framing::ClipSpace | Framing::Auto => View::frame(bounds, aspect),
+        };
+        let view = base.with(overrides, bounds);
+        view.validate()?;
+        Ok(Camera {
+            view_projection: view.view_projection(aspect),
+            eye: view.eye,
+            view: Some(view),
+        })
+    }
+
+    /// The light: the scene's, or a headlight a little above and to the left of the eye.
+    #[must_use]
+    pub fn light(&self, camera: &Camera) -> Light {
+        self.light.unwrap_or_else(|| {
+            let offset = camera.view.map_or(Vec3::ZERO, |v| {
+                let (right, up, _) = v.camera().basis();
+                ((up - right) * 0.5) * (v.target - v.eye).length()
+            });
+            Light::headlight(camera.eye + offset)
+        })
+    }
+
+    /// A mesh read from a file: framed automatically, Phong-shaded under a headlight, with
+    /// normals computed where the file has none.
+    #[must_use]
+    pub fn from_loaded(loaded: Loaded) -> Self {
+        let mut mesh = loaded.mesh;
+        if !loaded.has_normals {
+            smooth_normals(&mut mesh);
+        }
+        Self::mesh(mesh, Framing::Auto, Shading::Phong, CullMode::None)
+    }
+
+    fn mesh(mesh: Mesh, framing: Framing, shading: Shading, cull: CullMode) -> Self {
+        Self {
+            mesh,
+            framing,
+            state: DrawState {
+                cull,
+                ..DrawState::default()
+            },
+            traversal: Traversal::BoundingBox,
+            shading,
+            light: None,
+            clear: [40, 40, 48, 255],
+            size: refrast::scenes::DEFAULT_SIZE,
+        }
+    }
+}
+
+/// A built-in scene's name and what it shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SceneInfo {
+    /// The name `refrast render` takes.
+    pub name: &'static str,
+    /// One line on what it draws.
+    pub description: &'static str,
+}
+
+/// The scenes besides lab 000's (which [`refrast::scenes::SCENES`] lists).
+const MORE: [SceneInfo; 11] = [
+    SceneInfo {
+        name: "room",
+        description: "lab 002: a Cornell box with a short and a tall block, lit per pixel by the lab's light",
+    },
+    SceneInfo {
+        name: "plane",
+        description: "lab 004: a square of 8 × 8 quads, colours across (shared edges everywhere)",
+    },
+    SceneInfo {
+        name: "aligned-plane",
+        description: "the plane head-on and orthographic, its diagonals through pixel centres: the fill rule decides them",
+    },
+    SceneInfo {
+        name: "star",
+        description: "lab 004: a flat five-pointed star, a fan of thin triangles around its centre",
+    },
+    SceneInfo {
+        name: "text",
+        description: "lab 004: the word 'refrast' in 8 × 8 glyph cells sharing their edges",
+    },
+    SceneInfo {
+        name: "torus",
+        description: "lab 004: a torus of 48 × 24 quads, coloured around its rings",
+    },
+    SceneInfo {
+        name: "sphere",
+        description: "a UV sphere of 48 × 24, for shading",
+    },
+    SceneInfo {
+        name: "clipped-plane",
+        description: "the plane tilted through the near plane and past the sides: clipped everywhere",
+    },
+    SceneInfo {
+        name: "clipped-star",
+        description: "lab 004: the star, three times larger than the view and tilted through the near plane",
+    },
+    SceneInfo {
+        name: "clipped-torus",
+        description: "lab 004: the torus around the eye, cut by the near plane and the sides",
+    },
+    SceneInfo {
+        name: "clipped-text",
+        description: "the text seen at a grazing angle, reaching behind the eye",
+    },
+];
+
+/// Every built-in scene: lab 000's steps first.
+#[must_use]
+pub fn scenes() -> Vec<SceneInfo> {
+    refrast::scenes::SCENES
+        .iter()
+        .map(|s| SceneInfo {
+            name: s.name,
+            description: s.description,
+        })
+        .chain(MORE)
+        .collect()
+}
+
+/// The fixed camera of the clipped scenes: at (0, 0, −3) looking at the origin, 50°, near 0.5.
+fn clipped_view() -> View {
+    View {
+        eye: Vec3::new(0.0, 0.0, -3.0),
+        target: Vec3::ZERO,
+        up: Vec3::Y,
+        lens: Lens::Perspective { fov_y_degrees: 50.0 },
+        near: 0.5,
+        far: 50.0,
+    }
+}
+
+/// `mesh` moved by `model`, normals with it.
+fn transformed(mut mesh: Mesh, model: Mat4) -> Mesh {
+    let normals = model.inverse().transpose();
+    for v in &mut mesh.vertices {
+        v.position = model.transform_point3(v.position);
+        v.normal = normals.transform_vector3(v.normal).normalize_or_zero();
+    }
+    mesh
+}
+
+/// The scene `name`, or `None` if there is none of that name.
+#[must_use]
+pub fn scene(name: &str) -> Option<Setup> {
+    if let Ok(lab) = refrast::scenes::build(name, 1.0) {
+        let framing = if name == "lab000-ndc" {
+            Framing::ClipSpace
+        } else {
+            // Lab 000's camera: at (0, 0, −10) looking along +z with a 60° field of view.
+            Framing::Fixed(View {
+                eye: Vec3::new(0.0, 0.0, -10.0),
+                target: Vec3::ZERO,
+                up: Vec3::Y,
+                lens: Lens::Perspective { fov_y_degrees: 60.0 },
+                near: 0.1,
+                far: 100.0,
+            })
+        };
+        return Some(Setup {
+            mesh: lab.mesh,
+            framing,
+            state: lab.renderer.state,
+            traversal: lab.renderer.reference.config().traversal,
+            shading: Shading::None,
+            light: None,
+            clear: refrast::scenes::CLEAR,
+            size: refrast::scenes::DEFAULT_SIZE,
+        });
+    }
+    let tilt = |degrees: f32| Mat4::from_rotation_x(degrees.to_radians());
+    let setup = match name {
+        "room" => Setup {
+            light: Some(Light::LAB_002),
+            clear: [0, 0, 0, 255],
+            size: (500, 500),
+            state: DrawState {
+                depth: DepthState::default(),
+                ..DrawState::default()
+            },
+            ..Setup::mesh(
+                room::room(),
+                Framing::Fixed(View {
+                    eye: room::EYE,
+                    target: Vec3::ZERO,
+                    up: Vec3::Y,
+                    lens: Lens::Perspective {
+                        fov_y_degrees: room::fov_y_degrees(),
+                    },
+                    near: 0.5,
+                    far: 10.0,
+                }),
+                Shading::Phong,
+                CullMode::None,
+            )
+        },
+        "plane" => Setup::mesh(shapes::plane(8), Framing::Auto, Shading::None, CullMode::None),
+        "aligned-plane" => Setup {
+            size: (512, 512),
+            ..Setup::mesh(
+                shapes::plane(8),
+                // 2 units over 512 px: vertices every 64 px on pixel corners, so each quad's
+                // diagonal runs through the centres of the pixels it crosses.
+                Framing::Fixed(View {
+                    eye: Vec3::new(0.0, 0.0, -2.0),
+                    target: Vec3::ZERO,
+                    up: Vec3::Y,
+                    lens: Lens::Orthographic { height: 2.0 },
+                    near: 1.0,
+                    far: 3.0,
+                }),
+                Shading::None,
+                CullMode::None,
+            )
+        },
+        "star" => Setup::mesh(shapes::star(5), Framing::Auto, Shading::None, CullMode::None),
+        "text" => Setup::mesh(shapes::text("refrast"), Framing::Auto, Shading::None, CullMode::None),
+        "torus" => Setup::mesh(shapes::torus(1.0, 0.4, 48, 24), Framing::Auto, Shading::None, CullMode::Back),
+        "sphere" => Setup::mesh(shapes::sphere(48, 24), Framing::Auto, Shading::Phong, CullMode::Back),
+        "clipped-plane" => Setup::mesh(
+            transformed(shapes::plane(8), Mat4::from_scale(Vec3::splat(3.0)) * tilt(-70.0)),
+            Framing::Fixed(clipped_view()),
+            Shading::None,
+            CullMode::None,
+        ),
+        "clipped-star" => Setup::mesh(
+            transformed(shapes::star(5), Mat4::from_scale(Vec3::splat(3.0)) * tilt(-55.0)),
+            Framing::Fixed(clipped_view()),
+            Shading::None,
+            CullMode::None,
+        ),
+        "clipped-torus" => Setup::mesh(
+            transformed(
+                shapes::torus(1.0, 0.4, 48, 24),
+                Mat4::from_translation(Vec3::new(0.0, -0.6, -3.0)) * Mat4::from_scale(Vec3::splat(2.0)),
+            ),
+            Framing::Fixed(clipped_view()),
+            Shading::None,
+            CullMode::Back,
+        ),
+        "clipped-text" => Setup::mesh(
+            transformed(shapes::text("refrast"), Mat4::from_scale(Vec3::splat(4.0)) * tilt(-80.0)),
+            Framing::Fixed(clipped_view()),
+            Shading::None,
+            CullMode::None,
+        ),
+        _ => return None,
+    };
+    Some(setup)
+}

@@ -453,3 +453,10 @@ fn obj_vertex_colours_are_read() {
     assert!(loaded.has_colors);
     assert_eq!(loaded.mesh.vertices[1].color, Vec4::new(0.0, 1.0, 0.0, 1.0));
 }
+
+#[test]
+fn obj_colours_on_some_vertices_only_say_so() {
+    let (error, message) = refused(parse_obj(b"v 0 0 0 1 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+    assert!(matches!(error, LoadError::Obj { line: Some(4), .. }), "{message}");
+    assert!(message.contains("on every 'v' line or on none"), "{message}");
+}

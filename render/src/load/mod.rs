@@ -235,3 +235,28 @@ fn finish(mut loaded: Loaded) -> Result<Loaded, LoadError> {
     }
     Ok(loaded)
 }
+
+/// Both parsers on arbitrary bytes, checking what every caller relies on: an `Ok` mesh has
+/// vertices, indices below their count, finite positions. The `mesh_load` fuzz target and the
+/// replay of its corpus run this; a panic inside is the other failure they look for.
+pub fn check_any_bytes(bytes: &[u8]) -> Result<(), String> {
+    for (format, result) in [("PLY", parse_ply(bytes)), ("OBJ", parse_obj(bytes))] {
+        let Ok(loaded) = result else { continue };
+        let mesh = &loaded.mesh;
+        let count = mesh.vertices.len();
+        if count == 0 {
+            return Err(format!("{format}: accepted a mesh without vertices"));
+        }
+        if let Some(t) = mesh
+            .triangles
+            .iter()
+            .find(|t| t.iter().any(|&i| i as usize >= count))
+        {
+            return Err(format!("{format}: triangle {t:?} indexes past {count} vertices"));
+        }
+        if let Some(v) = mesh.vertices.iter().position(|v| !v.position.is_finite()) {
+            return Err(format!("{format}: vertex {v} has a non-finite position"));
+        }
+    }
+    Ok(())
+}

@@ -61,10 +61,10 @@ fn hint(e: &tobj::LoadError) -> &'static str {
         E::FaceParseError | E::InvalidPolygon => {
             "an 'f' line needs at least three vertex references like 1, 1/2 or 1/2/3"
         }
-        E::FaceVertexOutOfBounds
-        | E::FaceTexCoordOutOfBounds
-        | E::FaceNormalOutOfBounds
-        | E::FaceColorOutOfBounds => "a face refers to a 'v', 'vt' or 'vn' that is not defined",
+        E::FaceVertexOutOfBounds | E::FaceTexCoordOutOfBounds | E::FaceNormalOutOfBounds => {
+            "a face refers to a 'v', 'vt' or 'vn' that is not defined"
+        }
+        E::FaceColorOutOfBounds => "give vertex colours (v x y z r g b) on every 'v' line or on none",
         E::ReadError => "the file is not UTF-8 text",
         _ => "check the line's syntax",
     }

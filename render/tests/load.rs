@@ -140,7 +140,7 @@ fn a_content_error_names_the_file() {
     std::fs::write(&path, "v 0 0 0\nf 1 2 3\n").expect("write");
     let (_, message) = refused(load(&path));
     assert!(
-        message.contains("bad.obj") && message.contains("out of bounds"),
+        message.contains("bad.obj") && message.contains("OBJ line 2: face index 3"),
         "{message}"
     );
     std::fs::remove_dir_all(&dir).expect("clean up");
@@ -459,4 +459,30 @@ fn obj_colours_on_some_vertices_only_say_so() {
     let (error, message) = refused(parse_obj(b"v 0 0 0 1 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
     assert!(matches!(error, LoadError::Obj { line: Some(4), .. }), "{message}");
     assert!(message.contains("on every 'v' line or on none"), "{message}");
+}
+
+/// `tobj` 4.0.5 multiplies unchecked face indices: these panicked under overflow checks
+/// (found by the `mesh_load` fuzz target; the files are in `fuzz/regressions/mesh_load/`).
+#[test]
+fn obj_relative_texcoord_index_before_the_first_is_refused() {
+    let (error, message) = refused(parse_obj(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/-6 2/1 3/1\n"));
+    assert!(matches!(error, LoadError::Obj { line: Some(5), .. }), "{message}");
+    assert!(
+        message.contains("face index -6 names no 'vt' (1 defined so far)"),
+        "{message}"
+    );
+}
+
+#[test]
+fn obj_huge_normal_index_is_refused() {
+    let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//7000000000000000000 2//1 3//1\n";
+    let (error, message) = refused(parse_obj(obj));
+    assert!(matches!(error, LoadError::Obj { line: Some(5), .. }), "{message}");
+}
+
+#[test]
+fn obj_index_zero_is_refused() {
+    let (error, message) = refused(parse_obj(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/0 2 3\n"));
+    assert!(matches!(error, LoadError::Obj { line: Some(5), .. }), "{message}");
+    assert!(message.contains("count from 1"), "{message}");
 }

@@ -51,6 +51,62 @@ fn failing_line(bytes: &[u8]) -> Option<usize> {
     Some(hi)
 }
 
+/// Refuses the face indices that `tobj` 4.0.5 overflows on, before it sees them: an index of 0,
+/// a relative (negative) one reaching before the first element, or one larger than the file has
+/// lines. `tobj` turns those into huge `usize`s and multiplies them (`vt * 2 + 1`,
+/// `vn * 3 + 2` in its `add_vertex`), which panics under overflow checks and reads the wrong
+/// element without; found by the `mesh_load` fuzz target (reproducers in
+/// `fuzz/regressions/mesh_load/`). Lines are split and tokenised as `tobj` does.
+fn check_face_indices(bytes: &[u8]) -> Result<(), LoadError> {
+    let text = String::from_utf8_lossy(bytes);
+    let lines = text.lines().count();
+    // Positions, texture coordinates and normals defined so far.
+    let mut defined = [0usize; 3];
+    for (n, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("v") => defined[0] += 1,
+            Some("vt") => defined[1] += 1,
+            Some("vn") => defined[2] += 1,
+            Some("f" | "l") => {
+                for word in words {
+                    let parts = word.split('/').enumerate().take(3);
+                    for (kind, part) in parts.filter(|(_, p)| !p.is_empty()) {
+                        let Ok(index) = part.parse::<isize>() else {
+                            continue;
+                        };
+                        let reach = index.unsigned_abs();
+                        let fits = match index.signum() {
+                            0 => false,
+                            -1 => reach <= defined[kind],
+                            _ => reach <= lines,
+                        };
+                        if !fits {
+                            let name = ["v", "vt", "vn"][kind];
+                            let message = if index > 0 {
+                                format!(
+                                    "face index {index} is beyond any '{name}' a file of {lines} lines can define"
+                                )
+                            } else {
+                                format!(
+                                    "face index {index} names no '{name}' ({} defined so far): indices count from 1, negative ones back from the last",
+                                    defined[kind]
+                                )
+                            };
+                            return Err(LoadError::Obj {
+                                line: Some(n + 1),
+                                message,
+                            });
+                        }
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
 /// What to fix for each of `tobj`'s errors.
 fn hint(e: &tobj::LoadError) -> &'static str {
     use tobj::LoadError as E;
@@ -72,6 +128,7 @@ fn hint(e: &tobj::LoadError) -> &'static str {
 
 /// Reads an OBJ file into one mesh (every object and group merged).
 pub fn parse_obj(bytes: &[u8]) -> Result<Loaded, LoadError> {
+    check_face_indices(bytes)?;
     let models = models(bytes).map_err(|e| LoadError::Obj {
         line: failing_line(bytes),
         message: format!("{e}: {}", hint(&e)),

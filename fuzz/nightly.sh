@@ -20,7 +20,7 @@
 set -uo pipefail
 cd "$(dirname "$0")"
 
-all_targets=(robustness differential watertight clipping depth_order interpolation pipeline)
+all_targets=(robustness differential watertight clipping depth_order interpolation pipeline mesh_load)
 seconds=${1:-600}
 if ! [[ $seconds =~ ^[0-9]+$ ]] || ((seconds == 0)); then
   echo "usage: fuzz/nightly.sh [SECONDS_PER_TARGET] [TARGET...]; SECONDS must be a positive integer, got '$seconds'" >&2

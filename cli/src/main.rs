@@ -29,6 +29,7 @@ enum Command {
     /// List the built-in implementations and their profiles.
     Impls,
     /// Render a built-in scene or a mesh file (PLY, OBJ) to a PNG, in any mode, through any rasterizer.
+    #[command(allow_negative_numbers = true)]
     Render(render::Args),
     /// List the built-in scenes.
     Scenes,

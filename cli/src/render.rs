@@ -98,14 +98,19 @@ fn parse_modes(s: &str) -> Result<Modes, String> {
     if s == "all" {
         return Ok(Modes(Mode::ALL.to_vec()));
     }
-    s.parse::<Mode>().map(|m| Modes(vec![m])).map_err(|e| format!("{e}, all"))
+    s.parse::<Mode>()
+        .map(|m| Modes(vec![m]))
+        .map_err(|e| format!("{e}, all"))
 }
 
 /// `WIDTHxHEIGHT`, each side within what a viewport may be.
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let bad = || format!("'{s}' is not a size; give WIDTHxHEIGHT, e.g. 640x480, each 1..={MAX_VIEWPORT}");
     let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
-    let (w, h) = (w.trim().parse::<u32>().map_err(|_| bad())?, h.trim().parse::<u32>().map_err(|_| bad())?);
+    let (w, h) = (
+        w.trim().parse::<u32>().map_err(|_| bad())?,
+        h.trim().parse::<u32>().map_err(|_| bad())?,
+    );
     if !(1..=MAX_VIEWPORT).contains(&w) || !(1..=MAX_VIEWPORT).contains(&h) {
         return Err(bad());
     }
@@ -123,7 +128,11 @@ fn parse_finite(s: &str) -> Result<f32, String> {
 /// A finite number ≥ 0.
 fn parse_non_negative(s: &str) -> Result<f32, String> {
     parse_finite(s).and_then(|v| {
-        if v >= 0.0 { Ok(v) } else { Err(format!("'{s}' is negative; give a number ≥ 0")) }
+        if v >= 0.0 {
+            Ok(v)
+        } else {
+            Err(format!("'{s}' is negative; give a number ≥ 0"))
+        }
     })
 }
 
@@ -132,7 +141,9 @@ fn parse_three(s: &str) -> Result<[f32; 3], String> {
     let parts: Vec<_> = s.split(',').map(parse_finite).collect();
     match parts.as_slice() {
         [Ok(x), Ok(y), Ok(z)] => Ok([*x, *y, *z]),
-        _ => Err(format!("'{s}' is not three finite numbers separated by commas, e.g. 0,1.5,-3")),
+        _ => Err(format!(
+            "'{s}' is not three finite numbers separated by commas, e.g. 0,1.5,-3"
+        )),
     }
 }
 
@@ -143,7 +154,9 @@ fn parse_vec3(s: &str) -> Result<Vec3, String> {
 fn parse_attenuation(s: &str) -> Result<[f32; 3], String> {
     let a = parse_three(s)?;
     if a.iter().any(|&v| v < 0.0) || a == [0.0; 3] {
-        return Err(format!("'{s}': give C,L,Q ≥ 0, not all zero (1,0,0 is no fall-off)"));
+        return Err(format!(
+            "'{s}': give C,L,Q ≥ 0, not all zero (1,0,0 is no fall-off)"
+        ));
     }
     Ok(a)
 }
@@ -192,12 +205,17 @@ fn setup(name: &str) -> Result<(Setup, String), Failure> {
     if !is_mesh && !path.exists() {
         let names: Vec<_> = scene::scenes().iter().map(|s| s.name).collect();
         return Err(Failure(
-            format!("no scene or mesh file named '{name}'; the scenes are: {}; files end in .ply or .obj", names.join(", ")),
+            format!(
+                "no scene or mesh file named '{name}'; the scenes are: {}; files end in .ply or .obj",
+                names.join(", ")
+            ),
             2,
         ));
     }
     let loaded = load::load(path).map_err(|e| Failure(e.to_string(), 2))?;
-    let stem = path.file_stem().map_or("mesh".into(), |s| s.to_string_lossy().into_owned());
+    let stem = path
+        .file_stem()
+        .map_or("mesh".into(), |s| s.to_string_lossy().into_owned());
     Ok((Setup::from_loaded(loaded), stem))
 }
 
@@ -213,11 +231,15 @@ fn rasterizer(name: &str, setup: &Setup) -> Result<Box<dyn Rasterizer>, Failure>
     let Some(b) = builtins.iter().find(|b| b.name == name) else {
         let names: Vec<_> = builtins.iter().map(|b| b.name.as_str()).collect();
         return Err(Failure(
-            format!("no implementation named '{name}'; the built-ins are: {}", names.join(", ")),
+            format!(
+                "no implementation named '{name}'; the built-ins are: {}",
+                names.join(", ")
+            ),
             2,
         ));
     };
-    b.build().map_err(|why| Failure(format!("{name} is not available here: {why}"), 2))
+    b.build()
+        .map_err(|why| Failure(format!("{name} is not available here: {why}"), 2))
 }
 
 fn render(args: &Args) -> Result<(), Failure> {
@@ -237,7 +259,12 @@ fn render(args: &Args) -> Result<(), Failure> {
         .map_err(|e| Failure(e.to_string(), 2))?;
     let texture = match args.texture.as_deref() {
         None => None,
-        Some("checker") => Some(Texture::checker(8, 8, glam::Vec4::ONE, glam::Vec4::new(0.2, 0.2, 0.25, 1.0))),
+        Some("checker") => Some(Texture::checker(
+            8,
+            8,
+            glam::Vec4::ONE,
+            glam::Vec4::new(0.2, 0.2, 0.25, 1.0),
+        )),
         Some(file) => Some(Texture::open(Path::new(file)).map_err(|e| Failure(e.to_string(), 2))?),
     };
     let mut light = setup.light(&camera);
@@ -260,7 +287,9 @@ fn render(args: &Args) -> Result<(), Failure> {
             .map_err(|e| Failure(format!("could not create the folder {}: {e}", dir.display()), 2))?;
     }
     if setup.mesh.triangles.is_empty() && modes.iter().any(|m| m.uses_triangles()) {
-        say(&format!("note: {stem} has no triangles; only --mode points draws its vertices"));
+        say(&format!(
+            "note: {stem} has no triangles; only --mode points draws its vertices"
+        ));
     }
     for &mode in modes {
         let job = Job {
@@ -276,11 +305,17 @@ fn render(args: &Args) -> Result<(), Failure> {
             clear: setup.clear,
         };
         let start = Instant::now();
-        let stats = refrast_render::render(rasterizer.as_mut(), &job, &mut target).map_err(|e| {
-            Failure(format!("{} refused the draw: {e}", args.implementation), 1)
-        })?;
+        let stats = refrast_render::render(rasterizer.as_mut(), &job, &mut target)
+            .map_err(|e| Failure(format!("{} refused the draw: {e}", args.implementation), 1))?;
         let seconds = start.elapsed().as_secs_f64();
-        let file = format!("{stem}{}.png", if mode == Mode::Fill { String::new() } else { format!("-{mode}") });
+        let file = format!(
+            "{stem}{}.png",
+            if mode == Mode::Fill {
+                String::new()
+            } else {
+                format!("-{mode}")
+            }
+        );
         let path = match (&args.output, modes.len()) {
             (Some(dir), n) if n > 1 => dir.join(file),
             (Some(path), _) => path.clone(),
@@ -291,7 +326,11 @@ fn render(args: &Args) -> Result<(), Failure> {
         say(&format!(
             "wrote {} ({width}x{height}, {stem}, {mode}{}, {}: {} primitives, {} fragments, {} pixels, {:.3} s)",
             path.display(),
-            if mode == Mode::Fill { format!(", shading {}", job.shading) } else { String::new() },
+            if mode == Mode::Fill {
+                format!(", shading {}", job.shading)
+            } else {
+                String::new()
+            },
             args.implementation,
             stats.primitives,
             stats.fragments,

@@ -15,7 +15,11 @@ fn scratch(name: &str) -> PathBuf {
 }
 
 fn render(args: &[&str]) -> Output {
-    Command::new(REFRAST).arg("render").args(args).output().expect("refrast runs")
+    Command::new(REFRAST)
+        .arg("render")
+        .args(args)
+        .output()
+        .expect("refrast runs")
 }
 
 /// Asserts a refusal: exit code 2, and an error on stderr's first line containing `names`,
@@ -25,34 +29,63 @@ fn refused(args: &[&str], names: &str) {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
     let first = stderr.lines().next().unwrap_or("");
-    assert!(first.starts_with("error: ") && first.contains(names), "{args:?}: {stderr}");
-    assert!(!stderr.contains("panicked") && !stderr.contains("backtrace"), "{args:?}: {stderr}");
+    assert!(
+        first.starts_with("error: ") && first.contains(names),
+        "{args:?}: {stderr}"
+    );
+    assert!(
+        !stderr.contains("panicked") && !stderr.contains("backtrace"),
+        "{args:?}: {stderr}"
+    );
 }
 
 /// The PNG at `path`, decoded.
 fn png(path: &Path) -> image::RgbaImage {
-    image::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display())).to_rgba8()
+    image::open(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .to_rgba8()
 }
 
-/// How many pixels differ from the top-left corner's colour (the background in our scenes).
-fn drawn(image: &image::RgbaImage) -> usize {
-    let background = image.get_pixel(0, 0);
-    image.pixels().filter(|p| *p != background).count()
+/// How many pixels differ from the scene's background.
+fn drawn(image: &image::RgbaImage, scene: &str) -> usize {
+    let background = if scene.starts_with("lab000") {
+        [100, 100, 100, 255]
+    } else if scene == "room" {
+        [0, 0, 0, 255]
+    } else {
+        [40, 40, 48, 255]
+    };
+    image.pixels().filter(|p| p.0 != background).count()
 }
 
-const MODES: [&str; 7] = ["points", "wire", "fill", "depth", "normals", "barycentric", "overdraw"];
+const MODES: [&str; 7] = [
+    "points",
+    "wire",
+    "fill",
+    "depth",
+    "normals",
+    "barycentric",
+    "overdraw",
+];
 
 /// Renders `scene` in every mode into a fresh folder and checks each picture was drawn.
 fn every_mode(scene: &str, stem: &str, size: (u32, u32)) {
     let dir = scratch(stem);
     let out = render(&[scene, "--mode", "all", "-o", dir.to_str().unwrap()]);
-    assert!(out.status.success(), "{scene}: {}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{scene}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     for mode in MODES {
-        let file = if mode == "fill" { format!("{stem}.png") } else { format!("{stem}-{mode}.png") };
+        let file = if mode == "fill" {
+            format!("{stem}.png")
+        } else {
+            format!("{stem}-{mode}.png")
+        };
         let image = png(&dir.join(&file));
         assert_eq!(image.dimensions(), size, "{file}");
-        // lab000-ndc fills the corner pixel in no mode, so the corner is the background.
-        assert!(drawn(&image) > 0, "{file} is blank");
+        assert!(drawn(&image, scene) > 0, "{file} is blank");
     }
 }
 
@@ -60,8 +93,14 @@ fn every_mode(scene: &str, stem: &str, size: (u32, u32)) {
 fn every_scene_renders_in_every_mode() {
     let out = Command::new(REFRAST).arg("scenes").output().unwrap();
     let listing = String::from_utf8(out.stdout).unwrap();
-    let names: Vec<_> = listing.lines().filter_map(|l| l.split_whitespace().next()).collect();
-    assert!(names.len() >= 16 && names.contains(&"room") && names.contains(&"clipped-torus"), "{names:?}");
+    let names: Vec<_> = listing
+        .lines()
+        .filter_map(|l| l.split_whitespace().next())
+        .collect();
+    assert!(
+        names.len() >= 16 && names.contains(&"room") && names.contains(&"clipped-torus"),
+        "{names:?}"
+    );
     for name in names {
         let size = match name {
             "room" => (500, 500),
@@ -94,14 +133,35 @@ fn ply_and_obj_files_render_in_every_mode() {
     every_mode(ply.to_str().unwrap(), "cube", (640, 480));
     every_mode(obj.to_str().unwrap(), "square", (640, 480));
     // The OBJ's uv carries a texture: the checkerboard shows both its colours.
-    let out = render(&[obj.to_str().unwrap(), "--texture", "checker", "--shading", "none", "-o"]);
+    let out = render(&[
+        obj.to_str().unwrap(),
+        "--texture",
+        "checker",
+        "--shading",
+        "none",
+        "-o",
+    ]);
     assert_eq!(out.status.code(), Some(2), "-o needs a value");
     let textured = dir.join("textured.png");
-    let out = render(&[obj.to_str().unwrap(), "--texture", "checker", "--shading", "none", "--sampling", "nearest", "-o", textured.to_str().unwrap()]);
+    let out = render(&[
+        obj.to_str().unwrap(),
+        "--texture",
+        "checker",
+        "--shading",
+        "none",
+        "--sampling",
+        "nearest",
+        "-o",
+        textured.to_str().unwrap(),
+    ]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let image = png(&textured);
     let colours: std::collections::BTreeSet<_> = image.pixels().map(|p| p.0).collect();
-    assert!(colours.contains(&[255, 255, 255, 255]) && colours.contains(&[51, 51, 64, 255]), "{}", colours.len());
+    assert!(
+        colours.contains(&[255, 255, 255, 255]) && colours.contains(&[51, 51, 64, 255]),
+        "{}",
+        colours.len()
+    );
 }
 
 #[test]
@@ -110,12 +170,20 @@ fn an_interrupted_or_failed_render_leaves_no_file() {
     let target = dir.join("room.png");
     // A refused draw (euc culls back faces only) writes nothing.
     let out = render(&["room", "--impl", "euc", "-o", target.to_str().unwrap()]);
-    assert_eq!(out.status.code(), Some(1), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(
+        out.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert!(String::from_utf8_lossy(&out.stderr).contains("euc refused the draw"));
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
     // A picture that is written leaves no temporary file beside it.
     assert!(render(&["room", "-o", target.to_str().unwrap()]).status.success());
-    let names: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+    let names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
     assert_eq!(names, vec![std::ffi::OsString::from("room.png")]);
 }
 
@@ -124,28 +192,141 @@ fn bad_arguments_are_refused_with_one_line() {
     let dir = scratch("bad-arguments");
     let out = |name: &str| dir.join(name).to_str().unwrap().to_owned();
     let o = out("x.png");
-    refused(&["no-such-scene", "-o", &o], "no scene or mesh file named 'no-such-scene'");
+    refused(
+        &["no-such-scene", "-o", &o],
+        "no scene or mesh file named 'no-such-scene'",
+    );
     refused(&["room", "--size", "0x10", "-o", &o], "'0x10' is not a size");
-    refused(&["room", "--size", "99999x10", "-o", &o], "'99999x10' is not a size");
+    refused(
+        &["room", "--size", "99999x10", "-o", &o],
+        "'99999x10' is not a size",
+    );
     refused(&["room", "--size", "big", "-o", &o], "'big' is not a size");
     refused(&["room", "--mode", "lines", "-o", &o], "no mode named 'lines'");
-    refused(&["room", "--shading", "toon", "-o", &o], "no shading named 'toon'");
-    refused(&["room", "--impl", "nope", "-o", &o], "no implementation named 'nope'");
-    refused(&["room", "--eye", "1,2", "-o", &o], "'1,2' is not three finite numbers");
-    refused(&["room", "--eye", "nan,0,0", "-o", &o], "is not three finite numbers");
-    refused(&["room", "--eye", "0,0,0", "--target", "0,0,0", "-o", &o], "--eye and --target are the same point");
+    refused(
+        &["room", "--shading", "toon", "-o", &o],
+        "no shading named 'toon'",
+    );
+    refused(
+        &["room", "--impl", "nope", "-o", &o],
+        "no implementation named 'nope'",
+    );
+    refused(
+        &["room", "--eye", "1,2", "-o", &o],
+        "'1,2' is not three finite numbers",
+    );
+    refused(
+        &["room", "--eye", "nan,0,0", "-o", &o],
+        "is not three finite numbers",
+    );
+    refused(
+        &["room", "--eye", "0,0,0", "--target", "0,0,0", "-o", &o],
+        "--eye and --target are the same point",
+    );
     refused(&["room", "--fov", "180", "-o", &o], "--fov 180 is out of range");
-    refused(&["room", "--near", "5", "--far", "1", "-o", &o], "need 0 < near < far");
+    refused(
+        &["room", "--near", "5", "--far", "1", "-o", &o],
+        "need 0 < near < far",
+    );
     refused(&["room", "--near", "-1", "-o", &o], "need 0 < near < far");
-    refused(&["room", "--ortho", "0", "-o", &o], "the window height must be positive");
+    refused(
+        &["room", "--ortho", "0", "-o", &o],
+        "the window height must be positive",
+    );
     refused(&["room", "--up", "0,0,0", "-o", &o], "--up must not be zero");
-    refused(&["room", "--cull", "sideways", "-o", &o], "no culling named 'sideways'");
+    refused(
+        &["room", "--cull", "sideways", "-o", &o],
+        "no culling named 'sideways'",
+    );
     refused(&["room", "--attenuation", "0,0,0", "-o", &o], "not all zero");
     refused(&["room", "--specular", "-1", "-o", &o], "is negative");
     refused(&["room", "-o", &out("missing-folder/x.png")], "could not write");
-    refused(&["room", "--texture", &out("no-such-texture.png"), "-o", &o], "could not read the texture");
+    refused(
+        &["room", "--texture", &out("no-such-texture.png"), "-o", &o],
+        "could not read the texture",
+    );
     let not_an_image = out("not-an-image.png");
     std::fs::write(&not_an_image, "this is text").unwrap();
-    refused(&["room", "--texture", &not_an_image, "-o", &o], "could not read the texture");
+    refused(
+        &["room", "--texture", &not_an_image, "-o", &o],
+        "could not read the texture",
+    );
+    assert!(!dir.join("x.png").exists());
+}
+
+#[test]
+fn malformed_meshes_are_refused_with_one_line() {
+    let dir = scratch("bad-meshes");
+    let o = dir.join("x.png").to_str().unwrap().to_owned();
+    let header = |vertices: u32, faces: u32| {
+        format!(
+            "ply\nformat ascii 1.0\nelement vertex {vertices}\nproperty float x\nproperty float y\n\
+             property float z\nelement face {faces}\nproperty list uchar int vertex_indices\nend_header\n"
+        )
+    };
+    let cases = [
+        ("truncated.ply", format!("{}0 0 0\n1 0 0\n", header(3, 1)), "PLY"),
+        (
+            "counts.ply",
+            format!("{}0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", header(3, 2)),
+            "PLY",
+        ),
+        (
+            "text.ply",
+            format!("{}0 0 0\n1 zero 0\n0 1 0\n3 0 1 2\n", header(3, 1)),
+            "PLY line",
+        ),
+        (
+            "index.ply",
+            format!("{}0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n", header(3, 1)),
+            "refers to vertex 7",
+        ),
+        // ASCII PLY has no spelling of NaN; a number beyond f32 is infinite.
+        (
+            "nan.ply",
+            format!("{}0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n", header(3, 1)),
+            "PLY line 11",
+        ),
+        (
+            "inf.ply",
+            format!("{}0 0 0\n1 1e39 0\n0 1 0\n3 0 1 2\n", header(3, 1)),
+            "non-finite position",
+        ),
+        (
+            "nan.obj",
+            "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n".to_owned(),
+            "non-finite position",
+        ),
+        (
+            "huge.ply",
+            format!("{}0 0 0\n", header(u32::MAX, 1)),
+            "declares 4294967295",
+        ),
+        (
+            "index.obj",
+            "v 0 0 0\nv 1 0 0\nf 1 2 3\n".to_owned(),
+            "OBJ line 3",
+        ),
+        (
+            "text.obj",
+            "v 0 0 0\nv 1 zero 0\nv 0 1 0\nf 1 2 3\n".to_owned(),
+            "OBJ line 2",
+        ),
+        ("empty.obj", String::new(), "no vertices"),
+        (
+            "mesh.stl",
+            "solid".to_owned(),
+            "unknown mesh format; the supported extensions are .ply and .obj",
+        ),
+    ];
+    for (name, text, names) in cases {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        refused(&[path.to_str().unwrap(), "-o", &o], names);
+    }
+    refused(
+        &[dir.join("missing.ply").to_str().unwrap(), "-o", &o],
+        "missing.ply",
+    );
     assert!(!dir.join("x.png").exists());
 }

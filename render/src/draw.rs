@@ -124,7 +124,11 @@ pub fn render(
     let shader = Shader::new(job);
     for f in &fragments {
         let i = viewport.index(f.x, f.y);
-        if job.state.depth.test_and_write(f.depth, &mut target.depth_mut()[i]) {
+        if job
+            .state
+            .depth
+            .test_and_write(f.depth, &mut target.depth_mut()[i])
+        {
             target.color_mut()[i] = to_rgba8(shader.color(f));
             stats.written += 1;
         }
@@ -157,7 +161,11 @@ impl<'a> Shader<'a> {
         if job.mode == Mode::Fill {
             match job.shading {
                 Shading::Gouraud => {
-                    lit = mesh.vertices.iter().map(|v| light.at(v.position, v.normal, eye)).collect();
+                    lit = mesh
+                        .vertices
+                        .iter()
+                        .map(|v| light.at(v.position, v.normal, eye))
+                        .collect();
                 }
                 Shading::Flat => {
                     for &t in &mesh.triangles {

@@ -30,11 +30,27 @@ pub fn edges(mesh: &Mesh) -> Vec<[u32; 2]> {
     set.into_iter().collect()
 }
 
-/// The unnormalised normal of triangle `t`, `(b − a) × (c − a)`: its length is twice the area.
+/// The unnormalised outward normal of triangle `t` ([`crate::shapes::outward`]): its length
+/// is twice the area.
 #[must_use]
 pub fn face_normal(mesh: &Mesh, t: [u32; 3]) -> Vec3 {
     let [a, b, c] = t.map(|i| mesh.vertices[i as usize].position);
-    (b - a).cross(c - a)
+    crate::shapes::outward(a, b, c)
+}
+
+/// A mesh from a right-handed file (OBJ's and most PLY's convention: y up, the front towards
+/// +z) in refrast's left-handed world: z negated, normals with it, and each triangle's winding
+/// reversed so that its front stays its front. The front then faces the framing camera at −z.
+#[must_use]
+pub fn to_left_handed(mut mesh: Mesh) -> Mesh {
+    for v in &mut mesh.vertices {
+        v.position.z = -v.position.z;
+        v.normal.z = -v.normal.z;
+    }
+    for t in &mut mesh.triangles {
+        t.swap(1, 2);
+    }
+    mesh
 }
 
 /// Replaces every vertex normal by the area-weighted mean of the normals of the triangles
@@ -74,9 +90,15 @@ mod tests {
     fn a_quad_has_five_edges_and_unit_normals() {
         let mut mesh = quad();
         assert_eq!(edges(&mesh), vec![[0, 1], [0, 2], [0, 3], [1, 2], [2, 3]]);
-        assert_eq!(face_normal(&mesh, [0, 1, 2]), Vec3::Z);
+        // Counter-clockwise in the xy plane seen from −z is the side facing −z.
+        assert_eq!(face_normal(&mesh, [0, 1, 2]), -Vec3::Z);
         smooth_normals(&mut mesh);
-        assert!(mesh.vertices.iter().all(|v| v.normal == Vec3::Z));
+        assert!(mesh.vertices.iter().all(|v| v.normal == -Vec3::Z));
+        // Mirrored into the left-handed world, the same triangles face +z, wound the other way.
+        let mirrored = to_left_handed(mesh.clone());
+        assert_eq!(mirrored.triangles, vec![[0, 2, 1], [0, 3, 2]]);
+        assert!(mirrored.vertices.iter().all(|v| v.normal == Vec3::Z));
+        assert_eq!(face_normal(&mirrored, [0, 2, 1]), Vec3::Z);
         assert_eq!(bounds(&mesh), Some((Vec3::ZERO, Vec3::new(1.0, 1.0, 0.0))));
     }
 
@@ -97,7 +119,10 @@ mod tests {
         };
         smooth_normals(&mut mesh);
         let n = mesh.vertices[0].normal;
-        assert!((n - (Vec3::new(1.0, 0.0, 16.0)).normalize()).length() < 1e-6, "{n}");
+        assert!(
+            (n + (Vec3::new(1.0, 0.0, 16.0)).normalize()).length() < 1e-6,
+            "{n}"
+        );
         assert_eq!(mesh.vertices[5].normal, Vec3::ZERO);
         assert_eq!(bounds(&Mesh::default()), None);
     }

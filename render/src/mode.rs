@@ -130,7 +130,10 @@ mod tests {
             assert_eq!(m.name().parse::<Mode>(), Ok(m));
         }
         let err = "lines".parse::<Mode>().unwrap_err();
-        assert!(err.contains("points, wire, fill, depth, normals, barycentric, overdraw"), "{err}");
+        assert!(
+            err.contains("points, wire, fill, depth, normals, barycentric, overdraw"),
+            "{err}"
+        );
         assert!(!Mode::Wire.uses_triangles() && Mode::Overdraw.uses_triangles());
     }
 

@@ -51,7 +51,10 @@ mod tests {
         let image = image::open(&path).unwrap().to_rgba8();
         assert_eq!(image.dimensions(), (3, 2));
         assert_eq!(image.get_pixel(2, 1).0, [10, 20, 30, 255]);
-        let names: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+        let names: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
         assert_eq!(names, vec![std::ffi::OsString::from("a.png")]);
         // A folder that does not exist: an error, and nothing written.
         assert!(save_png(&target, &dir.join("missing/b.png")).is_err());

@@ -62,7 +62,7 @@ const BLOCK_TRIANGLES: [[usize; 3]; 10] = [
 pub fn room() -> Mesh {
     let mut mesh = Mesh::default();
     let mut push = |corners: [Vec3; 3], color: Vec3| {
-        let normal = (corners[1] - corners[0]).cross(corners[2] - corners[0]).normalize_or_zero();
+        let normal = crate::shapes::outward(corners[0], corners[1], corners[2]).normalize_or_zero();
         let base = mesh.vertices.len() as u32;
         for position in corners {
             mesh.vertices.push(Vertex {
@@ -99,8 +99,14 @@ pub fn room() -> Mesh {
     for (corners, color) in walls {
         push(corners, color);
     }
-    let short = block([[290.0, 114.0], [130.0, 65.0], [240.0, 272.0], [82.0, 225.0]], 165.0);
-    let tall = block([[423.0, 247.0], [265.0, 296.0], [472.0, 406.0], [314.0, 456.0]], 330.0);
+    let short = block(
+        [[290.0, 114.0], [130.0, 65.0], [240.0, 272.0], [82.0, 225.0]],
+        165.0,
+    );
+    let tall = block(
+        [[423.0, 247.0], [265.0, 296.0], [472.0, 406.0], [314.0, 456.0]],
+        330.0,
+    );
     for (corners, color) in [(short, RED), (tall, BLUE)] {
         for t in BLOCK_TRIANGLES {
             push(t.map(|i| corners[i]), color);
@@ -125,9 +131,17 @@ mod tests {
         assert!(at(CYAN).all(|v| v.position.y == 1.0));
         // The back wall is the far one, at z = +1; the blocks stand on the floor.
         assert!(at(WHITE).all(|v| v.position.z == 1.0));
-        assert!(at(BLUE).chain(at(RED)).all(|v| v.position.y >= -1.0 && v.position.y < 0.3));
+        assert!(
+            at(BLUE)
+                .chain(at(RED))
+                .all(|v| v.position.y >= -1.0 && v.position.y < 0.3)
+        );
         // Every normal is a unit axis-aligned or horizontal vector.
-        assert!(mesh.vertices.iter().all(|v| (v.normal.length() - 1.0).abs() < 1e-5));
+        assert!(
+            mesh.vertices
+                .iter()
+                .all(|v| (v.normal.length() - 1.0).abs() < 1e-5)
+        );
     }
 
     #[test]

@@ -5,7 +5,7 @@ use glam::{Mat4, Vec3};
 use refrast::pipeline::Mesh;
 use refrast::{CullMode, DepthState, DrawState, Traversal};
 
-use crate::geometry::{bounds, smooth_normals};
+use crate::geometry::{bounds, smooth_normals, to_left_handed};
 use crate::load::Loaded;
 use crate::room;
 use crate::shade::{Light, Shading};
@@ -92,11 +92,11 @@ impl Setup {
         })
     }
 
-    /// A mesh read from a file: framed automatically, Phong-shaded under a headlight, with
-    /// normals computed where the file has none.
+    /// A mesh read from a file: turned into our left-handed world, framed automatically from
+    /// its front, Phong-shaded under a headlight, with normals computed where the file has none.
     #[must_use]
     pub fn from_loaded(loaded: Loaded) -> Self {
-        let mut mesh = loaded.mesh;
+        let mut mesh = to_left_handed(loaded.mesh);
         if !loaded.has_normals {
             smooth_normals(&mut mesh);
         }
@@ -169,7 +169,7 @@ const MORE: [SceneInfo; 11] = [
     },
     SceneInfo {
         name: "clipped-torus",
-        description: "lab 004: the torus around the eye, cut by the near plane and the sides",
+        description: "lab 004: the torus lying around the eye, cut by the near plane and the sides",
     },
     SceneInfo {
         name: "clipped-text",
@@ -200,6 +200,11 @@ fn clipped_view() -> View {
         near: 0.5,
         far: 50.0,
     }
+}
+
+/// The torus of the torus scenes: radii 1 and 0.4, 48 × 24 quads.
+fn torus() -> Mesh {
+    shapes::torus(1.0, 0.4, 48, 24).expect("0 < 0.4 < 1: valid radii")
 }
 
 /// `mesh` moved by `model`, normals with it.
@@ -286,9 +291,19 @@ pub fn scene(name: &str) -> Option<Setup> {
             )
         },
         "star" => Setup::mesh(shapes::star(5), Framing::Auto, Shading::None, CullMode::None),
-        "text" => Setup::mesh(shapes::text("refrast"), Framing::Auto, Shading::None, CullMode::None),
-        "torus" => Setup::mesh(shapes::torus(1.0, 0.4, 48, 24), Framing::Auto, Shading::None, CullMode::Back),
-        "sphere" => Setup::mesh(shapes::sphere(48, 24), Framing::Auto, Shading::Phong, CullMode::Back),
+        "text" => Setup::mesh(
+            shapes::text("refrast"),
+            Framing::Auto,
+            Shading::None,
+            CullMode::None,
+        ),
+        "torus" => Setup::mesh(torus(), Framing::Auto, Shading::None, CullMode::Back),
+        "sphere" => Setup::mesh(
+            shapes::sphere(48, 24),
+            Framing::Auto,
+            Shading::Phong,
+            CullMode::Back,
+        ),
         "clipped-plane" => Setup::mesh(
             transformed(shapes::plane(8), Mat4::from_scale(Vec3::splat(3.0)) * tilt(-70.0)),
             Framing::Fixed(clipped_view()),
@@ -303,15 +318,24 @@ pub fn scene(name: &str) -> Option<Setup> {
         ),
         "clipped-torus" => Setup::mesh(
             transformed(
-                shapes::torus(1.0, 0.4, 48, 24),
-                Mat4::from_translation(Vec3::new(0.0, -0.6, -3.0)) * Mat4::from_scale(Vec3::splat(2.0)),
+                torus(),
+                // Twice as large, tilted so that its lower half comes at the eye: cut by the
+                // near plane below, by the sides left and right.
+                Mat4::from_translation(Vec3::new(0.0, 0.2, -1.2))
+                    * tilt(-50.0)
+                    * Mat4::from_scale(Vec3::splat(2.2)),
             ),
             Framing::Fixed(clipped_view()),
             Shading::None,
             CullMode::Back,
         ),
         "clipped-text" => Setup::mesh(
-            transformed(shapes::text("refrast"), Mat4::from_scale(Vec3::splat(4.0)) * tilt(-80.0)),
+            transformed(
+                shapes::text("refrast"),
+                Mat4::from_translation(Vec3::new(0.0, -0.25, -1.0))
+                    * tilt(-60.0)
+                    * Mat4::from_scale(Vec3::splat(5.0)),
+            ),
             Framing::Fixed(clipped_view()),
             Shading::None,
             CullMode::None,

@@ -172,7 +172,10 @@ mod tests {
         let back = light.at(Vec3::ZERO, Vec3::Z, eye);
         assert_eq!(front, back);
         assert_relative_eq!(front.0, Vec3::splat(0.15 + 0.9), epsilon = 1e-6);
-        assert_eq!(light.at(Vec3::ZERO, Vec3::ZERO, eye), (Vec3::splat(0.15), Vec3::ZERO));
+        assert_eq!(
+            light.at(Vec3::ZERO, Vec3::ZERO, eye),
+            (Vec3::splat(0.15), Vec3::ZERO)
+        );
     }
 
     #[test]

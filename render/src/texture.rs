@@ -41,9 +41,10 @@ impl FromStr for Sampling {
     type Err = String;
 
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Self::ALL.into_iter().find(|m| m.name() == s).ok_or_else(|| {
-            format!("no sampling named '{s}'; the samplings are: nearest, bilinear")
-        })
+        Self::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| format!("no sampling named '{s}'; the samplings are: nearest, bilinear"))
     }
 }
 
@@ -184,10 +185,19 @@ mod tests {
         // Texel centres at u = 0.25 and 0.75: exact there, halfway between at 0.5.
         assert_relative_eq!(t.sample(Vec2::new(0.25, 0.5), Sampling::Bilinear), Vec4::ZERO);
         assert_relative_eq!(t.sample(Vec2::new(0.75, 0.5), Sampling::Bilinear), Vec4::ONE);
-        assert_relative_eq!(t.sample(Vec2::new(0.5, 0.5), Sampling::Bilinear), Vec4::splat(0.5));
+        assert_relative_eq!(
+            t.sample(Vec2::new(0.5, 0.5), Sampling::Bilinear),
+            Vec4::splat(0.5)
+        );
         // At u = 0 the neighbours are the last texel (wrapped) and the first: halfway again.
-        assert_relative_eq!(t.sample(Vec2::new(0.0, 0.5), Sampling::Bilinear), Vec4::splat(0.5));
-        assert_relative_eq!(t.sample(Vec2::new(0.375, 0.5), Sampling::Bilinear), Vec4::splat(0.25));
+        assert_relative_eq!(
+            t.sample(Vec2::new(0.0, 0.5), Sampling::Bilinear),
+            Vec4::splat(0.5)
+        );
+        assert_relative_eq!(
+            t.sample(Vec2::new(0.375, 0.5), Sampling::Bilinear),
+            Vec4::splat(0.25)
+        );
     }
 
     #[test]
@@ -200,6 +210,10 @@ mod tests {
     #[test]
     fn a_missing_texture_names_the_file() {
         let err = Texture::open(Path::new("/no/such/texture.png")).unwrap_err();
-        assert!(err.to_string().starts_with("could not read the texture /no/such/texture.png: "), "{err}");
+        assert!(
+            err.to_string()
+                .starts_with("could not read the texture /no/such/texture.png: "),
+            "{err}"
+        );
     }
 }

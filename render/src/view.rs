@@ -128,7 +128,9 @@ impl View {
         let center = (lo + hi) / 2.0;
         let radius = ((hi - lo).length() / 2.0).max(1e-3);
         let eye = o.eye.unwrap_or(self.eye);
-        let target = o.target.unwrap_or(if o.eye.is_some() { center } else { self.target });
+        let target = o
+            .target
+            .unwrap_or(if o.eye.is_some() { center } else { self.target });
         let distance = (center - eye).length();
         let moved = o.eye.is_some() || o.target.is_some();
         let near = o.near.unwrap_or(if moved {
@@ -136,7 +138,9 @@ impl View {
         } else {
             self.near
         });
-        let far = o.far.unwrap_or(if moved { distance + radius * 1.5 } else { self.far });
+        let far = o
+            .far
+            .unwrap_or(if moved { distance + radius * 1.5 } else { self.far });
         let lens = match (o.ortho, o.fov_y_degrees) {
             (Some(Some(height)), _) => Lens::Orthographic { height },
             (Some(None), _) => Lens::Orthographic {
@@ -156,7 +160,13 @@ impl View {
             up: o.up.unwrap_or(self.up),
             lens,
             near,
-            far: far.max(near * 1.001),
+            // A far plane that only followed the eye stays beyond the near one; one that was
+            // given is checked by `validate`.
+            far: if o.far.is_some() {
+                far
+            } else {
+                far.max(near * 1.001)
+            },
         }
     }
 

@@ -5,8 +5,8 @@ use glam::{Vec3, Vec4};
 use refrast::pipeline::Framebuffer;
 use refrast::{Draw, DrawError, Fragment, Profile, Rasterizer, Reference, ReferenceConfig};
 use refrast_render::scene::{self, Setup};
-use refrast_zoo::mutant::{Bug, Mutant};
 use refrast_render::{Job, Mode, Overrides, Sampling, Shading, Texture, mode::overdraw_color};
+use refrast_zoo::mutant::{Bug, Mutant};
 
 /// Renders a built-in scene at its size with `rasterizer`, with the scene's defaults.
 fn picture(name: &str, mode: Mode, rasterizer: &mut dyn Rasterizer) -> Framebuffer {
@@ -131,7 +131,11 @@ fn textures_are_perspective_correct() {
             continue;
         }
         let cell = (v.uv * 2.0).floor();
-        let expected = if (cell.x + cell.y) as u32 % 2 == 0 { a } else { b };
+        let expected = if ((cell.x + cell.y) as u32).is_multiple_of(2) {
+            a
+        } else {
+            b
+        };
         let colour = good.pixel(x as u32, y as u32).unwrap();
         let vertex = refrast::pipeline::to_rgba8(v.color * expected);
         assert_eq!(colour, vertex, "uv {} at ({x}, {y})", v.uv);
@@ -156,7 +160,10 @@ fn normals_and_barycentrics_are_colours() {
     let bary = picture("room", Mode::Barycentric, &mut reference);
     // The floor's normal is ±y: green 255 or 0 with red and blue at 128.
     let floor = normals.pixel(250, 480).unwrap();
-    assert!(floor[0].abs_diff(128) <= 1 && floor[2].abs_diff(128) <= 1 && floor[1] % 255 == 0, "{floor:?}");
+    assert!(
+        floor[0].abs_diff(128) <= 1 && floor[2].abs_diff(128) <= 1 && floor[1].is_multiple_of(255),
+        "{floor:?}"
+    );
     // Barycentrics sum to one: the channels sum to 255 within rounding.
     for (x, y) in [(100, 100), (250, 480), (400, 300)] {
         let [r, g, b, _] = bary.pixel(x, y).unwrap();
@@ -197,7 +204,12 @@ impl Rasterizer for Misbehaving {
             screen_barycentric: None,
             front_facing: true,
         };
-        Ok(vec![f(10_000, 0, 0), f(0, 10_000, 0), f(0, 0, 1_000_000), f(1, 1, 0)])
+        Ok(vec![
+            f(10_000, 0, 0),
+            f(0, 10_000, 0),
+            f(0, 0, 1_000_000),
+            f(1, 1, 0),
+        ])
     }
 }
 

@@ -330,3 +330,34 @@ fn malformed_meshes_are_refused_with_one_line() {
     );
     assert!(!dir.join("x.png").exists());
 }
+
+#[test]
+fn the_readmes_render_commands_run() {
+    let readme = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../README.md")).unwrap();
+    let commands: Vec<_> = readme
+        .lines()
+        .filter_map(|l| l.strip_prefix("cargo run --release -- render "))
+        .map(|l| l.split('#').next().unwrap().trim())
+        .collect();
+    assert!(commands.len() >= 5, "{commands:?}");
+    // Run where the README's relative paths resolve, writing into a folder of the test's own.
+    let dir = scratch("readme");
+    let data = dir.join("render/tests/data");
+    std::fs::create_dir_all(&data).unwrap();
+    let source = Path::new(env!("CARGO_MANIFEST_DIR")).join("../render/tests/data/cube.ply");
+    std::fs::copy(source, data.join("cube.ply")).unwrap();
+    for command in commands {
+        let out = Command::new(REFRAST)
+            .current_dir(&dir)
+            .arg("render")
+            .args(command.split_whitespace())
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "render {command}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    assert!(dir.join("room.png").exists() && dir.join("pictures/room-overdraw.png").exists());
+}

@@ -130,7 +130,7 @@ pub struct SceneInfo {
 }
 
 /// The scenes besides lab 000's (which [`refrast::scenes::SCENES`] lists).
-const MORE: [SceneInfo; 11] = [
+const MORE: [SceneInfo; 12] = [
     SceneInfo {
         name: "room",
         description: "lab 002: a Cornell box with a short and a tall block, lit per pixel by the lab's light",
@@ -162,6 +162,10 @@ const MORE: [SceneInfo; 11] = [
     SceneInfo {
         name: "clipped-plane",
         description: "the plane tilted through the near plane and past the sides: clipped everywhere",
+    },
+    SceneInfo {
+        name: "floor",
+        description: "a floor of two triangles to the horizon, cut by the near plane: try --texture checker",
     },
     SceneInfo {
         name: "clipped-star",
@@ -306,6 +310,17 @@ pub fn scene(name: &str) -> Option<Setup> {
         ),
         "clipped-plane" => Setup::mesh(
             transformed(shapes::plane(8), Mat4::from_scale(Vec3::splat(3.0)) * tilt(-70.0)),
+            Framing::Fixed(clipped_view()),
+            Shading::None,
+            CullMode::None,
+        ),
+        "floor" => Setup::mesh(
+            transformed(
+                shapes::plane(1),
+                Mat4::from_translation(Vec3::new(0.0, -1.0, 2.0))
+                    * tilt(90.0)
+                    * Mat4::from_scale(Vec3::splat(6.0)),
+            ),
             Framing::Fixed(clipped_view()),
             Shading::None,
             CullMode::None,

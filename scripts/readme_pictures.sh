@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Regenerates the README's pictures in docs/pictures/ with `refrast render` (release build).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cargo build --release -q -p refrast-cli
+refrast=target/release/refrast
+out=docs/pictures
+mkdir -p "$out"
+r() { "$refrast" render "$@" >/dev/null; }
+# Seed 002's room: lit per pixel by the lab's light, then as the lab's wireframe and depth.
+r room --size 300x300 -o "$out/room.png"
+r room --size 300x300 --mode wire -o "$out/room-wire.png"
+r room --size 300x300 --mode depth -o "$out/room-depth.png"
+# Flat, Gouraud and Phong (Blinn) shading of one sphere.
+for s in flat gouraud phong; do
+  r sphere --size 240x240 --shading "$s" --blinn -o "$out/sphere-$s.png"
+done
+# Overdraw of a plane whose diagonals run through pixel centres: the reference covers every
+# pixel once; inclusive edges cover the diagonals twice, exclusive edges leave them open.
+for i in reference mutant:inclusive-edges mutant:exclusive-edges; do
+  r aligned-plane --size 256x256 --mode overdraw --impl "$i" -o "$out/overdraw-${i#mutant:}.png"
+done
+# A checkerboard on a floor of two triangles: perspective-correct uv, then the affine mutant's.
+r floor --size 320x240 --texture checker --sampling nearest -o "$out/floor-checker.png"
+r floor --size 320x240 --texture checker --sampling nearest --impl mutant:affine-attributes \
+  -o "$out/floor-checker-affine.png"
+# Lab 004's meshes: the star as lines, the torus's normals, and the plane in overdraw through
+# seed 002's scanline course rasterizer, which covers pixels of shared edges twice.
+r star --size 320x240 --mode wire -o "$out/star-wire.png"
+r torus --size 320x240 --mode normals -o "$out/torus-normals.png"
+r plane --size 320x240 --mode overdraw --impl lab002-scanline -o "$out/plane-overdraw-lab002.png"
+ls -1 "$out"

@@ -169,7 +169,7 @@ const MORE: [SceneInfo; 12] = [
     },
     SceneInfo {
         name: "clipped-star",
-        description: "lab 004: the star, three times larger than the view and tilted through the near plane",
+        description: "lab 004: the star, larger than the view and tilted through the near plane",
     },
     SceneInfo {
         name: "clipped-torus",
@@ -326,7 +326,7 @@ pub fn scene(name: &str) -> Option<Setup> {
             CullMode::None,
         ),
         "clipped-star" => Setup::mesh(
-            transformed(shapes::star(5), Mat4::from_scale(Vec3::splat(3.0)) * tilt(-55.0)),
+            transformed(shapes::star(5), Mat4::from_scale(Vec3::splat(3.6)) * tilt(-55.0)),
             Framing::Fixed(clipped_view()),
             Shading::None,
             CullMode::None,
@@ -347,9 +347,9 @@ pub fn scene(name: &str) -> Option<Setup> {
         "clipped-text" => Setup::mesh(
             transformed(
                 shapes::text("refrast"),
-                Mat4::from_translation(Vec3::new(0.0, -0.25, -1.0))
+                Mat4::from_translation(Vec3::new(0.0, -0.1, -2.2))
                     * tilt(-60.0)
-                    * Mat4::from_scale(Vec3::splat(5.0)),
+                    * Mat4::from_scale(Vec3::splat(6.0)),
             ),
             Framing::Fixed(clipped_view()),
             Shading::None,
@@ -358,4 +358,67 @@ pub fn scene(name: &str) -> Option<Setup> {
         _ => return None,
     };
     Some(setup)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_scene_builds_with_a_valid_camera() {
+        for info in scenes() {
+            let setup = scene(info.name).unwrap_or_else(|| panic!("{}", info.name));
+            assert!(!setup.mesh.triangles.is_empty(), "{}", info.name);
+            let (w, h) = setup.size;
+            setup.camera(w as f32 / h as f32, &Overrides::default()).unwrap();
+        }
+        assert!(scene("no-such-scene").is_none());
+    }
+
+    #[test]
+    fn clipped_scenes_reach_through_the_near_plane_and_past_the_sides() {
+        for name in [
+            "clipped-plane",
+            "clipped-star",
+            "clipped-torus",
+            "clipped-text",
+            "floor",
+        ] {
+            let setup = scene(name).unwrap();
+            let camera = setup.camera(4.0 / 3.0, &Overrides::default()).unwrap();
+            let clip: Vec<_> = setup
+                .mesh
+                .vertices
+                .iter()
+                .map(|v| camera.view_projection * v.position.extend(1.0))
+                .collect();
+            assert!(
+                clip.iter().any(|c| c.z < 0.0),
+                "{name}: nothing before the near plane"
+            );
+            assert!(
+                clip.iter().any(|c| c.x.abs() > c.w || c.y.abs() > c.w),
+                "{name}: nothing past a side"
+            );
+            assert!(
+                clip.iter()
+                    .any(|c| c.z > 0.0 && c.x.abs() < c.w && c.y.abs() < c.w),
+                "{name}: nothing in view"
+            );
+        }
+    }
+
+    #[test]
+    fn a_clip_space_scene_gets_a_camera_once_asked() {
+        let setup = scene("lab000-ndc").unwrap();
+        let plain = setup.camera(1.0, &Overrides::default()).unwrap();
+        assert_eq!(plain.view_projection, Mat4::IDENTITY);
+        let moved = Overrides {
+            eye: Some(Vec3::new(0.0, 0.0, -4.0)),
+            ..Overrides::default()
+        };
+        let framed = setup.camera(1.0, &moved).unwrap();
+        assert_eq!(framed.eye, Vec3::new(0.0, 0.0, -4.0));
+        assert_ne!(framed.view_projection, Mat4::IDENTITY);
+    }
 }

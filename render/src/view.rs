@@ -229,3 +229,94 @@ impl View {
         projection.matrix() * self.camera().view()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn clip(view: &View, aspect: f32, p: Vec3) -> glam::Vec4 {
+        view.view_projection(aspect) * p.extend(1.0)
+    }
+
+    fn inside(c: glam::Vec4) -> bool {
+        c.w > 0.0 && c.x.abs() <= c.w && c.y.abs() <= c.w && c.z >= 0.0 && c.z <= c.w
+    }
+
+    #[test]
+    fn framing_shows_every_corner_at_any_aspect() {
+        let bounds = (Vec3::new(-3.0, 0.0, 2.0), Vec3::new(5.0, 1.0, 4.0));
+        for aspect in [0.25, 1.0, 4.0] {
+            let view = View::frame(bounds, aspect);
+            view.validate().unwrap();
+            for i in 0..8 {
+                let corner = Vec3::select(
+                    glam::BVec3::new(i & 1 != 0, i & 2 != 0, i & 4 != 0),
+                    bounds.1,
+                    bounds.0,
+                );
+                assert!(
+                    inside(clip(&view, aspect, corner)),
+                    "aspect {aspect}, corner {corner}"
+                );
+            }
+            // The eye is in front (towards −z) and above the centre.
+            assert!(view.eye.z < 3.0 && view.eye.y > 0.5);
+        }
+    }
+
+    #[test]
+    fn overrides_replace_and_planes_follow_a_moved_eye() {
+        let bounds = (Vec3::splat(-1.0), Vec3::ONE);
+        let base = View::frame(bounds, 1.0);
+        assert_eq!(base.with(&Overrides::default(), bounds), base);
+        let moved = base.with(
+            &Overrides {
+                eye: Some(Vec3::new(0.0, 0.0, -20.0)),
+                ..Overrides::default()
+            },
+            bounds,
+        );
+        assert_eq!(moved.target, Vec3::ZERO);
+        assert!(moved.near < 19.0 && moved.far > 21.0, "{moved:?}");
+        let ortho = base.with(
+            &Overrides {
+                ortho: Some(None),
+                ..Overrides::default()
+            },
+            bounds,
+        );
+        let Lens::Orthographic { height } = ortho.lens else {
+            panic!("{ortho:?}")
+        };
+        // The window the perspective view shows at the target.
+        let distance = (base.target - base.eye).length();
+        assert!((height - 2.0 * distance * (DEFAULT_FOV_DEGREES.to_radians() / 2.0).tan()).abs() < 1e-4);
+        assert!(inside(clip(&ortho, 1.0, Vec3::new(0.9, 0.9, 0.0))));
+        // A given far plane is kept, and `validate` judges it.
+        let bad = base.with(
+            &Overrides {
+                near: Some(5.0),
+                far: Some(1.0),
+                ..Overrides::default()
+            },
+            bounds,
+        );
+        assert_eq!(bad.validate(), Err(ViewError::Planes { near: 5.0, far: 1.0 }));
+    }
+
+    #[test]
+    fn validate_names_what_to_fix() {
+        let good = View::frame((Vec3::splat(-1.0), Vec3::ONE), 1.0);
+        let check = |change: &dyn Fn(&mut View)| {
+            let mut v = good;
+            change(&mut v);
+            v.validate().unwrap_err().to_string()
+        };
+        assert!(check(&|v| v.eye = v.target).contains("same point"));
+        assert!(check(&|v| v.up = Vec3::ZERO).contains("--up"));
+        assert!(check(&|v| v.eye.x = f32::NAN).contains("--eye must be finite"));
+        assert!(check(&|v| v.lens = Lens::Perspective { fov_y_degrees: 0.0 }).contains("--fov 0"));
+        assert!(check(&|v| v.lens = Lens::Orthographic { height: -1.0 }).contains("--ortho -1"));
+        assert!(check(&|v| v.near = 0.0).contains("0 < near < far"));
+    }
+}

@@ -1,0 +1,189 @@
+//! `fast` at 1920×1080 with depth and colour, against the reference and the scalar baseline in
+//! the same run, with 1 and 2 threads.
+//!
+//! Scenes (issue 14): 100 000 triangles of about 10 px, 10 000 of about 500 px, 1 000 of about
+//! 50 000 px (the shared workload of `benches/reference.rs`), and a torus of 1 M triangles seen
+//! in perspective. Every implementation clears, depth-tests LESS and writes one colour per
+//! pixel; the reference and `fast` interpolate the vertex colour perspective-correctly.
+//! `scripts/bench_fast.py` prints medians, Mtri/s, Mpix/s and ratios.
+
+use std::f32::consts::TAU;
+use std::hint::black_box;
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use glam::{Mat4, Vec3, Vec4};
+use refrast::Fragment;
+use refrast::camera::{Camera, Projection};
+use refrast::pipeline::{Framebuffer, Mesh, Renderer, Vertex, to_rgba8};
+use refrast_fast::Fast;
+
+#[path = "../../benches/workload/baseline.rs"]
+mod baseline;
+#[path = "../../benches/workload/mod.rs"]
+mod workload;
+
+use baseline::baseline;
+use workload::{HEIGHT, WIDTH, scene};
+
+/// A scene: the mesh and matrix the renderers draw, and the same triangles in raster space
+/// with a colour each for the baseline.
+struct Scene {
+    mesh: Mesh,
+    mvp: Mat4,
+    raster: Vec<([Vec3; 3], Vec4)>,
+}
+
+/// A workload scene as a mesh in NDC, drawn with the identity.
+fn flat(triangles: Vec<([Vec3; 3], Vec4)>) -> Scene {
+    let to_ndc = |p: Vec3| {
+        Vec3::new(
+            p.x / WIDTH as f32 * 2.0 - 1.0,
+            1.0 - p.y / HEIGHT as f32 * 2.0,
+            p.z,
+        )
+    };
+    let vertices = triangles
+        .iter()
+        .flat_map(|(t, c)| {
+            t.map(|p| Vertex {
+                position: to_ndc(p),
+                color: *c,
+                ..Vertex::default()
+            })
+        })
+        .collect();
+    let indices = (0..triangles.len() as u32)
+        .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
+        .collect();
+    Scene {
+        mesh: Mesh {
+            vertices,
+            triangles: indices,
+        },
+        mvp: Mat4::IDENTITY,
+        raster: triangles,
+    }
+}
+
+/// A torus of `2 · segments · rings` triangles, coloured by normal, seen from above its rim.
+fn torus(segments: u32, rings: u32) -> Scene {
+    let mut vertices = Vec::new();
+    for i in 0..segments {
+        let theta = TAU * i as f32 / segments as f32;
+        let radial = Vec3::new(theta.cos(), 0.0, theta.sin());
+        for j in 0..rings {
+            let phi = TAU * j as f32 / rings as f32;
+            let normal = radial * phi.cos() + Vec3::Y * phi.sin();
+            vertices.push(Vertex::colored(
+                radial + normal * 0.4,
+                normal * 0.5 + Vec3::splat(0.5),
+            ));
+        }
+    }
+    let at = |i: u32, j: u32| (i % segments) * rings + j % rings;
+    let triangles = (0..segments)
+        .flat_map(|i| (0..rings).map(move |j| (i, j)))
+        .flat_map(|(i, j)| {
+            let [a, b, c, d] = [at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j)];
+            [[a, b, c], [a, c, d]]
+        })
+        .collect();
+    let aspect = WIDTH as f32 / HEIGHT as f32;
+    let view = Camera::look_at(Vec3::new(0.0, 1.6, -2.4), Vec3::ZERO).view();
+    let projection = Projection::Perspective {
+        fov_y: 0.9,
+        aspect,
+        near: 0.5,
+        far: 10.0,
+    };
+    let mvp = projection.matrix() * view;
+    let mesh = Mesh { vertices, triangles };
+    let raster = mesh
+        .triangles
+        .iter()
+        .map(|t| {
+            let corner = |k: u32| {
+                let v = &mesh.vertices[k as usize];
+                let p = mvp * v.position.extend(1.0);
+                let (x, y, z) = (p.x / p.w, p.y / p.w, p.z / p.w);
+                Vec3::new((x + 1.0) / 2.0 * WIDTH as f32, (1.0 - y) / 2.0 * HEIGHT as f32, z)
+            };
+            (
+                [corner(t[0]), corner(t[1]), corner(t[2])],
+                mesh.vertices[t[0] as usize].color,
+            )
+        })
+        .collect();
+    Scene { mesh, mvp, raster }
+}
+
+/// The reference pipeline, as `benches/reference.rs` runs it.
+fn reference(target: &mut Framebuffer, scene: &Scene) -> usize {
+    target.clear([0, 0, 0, 255], 1.0);
+    let stats = Renderer::default()
+        .draw_mesh(target, &scene.mesh, Mat4::IDENTITY, scene.mvp, |f| Some(f.color))
+        .expect("valid mesh");
+    stats.fragments
+}
+
+/// `fast` with the same work per fragment: early depth test, colour interpolated with the
+/// fragment's perspective-correct barycentrics, rounded to RGBA8.
+fn fast(fast: &Fast, depth: &mut [f32], color: &mut [[u8; 4]], scene: &Scene) {
+    depth.fill(1.0);
+    color.fill([0, 0, 0, 255]);
+    let draw = Renderer::default().mesh_draw(
+        refrast::Viewport::new(WIDTH, HEIGHT).unwrap(),
+        &scene.mesh,
+        scene.mvp,
+    );
+    let (vertices, triangles) = (&scene.mesh.vertices, &scene.mesh.triangles);
+    let shade = |f: &Fragment| {
+        let [a, b, c] = triangles[f.primitive as usize].map(|k| vertices[k as usize].color);
+        let [ba, bb, bc] = f.barycentric;
+        Some(to_rgba8(a * ba + b * bb + c * bc))
+    };
+    fast.render(&draw, depth, color, shade).expect("valid draw");
+}
+
+fn bench(c: &mut Criterion) {
+    let scenes = [
+        ("small_10px", flat(scene(100_000, 10.0))),
+        ("medium_500px", flat(scene(10_000, 500.0))),
+        ("large_50kpx", flat(scene(1_000, 50_000.0))),
+        ("torus_1m", torus(1000, 500)),
+    ];
+    let (one, two) = (Fast::with_threads(1), Fast::with_threads(2));
+    for (name, scene) in &scenes {
+        let count = scene.mesh.triangles.len();
+        let mut target = Framebuffer::new(WIDTH, HEIGHT).expect("1080p is a valid size");
+        let (mut color, mut depth) = (target.color().to_vec(), target.depth().to_vec());
+        let fragments = reference(&mut target, scene);
+        let base_fragments = baseline(&mut color, &mut depth, &scene.raster);
+        fast(&one, &mut depth, &mut color, scene);
+        assert!(
+            color == target.color() && depth == target.depth(),
+            "{name}: fast's picture differs from the reference's"
+        );
+        // Read by scripts/bench_fast.py to turn medians into Mpix/s.
+        println!("fragments {name} reference {fragments} baseline {base_fragments} triangles {count}");
+        let mut group = c.benchmark_group(format!("fast/{name}"));
+        group
+            .sample_size(10)
+            .throughput(Throughput::Elements(count as u64));
+        group.bench_function("reference", |b| {
+            b.iter(|| black_box(reference(&mut target, scene)))
+        });
+        group.bench_function("baseline", |b| {
+            b.iter(|| black_box(baseline(&mut color, &mut depth, &scene.raster)))
+        });
+        for (threads, r) in [(1, &one), (2, &two)] {
+            group.bench_function(format!("fast_{threads}t"), |b| {
+                b.iter(|| fast(r, &mut depth, &mut color, scene));
+            });
+        }
+        group.finish();
+    }
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

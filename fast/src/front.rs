@@ -1,0 +1,143 @@
+//! The front end: each triangle through the reference's own stages, then binned into tiles.
+//!
+//! Everything that decides bits (assembly, snapping, clipping, the fan, facing, culling, the
+//! bounding box) is a call into [`refrast::stage`], in the order `Reference::draw_samples` makes
+//! them; this module only keeps what the back end needs and says which tiles it touches.
+
+use std::ops::Range;
+
+use refrast::stage::{
+    ClipOutcome, ClipPlane, ClipVertex, FanTriangle, PixelRect, RasterVertex, ViewportTransform, assemble,
+    build_fan, clip_triangle, drawn_winding, input_w, snap_before_clipping,
+};
+use refrast::{Draw, FillConvention, Winding};
+
+use crate::back::EdgeSteps;
+use crate::tiles::TileGrid;
+
+/// What every triangle of one draw shares: its clip planes, viewport transform and fill rule.
+pub(crate) struct DrawSetup<'d> {
+    /// The draw.
+    pub draw: &'d Draw,
+    /// Its clip planes, as `clip_planes` gives them for the configuration.
+    pub planes: Vec<ClipPlane>,
+    /// Its viewport transform.
+    pub transform: ViewportTransform,
+    /// The fill convention.
+    pub fill: FillConvention,
+}
+
+/// A triangle that reached traversal: what the back end needs to draw it in any tile.
+#[derive(Clone, Debug)]
+pub(crate) struct Prepared {
+    /// Its index in the draw.
+    pub primitive: u32,
+    /// Whether it faces the viewer.
+    pub front_facing: bool,
+    /// The winding it is drawn with.
+    pub winding: Winding,
+    /// Its bounding box of samples, clamped to the viewport: columns then rows, half-open.
+    pub rect: [u32; 4],
+    /// Its fan triangles in [`Chunk::fans`].
+    pub fans: Range<u32>,
+    /// Its snapped polygon's vertices in [`Chunk::raster`].
+    pub raster: Range<u32>,
+    /// Stepping of the single agreeing fan triangle, when that is all it is (the fast path).
+    pub steps: Option<EdgeSteps>,
+}
+
+/// The triangles of one run of primitives, set up and binned by one thread.
+#[derive(Default)]
+pub(crate) struct Chunk {
+    /// The triangles that reached traversal, in primitive order.
+    pub triangles: Vec<Prepared>,
+    /// Their fan triangles.
+    pub fans: Vec<FanTriangle>,
+    /// Their polygons' vertices.
+    pub raster: Vec<RasterVertex>,
+    /// Per tile, the indices into `triangles` of those whose box touches it, in order.
+    pub bins: Vec<Vec<u32>>,
+    polygon: Vec<ClipVertex>,
+    clip: Vec<ClipVertex>,
+    projected: Vec<RasterVertex>,
+    fan: Vec<FanTriangle>,
+}
+
+impl Chunk {
+    /// Sets up and bins `primitives`, replacing what the chunk held.
+    pub fn prepare(&mut self, setup: &DrawSetup<'_>, grid: &TileGrid, primitives: Range<usize>) {
+        self.triangles.clear();
+        self.fans.clear();
+        self.raster.clear();
+        self.bins.resize_with(grid.tiles(), Vec::new);
+        self.bins.iter_mut().for_each(Vec::clear);
+        for primitive in primitives {
+            if let Some(t) = self.prepare_one(setup, primitive) {
+                let index = self.triangles.len() as u32;
+                grid.for_each_tile(t.rect, |tile| self.bins[tile].push(index));
+                self.triangles.push(t);
+            }
+        }
+    }
+
+    /// One triangle through the stages, as `Reference::draw_triangle` takes it; `None` when it
+    /// draws nothing (non-finite, clipped away, degenerate, culled or off screen).
+    fn prepare_one(&mut self, setup: &DrawSetup<'_>, primitive: usize) -> Option<Prepared> {
+        let state = &setup.draw.state;
+        let input = assemble(&setup.draw.positions, setup.draw.triangles[primitive])?;
+        let snapped = snap_before_clipping(&input, &setup.transform, setup.fill).ok()?;
+        let (fans, raster) = (self.fans.len(), self.raster.len());
+        let clipped = match clip_triangle(&input, &setup.planes, &mut self.polygon, &mut self.clip) {
+            ClipOutcome::Outside => return None,
+            ClipOutcome::Inside => {
+                let triangle = snapped?;
+                self.raster.extend_from_slice(&triangle.vertices);
+                self.fans.push(FanTriangle::whole(triangle.setup));
+                false
+            }
+            ClipOutcome::Clipped => {
+                let (transform, projected) = (&setup.transform, &mut self.projected);
+                if !transform.project_polygon(&self.polygon, input_w(&input), projected) {
+                    return None;
+                }
+                build_fan(projected, setup.fill, &mut self.fan);
+                self.raster.extend_from_slice(projected);
+                self.fans.extend_from_slice(&self.fan);
+                true
+            }
+        };
+        let fan = &self.fans[fans..];
+        let polygon = &self.raster[raster..];
+        let drawn = || {
+            let winding = drawn_winding(&input, clipped, fan.iter().map(|t| &t.setup));
+            let front_facing = state.front_face.is_front(winding)?;
+            let rect = PixelRect::bounding(
+                polygon.iter().map(|v| v.position),
+                setup.transform.bits,
+                setup.transform.viewport,
+            )?;
+            let (x0, x1, y0, y1) = rect.bounds();
+            (!state.cull.culls(front_facing)).then_some((winding, front_facing, [x0, x1, y0, y1]))
+        };
+        let Some((winding, front_facing, rect)) = drawn() else {
+            self.fans.truncate(fans);
+            self.raster.truncate(raster);
+            return None;
+        };
+        let steps = match fan {
+            [single] if single.setup.winding() == winding => {
+                Some(EdgeSteps::new(&single.setup, setup.transform.bits))
+            }
+            _ => None,
+        };
+        Some(Prepared {
+            primitive: primitive as u32,
+            front_facing,
+            winding,
+            rect,
+            fans: fans as u32..self.fans.len() as u32,
+            raster: raster as u32..self.raster.len() as u32,
+            steps,
+        })
+    }
+}

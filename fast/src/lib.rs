@@ -1,0 +1,211 @@
+//! refrast-fast: a rasterizer bit-identical to the reference, binned, tiled, blocked and threaded.
+//!
+//! [`Fast`] gives the same fragments as [`Reference::default`] (the same set of
+//! `(x, y, primitive, depth, barycentrics, front_facing)`, bit for bit) and the same
+//! [`Resolved`] buffers, and declares the reference's profile under the name `fast`.
+//!
+//! # How
+//!
+//! - **Front end**: each triangle goes through the reference's own stages ([`refrast::stage`]:
+//!   assemble, snap before clipping, clip, project, fan, facing, cull, bounding box); nothing
+//!   that decides a bit is copied. Triangles are set up in batches, split among threads.
+//! - **Binning**: each triangle's box is binned into 64×64 tiles; a row of tiles is a band, a
+//!   contiguous run of rows of every buffer, so threads own bands and need no locks.
+//! - **Back end**: per tile, triangles in primitive order; per triangle, 8×8 blocks accepted
+//!   or rejected whole from their corners (Abrash, *Rasterization on Larrabee*), partial
+//!   blocks tested eight samples a row; exact `i64` edge values stepped per pixel. A clipped
+//!   polygon's fan goes through the reference's own `traverse` on the tile's part of its box.
+//! - **Interpolation**: per covered sample, the reference's calls (`interpolate_depth`,
+//!   `fragment_depth`, `screen_weights`, `interpolate`) on the same exact edge values.
+//!
+//! # Order of fragments
+//!
+//! [`rasterize`](Rasterizer::rasterize) returns fragments by band of 64 rows, top to bottom;
+//! within a band by batch of 16 384 primitives, then tile left to right, then primitive, then
+//! 8×8 block row by row, then sample row-major. Compare with the reference as sorted sets.
+#![forbid(unsafe_code)]
+
+mod back;
+mod drive;
+mod front;
+mod sink;
+mod tiles;
+
+use std::sync::Arc;
+
+use rayon::ThreadPool;
+use refrast::{Draw, DrawError, Fragment, Profile, Rasterizer, Reference, ReferenceConfig, Resolved};
+use refrast_conformance::{BuiltIn, Origin};
+
+use crate::sink::{BandRows, ResolveBand, ShadeBand};
+use crate::tiles::TILE;
+
+/// The fast rasterizer's knobs: the reference's configuration it reproduces, and threads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct FastConfig {
+    /// Snapping, fill rule and clipping, as the reference it matches has them.
+    pub reference: ReferenceConfig,
+    /// Threads to draw with; 1 draws on the calling thread without rayon.
+    pub threads: usize,
+}
+
+impl Default for FastConfig {
+    /// The reference's defaults, one thread per available core.
+    fn default() -> Self {
+        Self {
+            reference: ReferenceConfig::default(),
+            threads: std::thread::available_parallelism().map_or(1, usize::from),
+        }
+    }
+}
+
+/// The fast rasterizer: the reference's output, drawn in tiles by several threads.
+#[derive(Clone, Debug)]
+pub struct Fast {
+    config: FastConfig,
+    pool: Option<Arc<ThreadPool>>,
+}
+
+impl Default for Fast {
+    fn default() -> Self {
+        Self::new(FastConfig::default())
+    }
+}
+
+impl Fast {
+    /// A fast rasterizer with `config`; with `threads > 1` it starts its own thread pool.
+    ///
+    /// Should the pool fail to start, it draws on the calling thread: same output, slower.
+    #[must_use]
+    pub fn new(config: FastConfig) -> Self {
+        let pool = (config.threads > 1)
+            .then(|| {
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(config.threads)
+                    .build()
+                    .ok()
+            })
+            .flatten()
+            .map(Arc::new);
+        Self { config, pool }
+    }
+
+    /// One with the reference's defaults and `threads` threads.
+    #[must_use]
+    pub fn with_threads(threads: usize) -> Self {
+        Self::new(FastConfig {
+            threads,
+            ..FastConfig::default()
+        })
+    }
+
+    /// Its configuration.
+    #[must_use]
+    pub fn config(&self) -> FastConfig {
+        self.config
+    }
+
+    /// Draws `draw` into row-major `depth` and `color` buffers of its viewport's size, in the
+    /// order of work of `refrast::pipeline::Renderer::draw_mesh`: early depth test on the
+    /// sample's depth, then `shade` on its fragment (`None` discards), then the writes.
+    pub fn render<C, F>(
+        &self,
+        draw: &Draw,
+        depth: &mut [f32],
+        color: &mut [C],
+        shade: F,
+    ) -> Result<(), DrawError>
+    where
+        C: Send,
+        F: Fn(&Fragment) -> Option<C> + Sync,
+    {
+        let (pixels, width) = (draw.viewport.pixel_count(), draw.viewport.width());
+        if depth.len() != pixels || color.len() != pixels {
+            return Err(DrawError::Unsupported(format!(
+                "buffers of {} and {} pixels for a viewport of {pixels}",
+                depth.len(),
+                color.len()
+            )));
+        }
+        let band = (width * TILE) as usize;
+        let mut sinks: Vec<_> = depth
+            .chunks_mut(band)
+            .zip(color.chunks_mut(band))
+            .enumerate()
+            .map(|(i, (depth, color))| ShadeBand {
+                rows: BandRows {
+                    y0: i as u32 * TILE,
+                    width,
+                },
+                compare: draw.state.depth.compare,
+                write: draw.state.depth.write,
+                depth,
+                color,
+                shade: &shade,
+            })
+            .collect();
+        drive::run(self.config.reference, self.pool.as_deref(), draw, &mut sinks)
+    }
+}
+
+impl Rasterizer for Fast {
+    fn profile(&self) -> Profile {
+        Profile {
+            name: "fast".into(),
+            ..Reference::new(self.config.reference).profile()
+        }
+    }
+
+    fn about(&self) -> String {
+        format!(
+            "refrast-fast {}, {} thread(s)",
+            env!("CARGO_PKG_VERSION"),
+            self.config.threads
+        )
+    }
+
+    fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+        let bands = draw.viewport.height().div_ceil(TILE) as usize;
+        let mut sinks: Vec<Vec<Fragment>> = vec![Vec::new(); bands];
+        drive::run(self.config.reference, self.pool.as_deref(), draw, &mut sinks)?;
+        Ok(sinks.concat())
+    }
+
+    fn resolve(&mut self, draw: &Draw) -> Result<Resolved, DrawError> {
+        let (viewport, state) = (draw.viewport, draw.state.depth);
+        let mut depth = vec![state.clear; viewport.pixel_count()];
+        let mut primitive = vec![None; viewport.pixel_count()];
+        let band = (viewport.width() * TILE) as usize;
+        let mut sinks: Vec<_> = depth
+            .chunks_mut(band)
+            .zip(primitive.chunks_mut(band))
+            .enumerate()
+            .map(|(i, (depth, primitive))| ResolveBand {
+                rows: BandRows {
+                    y0: i as u32 * TILE,
+                    width: viewport.width(),
+                },
+                state,
+                depth,
+                primitive,
+            })
+            .collect();
+        drive::run(self.config.reference, self.pool.as_deref(), draw, &mut sinks)?;
+        Ok(Resolved {
+            viewport,
+            depth,
+            primitive,
+        })
+    }
+}
+
+/// `fast` for `refrast certify --impl` and `refrast impls`.
+#[must_use]
+pub fn builtins() -> Vec<BuiltIn> {
+    vec![BuiltIn::new(
+        "fast",
+        "the reference's output, fast: 64×64 tiles over threads, 8×8 blocks accepted or rejected whole",
+        Origin::Ours,
+        || Box::new(Fast::default()),
+    )]
+}

@@ -128,7 +128,7 @@ fn reference(target: &mut Framebuffer, scene: &Scene) -> usize {
 
 /// `fast` with the same work per fragment: early depth test, colour interpolated with the
 /// fragment's perspective-correct barycentrics, rounded to RGBA8.
-fn fast(fast: &Fast, depth: &mut [f32], color: &mut [[u8; 4]], scene: &Scene) {
+fn fast(fast: &mut Fast, depth: &mut [f32], color: &mut [[u8; 4]], scene: &Scene) {
     depth.fill(1.0);
     color.fill([0, 0, 0, 255]);
     let draw = Renderer::default().mesh_draw(
@@ -152,14 +152,14 @@ fn bench(c: &mut Criterion) {
         ("large_50kpx", flat(scene(1_000, 50_000.0))),
         ("torus_1m", torus(1000, 500)),
     ];
-    let (one, two) = (Fast::with_threads(1), Fast::with_threads(2));
+    let (mut one, mut two) = (Fast::with_threads(1), Fast::with_threads(2));
     for (name, scene) in &scenes {
         let count = scene.mesh.triangles.len();
         let mut target = Framebuffer::new(WIDTH, HEIGHT).expect("1080p is a valid size");
         let (mut color, mut depth) = (target.color().to_vec(), target.depth().to_vec());
         let fragments = reference(&mut target, scene);
         let base_fragments = baseline(&mut color, &mut depth, &scene.raster);
-        fast(&one, &mut depth, &mut color, scene);
+        fast(&mut one, &mut depth, &mut color, scene);
         assert!(
             color == target.color() && depth == target.depth(),
             "{name}: fast's picture differs from the reference's"
@@ -176,7 +176,7 @@ fn bench(c: &mut Criterion) {
         group.bench_function("baseline", |b| {
             b.iter(|| black_box(baseline(&mut color, &mut depth, &scene.raster)))
         });
-        for (threads, r) in [(1, &one), (2, &two)] {
+        for (threads, r) in [(1, &mut one), (2, &mut two)] {
             group.bench_function(format!("fast_{threads}t"), |b| {
                 b.iter(|| fast(r, &mut depth, &mut color, scene));
             });

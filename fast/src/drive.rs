@@ -27,10 +27,12 @@ fn for_each<T: Send>(pool: Option<&ThreadPool>, items: &mut [T], f: impl Fn(usiz
     }
 }
 
-/// Draws `draw` into `sinks`, one per band of the viewport's tile grid.
+/// Draws `draw` into `sinks`, one per band of the viewport's tile grid, setting triangles up
+/// in `chunks` (one per thread, reused from draw to draw).
 pub(crate) fn run<S: Sink>(
     config: ReferenceConfig,
     pool: Option<&ThreadPool>,
+    chunks: &mut Vec<Chunk>,
     draw: &Draw,
     sinks: &mut [S],
 ) -> Result<(), DrawError> {
@@ -53,19 +55,19 @@ pub(crate) fn run<S: Sink>(
     let grid = TileGrid::new(draw.viewport);
     debug_assert_eq!(sinks.len(), grid.bands());
     let threads = pool.map_or(1, ThreadPool::current_num_threads);
-    let mut chunks: Vec<Chunk> = (0..threads).map(|_| Chunk::default()).collect();
+    chunks.resize_with(threads, Chunk::default);
     let count = draw.triangles.len();
     for start in (0..count).step_by(BATCH) {
         let end = (start + BATCH).min(count);
         let per_chunk = (end - start).div_ceil(threads);
-        for_each(pool, &mut chunks, |i, chunk| {
+        for_each(pool, chunks, |i, chunk| {
             let first = (start + i * per_chunk).min(end);
             chunk.prepare(&setup, &grid, first..(first + per_chunk).min(end));
         });
         for_each(pool, sinks, |band, sink| {
             for tile in grid.band_tiles(band) {
                 let rect = grid.tile_rect(tile);
-                for chunk in &chunks {
+                for chunk in chunks.iter() {
                     for &t in &chunk.bins[tile] {
                         draw_in_tile(&setup.transform, chunk, &chunk.triangles[t as usize], rect, sink);
                     }
@@ -88,13 +90,15 @@ fn draw_in_tile<S: Sink>(
     let Some(rect) = intersect(t.rect, tile) else {
         return;
     };
-    let fans = &chunk.fans[t.fans.start as usize..t.fans.end as usize];
-    let raster = &chunk.raster[t.raster.start as usize..t.raster.end as usize];
-    if let Some(steps) = &t.steps {
-        let corners = Corners::new(t.primitive, t.front_facing, &fans[0], raster);
-        steps.traverse(rect, |x, y, values| sink.covered(&corners.sample(x, y, values)));
+    if let Some(single) = &t.single {
+        let corners = Corners::single(t.primitive, t.front_facing, single);
+        single
+            .steps
+            .traverse(rect, |x, y, values| sink.covered(&corners.sample(x, y, values)));
         return;
     }
+    let fans = &chunk.fans[t.fans.start as usize..t.fans.end as usize];
+    let raster = &chunk.raster[t.raster.start as usize..t.raster.end as usize];
     // A clipped polygon's fan (or a lone triangle turned over by snapping): the reference's
     // own traversal, on this tile's part of the box.
     let bits = transform.bits;

@@ -7,8 +7,8 @@
 use std::ops::Range;
 
 use refrast::stage::{
-    ClipOutcome, ClipPlane, ClipVertex, FanTriangle, PixelRect, RasterVertex, ViewportTransform, assemble,
-    build_fan, clip_triangle, drawn_winding, input_w, snap_before_clipping,
+    ClipOutcome, ClipPlane, ClipVertex, FanTriangle, PixelRect, RasterVertex, Varyings, ViewportTransform,
+    assemble, build_fan, clip_triangle, drawn_winding, input_w, snap_before_clipping,
 };
 use refrast::{Draw, FillConvention, Winding};
 
@@ -42,12 +42,25 @@ pub(crate) struct Prepared {
     pub fans: Range<u32>,
     /// Its snapped polygon's vertices in [`Chunk::raster`].
     pub raster: Range<u32>,
-    /// Stepping of the single agreeing fan triangle, when that is all it is (the fast path).
-    pub steps: Option<EdgeSteps>,
+    /// The single agreeing fan triangle, when that is all it is (the fast path).
+    pub single: Option<Single>,
 }
 
-/// The triangles of one run of primitives, set up and binned by one thread.
-#[derive(Default)]
+/// A triangle drawn as one fan triangle that agrees with its winding, with everything the
+/// back end reads kept together: stepping, area and the corners' varyings in setup order.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Single {
+    /// Its edge functions, stepped per pixel.
+    pub steps: EdgeSteps,
+    /// Twice its area, the sum of its edge values.
+    pub area2: i64,
+    /// What its corners carry, in the setup's clockwise order (the order of the edge values).
+    pub corners: [Varyings; 3],
+}
+
+/// The triangles of one run of primitives, set up and binned by one thread; its buffers are
+/// kept from draw to draw.
+#[derive(Clone, Debug, Default)]
 pub(crate) struct Chunk {
     /// The triangles that reached traversal, in primitive order.
     pub triangles: Vec<Prepared>,
@@ -124,12 +137,19 @@ impl Chunk {
             self.raster.truncate(raster);
             return None;
         };
-        let steps = match fan {
-            [single] if single.setup.winding() == winding => {
-                Some(EdgeSteps::new(&single.setup, setup.transform.bits))
-            }
+        let single = match fan {
+            [t] if t.setup.winding() == winding => Some(Single {
+                steps: EdgeSteps::new(&t.setup, setup.transform.bits),
+                area2: t.setup.area2(),
+                corners: t.setup.order().map(|k| polygon[t.corners[k]].varyings),
+            }),
             _ => None,
         };
+        if single.is_some() {
+            // Kept whole in `single`: the shared arrays hold only fans for the general path.
+            self.fans.truncate(fans);
+            self.raster.truncate(raster);
+        }
         Some(Prepared {
             primitive: primitive as u32,
             front_facing,
@@ -137,7 +157,7 @@ impl Chunk {
             rect,
             fans: fans as u32..self.fans.len() as u32,
             raster: raster as u32..self.raster.len() as u32,
-            steps,
+            single,
         })
     }
 }

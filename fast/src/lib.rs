@@ -37,6 +37,7 @@ use rayon::ThreadPool;
 use refrast::{Draw, DrawError, Fragment, Profile, Rasterizer, Reference, ReferenceConfig, Resolved};
 use refrast_conformance::{BuiltIn, Origin};
 
+use crate::front::Chunk;
 use crate::sink::{BandRows, ResolveBand, ShadeBand};
 use crate::tiles::TILE;
 
@@ -64,6 +65,7 @@ impl Default for FastConfig {
 pub struct Fast {
     config: FastConfig,
     pool: Option<Arc<ThreadPool>>,
+    chunks: Vec<Chunk>,
 }
 
 impl Default for Fast {
@@ -87,7 +89,11 @@ impl Fast {
             })
             .flatten()
             .map(Arc::new);
-        Self { config, pool }
+        Self {
+            config,
+            pool,
+            chunks: Vec::new(),
+        }
     }
 
     /// One with the reference's defaults and `threads` threads.
@@ -109,7 +115,7 @@ impl Fast {
     /// order of work of `refrast::pipeline::Renderer::draw_mesh`: early depth test on the
     /// sample's depth, then `shade` on its fragment (`None` discards), then the writes.
     pub fn render<C, F>(
-        &self,
+        &mut self,
         draw: &Draw,
         depth: &mut [f32],
         color: &mut [C],
@@ -144,7 +150,13 @@ impl Fast {
                 shade: &shade,
             })
             .collect();
-        drive::run(self.config.reference, self.pool.as_deref(), draw, &mut sinks)
+        drive::run(
+            self.config.reference,
+            self.pool.as_deref(),
+            &mut self.chunks,
+            draw,
+            &mut sinks,
+        )
     }
 }
 
@@ -167,7 +179,13 @@ impl Rasterizer for Fast {
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
         let bands = draw.viewport.height().div_ceil(TILE) as usize;
         let mut sinks: Vec<Vec<Fragment>> = vec![Vec::new(); bands];
-        drive::run(self.config.reference, self.pool.as_deref(), draw, &mut sinks)?;
+        drive::run(
+            self.config.reference,
+            self.pool.as_deref(),
+            &mut self.chunks,
+            draw,
+            &mut sinks,
+        )?;
         Ok(sinks.concat())
     }
 
@@ -190,7 +208,13 @@ impl Rasterizer for Fast {
                 primitive,
             })
             .collect();
-        drive::run(self.config.reference, self.pool.as_deref(), draw, &mut sinks)?;
+        drive::run(
+            self.config.reference,
+            self.pool.as_deref(),
+            &mut self.chunks,
+            draw,
+            &mut sinks,
+        )?;
         Ok(Resolved {
             viewport,
             depth,

@@ -8,6 +8,8 @@ use refrast::stage::{
 };
 use refrast::{CompareOp, DepthState, Fragment};
 
+use crate::front::Single;
+
 /// A covered sample with its depth; [`fragment`](Covered::fragment) adds the barycentrics.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Covered<'a> {
@@ -46,6 +48,17 @@ impl<'a> Corners<'a> {
             front_facing,
             area2: t.setup.area2(),
             corners: t.setup.order().map(|k| &raster[t.corners[k]].varyings),
+        }
+    }
+
+    /// The corners of a triangle drawn as one fan triangle, kept in its [`Single`].
+    #[inline]
+    pub fn single(primitive: u32, front_facing: bool, single: &'a Single) -> Self {
+        Self {
+            primitive,
+            front_facing,
+            area2: single.area2,
+            corners: single.corners.each_ref(),
         }
     }
 

@@ -99,44 +99,35 @@ impl Chunk {
         let state = &setup.draw.state;
         let input = assemble(&setup.draw.positions, setup.draw.triangles[primitive])?;
         let snapped = snap_before_clipping(&input, &setup.transform, setup.fill).ok()?;
-        let (fans, raster) = (self.fans.len(), self.raster.len());
-        let clipped = match clip_triangle(&input, &setup.planes, &mut self.polygon, &mut self.clip) {
-            ClipOutcome::Outside => return None,
-            ClipOutcome::Inside => {
-                let triangle = snapped?;
-                self.raster.extend_from_slice(&triangle.vertices);
-                self.fans.push(FanTriangle::whole(triangle.setup));
-                false
-            }
-            ClipOutcome::Clipped => {
-                let (transform, projected) = (&setup.transform, &mut self.projected);
-                if !transform.project_polygon(&self.polygon, input_w(&input), projected) {
-                    return None;
+        let whole;
+        let (clipped, fan, polygon): (bool, &[FanTriangle], &[RasterVertex]) =
+            match clip_triangle(&input, &setup.planes, &mut self.polygon, &mut self.clip) {
+                ClipOutcome::Outside => return None,
+                ClipOutcome::Inside => {
+                    let triangle = snapped?;
+                    whole = ([FanTriangle::whole(triangle.setup)], triangle.vertices);
+                    (false, &whole.0, &whole.1)
                 }
-                build_fan(projected, setup.fill, &mut self.fan);
-                self.raster.extend_from_slice(projected);
-                self.fans.extend_from_slice(&self.fan);
-                true
-            }
-        };
-        let fan = &self.fans[fans..];
-        let polygon = &self.raster[raster..];
-        let drawn = || {
-            let winding = drawn_winding(&input, clipped, fan.iter().map(|t| &t.setup));
-            let front_facing = state.front_face.is_front(winding)?;
-            let rect = PixelRect::bounding(
-                polygon.iter().map(|v| v.position),
-                setup.transform.bits,
-                setup.transform.viewport,
-            )?;
-            let (x0, x1, y0, y1) = rect.bounds();
-            (!state.cull.culls(front_facing)).then_some((winding, front_facing, [x0, x1, y0, y1]))
-        };
-        let Some((winding, front_facing, rect)) = drawn() else {
-            self.fans.truncate(fans);
-            self.raster.truncate(raster);
+                ClipOutcome::Clipped => {
+                    let (transform, projected) = (&setup.transform, &mut self.projected);
+                    if !transform.project_polygon(&self.polygon, input_w(&input), projected) {
+                        return None;
+                    }
+                    build_fan(projected, setup.fill, &mut self.fan);
+                    (true, &self.fan, &self.projected)
+                }
+            };
+        let winding = drawn_winding(&input, clipped, fan.iter().map(|t| &t.setup));
+        let front_facing = state.front_face.is_front(winding)?;
+        if state.cull.culls(front_facing) {
             return None;
-        };
+        }
+        let (x0, x1, y0, y1) = PixelRect::bounding(
+            polygon.iter().map(|v| v.position),
+            setup.transform.bits,
+            setup.transform.viewport,
+        )?
+        .bounds();
         let single = match fan {
             [t] if t.setup.winding() == winding => Some(Single {
                 steps: EdgeSteps::new(&t.setup, setup.transform.bits),
@@ -145,16 +136,17 @@ impl Chunk {
             }),
             _ => None,
         };
-        if single.is_some() {
-            // Kept whole in `single`: the shared arrays hold only fans for the general path.
-            self.fans.truncate(fans);
-            self.raster.truncate(raster);
+        let (fans, raster) = (self.fans.len(), self.raster.len());
+        if single.is_none() {
+            // Only the general path reads the fan and its polygon from the shared arrays.
+            self.fans.extend_from_slice(fan);
+            self.raster.extend_from_slice(polygon);
         }
         Some(Prepared {
             primitive: primitive as u32,
             front_facing,
             winding,
-            rect,
+            rect: [x0, x1, y0, y1],
             fans: fans as u32..self.fans.len() as u32,
             raster: raster as u32..self.raster.len() as u32,
             single,

@@ -105,5 +105,6 @@ pub(crate) fn all_builtins() -> Vec<BuiltIn> {
     all.extend(refrast_zoo::builtins());
     all.extend(refrast_euc::builtins());
     all.extend(refrast_wgpu::builtins());
+    all.extend(refrast_fast::builtins());
     all
 }

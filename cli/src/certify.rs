@@ -1,14 +1,20 @@
 //! `refrast certify`: run the catalogue against built-in implementations, print, write reports.
 
-use std::path::PathBuf;
-use std::process::{Command, ExitCode};
-use std::time::{Duration, Instant};
+mod child;
+mod html;
+mod progress;
+mod schedule;
 
-use refrast_conformance::isolate::certify_isolated;
-use refrast_conformance::{
-    BuiltIn, Options, Process, Report, RuleReport, Status, Unavailable, catalogue, matches,
-};
+use std::num::NonZeroUsize;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::{Duration, Instant, SystemTime};
+
+use refrast_conformance::{BuiltIn, Options, Process, Report, Rule, RuleReport, Status, catalogue, matches};
 use serde::Serialize;
+
+pub use child::{RunRuleArgs, run_rule};
+use progress::Progress;
 
 use crate::{all_builtins, say};
 
@@ -39,7 +45,9 @@ pub struct Args {
     /// Only rules matching this glob (`fill.*`, `*.exact`); without `*`, a prefix.
     #[arg(long, value_name = "PATTERN")]
     rule: Option<String>,
-    /// Folder for counterexample pictures.
+    /// Folder for the report: index.html (a self-contained page: summary, profiles, a table per
+    /// implementation, each failure with its picture, counterexample and the command that
+    /// reproduces it, a matrix when several are certified) and the counterexample pictures.
     #[arg(long, value_name = "DIR", default_value = "refrast-report")]
     report: PathBuf,
     /// Also write the report as JSON (an array, one entry per implementation).
@@ -49,11 +57,17 @@ pub struct Args {
     #[arg(long, value_name = "SECONDS", default_value_t = refrast_conformance::DEFAULT_CASE_TIMEOUT.as_secs_f64(),
           value_parser = positive_seconds)]
     case_timeout: f64,
-    /// Stop at the first failing rule: the rules and implementations after it are not run.
+    /// Stop at the first failing rule: no rule starts after it, and the rules and implementations
+    /// after it are listed as not run (results of later rules already running are dropped).
     #[arg(long)]
     fail_fast: bool,
-    /// Run the rules in this process instead of one child process each (for a debugger or a
-    /// profiler; a rasterizer that hangs or aborts then stops the whole run).
+    /// Rules of built-ins run at once, each in its child process, across implementations too;
+    /// verdicts, order and output are those of --jobs 1 but for times. --in-process and --exec
+    /// run one rule at a time whatever this says [default: the available parallelism].
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
+    jobs: Option<u16>,
+    /// Run the rules in this process, one at a time, instead of one child process each (for a
+    /// debugger or a profiler; a rasterizer that hangs or aborts then stops the whole run).
     #[arg(long)]
     in_process: bool,
 }
@@ -94,6 +108,7 @@ enum Entry {
 
 /// Runs `refrast certify`: 0 when every applicable rule passes, 1 when one fails, 2 on a usage error.
 pub fn run(args: &Args) -> ExitCode {
+    let when = SystemTime::now();
     let chosen: Vec<BuiltIn> = if args.impls.is_empty() && !args.execs.is_empty() {
         Vec::new()
     } else if args.impls.is_empty() {
@@ -145,26 +160,69 @@ pub fn run(args: &Args) -> ExitCode {
         budget: Some(options.budget.unwrap_or(DEFAULT_EXEC_BUDGET)),
         ..options.clone()
     };
-    let jobs = chosen
-        .iter()
-        .map(|b| (b.name.clone(), Job::BuiltIn(b)))
-        .chain(args.execs.iter().map(|c| (c.clone(), Job::Exec(c))));
-    let mut reports = Vec::new();
+    let jobs = args.jobs.map_or_else(
+        || std::thread::available_parallelism().map_or(1, NonZeroUsize::get),
+        usize::from,
+    );
+    let out = Progress::detect();
+    let mut entries: Vec<(Subject, Entry)> = Vec::new();
     let mut left: Vec<String> = Vec::new();
-    for (name, job) in jobs {
-        if !left.is_empty() || reports.last().is_some_and(|e| args.fail_fast && !passed(e)) {
-            left.push(name);
-            continue;
+    let stop = |entries: &[(Subject, Entry)], left: &[String]| {
+        !left.is_empty() || entries.last().is_some_and(|(_, e)| args.fail_fast && !passed(e))
+    };
+    if args.in_process {
+        for b in &chosen {
+            if stop(&entries, &left) {
+                left.push(b.name.clone());
+            } else {
+                entries.push((
+                    Subject::BuiltIn(b.name.clone()),
+                    certify_in_process(b, &options, &out),
+                ));
+            }
         }
-        reports.push(match job {
-            Job::BuiltIn(b) => certify_one(b, &options, args.in_process),
-            Job::Exec(command) => certify_exec(command, &exec_options),
-        });
+    } else {
+        (entries, left) = schedule::certify_builtins(&chosen, &options, jobs, &out);
     }
+    for command in &args.execs {
+        if stop(&entries, &left) {
+            left.push(command.clone());
+        } else {
+            entries.push((
+                Subject::Exec(command.clone()),
+                certify_exec(command, &exec_options, &out),
+            ));
+        }
+    }
+    out.clear();
     if !left.is_empty() {
         say(&format!("--fail-fast: not certified: {}", left.join(", ")));
     }
+    let mut status = if entries.iter().all(|(_, e)| passed(e)) {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    };
+    let page = html::Page {
+        when,
+        args,
+        options: &options,
+        rules: &selected(&options),
+        entries: &entries,
+        left: &left,
+    };
+    match html::write(&args.report, &page) {
+        Ok(path) => say(&format!("wrote {}", path.display())),
+        Err(e) => {
+            eprintln!(
+                "error: could not write {}: {e}",
+                args.report.join("index.html").display()
+            );
+            status = ExitCode::from(2);
+        }
+    }
     if let Some(path) = &args.json {
+        let reports: Vec<&Entry> = entries.iter().map(|(_, e)| e).collect();
         let json = serde_json::to_string_pretty(&reports).expect("reports serialise");
         if let Err(e) = std::fs::write(path, json) {
             eprintln!("error: could not write {}: {e}", path.display());
@@ -172,17 +230,33 @@ pub fn run(args: &Args) -> ExitCode {
         }
         say(&format!("wrote {}", path.display()));
     }
-    if reports.iter().all(passed) {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::FAILURE
+    status
+}
+
+/// What an entry certified, as a command line names it (for the commands that reproduce a failure).
+pub enum Subject {
+    /// A built-in: `--impl NAME`.
+    BuiltIn(String),
+    /// A child speaking the pipe protocol: `--exec CMD`.
+    Exec(String),
+}
+
+impl Subject {
+    /// The flag and its value.
+    fn flag(&self) -> [&str; 2] {
+        match self {
+            Self::BuiltIn(name) => ["--impl", name],
+            Self::Exec(command) => ["--exec", command],
+        }
     }
 }
 
-/// What to certify: a built-in, or a command speaking the pipe protocol.
-enum Job<'a> {
-    BuiltIn(&'a BuiltIn),
-    Exec(&'a str),
+/// The rules `options` selects, in catalogue order.
+fn selected(options: &Options) -> Vec<Rule> {
+    catalogue()
+        .into_iter()
+        .filter(|rule| options.rule.as_deref().is_none_or(|p| matches(p, rule.id)))
+        .collect()
 }
 
 /// Whether an entry counts as passed: certified with no failing rule, or skipped.
@@ -194,58 +268,49 @@ fn passed(entry: &Entry) -> bool {
     }
 }
 
-/// Certifies one built-in, each rule in a child process unless `in_process`; skips it, saying
-/// why, when it cannot be built here.
-fn certify_one(b: &BuiltIn, options: &Options, in_process: bool) -> Entry {
-    let skipped = |why: Unavailable| {
-        say(&format!("== {}: SKIPPED: {why}\n", b.name));
-        Entry::Skipped {
-            implementation: b.name.clone(),
-            skipped: why.to_string(),
-        }
-    };
-    say(&format!("== {} (seed {})", b.name, options.seed));
+/// Certifies one built-in in this process, one rule after another; skips it, saying why, when
+/// it cannot be built here.
+fn certify_in_process(b: &BuiltIn, options: &Options, out: &Progress) -> Entry {
+    out.line(&format!("== {} (seed {})", b.name, options.seed));
     let start = Instant::now();
-    let report = if in_process {
-        match b.build() {
-            Ok(mut r) => refrast_conformance::certify(r.as_mut(), options, print_rule),
-            Err(why) => return skipped(why),
-        }
-    } else {
-        // Each rule's process builds the implementation itself, in the environment it needs.
-        let command = |rule: &refrast_conformance::Rule| {
-            let mut command = run_rule_command(&b.name, rule.id, options);
-            command.envs(b.env.iter().map(|(k, v)| (k, v)));
-            command
-        };
-        match certify_isolated(&command, options, print_rule) {
-            Ok(report) => report,
-            Err(why) => return skipped(why),
+    let mut rasterizer = match b.build() {
+        Ok(r) => r,
+        Err(why) => {
+            out.line(&format!("== {}: SKIPPED: {why}\n", b.name));
+            return Entry::Skipped {
+                implementation: b.name.clone(),
+                skipped: why.to_string(),
+            };
         }
     };
-    summarise(&report, start);
+    let report = one_at_a_time(&b.name, options, out, |progress| {
+        refrast_conformance::certify(rasterizer.as_mut(), options, progress)
+    });
+    summarise(out, &report, start.elapsed().as_secs_f64());
     Entry::Certified(report)
 }
 
 /// Certifies a rasterizer in a child process, started once and reused, in this process: the
 /// [`Process`] turns a crash, a hang or garbage into a failed draw, and restarts the child.
-fn certify_exec(command: &str, options: &Options) -> Entry {
-    say(&format!("== {command} (seed {}, pipe protocol)", options.seed));
+fn certify_exec(command: &str, options: &Options, out: &Progress) -> Entry {
+    out.line(&format!("== {command} (seed {}, pipe protocol)", options.seed));
     let start = Instant::now();
     let mut process = match Process::try_spawn_with(command, options.case_timeout) {
         Ok(process) => process,
         Err(why) => {
-            say(&format!("FAILED TO START: {why}\n"));
+            out.line(&format!("FAILED TO START: {why}\n"));
             return Entry::FailedToStart {
                 implementation: command.to_owned(),
                 failed_to_start: why.to_string(),
             };
         }
     };
-    let report = refrast_conformance::certify(&mut process, options, print_rule);
-    summarise(&report, start);
+    let report = one_at_a_time(command, options, out, |progress| {
+        refrast_conformance::certify(&mut process, options, progress)
+    });
+    summarise(out, &report, start.elapsed().as_secs_f64());
     if process.starts() > 1 {
-        say(&format!(
+        out.line(&format!(
             "  the child was restarted {} times after misbehaving\n",
             process.starts() - 1
         ));
@@ -253,106 +318,69 @@ fn certify_exec(command: &str, options: &Options) -> Entry {
     Entry::Certified(report)
 }
 
+/// Runs `certify` (which calls its argument after each rule) with a bar for `name` and a line
+/// for the rule in flight, printing each rule's result.
+fn one_at_a_time(
+    name: &str,
+    options: &Options,
+    out: &Progress,
+    certify: impl FnOnce(&mut dyn FnMut(&RuleReport)) -> Report,
+) -> Report {
+    let rules = selected(options);
+    let bar = out.implementation(name, rules.len());
+    let mut line = rules.first().map(|r| out.rule(name, r.id, 0));
+    let mut done = 0;
+    let report = certify(&mut |report: &RuleReport| {
+        print_rule(out, report);
+        bar.inc(1);
+        done += 1;
+        if let Some(line) = line.take() {
+            out.done(&line);
+        }
+        line = rules.get(done).map(|r| out.rule(name, r.id, 0));
+    });
+    if let Some(line) = line {
+        out.done(&line);
+    }
+    bar.finish_and_clear();
+    report
+}
+
 /// The closing lines of one implementation: tallies, time, profile.
-fn summarise(report: &Report, start: Instant) {
+fn summarise(out: &Progress, report: &Report, seconds: f64) {
     let p = &report.profile;
     let (pass, fail, na) = report.tally();
-    say(&format!(
+    out.line(&format!(
         "{}: {pass} passed, {fail} failed, {na} not applicable ({:.1} s); profile: {}, {}, depth {}, band {} px",
         p.name,
-        start.elapsed().as_secs_f64(),
+        seconds,
         p.snapping,
         p.fill,
         p.depth,
         p.band_px
     ));
     if !p.about.is_empty() {
-        say(&format!("  reports itself as: {}", p.about));
+        out.line(&format!("  reports itself as: {}", p.about));
     }
-    say(&format!("  features: {}", p.features.join("; ")));
+    out.line(&format!("  features: {}", p.features.join("; ")));
     if !report.not_run.is_empty() {
-        say(&format!(
+        out.line(&format!(
             "  --fail-fast: {} rules not run after the first failure: {}",
             report.not_run.len(),
             report.not_run.join(", ")
         ));
     }
-    say("");
+    out.line("");
 }
 
-/// This program again, running one rule of one built-in (`refrast run-rule`).
-fn run_rule_command(implementation: &str, rule: &str, options: &Options) -> Command {
-    let exe = std::env::current_exe().unwrap_or_else(|_| PathBuf::from("refrast"));
-    let mut command = Command::new(exe);
-    command.args(["run-rule", "--impl", implementation, "--rule", rule]);
-    command.args(["--seed", &options.seed.to_string()]);
-    if let Some(cases) = options.cases {
-        command.args(["--cases", &cases.to_string()]);
-    }
-    command.args(["--scale", &options.scale.to_string()]);
-    if let Some(budget) = options.budget {
-        command.args(["--budget", &budget.as_secs_f64().to_string()]);
-    }
-    if let Some(dir) = &options.report_dir {
-        command.arg("--report").arg(dir);
-    }
-    command
-}
-
-/// Arguments of the hidden `refrast run-rule`, the child `certify` starts for each rule.
-#[derive(clap::Args, Debug)]
-pub struct RunRuleArgs {
-    /// The built-in to run.
-    #[arg(long = "impl", value_name = "NAME")]
-    implementation: String,
-    /// The rule's ID.
-    #[arg(long, value_name = "ID")]
-    rule: String,
-    /// Cases [default: PROPTEST_CASES, else the rule's own].
-    #[arg(long, value_name = "N")]
-    cases: Option<u32>,
-    /// Multiply the cases by N.
-    #[arg(long, value_name = "N", default_value_t = 1)]
-    scale: u32,
-    /// Seed of the case generator.
-    #[arg(long, value_name = "S", default_value_t = refrast_conformance::DEFAULT_SEED)]
-    seed: u64,
-    /// Folder for the counterexample picture.
-    #[arg(long, value_name = "DIR")]
-    report: Option<PathBuf>,
-    /// Seconds of wall time after which no new case starts.
-    #[arg(long, value_name = "SECONDS", value_parser = positive_seconds)]
-    budget: Option<f64>,
-}
-
-/// Runs `refrast run-rule`: one rule, spoken to the parent on stdout ([`refrast_conformance::isolate`]).
-pub fn run_rule(args: &RunRuleArgs) -> ExitCode {
-    let Some(b) = all_builtins().into_iter().find(|b| b.name == args.implementation) else {
-        eprintln!("error: no implementation named '{}'", args.implementation);
-        return ExitCode::from(2);
-    };
-    let options = Options {
-        cases: args.cases,
-        scale: args.scale,
-        seed: args.seed,
-        report_dir: args.report.clone(),
-        budget: args.budget.map(Duration::from_secs_f64),
-        ..Options::default()
-    };
-    if refrast_conformance::isolate::serve_rule(&args.rule, || b.build(), &options) {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::from(2)
-    }
-}
-
-fn print_rule(r: &RuleReport) {
+/// One rule's line, and for a failure its message, details, picture and counterexample.
+fn print_rule(out: &Progress, r: &RuleReport) {
     let cases = if r.budget_spent {
         format!("{:>6} of {} cases (time budget spent)", r.cases, r.planned)
     } else {
         format!("{:>6} cases", r.cases)
     };
-    say(&format!(
+    out.line(&format!(
         "{:<4}  {:<38} {:<9} {cases}",
         r.status.label(),
         r.id,
@@ -360,22 +388,22 @@ fn print_rule(r: &RuleReport) {
     ));
     match r.status {
         Status::Pass => {}
-        Status::NotApplicable => say(&format!(
+        Status::NotApplicable => out.line(&format!(
             "      not applicable: {}",
             r.message.as_deref().unwrap_or("")
         )),
         Status::Fail => {
-            say(&format!("      {}", r.message.as_deref().unwrap_or("")));
+            out.line(&format!("      {}", r.message.as_deref().unwrap_or("")));
             for detail in r.details.iter().skip(1) {
-                say(&format!("        {detail}"));
+                out.line(&format!("        {detail}"));
             }
             if let Some(p) = &r.picture {
-                say(&format!("      picture: {}", p.display()));
+                out.line(&format!("      picture: {}", p.display()));
             }
             if let Some(input) = &r.counterexample {
-                say("      shrunk counterexample (after use refrast::*; use refrast_conformance::*;):");
+                out.line("      shrunk counterexample (after use refrast::*; use refrast_conformance::*;):");
                 for line in input.lines() {
-                    say(&format!("        {line}"));
+                    out.line(&format!("        {line}"));
                 }
             }
         }

@@ -154,8 +154,17 @@ fn cpp_lab000_gets_the_verdicts_of_seed_000() {
 
 #[test]
 fn a_child_that_cannot_start_fails_and_a_bad_command_is_a_usage_error() {
+    let report = Path::new(env!("CARGO_TARGET_TMPDIR")).join("no-start");
     let out = Command::new(REFRAST)
-        .args(["certify", "--exec", "./no-such-rasterizer", "--cases", "1"])
+        .args([
+            "certify",
+            "--exec",
+            "./no-such-rasterizer",
+            "--cases",
+            "1",
+            "--report",
+        ])
+        .arg(&report)
         .output()
         .expect("refrast runs");
     let text = String::from_utf8_lossy(&out.stdout);
@@ -164,6 +173,8 @@ fn a_child_that_cannot_start_fails_and_a_bad_command_is_a_usage_error() {
         text.contains("FAILED TO START") && text.contains("no-such-rasterizer"),
         "{text}"
     );
+    let page = std::fs::read_to_string(report.join("index.html")).expect("the page, even so");
+    assert!(page.contains("failed to start") && page.contains("./no-such-rasterizer"));
     let out = Command::new(REFRAST)
         .args(["certify", "--exec", "python3 'unbalanced"])
         .output()

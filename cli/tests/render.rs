@@ -361,3 +361,44 @@ fn the_readmes_render_commands_run() {
     }
     assert!(dir.join("room.png").exists() && dir.join("pictures/room-overdraw.png").exists());
 }
+
+#[test]
+fn mesa_draws_the_scenes_coverage_as_the_reference_does() {
+    // The GPU drivers through wgpu: the same fragments per pixel in overdraw, pixel for pixel.
+    // Without Mesa this says so and passes, unless REFRAST_REQUIRE_DRIVERS=1 (set by .ci/run).
+    let dir = scratch("mesa");
+    for scene in ["room", "torus", "clipped-star"] {
+        let path = |i: &str| dir.join(format!("{scene}-{i}.png"));
+        let reference = path("reference");
+        assert!(
+            render(&[scene, "--mode", "overdraw", "-o", reference.to_str().unwrap()])
+                .status
+                .success()
+        );
+        for driver in ["lavapipe", "llvmpipe"] {
+            let out = render(&[
+                scene,
+                "--mode",
+                "overdraw",
+                "--impl",
+                driver,
+                "-o",
+                path(driver).to_str().unwrap(),
+            ]);
+            let stderr = String::from_utf8_lossy(&out.stderr);
+            if stderr.contains("is not available here") {
+                assert!(
+                    std::env::var("REFRAST_REQUIRE_DRIVERS").as_deref() != Ok("1"),
+                    "{driver} is missing, and REFRAST_REQUIRE_DRIVERS=1 requires it: {stderr}"
+                );
+                eprintln!("SKIPPED: {stderr}");
+                continue;
+            }
+            assert!(out.status.success(), "{scene} through {driver}: {stderr}");
+            assert!(
+                png(&path(driver)) == png(&reference),
+                "{scene}: {driver}'s overdraw differs"
+            );
+        }
+    }
+}

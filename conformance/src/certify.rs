@@ -1,7 +1,7 @@
 //! Certification: every applicable rule against one rasterizer, summed up as a report.
 
 use std::path::{Path, PathBuf};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use refrast::{Features, FillConvention, Profile, Rasterizer};
 use serde::{Deserialize, Serialize};
@@ -121,6 +121,10 @@ pub struct RuleReport {
     pub counterexample: Option<String>,
     /// The counterexample picture, if one was written.
     pub picture: Option<PathBuf>,
+    /// Seconds the rule took where it ran (in its child process, for an isolated rule; from the
+    /// parent's side when the child died without a report).
+    #[serde(default)]
+    pub seconds: f64,
 }
 
 /// The profile as the report prints it.
@@ -291,6 +295,14 @@ pub fn cases_for(rule: &Rule, options: &Options) -> u32 {
 
 /// Runs one rule against `rasterizer` and reports it, writing a picture on failure.
 pub fn run_rule(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options) -> RuleReport {
+    let start = Instant::now();
+    let mut report = judge(rule, rasterizer, options);
+    report.seconds = start.elapsed().as_secs_f64();
+    report
+}
+
+/// [`run_rule`] without the clock.
+fn judge(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options) -> RuleReport {
     let profile = guarded(|| rasterizer.profile());
     let mut report = RuleReport {
         id: rule.id.to_owned(),
@@ -307,6 +319,7 @@ pub fn run_rule(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options)
         counts: None,
         counterexample: None,
         picture: None,
+        seconds: 0.0,
     };
     let profile = match profile {
         Ok(profile) => profile,

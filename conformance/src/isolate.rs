@@ -141,6 +141,7 @@ fn blank(rule: &Rule, options: &Options, tolerance_subpixels: u32) -> RuleReport
         counts: None,
         counterexample: None,
         picture: None,
+        seconds: 0.0,
     }
 }
 
@@ -152,7 +153,19 @@ enum Line {
 }
 
 /// Runs one rule in a child started by `command`; a hang, crash or garbled answer is a failure.
-pub fn run_rule_isolated(rule: &Rule, mut command: Command, options: &Options) -> Outcome {
+pub fn run_rule_isolated(rule: &Rule, command: Command, options: &Options) -> Outcome {
+    run_rule_watched(rule, command, options, &mut |_| {})
+}
+
+/// [`run_rule_isolated`], calling `on_case` with the count of inputs the child has announced
+/// so far (shrinking's included) as each arrives: for a progress display.
+pub fn run_rule_watched(
+    rule: &Rule,
+    mut command: Command,
+    options: &Options,
+    on_case: &mut dyn FnMut(usize),
+) -> Outcome {
+    let started = Instant::now();
     let mut profile: Option<Box<ProfileReport>> = None;
     let failed =
         |message: String, last_case: Option<String>, cases: usize, profile: &Option<Box<ProfileReport>>| {
@@ -163,6 +176,7 @@ pub fn run_rule_isolated(rule: &Rule, mut command: Command, options: &Options) -
                 cases: u32::try_from(cases).unwrap_or(u32::MAX),
                 message: Some(message),
                 counterexample: last_case,
+                seconds: started.elapsed().as_secs_f64(),
                 ..blank(rule, options, tolerance)
             };
             Outcome::Ran(Box::new(report), profile.clone())
@@ -214,6 +228,7 @@ pub fn run_rule_isolated(rule: &Rule, mut command: Command, options: &Options) -
         match rx.recv_timeout(left) {
             Ok(Line::Message(Message::Case(input))) => {
                 cases_seen += 1;
+                on_case(cases_seen);
                 last_case = Some(input);
                 last_word = Instant::now();
             }

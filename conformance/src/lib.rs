@@ -41,8 +41,8 @@ pub mod strategy;
 mod violation;
 
 pub use certify::{
-    DEFAULT_CASE_TIMEOUT, Options, ProfileReport, Report, RuleReport, Status, certify, feature_list,
-    fill_name, matches, run_rule,
+    DEFAULT_CASE_TIMEOUT, Options, ProfileReport, Report, RuleReport, Status, cases_for, certify,
+    feature_list, fill_name, matches, run_rule,
 };
 pub use harness::{failure_text, run_as_tests};
 pub use impls::{BuiltIn, Maker, Named, Origin, Unavailable, builtins};

@@ -3,7 +3,7 @@
 
 use glam::{Mat4, Vec3};
 use refrast::pipeline::Mesh;
-use refrast::{CullMode, DepthState, DrawState, Traversal};
+use refrast::{CullMode, DrawState, Traversal};
 
 use crate::geometry::{bounds, smooth_normals, to_left_handed};
 use crate::load::Loaded;
@@ -103,12 +103,15 @@ impl Setup {
         Self::mesh(mesh, Framing::Auto, Shading::Phong, CullMode::None)
     }
 
+    /// A mesh scene: depth-tested, clipped at the far plane as every graphics API clips (the GPU
+    /// adapters cannot do otherwise), on a dark background.
     fn mesh(mesh: Mesh, framing: Framing, shading: Shading, cull: CullMode) -> Self {
         Self {
             mesh,
             framing,
             state: DrawState {
                 cull,
+                clip_far: true,
                 ..DrawState::default()
             },
             traversal: Traversal::BoundingBox,
@@ -241,7 +244,12 @@ pub fn scene(name: &str) -> Option<Setup> {
         return Some(Setup {
             mesh: lab.mesh,
             framing,
-            state: lab.renderer.state,
+            // Far clipping changes no lab picture (everything lies before the far plane) and
+            // lets the GPU adapters, which always clip at far, draw the scene.
+            state: DrawState {
+                clip_far: true,
+                ..lab.renderer.state
+            },
             traversal: lab.renderer.reference.config().traversal,
             shading: Shading::None,
             light: None,
@@ -255,10 +263,6 @@ pub fn scene(name: &str) -> Option<Setup> {
             light: Some(Light::LAB_002),
             clear: [0, 0, 0, 255],
             size: (500, 500),
-            state: DrawState {
-                depth: DepthState::default(),
-                ..DrawState::default()
-            },
             ..Setup::mesh(
                 room::room(),
                 Framing::Fixed(View {

@@ -1,0 +1,431 @@
+//! `DIR/index.html`: the certification as one self-contained page a person can read offline.
+//!
+//! Pictures are embedded as `data:` URLs and the style is inline, so the page can be mailed or
+//! attached to an issue alone. Every string from a report is escaped. The page is written to a
+//! temporary file and renamed, so an interrupted run never leaves half a page.
+
+use std::io;
+use std::path::{Path, PathBuf};
+use std::time::{SystemTime, UNIX_EPOCH};
+
+use base64::Engine;
+use refrast_conformance::{DEFAULT_CASE_TIMEOUT, Options, ProfileReport, Report, Rule, RuleReport, Status};
+
+use super::{Args, Entry, Subject};
+
+/// The page's style: small, inline, no external fonts.
+const CSS: &str = include_str!("report.css");
+
+/// Writes into the page how many of its pictures the browser decoded, for a headless check
+/// (`scripts/check_report.py`).
+const SCRIPT: &str = "addEventListener('load', () => { const all = Array.from(document.images); \
+    document.body.dataset.images = all.length; \
+    document.body.dataset.imagesDecoded = all.filter((i) => i.complete && i.naturalWidth > 0).length; });";
+
+/// What the page is made from.
+pub struct Page<'a> {
+    /// When the run started.
+    pub when: SystemTime,
+    /// The command's arguments.
+    pub args: &'a Args,
+    /// The options the rules ran with.
+    pub options: &'a Options,
+    /// The rules selected, in catalogue order.
+    pub rules: &'a [Rule],
+    /// What was certified and how it went, in the order of the run.
+    pub entries: &'a [(Subject, Entry)],
+    /// Implementations not certified after a failure under `--fail-fast`.
+    pub left: &'a [String],
+}
+
+/// Writes `dir/index.html` through a temporary file renamed into place; returns its path.
+pub fn write(dir: &Path, page: &Page<'_>) -> io::Result<PathBuf> {
+    std::fs::create_dir_all(dir)?;
+    let path = dir.join("index.html");
+    let temporary = dir.join(format!(".index.html.{}.tmp", std::process::id()));
+    std::fs::write(&temporary, render(page)).and_then(|()| std::fs::rename(&temporary, &path))?;
+    Ok(path)
+}
+
+/// The whole page.
+fn render(page: &Page<'_>) -> String {
+    let failed = page.entries.iter().filter(|(_, e)| !super::passed(e)).count();
+    let verdict = if failed == 0 {
+        format!(
+            "<p class=\"verdict pass-text\">{} certified, every applicable rule passed</p>",
+            page.entries.len()
+        )
+    } else {
+        format!(
+            "<p class=\"verdict fail-text\">{failed} of {} failed</p>",
+            page.entries.len()
+        )
+    };
+    let title = if failed == 0 { "passed" } else { "FAILED" };
+    let mut h = format!(
+        "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
+         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
+         <title>refrast certify: {title}</title>\n<style>\n{CSS}</style>\n</head>\n<body>\n\
+         <h1>refrast certify</h1>\n{verdict}\n"
+    );
+    h.push_str(&summary(page));
+    if page.entries.len() > 1 {
+        h.push_str(&matrix(page));
+    }
+    for (column, (subject, entry)) in page.entries.iter().enumerate() {
+        h.push_str(&section(page, column, subject, entry));
+    }
+    h.push_str(&format!("<script>{SCRIPT}</script>\n</body>\n</html>\n"));
+    h
+}
+
+/// When, which refrast, seed, cases, and the command line.
+fn summary(page: &Page<'_>) -> String {
+    let args = page.args;
+    let cases = match (args.cases, std::env::var("PROPTEST_CASES").ok()) {
+        (Some(n), _) => format!("{n} per rule"),
+        (None, Some(env)) => format!("PROPTEST_CASES={env}"),
+        (None, None) => "each rule's default".to_owned(),
+    };
+    let scale = if args.scale > 1 {
+        format!(", ×{}", args.scale)
+    } else {
+        String::new()
+    };
+    let command: Vec<String> = std::env::args_os()
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect();
+    let mut rows = vec![
+        ("When", utc(page.when)),
+        ("refrast", env!("CARGO_PKG_VERSION").to_owned()),
+        ("Seed", page.options.seed.to_string()),
+        ("Cases", format!("{cases}{scale}")),
+        ("Rules", format!("{} selected", page.rules.len())),
+        (
+            "Command",
+            format!("<code>{}</code>", esc(&shell_words::join(command))),
+        ),
+    ];
+    if !page.left.is_empty() {
+        rows.push((
+            "Not certified",
+            format!("{} (--fail-fast)", esc(&page.left.join(", "))),
+        ));
+    }
+    let rows: String = rows
+        .iter()
+        .map(|(name, value)| format!("<tr><th>{name}</th><td>{value}</td></tr>\n"))
+        .collect();
+    format!("<table class=\"summary\">\n{rows}</table>\n")
+}
+
+/// Rules as rows, implementations as columns, each cell linking to its detail.
+fn matrix(page: &Page<'_>) -> String {
+    let mut h = String::from("<h2>Matrix</h2>\n<table class=\"matrix\">\n<tr><th>rule</th>");
+    for (column, (subject, _)) in page.entries.iter().enumerate() {
+        h.push_str(&format!(
+            "<th><a href=\"#impl-{column}\">{}</a></th>",
+            esc(label(subject))
+        ));
+    }
+    h.push_str("</tr>\n");
+    for (row, rule) in page.rules.iter().enumerate() {
+        h.push_str(&format!("<tr><th class=\"rule\">{}</th>", esc(rule.id)));
+        for (column, (_, entry)) in page.entries.iter().enumerate() {
+            let cell = match entry {
+                Entry::Certified(report) => match report.rules.iter().find(|r| r.id == rule.id) {
+                    Some(r) if r.status == Status::Fail => status_link(r.status, &format!("f{column}-{row}")),
+                    Some(r) => status_link(r.status, &format!("r{column}-{row}")),
+                    None => "<span class=\"status other\">not run</span>".to_owned(),
+                },
+                Entry::Skipped { .. } => "<span class=\"status other\">skipped</span>".to_owned(),
+                Entry::FailedToStart { .. } => "<span class=\"status fail\">no start</span>".to_owned(),
+            };
+            h.push_str(&format!("<td>{cell}</td>"));
+        }
+        h.push_str("</tr>\n");
+    }
+    h.push_str("</table>\n");
+    h
+}
+
+/// A status badge linking to `anchor`.
+fn status_link(status: Status, anchor: &str) -> String {
+    format!(
+        "<a class=\"status {}\" href=\"#{anchor}\">{}</a>",
+        class(status),
+        status.label()
+    )
+}
+
+/// The CSS class of a status.
+fn class(status: Status) -> &'static str {
+    match status {
+        Status::Pass => "pass",
+        Status::Fail => "fail",
+        Status::NotApplicable => "na",
+    }
+}
+
+/// How the command line named a subject.
+fn label(subject: &Subject) -> &str {
+    match subject {
+        Subject::BuiltIn(name) | Subject::Exec(name) => name,
+    }
+}
+
+/// One implementation: its profile, its rules' table and its failures.
+fn section(page: &Page<'_>, column: usize, subject: &Subject, entry: &Entry) -> String {
+    let how = match subject {
+        Subject::BuiltIn(_) => "built-in",
+        Subject::Exec(_) => "pipe protocol",
+    };
+    let mut h = format!(
+        "<section id=\"impl-{column}\">\n<h2>{} <span class=\"why\">{how}</span></h2>\n",
+        esc(label(subject))
+    );
+    match entry {
+        Entry::Skipped { skipped, .. } => {
+            h.push_str(&format!(
+                "<p><span class=\"status other\">skipped</span> {}</p>\n",
+                esc(skipped)
+            ));
+        }
+        Entry::FailedToStart { failed_to_start, .. } => {
+            h.push_str(&format!(
+                "<p><span class=\"status fail\">failed to start</span></p>\n<pre>{}</pre>\n",
+                esc(failed_to_start)
+            ));
+        }
+        Entry::Certified(report) => {
+            let (pass, fail, na) = report.tally();
+            let seconds: f64 = report.rules.iter().map(|r| r.seconds).sum();
+            h.push_str(&format!(
+                "<p>{pass} passed, {fail} failed, {na} not applicable; {seconds:.1} s of rule time</p>\n"
+            ));
+            h.push_str(&profile(&report.profile));
+            h.push_str(&table(page, column, report));
+            for (row, rule) in page.rules.iter().enumerate() {
+                if let Some(r) = report
+                    .rules
+                    .iter()
+                    .find(|r| r.id == rule.id && r.status == Status::Fail)
+                {
+                    h.push_str(&failure(page, column, row, subject, report, r));
+                }
+            }
+        }
+    }
+    h.push_str("</section>\n");
+    h
+}
+
+/// The profile as a definition list.
+fn profile(p: &ProfileReport) -> String {
+    let features: String = p
+        .features
+        .iter()
+        .map(|f| format!("<span class=\"chip\">{}</span>", esc(f)))
+        .collect();
+    let mut rows = vec![("profile", esc(&p.name))];
+    if !p.about.is_empty() {
+        rows.push(("reports itself as", esc(&p.about)));
+    }
+    rows.extend([
+        ("snapping", esc(&p.snapping)),
+        ("fill", esc(&p.fill)),
+        ("depth", esc(&p.depth)),
+        (
+            "band",
+            format!("{} px ({} subpixels)", p.band_px, p.tolerance_subpixels),
+        ),
+        ("features", features),
+    ]);
+    let rows: String = rows
+        .iter()
+        .map(|(k, v)| format!("<dt>{k}</dt><dd>{v}</dd>\n"))
+        .collect();
+    format!("<dl class=\"profile\">\n{rows}</dl>\n")
+}
+
+/// The rules' table of one implementation.
+fn table(page: &Page<'_>, column: usize, report: &Report) -> String {
+    let mut h = String::from(
+        "<table class=\"rules\">\n<tr><th>rule</th><th>family</th><th>kind</th><th>status</th>\
+         <th>cases</th><th>seed</th><th>time</th></tr>\n",
+    );
+    for (row, rule) in page.rules.iter().enumerate() {
+        let Some(r) = report.rules.iter().find(|r| r.id == rule.id) else {
+            h.push_str(&format!(
+                "<tr id=\"r{column}-{row}\"><td class=\"rule\"><code>{}</code></td><td>{}</td><td>{}</td>\
+                 <td><span class=\"status other\">not run</span> <span class=\"why\">after a failure \
+                 (--fail-fast)</span></td><td></td><td></td><td></td></tr>\n",
+                esc(rule.id),
+                rule.family.name(),
+                rule.kind
+            ));
+            continue;
+        };
+        let status = match r.status {
+            Status::Fail => status_link(r.status, &format!("f{column}-{row}")),
+            Status::Pass => format!("<span class=\"status pass\">{}</span>", r.status.label()),
+            Status::NotApplicable => format!(
+                "<span class=\"status na\">n/a</span><span class=\"why\">{}</span>",
+                esc(r.message.as_deref().unwrap_or(""))
+            ),
+        };
+        let cases = match (r.status, r.budget_spent) {
+            (Status::NotApplicable, _) => String::new(),
+            (_, true) => format!("{} of {} (time budget spent)", r.cases, r.planned),
+            (_, false) => r.cases.to_string(),
+        };
+        h.push_str(&format!(
+            "<tr id=\"r{column}-{row}\"><td class=\"rule\"><code>{}</code></td><td>{}</td><td>{}</td>\
+             <td>{status}</td><td class=\"num\">{cases}</td><td class=\"num\">{}</td>\
+             <td class=\"num\">{:.2} s</td></tr>\n",
+            esc(&r.id),
+            r.family.name(),
+            r.kind,
+            r.seed,
+            r.seconds
+        ));
+    }
+    h.push_str("</table>\n");
+    if !report.not_run.is_empty() {
+        h.push_str(&format!(
+            "<p class=\"note\">--fail-fast: {} rules not run after the first failure.</p>\n",
+            report.not_run.len()
+        ));
+    }
+    h
+}
+
+/// One failure: message, details, picture, counterexample, and the command that reproduces it.
+fn failure(
+    page: &Page<'_>,
+    column: usize,
+    row: usize,
+    subject: &Subject,
+    report: &Report,
+    r: &RuleReport,
+) -> String {
+    let mut h = format!(
+        "<div class=\"failure\" id=\"f{column}-{row}\">\n<h3><code>{}</code> on {}</h3>\n\
+         <p class=\"message\">{}</p>\n",
+        esc(&r.id),
+        esc(&report.implementation),
+        esc(r.message.as_deref().unwrap_or(""))
+    );
+    if r.details.len() > 1 {
+        let details: Vec<String> = r.details.iter().skip(1).map(|d| esc(d)).collect();
+        h.push_str(&format!("<h4>Details</h4>\n<pre>{}</pre>\n", details.join("\n")));
+    }
+    match r.picture.as_deref().map(|p| (p, std::fs::read(p))) {
+        Some((_, Ok(png))) => h.push_str(&format!(
+            "<h4>Picture</h4>\n<img alt=\"counterexample of {} on {}\" src=\"data:image/png;base64,{}\">\n",
+            esc(&r.id),
+            esc(&report.implementation),
+            base64::engine::general_purpose::STANDARD.encode(png)
+        )),
+        Some((path, Err(e))) => h.push_str(&format!(
+            "<p class=\"note\">The picture {} could not be read: {}</p>\n",
+            esc(&path.display().to_string()),
+            esc(&e.to_string())
+        )),
+        None => h.push_str("<p class=\"note\">No picture: this failure draws none.</p>\n"),
+    }
+    if let Some(input) = &r.counterexample {
+        h.push_str(&format!(
+            "<h4>Counterexample <span class=\"why\">Rust, after <code>use refrast::*; use \
+             refrast_conformance::*;</code></span></h4>\n<pre><code>{}</code></pre>\n",
+            esc(input)
+        ));
+    }
+    h.push_str(&format!(
+        "<h4>Reproduce</h4>\n<pre><code>{}</code></pre>\n</div>\n",
+        esc(&reproduce(page, subject, r))
+    ));
+    h
+}
+
+/// The command that runs this rule again on the same cases, quoted for a POSIX shell.
+fn reproduce(page: &Page<'_>, subject: &Subject, r: &RuleReport) -> String {
+    let mut words: Vec<String> = ["refrast", "certify"].into_iter().map(str::to_owned).collect();
+    words.extend(subject.flag().map(str::to_owned));
+    words.extend([
+        "--rule".to_owned(),
+        r.id.clone(),
+        "--seed".to_owned(),
+        r.seed.to_string(),
+    ]);
+    if r.planned > 0 {
+        words.extend(["--cases".to_owned(), r.planned.to_string()]);
+    }
+    if let Some(budget) = page.args.budget {
+        words.extend(["--budget".to_owned(), budget.to_string()]);
+    }
+    if page.options.case_timeout != DEFAULT_CASE_TIMEOUT {
+        words.extend(["--case-timeout".to_owned(), page.args.case_timeout.to_string()]);
+    }
+    shell_words::join(words)
+}
+
+/// `text` safe inside HTML elements and double-quoted attributes.
+fn esc(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&#39;"),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+/// `when` as `YYYY-MM-DD HH:MM:SS UTC` (days to a civil date: Howard Hinnant's algorithm).
+fn utc(when: SystemTime) -> String {
+    let secs = when.duration_since(UNIX_EPOCH).map_or(0, |d| d.as_secs());
+    let (days, rest) = (secs / 86_400, secs % 86_400);
+    let z = days + 719_468;
+    let era = z / 146_097;
+    let doe = z % 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    let year = yoe + era * 400 + u64::from(month <= 2);
+    let (hour, minute, second) = (rest / 3600, rest % 3600 / 60, rest % 60);
+    format!("{year:04}-{month:02}-{day:02} {hour:02}:{minute:02}:{second:02} UTC")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{esc, utc};
+    use std::time::{Duration, UNIX_EPOCH};
+
+    #[test]
+    fn escapes_markup_and_quotes() {
+        assert_eq!(
+            esc("<a href=\"x\">&'</a>"),
+            "&lt;a href=&quot;x&quot;&gt;&amp;&#39;&lt;/a&gt;"
+        );
+    }
+
+    #[test]
+    fn dates_are_civil_utc() {
+        assert_eq!(utc(UNIX_EPOCH), "1970-01-01 00:00:00 UTC");
+        assert_eq!(
+            utc(UNIX_EPOCH + Duration::from_secs(951_827_696)),
+            "2000-02-29 12:34:56 UTC"
+        );
+        assert_eq!(
+            utc(UNIX_EPOCH + Duration::from_secs(1_735_689_599)),
+            "2024-12-31 23:59:59 UTC"
+        );
+    }
+}

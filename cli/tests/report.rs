@@ -1,0 +1,277 @@
+//! `refrast certify --report DIR` writes `DIR/index.html` (tables, matrix, failures with their
+//! pictures and reproduce commands, every report string escaped), and `--jobs` changes nothing
+//! but the times.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use base64::Engine;
+use serde_json::Value;
+
+const REFRAST: &str = env!("CARGO_BIN_EXE_refrast");
+
+/// The mutant that draws shared edges twice: fails fill rules with a picture.
+const MUTANT: &str = "mutant:inclusive-edges";
+
+/// A fresh folder for one test's outputs.
+fn scratch(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("scratch folder");
+    dir
+}
+
+/// Runs `refrast certify` with `args`, the report in `dir` and the JSON in `dir/r.json`.
+fn certify(dir: &Path, args: &[&str]) -> (Output, Value) {
+    let json = dir.join("r.json");
+    let out = Command::new(REFRAST)
+        .arg("certify")
+        .args(args)
+        .arg("--report")
+        .arg(dir)
+        .arg("--json")
+        .arg(&json)
+        .output()
+        .expect("refrast runs");
+    let text = std::fs::read_to_string(&json).unwrap_or_else(|e| {
+        panic!(
+            "no JSON from certify {args:?} ({e}):\n{}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        )
+    });
+    (out, serde_json::from_str(&text).expect("the report is JSON"))
+}
+
+/// The text between `start` (excluded) and the next `end` after it, from `from` on.
+fn between<'a>(text: &'a str, from: usize, start: &str, end: &str) -> Option<(&'a str, usize)> {
+    let at = from + text[from..].find(start)? + start.len();
+    let len = text[at..].find(end)?;
+    Some((&text[at..at + len], at + len))
+}
+
+/// Undoes the page's escaping.
+fn unescape(text: &str) -> String {
+    text.replace("&lt;", "<")
+        .replace("&gt;", ">")
+        .replace("&quot;", "\"")
+        .replace("&#39;", "'")
+        .replace("&amp;", "&")
+}
+
+#[test]
+fn the_page_holds_tables_matrix_failures_and_escaped_text() {
+    let dir = scratch("report-page");
+    // A command that cannot start, whose name and message carry markup to escape.
+    let odd = "/nonexistent/<b>&rasterizer";
+    let args = [
+        "--impl",
+        "reference",
+        "--impl",
+        MUTANT,
+        "--exec",
+        odd,
+        "--rule",
+        "fill.*",
+        "--cases",
+        "200",
+    ];
+    let (out, json) = certify(&dir, &args);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "the mutant fails:\n{stdout}");
+    assert!(
+        stdout.contains(&format!("wrote {}", dir.join("index.html").display())),
+        "{stdout}"
+    );
+    let page = std::fs::read_to_string(dir.join("index.html")).expect("index.html is written");
+    assert!(page.starts_with("<!doctype html>") && page.trim_end().ends_with("</html>"));
+    assert!(
+        !page.contains("http://") && !page.contains("https://"),
+        "no external assets"
+    );
+    assert!(
+        std::fs::read_dir(&dir)
+            .unwrap()
+            .all(|e| !e.unwrap().file_name().to_string_lossy().ends_with(".tmp"))
+    );
+
+    // A row per rule in each certified implementation's table, and a matrix with every rule.
+    let entries = json.as_array().expect("an array");
+    assert_eq!(entries.len(), 3);
+    for (column, entry) in entries.iter().take(2).enumerate() {
+        let rules = entry["rules"].as_array().expect("rules");
+        assert!(rules.len() >= 5, "the fill family: {}", rules.len());
+        for (row, rule) in rules.iter().enumerate() {
+            let id = rule["id"].as_str().unwrap();
+            let seconds = rule["seconds"].as_f64().expect("seconds in the JSON");
+            assert!(seconds >= 0.0);
+            let (cells, _) = between(&page, 0, &format!("<tr id=\"r{column}-{row}\">"), "</tr>")
+                .unwrap_or_else(|| panic!("no row for {id} of entry {column}"));
+            assert!(cells.contains(&format!("<code>{id}</code>")), "{cells}");
+            let label = match rule["status"].as_str().unwrap() {
+                "fail" => "FAIL",
+                "pass" => "pass",
+                _ => "n/a",
+            };
+            assert!(cells.contains(&format!(">{label}</")), "{id}: {cells}");
+        }
+        let (matrix, _) = between(&page, 0, "<table class=\"matrix\">", "</table>").expect("a matrix");
+        assert!(matrix.contains(&format!(
+            "<th class=\"rule\">{}</th>",
+            rules[0]["id"].as_str().unwrap()
+        )));
+    }
+    assert!(
+        entries[0]["rules"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .all(|r| r["status"] != "fail")
+    );
+
+    // Each failure of the mutant: a FAIL cell, its detail with a picture that decodes, and a
+    // reproduce command that fails the same rule on the same counterexample.
+    let failures: Vec<&Value> = entries[1]["rules"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|r| r["status"] == "fail")
+        .collect();
+    assert!(!failures.is_empty(), "the mutant fails a fill rule");
+    assert!(page.contains("<a class=\"status fail\" href=\"#f1-"));
+    let mut from = 0;
+    let mut pictures = 0;
+    while let Some((data, end)) = between(&page, from, "src=\"data:image/png;base64,", "\"") {
+        let png = base64::engine::general_purpose::STANDARD
+            .decode(data)
+            .expect("base64");
+        assert!(png.starts_with(b"\x89PNG\r\n\x1a\n"));
+        let picture = image::load_from_memory(&png).expect("a PNG that decodes");
+        assert!(picture.width() > 16 && picture.height() > 16);
+        pictures += 1;
+        from = end;
+    }
+    assert!(pictures >= 1, "an embedded picture");
+    let first = failures[0];
+    let (code, _) =
+        between(&page, 0, "<h4>Reproduce</h4>\n<pre><code>", "</code>").expect("a reproduce command");
+    let words = shell_words::split(&unescape(code)).expect("a shell command");
+    let expected = [
+        "refrast",
+        "certify",
+        "--impl",
+        MUTANT,
+        "--rule",
+        first["id"].as_str().unwrap(),
+        "--seed",
+        &first["seed"].to_string(),
+        "--cases",
+        &first["planned"].to_string(),
+    ];
+    assert_eq!(words, expected);
+    let again = scratch("report-reproduce");
+    let (out, rerun) = certify(&again, &words[2..].iter().map(String::as_str).collect::<Vec<_>>());
+    assert_eq!(out.status.code(), Some(1));
+    let rule = &rerun[0]["rules"][0];
+    assert_eq!((&rule["id"], &rule["status"]), (&first["id"], &first["status"]));
+    assert_eq!(
+        rule["counterexample"], first["counterexample"],
+        "the same counterexample"
+    );
+    let (counterexample, _) = between(&page, 0, "<pre><code>", "</code>").expect("a counterexample");
+    assert_eq!(
+        unescape(counterexample),
+        first["counterexample"].as_str().unwrap()
+    );
+
+    // Strings from reports and the command line are escaped, never markup.
+    assert!(
+        page.contains("/nonexistent/&lt;b&gt;&amp;rasterizer"),
+        "the --exec name, escaped"
+    );
+    assert!(!page.contains("<b>&rasterizer"));
+    assert!(
+        page.contains("--rule &#39;fill.*&#39;"),
+        "the command line, quoted and escaped"
+    );
+    assert!(
+        page.contains("document.body.dataset.imagesDecoded"),
+        "the decode check script"
+    );
+}
+
+/// The verdicts of a JSON report, times and picture paths left out.
+fn verdicts(json: &Value) -> Vec<Value> {
+    let mut entries = json.as_array().expect("an array").clone();
+    for entry in &mut entries {
+        for rule in entry["rules"].as_array_mut().into_iter().flatten() {
+            let rule = rule.as_object_mut().expect("a rule");
+            rule.remove("seconds");
+            rule.remove("picture");
+        }
+    }
+    entries
+}
+
+/// The rule lines of certify's output, in order.
+fn rule_lines(out: &Output) -> Vec<String> {
+    let text = String::from_utf8_lossy(&out.stdout);
+    let starts = ["pass ", "FAIL ", "n/a ", "== ", "  --fail-fast"];
+    text.lines()
+        .filter(|l| starts.iter().any(|s| l.starts_with(s)))
+        .map(str::to_owned)
+        .collect()
+}
+
+#[test]
+fn jobs_change_only_the_times() {
+    for (name, extra) in [("all", &[][..]), ("fail-fast", &["--fail-fast"][..])] {
+        let mut args = vec!["--impl", MUTANT, "--impl", "reference", "--rule", "fill.*"];
+        args.extend(["--cases", "200", "--seed", "11"]);
+        args.extend(extra);
+        let one = [&args[..], &["--jobs", "1"]].concat();
+        let two = [&args[..], &["--jobs", "2"]].concat();
+        let (out1, json1) = certify(&scratch(&format!("jobs1-{name}")), &one);
+        let (out2, json2) = certify(&scratch(&format!("jobs2-{name}")), &two);
+        assert_eq!(out1.status.code(), Some(1));
+        assert_eq!(out2.status.code(), Some(1));
+        assert_eq!(
+            verdicts(&json1),
+            verdicts(&json2),
+            "{name}: --jobs 1 and --jobs 2 differ"
+        );
+        assert_eq!(
+            rule_lines(&out1),
+            rule_lines(&out2),
+            "{name}: the printed report differs"
+        );
+        if name == "fail-fast" {
+            assert_eq!(
+                json1.as_array().unwrap().len(),
+                1,
+                "the reference is not certified"
+            );
+            let rules = json1[0]["rules"].as_array().unwrap();
+            assert_eq!(
+                rules.last().unwrap()["status"],
+                "fail",
+                "the run stops at the failure"
+            );
+            assert!(String::from_utf8_lossy(&out2.stdout).contains("--fail-fast: not certified: reference"));
+        } else {
+            assert_eq!(json1.as_array().unwrap().len(), 2);
+        }
+    }
+}
+
+#[test]
+fn zero_jobs_is_a_usage_error() {
+    let out = Command::new(REFRAST)
+        .args(["certify", "--jobs", "0"])
+        .output()
+        .expect("refrast runs");
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("--jobs"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}

@@ -85,71 +85,106 @@ impl Chunk {
         self.bins.resize_with(grid.tiles(), Vec::new);
         self.bins.iter_mut().for_each(Vec::clear);
         for primitive in primitives {
-            if let Some(t) = self.prepare_one(setup, primitive) {
-                let index = self.triangles.len() as u32;
-                grid.for_each_tile(t.rect, |tile| self.bins[tile].push(index));
-                self.triangles.push(t);
+            let index = self.triangles.len() as u32;
+            if let Some(rect) = self.prepare_one(setup, primitive) {
+                grid.for_each_tile(rect, |tile| self.bins[tile].push(index));
             }
         }
     }
 
-    /// One triangle through the stages, as `Reference::draw_triangle` takes it; `None` when it
-    /// draws nothing (non-finite, clipped away, degenerate, culled or off screen).
-    fn prepare_one(&mut self, setup: &DrawSetup<'_>, primitive: usize) -> Option<Prepared> {
-        let state = &setup.draw.state;
+    /// One triangle through the stages, as `Reference::draw_triangle` takes it, appended to
+    /// `triangles`; its box, or `None` when it draws nothing (non-finite, clipped away,
+    /// degenerate, culled or off screen).
+    fn prepare_one(&mut self, setup: &DrawSetup<'_>, primitive: usize) -> Option<[u32; 4]> {
         let input = assemble(&setup.draw.positions, setup.draw.triangles[primitive])?;
         let snapped = snap_before_clipping(&input, &setup.transform, setup.fill).ok()?;
-        let whole;
-        let (clipped, fan, polygon): (bool, &[FanTriangle], &[RasterVertex]) =
-            match clip_triangle(&input, &setup.planes, &mut self.polygon, &mut self.clip) {
-                ClipOutcome::Outside => return None,
-                ClipOutcome::Inside => {
-                    let triangle = snapped?;
-                    whole = ([FanTriangle::whole(triangle.setup)], triangle.vertices);
-                    (false, &whole.0, &whole.1)
+        match clip_triangle(&input, &setup.planes, &mut self.polygon, &mut self.clip) {
+            ClipOutcome::Outside => None,
+            ClipOutcome::Inside => {
+                // Read in place: the snapped triangle is not copied into a fan of one.
+                let triangle = snapped.as_ref()?;
+                let winding = drawn_winding(&input, false, std::iter::once(&triangle.setup));
+                let (front_facing, rect) = kept(setup, winding, &triangle.vertices)?;
+                let t = &triangle.setup;
+                let single = (t.winding() == winding).then(|| Single {
+                    steps: EdgeSteps::new(t, setup.transform.bits),
+                    area2: t.area2(),
+                    corners: t.order().map(|k| triangle.vertices[k].varyings),
+                });
+                let (fans, raster) = (self.fans.len(), self.raster.len());
+                if single.is_none() {
+                    self.fans.push(FanTriangle::whole(*t));
+                    self.raster.extend_from_slice(&triangle.vertices);
                 }
-                ClipOutcome::Clipped => {
-                    let (transform, projected) = (&setup.transform, &mut self.projected);
-                    if !transform.project_polygon(&self.polygon, input_w(&input), projected) {
-                        return None;
-                    }
-                    build_fan(projected, setup.fill, &mut self.fan);
-                    (true, &self.fan, &self.projected)
+                self.push(primitive, front_facing, winding, rect, fans, raster, single);
+                Some(rect)
+            }
+            ClipOutcome::Clipped => {
+                let (transform, projected) = (&setup.transform, &mut self.projected);
+                if !transform.project_polygon(&self.polygon, input_w(&input), projected) {
+                    return None;
                 }
-            };
-        let winding = drawn_winding(&input, clipped, fan.iter().map(|t| &t.setup));
-        let front_facing = state.front_face.is_front(winding)?;
-        if state.cull.culls(front_facing) {
-            return None;
+                build_fan(projected, setup.fill, &mut self.fan);
+                let winding = drawn_winding(&input, true, self.fan.iter().map(|t| &t.setup));
+                let (front_facing, rect) = kept(setup, winding, &self.projected)?;
+                let single = match self.fan.as_slice() {
+                    [t] if t.setup.winding() == winding => Some(Single {
+                        steps: EdgeSteps::new(&t.setup, setup.transform.bits),
+                        area2: t.setup.area2(),
+                        corners: t.setup.order().map(|k| self.projected[t.corners[k]].varyings),
+                    }),
+                    _ => None,
+                };
+                let (fans, raster) = (self.fans.len(), self.raster.len());
+                if single.is_none() {
+                    self.fans.extend_from_slice(&self.fan);
+                    self.raster.extend_from_slice(&self.projected);
+                }
+                self.push(primitive, front_facing, winding, rect, fans, raster, single);
+                Some(rect)
+            }
         }
-        let (x0, x1, y0, y1) = PixelRect::bounding(
-            polygon.iter().map(|v| v.position),
-            setup.transform.bits,
-            setup.transform.viewport,
-        )?
-        .bounds();
-        let single = match fan {
-            [t] if t.setup.winding() == winding => Some(Single {
-                steps: EdgeSteps::new(&t.setup, setup.transform.bits),
-                area2: t.setup.area2(),
-                corners: t.setup.order().map(|k| polygon[t.corners[k]].varyings),
-            }),
-            _ => None,
-        };
-        let (fans, raster) = (self.fans.len(), self.raster.len());
-        if single.is_none() {
-            // Only the general path reads the fan and its polygon from the shared arrays.
-            self.fans.extend_from_slice(fan);
-            self.raster.extend_from_slice(polygon);
-        }
-        Some(Prepared {
+    }
+
+    /// Appends a triangle whose fan (when it has one) starts at `fans` and polygon at `raster`.
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn push(
+        &mut self,
+        primitive: usize,
+        front_facing: bool,
+        winding: Winding,
+        rect: [u32; 4],
+        fans: usize,
+        raster: usize,
+        single: Option<Single>,
+    ) {
+        self.triangles.push(Prepared {
             primitive: primitive as u32,
             front_facing,
             winding,
-            rect: [x0, x1, y0, y1],
+            rect,
             fans: fans as u32..self.fans.len() as u32,
             raster: raster as u32..self.raster.len() as u32,
             single,
-        })
+        });
     }
+}
+
+/// Facing, culling and the bounding box of `polygon`, in the reference's order: whether the
+/// triangle faces the viewer and its box, or `None` when it is culled or off screen.
+#[inline]
+fn kept(setup: &DrawSetup<'_>, winding: Winding, polygon: &[RasterVertex]) -> Option<(bool, [u32; 4])> {
+    let state = &setup.draw.state;
+    let front_facing = state.front_face.is_front(winding)?;
+    if state.cull.culls(front_facing) {
+        return None;
+    }
+    let (x0, x1, y0, y1) = PixelRect::bounding(
+        polygon.iter().map(|v| v.position),
+        setup.transform.bits,
+        setup.transform.viewport,
+    )?
+    .bounds();
+    Some((front_facing, [x0, x1, y0, y1]))
 }

@@ -7,8 +7,8 @@
 use std::ops::Range;
 
 use refrast::stage::{
-    ClipOutcome, ClipPlane, ClipVertex, FanTriangle, PixelRect, RasterVertex, Varyings, ViewportTransform,
-    assemble, build_fan, clip_triangle, drawn_winding, input_w, snap_before_clipping,
+    ClipOutcome, ClipPlane, ClipVertex, FanTriangle, PixelRect, RasterVertex, TriangleSetup, Varyings,
+    ViewportTransform, assemble, build_fan, clip_triangle, drawn_winding, input_w, snap_before_clipping,
 };
 use refrast::{Draw, FillConvention, Winding};
 
@@ -96,65 +96,63 @@ impl Chunk {
     /// `triangles`; its box, or `None` when it draws nothing (non-finite, clipped away,
     /// degenerate, culled or off screen).
     fn prepare_one(&mut self, setup: &DrawSetup<'_>, primitive: usize) -> Option<[u32; 4]> {
-        let input = assemble(&setup.draw.positions, setup.draw.triangles[primitive])?;
-        // Borrowed where it was returned: moving it out of the `Result` copies ~470 bytes.
-        let snapped = snap_before_clipping(&input, &setup.transform, setup.fill);
+        // Borrowed where they are returned: moving them out copies ~170 and ~470 bytes.
+        let input = assemble(&setup.draw.positions, setup.draw.triangles[primitive]);
+        let input = input.as_ref()?;
+        let snapped = snap_before_clipping(input, &setup.transform, setup.fill);
         let Ok(snapped) = &snapped else {
             return None;
         };
-        match clip_triangle(&input, &setup.planes, &mut self.polygon, &mut self.clip) {
+        match clip_triangle(input, &setup.planes, &mut self.polygon, &mut self.clip) {
             ClipOutcome::Outside => None,
             ClipOutcome::Inside => {
                 // Read in place: the snapped triangle is not copied into a fan of one.
                 let triangle = snapped.as_ref()?;
-                let winding = drawn_winding(&input, false, std::iter::once(&triangle.setup));
+                let winding = drawn_winding(input, false, std::iter::once(&triangle.setup));
                 let (front_facing, rect) = kept(setup, winding, &triangle.vertices)?;
                 let t = &triangle.setup;
-                let single = (t.winding() == winding).then(|| {
-                    let ([a, b, c], v) = (t.order(), &triangle.vertices);
-                    Single {
-                        steps: EdgeSteps::new(t, setup.transform.bits),
-                        area2: t.area2(),
-                        corners: [v[a].varyings, v[b].varyings, v[c].varyings],
-                    }
-                });
+                let alone = t.winding() == winding;
                 let (fans, raster) = (self.fans.len(), self.raster.len());
-                if single.is_none() {
+                if !alone {
                     self.fans.push(FanTriangle::whole(*t));
                     self.raster.extend_from_slice(&triangle.vertices);
                 }
-                self.push(primitive, front_facing, winding, rect, fans, raster, single);
+                self.push(primitive, front_facing, winding, rect, fans, raster);
+                if alone {
+                    let ([a, b, c], v) = (t.order(), &triangle.vertices);
+                    let last = self.triangles.last_mut().expect("pushed above");
+                    set_single(&mut last.single, setup, t, [a, b, c].map(|k| &v[k].varyings));
+                }
                 Some(rect)
             }
             ClipOutcome::Clipped => {
                 let (transform, projected) = (&setup.transform, &mut self.projected);
-                if !transform.project_polygon(&self.polygon, input_w(&input), projected) {
+                if !transform.project_polygon(&self.polygon, input_w(input), projected) {
                     return None;
                 }
                 build_fan(projected, setup.fill, &mut self.fan);
-                let winding = drawn_winding(&input, true, self.fan.iter().map(|t| &t.setup));
+                let winding = drawn_winding(input, true, self.fan.iter().map(|t| &t.setup));
                 let (front_facing, rect) = kept(setup, winding, &self.projected)?;
-                let single = match self.fan.as_slice() {
-                    [t] if t.setup.winding() == winding => Some(Single {
-                        steps: EdgeSteps::new(&t.setup, setup.transform.bits),
-                        area2: t.setup.area2(),
-                        corners: t.setup.order().map(|k| self.projected[t.corners[k]].varyings),
-                    }),
-                    _ => None,
-                };
+                let alone = matches!(self.fan.as_slice(), [t] if t.setup.winding() == winding);
                 let (fans, raster) = (self.fans.len(), self.raster.len());
-                if single.is_none() {
+                if !alone {
                     self.fans.extend_from_slice(&self.fan);
                     self.raster.extend_from_slice(&self.projected);
                 }
-                self.push(primitive, front_facing, winding, rect, fans, raster, single);
+                self.push(primitive, front_facing, winding, rect, fans, raster);
+                if alone {
+                    let t = &self.fan[0];
+                    let corners = t.setup.order().map(|k| &self.projected[t.corners[k]].varyings);
+                    let last = self.triangles.last_mut().expect("pushed above");
+                    set_single(&mut last.single, setup, &t.setup, corners);
+                }
                 Some(rect)
             }
         }
     }
 
-    /// Appends a triangle whose fan (when it has one) starts at `fans` and polygon at `raster`.
-    #[allow(clippy::too_many_arguments)]
+    /// Appends a triangle whose fan (when it has one) starts at `fans` and polygon at `raster`;
+    /// a lone fan triangle is written into it afterwards, in place ([`set_single`]).
     #[inline]
     fn push(
         &mut self,
@@ -164,7 +162,6 @@ impl Chunk {
         rect: [u32; 4],
         fans: usize,
         raster: usize,
-        single: Option<Single>,
     ) {
         self.triangles.push(Prepared {
             primitive: primitive as u32,
@@ -173,9 +170,20 @@ impl Chunk {
             rect,
             fans: fans as u32..self.fans.len() as u32,
             raster: raster as u32..self.raster.len() as u32,
-            single,
+            single: None,
         });
     }
+}
+
+/// Makes `slot` the lone fan triangle `t` with `corners` in its setup's order, written where it
+/// lies: built elsewhere and moved, the ~340 bytes would be copied.
+#[inline]
+fn set_single(slot: &mut Option<Single>, setup: &DrawSetup<'_>, t: &TriangleSetup, corners: [&Varyings; 3]) {
+    *slot = Some(Single {
+        steps: EdgeSteps::new(t, setup.transform.bits),
+        area2: t.area2(),
+        corners: corners.map(|c| *c),
+    });
 }
 
 /// Facing, culling and the bounding box of `polygon`, in the reference's order: whether the

@@ -16,7 +16,7 @@ use serde::Serialize;
 pub use child::{RunRuleArgs, run_rule};
 use progress::Progress;
 
-use crate::{all_builtins, say};
+use crate::{all_builtins, find_builtin, say};
 
 /// Arguments of `refrast certify`.
 #[derive(clap::Args, Debug)]
@@ -119,14 +119,10 @@ pub fn run(args: &Args) -> ExitCode {
     } else {
         let mut chosen = Vec::new();
         for name in &args.impls {
-            match all_builtins().into_iter().find(|b| &b.name == name) {
-                Some(b) => chosen.push(b),
-                None => {
-                    let names: Vec<_> = all_builtins().into_iter().map(|b| b.name).collect();
-                    eprintln!(
-                        "error: no implementation named '{name}'; the built-ins are: {}",
-                        names.join(", ")
-                    );
+            match find_builtin(name) {
+                Ok(b) => chosen.push(b),
+                Err(e) => {
+                    eprintln!("error: {e}");
                     return ExitCode::from(2);
                 }
             }

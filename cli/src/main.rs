@@ -99,6 +99,21 @@ pub(crate) fn say(line: &str) {
     }
 }
 
+/// The built-in called `name`, or a message listing every name.
+pub(crate) fn find_builtin(name: &str) -> Result<BuiltIn, String> {
+    let mut all = all_builtins();
+    match all.iter().position(|b| b.name == name) {
+        Some(i) => Ok(all.swap_remove(i)),
+        None => {
+            let names: Vec<_> = all.iter().map(|b| b.name.as_str()).collect();
+            Err(format!(
+                "no implementation named '{name}'; the built-ins are: {}",
+                names.join(", ")
+            ))
+        }
+    }
+}
+
 /// The reference's configurations, then the zoo: mutants and course rasterizers.
 pub(crate) fn all_builtins() -> Vec<BuiltIn> {
     let mut all = refrast_conformance::builtins();

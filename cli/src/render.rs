@@ -11,7 +11,7 @@ use refrast::{CullMode, FrontFace, MAX_VIEWPORT, Rasterizer, Reference, Referenc
 use refrast_render::scene::{self, Setup};
 use refrast_render::{Job, Mode, Overrides, Sampling, Shading, Texture, load};
 
-use crate::{all_builtins, say};
+use crate::{find_builtin, say};
 
 /// Arguments of `refrast render`.
 #[derive(clap::Args, Debug)]
@@ -227,17 +227,7 @@ fn rasterizer(name: &str, setup: &Setup) -> Result<Box<dyn Rasterizer>, Failure>
             ..ReferenceConfig::default()
         })));
     }
-    let builtins = all_builtins();
-    let Some(b) = builtins.iter().find(|b| b.name == name) else {
-        let names: Vec<_> = builtins.iter().map(|b| b.name.as_str()).collect();
-        return Err(Failure(
-            format!(
-                "no implementation named '{name}'; the built-ins are: {}",
-                names.join(", ")
-            ),
-            2,
-        ));
-    };
+    let b = find_builtin(name).map_err(|e| Failure(e, 2))?;
     b.build()
         .map_err(|why| Failure(format!("{name} is not available here: {why}"), 2))
 }

@@ -402,3 +402,20 @@ fn mesa_draws_the_scenes_coverage_as_the_reference_does() {
         }
     }
 }
+
+#[test]
+fn the_readmes_pictures_are_committed() {
+    // Every picture the README shows is in docs/pictures/ (`*.png` is ignored by git elsewhere).
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let pictures: Vec<_> = readme
+        .split("(docs/pictures/")
+        .skip(1)
+        .filter_map(|rest| rest.split_once(')').map(|(name, _)| name))
+        .collect();
+    assert!(pictures.len() >= 10, "{pictures:?}");
+    for name in pictures {
+        let image = png(&root.join("docs/pictures").join(name));
+        assert!(drawn(&image, "") > 0, "{name} is blank");
+    }
+}

@@ -3,7 +3,7 @@
 
 use glam::{Mat4, Vec3, Vec4};
 use refrast::pipeline::{Framebuffer, Mesh, Renderer, to_rgba8};
-use refrast::{Draw, DrawError, DrawState, Fragment, Rasterizer, Reference};
+use refrast::{DrawError, DrawState, Fragment, Rasterizer, Reference};
 
 use crate::geometry::{edges, face_normal};
 use crate::mode::{Mode, depth_greys, normal_color, overdraw_color};
@@ -58,13 +58,14 @@ pub fn render(
 ) -> Result<Stats, DrawError> {
     target.clear(job.clear, job.state.depth.clear);
     let mesh = job.mesh;
-    let lines = Renderer {
+    // The reference's pipeline: its line rasterizer, and the clip-space draw of a mesh.
+    let pipeline = Renderer {
         reference: Reference::default(),
         state: job.state,
     };
     match job.mode {
         Mode::Points => {
-            let written = lines.draw_points(target, &mesh.vertices, job.view_projection);
+            let written = pipeline.draw_points(target, &mesh.vertices, job.view_projection);
             return Ok(Stats {
                 primitives: mesh.vertices.len(),
                 fragments: written,
@@ -73,7 +74,7 @@ pub fn render(
         }
         Mode::Wire => {
             let segments = edges(mesh);
-            let written = lines.draw_lines(target, &mesh.vertices, &segments, job.view_projection);
+            let written = pipeline.draw_lines(target, &mesh.vertices, &segments, job.view_projection);
             return Ok(Stats {
                 primitives: segments.len(),
                 fragments: written,
@@ -83,16 +84,7 @@ pub fn render(
         _ => {}
     }
     let viewport = target.viewport();
-    let draw = Draw {
-        viewport,
-        positions: mesh
-            .vertices
-            .iter()
-            .map(|v| (job.view_projection * v.position.extend(1.0)).to_array())
-            .collect(),
-        triangles: mesh.triangles.clone(),
-        state: job.state,
-    };
+    let draw = pipeline.mesh_draw(viewport, mesh, job.view_projection);
     draw.validate()?;
     let mut fragments = rasterizer.rasterize(&draw)?;
     // API order, as `Resolved::from_fragments` replays them: stable, so each primitive keeps its own.

@@ -70,11 +70,22 @@ impl FromStr for Mode {
     type Err = String;
 
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Self::ALL.into_iter().find(|m| m.name() == s).ok_or_else(|| {
-            let names: Vec<_> = Self::ALL.iter().map(|m| m.name()).collect();
-            format!("no mode named '{s}'; the modes are: {}", names.join(", "))
-        })
+        parse_name(s, &Self::ALL, Self::name, "mode")
     }
+}
+
+/// The one of `all` whose `name` is `s`, or a message listing the names: how `--mode`,
+/// `--shading` and `--sampling` read their values.
+pub(crate) fn parse_name<T: Copy>(
+    s: &str,
+    all: &[T],
+    name: fn(T) -> &'static str,
+    kind: &str,
+) -> Result<T, String> {
+    all.iter().copied().find(|&t| name(t) == s).ok_or_else(|| {
+        let names: Vec<_> = all.iter().map(|&t| name(t)).collect();
+        format!("no {kind} named '{s}'; the {kind}s are: {}", names.join(", "))
+    })
 }
 
 /// The overdraw palette: 1 fragment dark blue-grey, 2 orange, 3 red, 4 or more white, so that

@@ -209,6 +209,11 @@ fn clipped_view() -> View {
     }
 }
 
+/// A mesh scene seen by the clipped scenes' fixed camera, unlit.
+fn clipped(mesh: Mesh, cull: CullMode) -> Setup {
+    Setup::mesh(mesh, Framing::Fixed(clipped_view()), Shading::None, cull)
+}
+
 /// The torus of the torus scenes: radii 1 and 0.4, 48 × 24 quads.
 fn torus() -> Mesh {
     shapes::torus(1.0, 0.4, 48, 24).expect("0 < 0.4 < 1: valid radii")
@@ -312,30 +317,24 @@ pub fn scene(name: &str) -> Option<Setup> {
             Shading::Phong,
             CullMode::Back,
         ),
-        "clipped-plane" => Setup::mesh(
+        "clipped-plane" => clipped(
             transformed(shapes::plane(8), Mat4::from_scale(Vec3::splat(3.0)) * tilt(-70.0)),
-            Framing::Fixed(clipped_view()),
-            Shading::None,
             CullMode::None,
         ),
-        "floor" => Setup::mesh(
+        "floor" => clipped(
             transformed(
                 shapes::plane(1),
                 Mat4::from_translation(Vec3::new(0.0, -1.0, 2.0))
                     * tilt(90.0)
                     * Mat4::from_scale(Vec3::splat(6.0)),
             ),
-            Framing::Fixed(clipped_view()),
-            Shading::None,
             CullMode::None,
         ),
-        "clipped-star" => Setup::mesh(
+        "clipped-star" => clipped(
             transformed(shapes::star(5), Mat4::from_scale(Vec3::splat(3.6)) * tilt(-55.0)),
-            Framing::Fixed(clipped_view()),
-            Shading::None,
             CullMode::None,
         ),
-        "clipped-torus" => Setup::mesh(
+        "clipped-torus" => clipped(
             transformed(
                 torus(),
                 // Twice as large, tilted so that its lower half comes at the eye: cut by the
@@ -344,19 +343,15 @@ pub fn scene(name: &str) -> Option<Setup> {
                     * tilt(-50.0)
                     * Mat4::from_scale(Vec3::splat(2.2)),
             ),
-            Framing::Fixed(clipped_view()),
-            Shading::None,
             CullMode::Back,
         ),
-        "clipped-text" => Setup::mesh(
+        "clipped-text" => clipped(
             transformed(
                 shapes::text("refrast"),
                 Mat4::from_translation(Vec3::new(0.0, -0.1, -2.2))
                     * tilt(-60.0)
                     * Mat4::from_scale(Vec3::splat(6.0)),
             ),
-            Framing::Fixed(clipped_view()),
-            Shading::None,
             CullMode::None,
         ),
         _ => return None,

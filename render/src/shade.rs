@@ -46,10 +46,7 @@ impl FromStr for Shading {
     type Err = String;
 
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Self::ALL.into_iter().find(|m| m.name() == s).ok_or_else(|| {
-            let names: Vec<_> = Self::ALL.iter().map(|m| m.name()).collect();
-            format!("no shading named '{s}'; the shadings are: {}", names.join(", "))
-        })
+        crate::mode::parse_name(s, &Self::ALL, Self::name, "shading")
     }
 }
 

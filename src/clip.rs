@@ -142,6 +142,35 @@ pub enum ClipOutcome {
     Clipped,
 }
 
+/// The planes of `planes` that `p` lies outside (bit `i` for `planes[i]`), Cohen–Sutherland's
+/// outcode: a mesh vertex shared by several triangles can be classified once.
+#[must_use]
+#[inline]
+pub fn outcode(planes: &[ClipPlane], p: DVec4) -> u32 {
+    debug_assert!(planes.len() <= 32, "one bit per plane");
+    planes.iter().enumerate().fold(0, |code, (i, plane)| {
+        if plane.distance(p) >= 0.0 {
+            code
+        } else {
+            code | 1 << i
+        }
+    })
+}
+
+/// What clipping does to a triangle whose corners have outcodes `codes`: nothing is left when
+/// one plane has all three outside, the triangle is kept whole when no plane has any.
+#[must_use]
+#[inline]
+pub fn classify(codes: [u32; 3]) -> ClipOutcome {
+    if codes[0] & codes[1] & codes[2] != 0 {
+        ClipOutcome::Outside
+    } else if codes[0] | codes[1] | codes[2] == 0 {
+        ClipOutcome::Inside
+    } else {
+        ClipOutcome::Clipped
+    }
+}
+
 /// Clips triangle `tri` against `planes`, leaving the polygon in `polygon` when it was cut.
 pub fn clip_triangle(
     tri: &[ClipVertex; 3],
@@ -149,16 +178,9 @@ pub fn clip_triangle(
     polygon: &mut Vec<ClipVertex>,
     scratch: &mut Vec<ClipVertex>,
 ) -> ClipOutcome {
-    let mut all_inside = true;
-    for &plane in planes {
-        let inside = tri.map(|v| plane.distance(v.position) >= 0.0);
-        if inside.iter().all(|&i| !i) {
-            return ClipOutcome::Outside;
-        }
-        all_inside &= inside.iter().all(|&i| i);
-    }
-    if all_inside {
-        return ClipOutcome::Inside;
+    match classify(tri.map(|v| outcode(planes, v.position))) {
+        ClipOutcome::Clipped => {}
+        outcome => return outcome,
     }
     polygon.clear();
     polygon.extend_from_slice(tri);
@@ -192,4 +214,47 @@ pub fn clip_segment(
     }
     (a.position.w > 0.0 && b.position.w > 0.0 && a.position.is_finite() && b.position.is_finite())
         .then_some((a, b))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Outcodes name the planes a point is outside of, and a triangle is wholly outside only
+    /// when one plane has all three corners out: two corners out of different planes are cut.
+    #[test]
+    fn outcodes_classify_triangles_plane_by_plane() {
+        let planes = clip_planes(
+            ClipMode::Full,
+            Viewport::new(8, 8).expect("8×8 is a valid viewport"),
+            true,
+            DepthRange::ZeroToOne,
+        );
+        let code = |x: f64, y: f64, z: f64| outcode(&planes, DVec4::new(x, y, z, 1.0));
+        let (inside, left, right, behind) = (
+            code(0.0, 0.0, 0.5),
+            code(-2.0, 0.0, 0.5),
+            code(2.0, 0.0, 0.5),
+            code(0.0, 0.0, -1.0),
+        );
+        assert_eq!(inside, 0);
+        assert_eq!(behind, 0b1, "the near plane comes first");
+        assert_eq!(left, 0b100);
+        assert_eq!(right, 0b1000);
+        assert_eq!(code(-2.0, 0.0, 2.0), 0b110, "past far and left");
+        assert_eq!(classify([inside; 3]), ClipOutcome::Inside);
+        assert_eq!(classify([left, left, left | behind]), ClipOutcome::Outside);
+        assert_eq!(classify([left, right, right]), ClipOutcome::Clipped);
+        assert_eq!(classify([inside, behind, behind]), ClipOutcome::Clipped);
+        let tri = [[-2.0, 0.0], [2.0, 0.0], [0.0, 0.5]].map(|[x, y]| ClipVertex {
+            position: DVec4::new(x, y, 0.5, 1.0),
+            barycentric: DVec3::ZERO,
+        });
+        let (mut polygon, mut scratch) = (Vec::new(), Vec::new());
+        assert_eq!(
+            clip_triangle(&tri, &planes, &mut polygon, &mut scratch),
+            ClipOutcome::Clipped
+        );
+        assert!(polygon.len() >= 3);
+    }
 }

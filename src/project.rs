@@ -1,9 +1,10 @@
 //! Projection: clip space to snapped raster space, with what each vertex carries to its fragments.
 //!
-//! One function projects and snaps a vertex ([`ViewportTransform::project`]); the zero-area test
-//! before clipping and the projection of clipped polygons both go through it.
+//! One function projects and snaps a position ([`ViewportTransform::project_point`]); the
+//! zero-area test before clipping, the projection of clipped polygons and a fast rasterizer's
+//! once-per-vertex projection all go through it.
 
-use glam::DVec3;
+use glam::{DVec3, DVec4};
 
 use crate::clip::ClipVertex;
 use crate::depth::DepthRange;
@@ -20,6 +21,44 @@ pub struct RasterVertex {
     pub varyings: Varyings,
 }
 
+/// A clip-space position projected and snapped: what every vertex at it carries but its
+/// barycentrics.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ProjectedPoint {
+    /// Snapped raster position.
+    pub position: FixedPoint,
+    /// Window depth (linear in screen space).
+    pub depth: f64,
+    /// `1/w`.
+    pub inv_w: f64,
+}
+
+impl ProjectedPoint {
+    /// The raster vertex at this point with barycentrics `barycentric` and screen-space ones `screen`.
+    #[must_use]
+    #[inline]
+    pub fn vertex(self, barycentric: DVec3, screen: Option<DVec3>) -> RasterVertex {
+        RasterVertex {
+            position: self.position,
+            varyings: Varyings {
+                depth: self.depth,
+                inv_w: self.inv_w,
+                barycentric,
+                screen,
+            },
+        }
+    }
+
+    /// The raster vertex of corner `k` of an input triangle whose corners all project: both
+    /// its barycentrics are unit vector `k`, as [`ViewportTransform::project`] computes them
+    /// (`eₖwₖ / wₖ`, exact for `w > 0`).
+    #[must_use]
+    #[inline]
+    pub fn corner(self, k: usize) -> RasterVertex {
+        self.vertex(DVec3::AXES[k], Some(DVec3::AXES[k]))
+    }
+}
+
 /// The viewport transform of a draw: NDC to raster space, snapped to its grid, with window depth.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ViewportTransform {
@@ -32,34 +71,38 @@ pub struct ViewportTransform {
 }
 
 impl ViewportTransform {
-    /// Projects and snaps one clip-space vertex of an input triangle whose `w`s are `input_w`
-    /// ([`input_w`]); `None` when it has no raster position in range.
+    /// Projects and snaps a clip-space position, the part of [`project`](Self::project) that
+    /// depends on the position alone; `None` when it has no raster position in range.
     ///
-    /// A vertex with `w ≤ 0` (after clipping, `w = 0` with `x = y = 0` is a point at infinity)
-    /// has none, and neither has one that lands beyond [`COORD_LIMIT`](crate::COORD_LIMIT).
+    /// A position with `w ≤ 0` (after clipping, `w = 0` with `x = y = 0` is a point at infinity)
+    /// has none, and neither has one that lands beyond [`COORD_LIMIT`](crate::COORD_LIMIT). A
+    /// mesh vertex shared by several triangles can be projected once this way.
     #[must_use]
-    pub fn project(&self, v: &ClipVertex, input_w: Option<DVec3>) -> Option<RasterVertex> {
-        let p = v.position;
+    #[inline]
+    pub fn project_point(&self, p: DVec4) -> Option<ProjectedPoint> {
         if p.w <= 0.0 {
             return None;
         }
         let (x, y) = self.viewport.to_raster(p.x / p.w, p.y / p.w);
-        let position = FixedPoint::snap(x, y, self.bits)?;
+        Some(ProjectedPoint {
+            position: FixedPoint::snap(x, y, self.bits)?,
+            depth: self.depth_range.window_depth(p.z, p.w),
+            inv_w: 1.0 / p.w,
+        })
+    }
+
+    /// Projects and snaps one clip-space vertex of an input triangle whose `w`s are `input_w`
+    /// ([`input_w`]); `None` when it has no raster position in range ([`project_point`](Self::project_point)).
+    #[must_use]
+    pub fn project(&self, v: &ClipVertex, input_w: Option<DVec3>) -> Option<RasterVertex> {
+        let point = self.project_point(v.position)?;
         // Screen-space barycentrics of a point with clip barycentrics b are bᵢwᵢ / Σ bⱼwⱼ; at an
         // input vertex they are exactly its unit vector.
         let screen = input_w.map(|w| {
             let scaled = v.barycentric * w;
             scaled / scaled.element_sum()
         });
-        Some(RasterVertex {
-            position,
-            varyings: Varyings {
-                depth: self.depth_range.window_depth(p.z, p.w),
-                inv_w: 1.0 / p.w,
-                barycentric: v.barycentric,
-                screen,
-            },
-        })
+        Some(point.vertex(v.barycentric, screen))
     }
 
     /// Projects and snaps every vertex of `polygon` (cut from an input triangle whose `w`s are
@@ -111,6 +154,24 @@ pub(crate) mod tests {
         assert_eq!(r.varyings.screen, Some(DVec3::Y));
         assert_eq!(r.varyings.barycentric, DVec3::Y);
         assert_eq!(r.varyings.inv_w, 1.0 / 3.0);
+    }
+
+    /// A corner projected once as a point is what `project` gives it inside any triangle
+    /// whose corners all project: the same bits, down to the screen barycentrics.
+    #[test]
+    fn a_projected_point_is_the_corner_project_gives() {
+        let t = transform();
+        let corners = [
+            [0.25, -0.5, 0.3, 3.0],
+            [-7.0, 2.5, 0.9, 1e-3],
+            [1e-30, 3e-7, 0.0, 7.25],
+        ];
+        let w = DVec3::new(3.0, 1e-3, 7.25);
+        for (k, p) in corners.into_iter().enumerate() {
+            let v = ClipVertex::corner(p, k);
+            let point = t.project_point(v.position).unwrap();
+            assert_eq!(point.corner(k), t.project(&v, Some(w)).unwrap(), "corner {k}");
+        }
     }
 
     #[test]

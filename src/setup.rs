@@ -9,7 +9,7 @@ use glam::DVec4;
 use crate::clip::ClipVertex;
 use crate::edge::{EdgeFunction, FillConvention, orient2d};
 use crate::fixed::FixedPoint;
-use crate::project::{RasterVertex, ViewportTransform, input_w};
+use crate::project::{ProjectedPoint, RasterVertex, ViewportTransform};
 
 /// Which way a triangle turns as seen on screen: the sign of its snapped [`orient2d`], or of
 /// `det[x y w]` when it is clipped ([`clipped_winding`]).
@@ -158,14 +158,25 @@ pub fn snap_before_clipping(
     transform: &ViewportTransform,
     fill: FillConvention,
 ) -> Result<Option<SnappedTriangle>, ZeroArea> {
-    let w = input_w(input);
-    let [a, b, c] = input.map(|v| transform.project(&v, w));
+    let [a, b, c] = input.map(|v| transform.project_point(v.position));
     let (Some(a), Some(b), Some(c)) = (a, b, c) else {
         return Ok(None);
     };
-    let vertices = [a, b, c];
-    let setup = TriangleSetup::new(vertices.map(|v| v.position), fill).ok_or(ZeroArea)?;
-    Ok(Some(SnappedTriangle { vertices, setup }))
+    SnappedTriangle::new([a, b, c], fill).ok_or(ZeroArea).map(Some)
+}
+
+impl SnappedTriangle {
+    /// The input triangle whose corners project to `points`, set up under `fill`; `None` when
+    /// the snapped triangle has zero area. [`snap_before_clipping`] once the corners project.
+    #[must_use]
+    #[inline]
+    pub fn new(points: [ProjectedPoint; 3], fill: FillConvention) -> Option<Self> {
+        let setup = TriangleSetup::new(points.map(|p| p.position), fill)?;
+        Some(Self {
+            vertices: [0, 1, 2].map(|k| points[k].corner(k)),
+            setup,
+        })
+    }
 }
 
 /// A non-degenerate snapped triangle ready for traversal, reordered to turn clockwise.

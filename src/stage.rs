@@ -5,9 +5,11 @@
 //!
 //! 1. **assemble** the triangle's clip vertices, discarding non-finite ones ([`assemble`]);
 //! 2. **snap before clipping**: project and snap the input as it is and set it up; zero area
-//!    draws nothing ([`snap_before_clipping`], [`ViewportTransform::project`]);
+//!    draws nothing ([`snap_before_clipping`]: [`ViewportTransform::project_point`] for each
+//!    corner, then [`SnappedTriangle::new`]);
 //! 3. **clip** against the near (and far) plane and the guard band or viewport ([`clip_planes`],
-//!    [`clip_triangle`]), then project and snap the polygon left ([`ViewportTransform::project_polygon`]);
+//!    [`clip_triangle`]: [`outcode`] for each corner, [`classify`], then Sutherland–Hodgman),
+//!    then project and snap the polygon left ([`ViewportTransform::project_polygon`]);
 //! 4. **fan** a clipped polygon ([`build_fan`]); an unclipped triangle is its own fan
 //!    ([`FanTriangle::whole`]); the winding it is drawn with comes from one rule
 //!    ([`drawn_winding`]: the snapped area, or [`clipped_winding`] when clipped);
@@ -22,14 +24,14 @@
 //! [`rasterize_point`].
 
 pub use crate::clip::{
-    ClipOutcome, ClipPlane, ClipVertex, assemble, clip_planes, clip_polygon, clip_segment, clip_triangle,
-    intersect,
+    ClipOutcome, ClipPlane, ClipVertex, assemble, classify, clip_planes, clip_polygon, clip_segment,
+    clip_triangle, intersect, outcode,
 };
 pub use crate::depth::fragment_depth;
 pub use crate::edge::EdgeFunction;
 pub use crate::interp::{Barycentrics, Varyings, interpolate, interpolate_depth, screen_weights};
 pub use crate::line::{LineFragment, LineVertex, rasterize_line, rasterize_point};
-pub use crate::project::{RasterVertex, ViewportTransform, input_w};
+pub use crate::project::{ProjectedPoint, RasterVertex, ViewportTransform, input_w};
 pub use crate::setup::{
     SnappedTriangle, TriangleSetup, ZeroArea, clipped_winding, drawn_winding, snap_before_clipping,
 };

@@ -53,9 +53,9 @@ impl EdgeSteps {
         [0, 1, 2].map(|k| self.origin[k] + x * self.dx[k] + y * self.dy[k])
     }
 
-    /// Visits every covered sample of `rect` (`[x0, x1, y0, y1]`, half-open, non-empty) with its
-    /// edge values: blocks row by row, samples row-major within a block.
-    pub fn traverse(&self, rect: [u32; 4], mut visit: impl FnMut(u32, u32, [i64; 3])) {
+    /// Visits every row of up to eight samples of `rect` (`[x0, x1, y0, y1]`, half-open,
+    /// non-empty) that has a covered one: blocks row by row, rows top to bottom within a block.
+    pub fn traverse(&self, rect: [u32; 4], mut visit: impl FnMut(&Row)) {
         let [x0, x1, y0, y1] = rect;
         let mut by = y0 - y0 % BLOCK;
         while by < y1 {
@@ -72,7 +72,7 @@ impl EdgeSteps {
 
     /// One block (at most 8×8): rejected or accepted whole from its corners, else row by row.
     #[inline]
-    fn block(&self, rect: [u32; 4], visit: &mut impl FnMut(u32, u32, [i64; 3])) {
+    fn block(&self, rect: [u32; 4], visit: &mut impl FnMut(&Row)) {
         let [x0, x1, y0, y1] = rect;
         let start = self.at(x0, y0);
         let (w, h) = (i64::from(x1 - x0 - 1), i64::from(y1 - y0 - 1));
@@ -87,15 +87,23 @@ impl EdgeSteps {
             }
             accept &= lowest >= 0;
         }
-        let mut row = start;
+        let mut values = start;
         for y in y0..y1 {
             let mask = if accept {
                 (1u32 << (x1 - x0)) - 1
             } else {
-                self.row_mask(row, x1 - x0)
+                self.row_mask(values, x1 - x0)
             };
-            self.emit(row, x0, y, mask, visit);
-            for (value, dy) in row.iter_mut().zip(self.dy) {
+            if mask != 0 {
+                visit(&Row {
+                    x0,
+                    y,
+                    mask,
+                    values,
+                    dx: self.dx,
+                });
+            }
+            for (value, dy) in values.iter_mut().zip(self.dy) {
                 *value += dy;
             }
         }
@@ -114,21 +122,36 @@ impl EdgeSteps {
         }
         mask & ((1u32 << n) - 1)
     }
+}
 
-    /// Visits the samples of a row whose bits are set in `mask`, in order.
+/// Up to eight samples of one pixel row of a block, and which of them a triangle covers.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Row {
+    /// The column of lane 0.
+    pub x0: u32,
+    /// The pixel row.
+    pub y: u32,
+    /// Bit `i` set when lane `i` (column `x0 + i`) is covered.
+    pub mask: u32,
+    /// The exact edge values at lane 0.
+    pub values: [i64; 3],
+    /// Their change per lane.
+    pub dx: [i64; 3],
+}
+
+impl Row {
+    /// The exact edge values at lane `lane`.
     #[inline]
-    fn emit(
-        &self,
-        row: [i64; 3],
-        x0: u32,
-        y: u32,
-        mut mask: u32,
-        visit: &mut impl FnMut(u32, u32, [i64; 3]),
-    ) {
+    pub fn values_at(&self, lane: u32) -> [i64; 3] {
+        let i = i64::from(lane);
+        [0, 1, 2].map(|k| self.values[k] + i * self.dx[k])
+    }
+
+    /// Visits the lanes whose bits are set in `mask`, in order.
+    #[inline]
+    pub fn for_each_lane(mut mask: u32, mut visit: impl FnMut(u32)) {
         while mask != 0 {
-            let lane = mask.trailing_zeros();
-            let i = i64::from(lane);
-            visit(x0 + lane, y, [0, 1, 2].map(|k| row[k] + i * self.dx[k]));
+            visit(mask.trailing_zeros());
             mask &= mask - 1;
         }
     }
@@ -162,7 +185,11 @@ mod tests {
             let steps = EdgeSteps::new(&s, bits);
             for rect in [[0, 30, 0, 30], [3, 21, 5, 19], [7, 9, 15, 16]] {
                 let mut got = Vec::new();
-                steps.traverse(rect, |x, y, values| got.push((y, x, values)));
+                steps.traverse(rect, |row| {
+                    Row::for_each_lane(row.mask, |lane| {
+                        got.push((row.y, row.x0 + lane, row.values_at(lane)))
+                    });
+                });
                 got.sort_unstable();
                 let mut want = Vec::new();
                 for y in rect[2]..rect[3] {

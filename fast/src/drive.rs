@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use refrast::stage::{PixelRect, ViewportTransform, clip_planes, traverse};
 use refrast::{Draw, DrawError, FixedPoint, ReferenceConfig};
 
-use crate::front::{Chunk, DrawSetup, Prepared};
+use crate::front::{Chunk, DrawSetup, Prepared, VertexSetup};
 use crate::sink::{Corners, Sink};
 use crate::tiles::{TileGrid, intersect};
 
@@ -27,30 +27,57 @@ fn for_each<T: Send>(pool: Option<&ThreadPool>, items: &mut [T], f: impl Fn(usiz
     }
 }
 
-/// Draws `draw` into `sinks`, one per band of the viewport's tile grid, setting triangles up
-/// in `chunks` (one per thread, reused from draw to draw).
+/// What a draw keeps between draws: its positions' setups and one chunk per thread.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Buffers {
+    /// Every position of the draw, set up once.
+    pub vertices: Vec<VertexSetup>,
+    /// One per thread.
+    pub chunks: Vec<Chunk>,
+}
+
+/// Positions set up by one thread at a time.
+const VERTEX_RUN: usize = 1 << 12;
+
+/// Draws `draw` into `sinks`, one per band of the viewport's tile grid, setting its positions
+/// up once and its triangles in `buffers`' chunks.
 pub(crate) fn run<S: Sink>(
     config: ReferenceConfig,
     pool: Option<&ThreadPool>,
-    chunks: &mut Vec<Chunk>,
+    buffers: &mut Buffers,
     draw: &Draw,
     sinks: &mut [S],
 ) -> Result<(), DrawError> {
     draw.validate()?;
+    let planes = clip_planes(
+        config.clip,
+        draw.viewport,
+        draw.state.clip_far,
+        draw.state.depth_range,
+    );
+    let transform = ViewportTransform {
+        viewport: draw.viewport,
+        bits: config.subpixel_bits,
+        depth_range: draw.state.depth_range,
+    };
+    let Buffers { vertices, chunks } = buffers;
+    vertices.clear();
+    vertices.resize(draw.positions.len(), VertexSetup::default());
+    let mut runs: Vec<_> = vertices
+        .chunks_mut(VERTEX_RUN)
+        .zip(draw.positions.chunks(VERTEX_RUN))
+        .collect();
+    for_each(pool, &mut runs, |_, (out, positions)| {
+        for (v, p) in out.iter_mut().zip(positions.iter()) {
+            *v = VertexSetup::new(*p, &planes, &transform);
+        }
+    });
     let setup = DrawSetup {
         draw,
-        planes: clip_planes(
-            config.clip,
-            draw.viewport,
-            draw.state.clip_far,
-            draw.state.depth_range,
-        ),
-        transform: ViewportTransform {
-            viewport: draw.viewport,
-            bits: config.subpixel_bits,
-            depth_range: draw.state.depth_range,
-        },
+        planes,
+        transform,
         fill: config.fill,
+        vertices,
     };
     let grid = TileGrid::new(draw.viewport);
     debug_assert_eq!(sinks.len(), grid.bands());
@@ -91,10 +118,9 @@ fn draw_in_tile<S: Sink>(
         return;
     };
     if let Some(single) = &t.single {
-        let corners = Corners::single(t.primitive, t.front_facing, single);
-        single
-            .steps
-            .traverse(rect, |x, y, values| sink.covered(&corners.sample(x, y, values)));
+        let varyings = single.varyings();
+        let corners = Corners::whole(t.primitive, t.front_facing, single.area2, &varyings);
+        single.steps.traverse(rect, |row| sink.covered_row(&corners, row));
         return;
     }
     let fans = &chunk.fans[t.fans.start as usize..t.fans.end as usize];

@@ -3,12 +3,17 @@
 //! Everything that decides bits (assembly, snapping, clipping, the fan, facing, culling, the
 //! bounding box) is a call into [`refrast::stage`], in the order `Reference::draw_samples` makes
 //! them; this module only keeps what the back end needs and says which tiles it touches.
+//!
+//! What depends on a vertex alone (finiteness, its clip outcode, its projection and snapping)
+//! is computed once per mesh vertex ([`VertexSetup`]), not once per triangle that uses it: the
+//! same reference calls, made fewer times.
 
 use std::ops::Range;
 
 use refrast::stage::{
-    ClipOutcome, ClipPlane, ClipVertex, FanTriangle, PixelRect, RasterVertex, TriangleSetup, Varyings,
-    ViewportTransform, assemble, build_fan, clip_triangle, drawn_winding, input_w, snap_before_clipping,
+    ClipOutcome, ClipPlane, ClipVertex, FanTriangle, PixelRect, ProjectedPoint, RasterVertex, TriangleSetup,
+    Varyings, ViewportTransform, assemble, build_fan, classify, clip_triangle, drawn_winding, input_w,
+    outcode,
 };
 use refrast::{Draw, FillConvention, Winding};
 
@@ -25,6 +30,34 @@ pub(crate) struct DrawSetup<'d> {
     pub transform: ViewportTransform,
     /// The fill convention.
     pub fill: FillConvention,
+    /// Every position of the draw, set up once ([`VertexSetup::new`]).
+    pub vertices: &'d [VertexSetup],
+}
+
+/// What a position of the draw gives every triangle that uses it: what `assemble`,
+/// `clip_triangle` and `snap_before_clipping` compute of a corner alone.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct VertexSetup {
+    /// Whether every coordinate is finite; `assemble` discards a triangle with one that is not.
+    pub finite: bool,
+    /// The clip planes it lies outside of ([`outcode`]).
+    pub outcode: u32,
+    /// Its projection and snapping, when it has one.
+    pub point: Option<ProjectedPoint>,
+}
+
+impl VertexSetup {
+    /// Classifies, projects and snaps `position` as a corner of an input triangle.
+    #[inline]
+    pub fn new(position: [f32; 4], planes: &[ClipPlane], transform: &ViewportTransform) -> Self {
+        // The clip-space position `assemble` makes of it (any corner: the position is the same).
+        let clip = ClipVertex::corner(position, 0).position;
+        Self {
+            finite: position.iter().all(|c| c.is_finite()),
+            outcode: outcode(planes, clip),
+            point: transform.project_point(clip),
+        }
+    }
 }
 
 /// A triangle that reached traversal: what the back end needs to draw it in any tile.
@@ -54,8 +87,18 @@ pub(crate) struct Single {
     pub steps: EdgeSteps,
     /// Twice its area, the sum of its edge values.
     pub area2: i64,
-    /// What its corners carry, in the setup's clockwise order (the order of the edge values).
-    pub corners: [Varyings; 3],
+    /// Its corners' projections, in the setup's clockwise order (the order of the edge values).
+    pub corners: [ProjectedPoint; 3],
+    /// `order[k]` is which input corner `corners[k]` is.
+    pub order: [u8; 3],
+}
+
+impl Single {
+    /// What its corners carry, in the setup's order, as `SnappedTriangle::new` makes them.
+    #[inline]
+    pub fn varyings(&self) -> [Varyings; 3] {
+        [0, 1, 2].map(|k| self.corners[k].corner(usize::from(self.order[k])).varyings)
+    }
 }
 
 /// The triangles of one run of primitives, set up and binned by one thread; its buffers are
@@ -96,56 +139,61 @@ impl Chunk {
     /// `triangles`; its box, or `None` when it draws nothing (non-finite, clipped away,
     /// degenerate, culled or off screen).
     fn prepare_one(&mut self, setup: &DrawSetup<'_>, primitive: usize) -> Option<[u32; 4]> {
-        // Borrowed where they are returned: moving them out copies ~170 and ~470 bytes.
-        let input = assemble(&setup.draw.positions, setup.draw.triangles[primitive]);
-        let input = input.as_ref()?;
-        let snapped = snap_before_clipping(input, &setup.transform, setup.fill);
-        let Ok(snapped) = &snapped else {
+        let indices = setup.draw.triangles[primitive];
+        let [a, b, c] = indices.map(|i| &setup.vertices[i as usize]);
+        if !(a.finite && b.finite && c.finite) {
             return None;
+        }
+        // Snap before clipping: zero area draws nothing; `None` when a corner has no raster
+        // position (then only a clipped polygon can be drawn).
+        let snapped = match (a.point, b.point, c.point) {
+            (Some(pa), Some(pb), Some(pc)) => {
+                let points = [pa, pb, pc];
+                Some((
+                    TriangleSetup::new(points.map(|p| p.position), setup.fill)?,
+                    points,
+                ))
+            }
+            _ => None,
         };
-        match clip_triangle(input, &setup.planes, &mut self.polygon, &mut self.clip) {
+        match classify([a.outcode, b.outcode, c.outcode]) {
             ClipOutcome::Outside => None,
             ClipOutcome::Inside => {
-                // Read in place: the snapped triangle is not copied into a fan of one.
-                let triangle = snapped.as_ref()?;
-                let winding = drawn_winding(input, false, std::iter::once(&triangle.setup));
-                let (front_facing, rect) = kept(setup, winding, &triangle.vertices)?;
-                let t = &triangle.setup;
-                let alone = t.winding() == winding;
+                let (t, points) = snapped?;
+                // `drawn_winding` of an unclipped triangle: its snapped winding, so it is its
+                // own fan and always drawn alone.
+                let winding = t.winding();
+                let (front_facing, rect) = kept(setup, winding, points.iter().map(|p| p.position))?;
                 let (fans, raster) = (self.fans.len(), self.raster.len());
-                if !alone {
-                    self.fans.push(FanTriangle::whole(*t));
-                    self.raster.extend_from_slice(&triangle.vertices);
-                }
                 self.push(primitive, front_facing, winding, rect, fans, raster);
-                if alone {
-                    let ([a, b, c], v) = (t.order(), &triangle.vertices);
-                    let last = self.triangles.last_mut().expect("pushed above");
-                    set_single(&mut last.single, setup, t, [a, b, c].map(|k| &v[k].varyings));
-                }
+                let order = t.order();
+                let last = self.triangles.last_mut().expect("pushed above");
+                last.single = Some(Single {
+                    steps: EdgeSteps::new(&t, setup.transform.bits),
+                    area2: t.area2(),
+                    corners: order.map(|k| points[k]),
+                    order: order.map(|k| k as u8),
+                });
                 Some(rect)
             }
             ClipOutcome::Clipped => {
+                let input = assemble(&setup.draw.positions, indices)?;
+                // The outcodes said cut; what is cut can still leave less than a triangle.
+                let outcome = clip_triangle(&input, &setup.planes, &mut self.polygon, &mut self.clip);
+                if outcome != ClipOutcome::Clipped {
+                    return None;
+                }
                 let (transform, projected) = (&setup.transform, &mut self.projected);
-                if !transform.project_polygon(&self.polygon, input_w(input), projected) {
+                if !transform.project_polygon(&self.polygon, input_w(&input), projected) {
                     return None;
                 }
                 build_fan(projected, setup.fill, &mut self.fan);
-                let winding = drawn_winding(input, true, self.fan.iter().map(|t| &t.setup));
-                let (front_facing, rect) = kept(setup, winding, &self.projected)?;
-                let alone = matches!(self.fan.as_slice(), [t] if t.setup.winding() == winding);
+                let winding = drawn_winding(&input, true, self.fan.iter().map(|t| &t.setup));
+                let (front_facing, rect) = kept(setup, winding, self.projected.iter().map(|v| v.position))?;
                 let (fans, raster) = (self.fans.len(), self.raster.len());
-                if !alone {
-                    self.fans.extend_from_slice(&self.fan);
-                    self.raster.extend_from_slice(&self.projected);
-                }
+                self.fans.extend_from_slice(&self.fan);
+                self.raster.extend_from_slice(&self.projected);
                 self.push(primitive, front_facing, winding, rect, fans, raster);
-                if alone {
-                    let t = &self.fan[0];
-                    let corners = t.setup.order().map(|k| &self.projected[t.corners[k]].varyings);
-                    let last = self.triangles.last_mut().expect("pushed above");
-                    set_single(&mut last.single, setup, &t.setup, corners);
-                }
                 Some(rect)
             }
         }
@@ -175,31 +223,20 @@ impl Chunk {
     }
 }
 
-/// Makes `slot` the lone fan triangle `t` with `corners` in its setup's order, written where it
-/// lies: built elsewhere and moved, the ~340 bytes would be copied.
-#[inline]
-fn set_single(slot: &mut Option<Single>, setup: &DrawSetup<'_>, t: &TriangleSetup, corners: [&Varyings; 3]) {
-    *slot = Some(Single {
-        steps: EdgeSteps::new(t, setup.transform.bits),
-        area2: t.area2(),
-        corners: corners.map(|c| *c),
-    });
-}
-
 /// Facing, culling and the bounding box of `polygon`, in the reference's order: whether the
 /// triangle faces the viewer and its box, or `None` when it is culled or off screen.
 #[inline]
-fn kept(setup: &DrawSetup<'_>, winding: Winding, polygon: &[RasterVertex]) -> Option<(bool, [u32; 4])> {
+fn kept(
+    setup: &DrawSetup<'_>,
+    winding: Winding,
+    polygon: impl Iterator<Item = refrast::FixedPoint>,
+) -> Option<(bool, [u32; 4])> {
     let state = &setup.draw.state;
     let front_facing = state.front_face.is_front(winding)?;
     if state.cull.culls(front_facing) {
         return None;
     }
-    let (x0, x1, y0, y1) = PixelRect::bounding(
-        polygon.iter().map(|v| v.position),
-        setup.transform.bits,
-        setup.transform.viewport,
-    )?
-    .bounds();
+    let (x0, x1, y0, y1) =
+        PixelRect::bounding(polygon, setup.transform.bits, setup.transform.viewport)?.bounds();
     Some((front_facing, [x0, x1, y0, y1]))
 }

@@ -8,7 +8,10 @@
 //!
 //! - **Front end**: each triangle goes through the reference's own stages ([`refrast::stage`]:
 //!   assemble, snap before clipping, clip, project, fan, facing, cull, bounding box); nothing
-//!   that decides a bit is copied. Triangles are set up in batches, split among threads.
+//!   that decides a bit is copied. What depends on one vertex alone (finiteness, clip outcode,
+//!   projection and snapping: `outcode`, `project_point`) is computed once per mesh vertex, so
+//!   a vertex shared by six triangles is projected once, not six times. Triangles are set up
+//!   in batches, split among threads.
 //! - **Binning**: each triangle's box is binned into 64×64 tiles; a row of tiles is a band, a
 //!   contiguous run of rows of every buffer, so threads own bands and need no locks.
 //! - **Back end**: per tile, triangles in primitive order; per triangle, 8×8 blocks accepted
@@ -16,7 +19,9 @@
 //!   blocks tested eight samples a row; exact `i64` edge values stepped per pixel. A clipped
 //!   polygon's fan goes through the reference's own `traverse` on the tile's part of its box.
 //! - **Interpolation**: per covered sample, the reference's calls (`interpolate_depth`,
-//!   `fragment_depth`, `screen_weights`, `interpolate`) on the same exact edge values.
+//!   `fragment_depth`, `screen_weights`, `interpolate`) on the same exact edge values. Rows
+//!   with several covered samples get all eight depths in one loop and are depth-tested
+//!   before any is shaded.
 //!
 //! # Order of fragments
 //!
@@ -37,7 +42,7 @@ use rayon::ThreadPool;
 use refrast::{Draw, DrawError, Fragment, Profile, Rasterizer, Reference, ReferenceConfig, Resolved};
 use refrast_conformance::{BuiltIn, Origin};
 
-use crate::front::Chunk;
+use crate::drive::Buffers;
 use crate::sink::{BandRows, ResolveBand, ShadeBand};
 use crate::tiles::TILE;
 
@@ -65,7 +70,7 @@ impl Default for FastConfig {
 pub struct Fast {
     config: FastConfig,
     pool: Option<Arc<ThreadPool>>,
-    chunks: Vec<Chunk>,
+    buffers: Buffers,
 }
 
 impl Default for Fast {
@@ -92,7 +97,7 @@ impl Fast {
         Self {
             config,
             pool,
-            chunks: Vec::new(),
+            buffers: Buffers::default(),
         }
     }
 
@@ -153,7 +158,7 @@ impl Fast {
         drive::run(
             self.config.reference,
             self.pool.as_deref(),
-            &mut self.chunks,
+            &mut self.buffers,
             draw,
             &mut sinks,
         )
@@ -182,7 +187,7 @@ impl Rasterizer for Fast {
         drive::run(
             self.config.reference,
             self.pool.as_deref(),
-            &mut self.chunks,
+            &mut self.buffers,
             draw,
             &mut sinks,
         )?;
@@ -211,7 +216,7 @@ impl Rasterizer for Fast {
         drive::run(
             self.config.reference,
             self.pool.as_deref(),
-            &mut self.chunks,
+            &mut self.buffers,
             draw,
             &mut sinks,
         )?;

@@ -8,7 +8,7 @@ use refrast::stage::{
 };
 use refrast::{CompareOp, DepthState, Fragment};
 
-use crate::front::Single;
+use crate::back::{BLOCK, Row};
 
 /// A covered sample with its depth; [`fragment`](Covered::fragment) adds the barycentrics.
 #[derive(Clone, Copy, Debug)]
@@ -51,14 +51,14 @@ impl<'a> Corners<'a> {
         }
     }
 
-    /// The corners of a triangle drawn as one fan triangle, kept in its [`Single`].
+    /// The corners of a triangle drawn whole, `corners` in its setup's order.
     #[inline]
-    pub fn single(primitive: u32, front_facing: bool, single: &'a Single) -> Self {
+    pub fn whole(primitive: u32, front_facing: bool, area2: i64, corners: &'a [Varyings; 3]) -> Self {
         Self {
             primitive,
             front_facing,
-            area2: single.area2,
-            corners: single.corners.each_ref(),
+            area2,
+            corners: corners.each_ref(),
         }
     }
 
@@ -75,6 +75,34 @@ impl<'a> Corners<'a> {
             area2: self.area2,
             corners: self.corners,
         }
+    }
+
+    /// Lane `lane` of `row`, its depth already interpolated (one of [`row_depths`](Self::row_depths)).
+    #[inline]
+    fn lane(&self, row: &Row, lane: u32, depth: f32) -> Covered<'a> {
+        Covered {
+            x: row.x0 + lane,
+            y: row.y,
+            primitive: self.primitive,
+            depth,
+            front_facing: self.front_facing,
+            values: row.values_at(lane),
+            area2: self.area2,
+            corners: self.corners,
+        }
+    }
+
+    /// The depths of all eight lanes of `row`, covered or not: the reference's calls on each
+    /// lane's exact edge values, made lane by lane in one loop the compiler can vectorise.
+    #[inline]
+    fn row_depths(&self, row: &Row) -> [f32; BLOCK as usize] {
+        std::array::from_fn(|lane| {
+            fragment_depth(interpolate_depth(
+                self.corners,
+                row.values_at(lane as u32),
+                self.area2,
+            ))
+        })
     }
 }
 
@@ -95,10 +123,22 @@ impl Covered<'_> {
     }
 }
 
+/// Rows with fewer covered lanes than this interpolate depth lane by lane: eight lanes at once
+/// would do more work than they save (tiny triangles cover a few samples a row).
+const FEW: u32 = 5;
+
 /// What one band does with its covered samples, which come in primitive order per pixel.
 pub(crate) trait Sink: Send {
     /// Takes one covered sample.
     fn covered(&mut self, sample: &Covered<'_>);
+
+    /// Takes the covered lanes of `row` of a triangle with `corners`, in order.
+    #[inline]
+    fn covered_row(&mut self, corners: &Corners<'_>, row: &Row) {
+        Row::for_each_lane(row.mask, |lane| {
+            self.covered(&corners.sample(row.x0 + lane, row.y, row.values_at(lane)));
+        });
+    }
 }
 
 /// Keeps every fragment.
@@ -124,6 +164,13 @@ impl BandRows {
     fn index(self, x: u32, y: u32) -> usize {
         (y - self.y0) as usize * self.width as usize + x as usize
     }
+
+    /// The range of the band's slice that `row`'s lanes up to its last covered one occupy.
+    #[inline]
+    fn lanes(self, row: &Row) -> std::ops::Range<usize> {
+        let start = self.index(row.x0, row.y);
+        start..start + (u32::BITS - row.mask.leading_zeros()) as usize
+    }
 }
 
 /// The depth test into a band of `Resolved`'s buffers, as `Resolved::from_fragments` does it.
@@ -145,6 +192,24 @@ impl Sink for ResolveBand<'_> {
         if self.state.test_and_write(sample.depth, &mut self.depth[i]) {
             self.primitive[i] = Some(sample.primitive);
         }
+    }
+
+    #[inline]
+    fn covered_row(&mut self, corners: &Corners<'_>, row: &Row) {
+        if row.mask.count_ones() < FEW {
+            return Row::for_each_lane(row.mask, |lane| {
+                self.covered(&corners.sample(row.x0 + lane, row.y, row.values_at(lane)));
+            });
+        }
+        let depths = corners.row_depths(row);
+        let lanes = self.rows.lanes(row);
+        let (depth, primitive) = (&mut self.depth[lanes.clone()], &mut self.primitive[lanes]);
+        Row::for_each_lane(row.mask, |lane| {
+            let i = lane as usize;
+            if self.state.test_and_write(depths[i], &mut depth[i]) {
+                primitive[i] = Some(corners.primitive);
+            }
+        });
     }
 }
 
@@ -178,5 +243,33 @@ impl<C: Send, F: Fn(&Fragment) -> Option<C> + Sync> Sink for ShadeBand<'_, C, F>
             }
             self.color[i] = color;
         }
+    }
+
+    /// The depth test of all lanes first, each against its own pixel, then shading and writes
+    /// of those that pass, in lane order: the lanes are different pixels, so this is the
+    /// per-sample order of work.
+    #[inline]
+    fn covered_row(&mut self, corners: &Corners<'_>, row: &Row) {
+        if row.mask.count_ones() < FEW {
+            return Row::for_each_lane(row.mask, |lane| {
+                self.covered(&corners.sample(row.x0 + lane, row.y, row.values_at(lane)));
+            });
+        }
+        let depths = corners.row_depths(row);
+        let lanes = self.rows.lanes(row);
+        let (depth, color) = (&mut self.depth[lanes.clone()], &mut self.color[lanes]);
+        let mut pass = 0;
+        for (i, (new, stored)) in depths.iter().zip(depth.iter()).enumerate() {
+            pass |= u32::from(self.compare.passes(*new, *stored)) << i;
+        }
+        Row::for_each_lane(row.mask & pass, |lane| {
+            let i = lane as usize;
+            if let Some(c) = (self.shade)(&corners.lane(row, lane, depths[i]).fragment()) {
+                if self.write {
+                    depth[i] = depths[i];
+                }
+                color[i] = c;
+            }
+        });
     }
 }

@@ -20,7 +20,7 @@
 set -uo pipefail
 cd "$(dirname "$0")"
 
-all_targets=(robustness differential watertight clipping depth_order interpolation pipeline mesh_load)
+all_targets=(robustness differential fast watertight clipping depth_order interpolation pipeline mesh_load)
 seconds=${1:-600}
 if ! [[ $seconds =~ ^[0-9]+$ ]] || ((seconds == 0)); then
   echo "usage: fuzz/nightly.sh [SECONDS_PER_TARGET] [TARGET...]; SECONDS must be a positive integer, got '$seconds'" >&2
@@ -78,12 +78,16 @@ count() { find "$1" -maxdepth 1 -type f 2>/dev/null | wc -l; }
 # Crash, hang and out-of-memory reproducers (libFuzzer also leaves slow-unit-* files there).
 failures() { find "$1" -maxdepth 1 -type f \( -name 'crash-*' -o -name 'timeout-*' -o -name 'oom-*' -o -name 'leak-*' \) | wc -l; }
 
+# Where a target's committed seeds are: `fast` decodes its input as `differential` does.
+seeds_of() { if [[ $1 == fast ]]; then echo seeds/differential; else echo "seeds/$1"; fi; }
+
 for t in "${targets[@]}"; do
-  mkdir -p "corpus/$t" "seeds/$t" "regressions/$t" "artifacts/$t"
+  seeds=$(seeds_of "$t")
+  mkdir -p "corpus/$t" "$seeds" "regressions/$t" "artifacts/$t"
   before_artifacts=$(failures "artifacts/$t")
-  echo "== fuzzing $t for ${seconds} s (corpus: $(count "corpus/$t") kept, $(count "seeds/$t") seeds, $(count "regressions/$t") reproducers)"
+  echo "== fuzzing $t for ${seconds} s (corpus: $(count "corpus/$t") kept, $(count "$seeds") seeds, $(count "regressions/$t") reproducers)"
   log="$logs/$t.log"
-  "${fuzz[@]}" run "${sanitizer[@]}" "$t" "corpus/$t" "seeds/$t" "regressions/$t" -- \
+  "${fuzz[@]}" run "${sanitizer[@]}" "$t" "corpus/$t" "$seeds" "regressions/$t" -- \
     -max_total_time="$seconds" -timeout="${FUZZ_TIMEOUT:-60}" -rss_limit_mb="${FUZZ_RSS_MB:-2048}" \
     -print_final_stats=1 >"$log" 2>&1
   status=$?
@@ -93,7 +97,9 @@ for t in "${targets[@]}"; do
     "${fuzz[@]}" cmin "${sanitizer[@]}" "$t" "corpus/$t" -- -timeout="${FUZZ_TIMEOUT:-60}" >"$logs/$t.cmin" 2>&1 ||
       echo "   cmin failed for $t (corpus kept as it grew); see its log above" >&2
   fi
-  if [[ ${FUZZ_UPDATE_SEEDS:-0} == 1 ]]; then
+  if [[ ${FUZZ_UPDATE_SEEDS:-0} == 1 && $seeds != "seeds/$t" ]]; then
+    echo "   $t shares $seeds with another target: left as it was"
+  elif [[ ${FUZZ_UPDATE_SEEDS:-0} == 1 ]]; then
     fresh=$(mktemp -d)
     if "${fuzz[@]}" run "${sanitizer[@]}" "$t" "$fresh" "corpus/$t" "seeds/$t" -- -set_cover_merge=1 \
       -timeout="${FUZZ_TIMEOUT:-60}" >"$logs/$t.seeds" 2>&1; then

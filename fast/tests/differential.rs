@@ -235,3 +235,66 @@ fn many_batches_keep_primitive_order() {
         agree(&draw, threads).unwrap();
     }
 }
+
+/// Shared vertices are set up once for all their triangles: a NaN vertex drops exactly the
+/// triangles that use it, and a vertex behind the eye is clipped in one triangle while its
+/// neighbours, sharing the others, are drawn whole.
+#[test]
+fn shared_vertices_set_up_once_drop_and_clip_only_their_triangles() {
+    let viewport = Viewport::new(40, 30).unwrap();
+    let positions = vec![
+        [-0.9, -0.9, 0.5, 1.0],
+        [0.9, -0.9, 0.5, 1.0],
+        [0.9, 0.9, 0.5, 1.0],
+        [-0.9, 0.9, 0.5, 1.0],
+        [0.0, 0.0, f32::NAN, 1.0],
+        [0.2, 0.1, -0.5, -0.5],
+        [0.0, -0.2, 0.4, 1.0],
+    ];
+    let triangles = vec![
+        [0, 1, 6],
+        [1, 2, 6],
+        [2, 3, 4],
+        [3, 0, 4],
+        [0, 6, 5],
+        [6, 2, 5],
+        [2, 3, 6],
+    ];
+    let mut draw = Draw::new(viewport, positions, triangles);
+    draw.state.cull = CullMode::None;
+    for threads in [1, 2] {
+        agree(&draw, threads).unwrap();
+    }
+    let fragments = Fast::with_threads(1).rasterize(&draw).unwrap();
+    let drawn = |p: u32| fragments.iter().any(|f| f.primitive == p);
+    assert!(
+        drawn(0) && drawn(1) && drawn(6),
+        "the triangles of finite vertices are drawn"
+    );
+    assert!(!drawn(2) && !drawn(3), "the triangles of the NaN vertex are not");
+}
+
+/// The `differential` fuzz target's committed seeds (`fuzz/seeds/differential/`) pass under
+/// `fast`, as the `fast` fuzz target runs them: on stable, without cargo-fuzz.
+#[test]
+fn differential_fuzz_seeds_pass() {
+    use refrast_conformance::fuzz::{Outcome, Target};
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../fuzz/seeds/differential");
+    let mut seeds: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|e| e.unwrap().path())
+        .collect();
+    seeds.sort();
+    assert!(seeds.len() > 10, "{} holds the seeds", dir.display());
+    let mut fast = Fast::with_threads(2);
+    let mut passed = 0;
+    for seed in &seeds {
+        let bytes = std::fs::read(seed).unwrap();
+        match Target::Differential.run(&mut fast, &bytes) {
+            Outcome::Failed(failure) => panic!("{}: {failure}", seed.display()),
+            Outcome::Passed => passed += 1,
+            Outcome::Skipped => {}
+        }
+    }
+    assert!(passed > 0, "no seed decoded");
+}

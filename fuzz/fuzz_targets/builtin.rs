@@ -1,5 +1,5 @@
 //! Any built-in implementation (`refrast impls`: the reference variants, the mutants, the course
-//! rasterizers) under any target's check but `pipeline`, chosen by the environment:
+//! rasterizers, `fast`) under any target's check but `pipeline`, chosen by the environment:
 //! `REFRAST_FUZZ_IMPL` (default `reference`) and `REFRAST_FUZZ_TARGET` (default `watertight`).
 //! Bytes decode exactly as that target's own `fuzz_target!` decodes them, so corpora are shared.
 //!
@@ -42,6 +42,7 @@ fn chosen() -> &'static (Target, BuiltIn) {
         );
         let mut all = refrast_conformance::builtins();
         all.extend(refrast_zoo::builtins());
+        all.extend(refrast_fast::builtins());
         let names: Vec<String> = all.iter().map(|b| b.name.clone()).collect();
         let Some(built_in) = all.into_iter().find(|b| b.name == impl_name) else {
             eprintln!(

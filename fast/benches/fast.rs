@@ -6,16 +6,22 @@
 //! in perspective. Every implementation clears, depth-tests LESS and writes one colour per
 //! pixel; the reference and `fast` interpolate the vertex colour perspective-correctly.
 //! `scripts/bench_fast.py` prints medians, Mtri/s, Mpix/s and ratios.
+//!
+//! Where Mesa's lavapipe opens (`mesa-vulkan-drivers`), the same draws go through it in the
+//! same run: `lavapipe` is its drawing time (`Gpu::resolve_timed`, reading back excluded) of a
+//! depth test and a primitive-id target, which `fast_resolve_2t` also times for `fast`
+//! (`Rasterizer::resolve`, 2 threads; lavapipe runs as many as the machine has cores).
 
 use std::f32::consts::TAU;
 use std::hint::black_box;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use glam::{Mat4, Vec3, Vec4};
-use refrast::Fragment;
 use refrast::camera::{Camera, Projection};
 use refrast::pipeline::{Framebuffer, Mesh, Renderer, Vertex, to_rgba8};
+use refrast::{Draw, Fragment, Rasterizer};
 use refrast_fast::Fast;
+use refrast_wgpu::{Driver, Gpu};
 
 #[path = "../../benches/workload/baseline.rs"]
 mod baseline;
@@ -145,6 +151,17 @@ fn fast(fast: &mut Fast, depth: &mut [f32], color: &mut [[u8; 4]], scene: &Scene
     fast.render(&draw, depth, color, shade).expect("valid draw");
 }
 
+/// The scene as a draw, with the state `r` supports closest to the renderer's.
+fn fitted_draw(r: &dyn Rasterizer, scene: &Scene) -> Draw {
+    let mut draw = Renderer::default().mesh_draw(
+        refrast::Viewport::new(WIDTH, HEIGHT).unwrap(),
+        &scene.mesh,
+        scene.mvp,
+    );
+    draw.state = r.profile().fit(draw.state);
+    draw
+}
+
 fn bench(c: &mut Criterion) {
     let scenes = [
         ("small_10px", flat(scene(100_000, 10.0))),
@@ -153,6 +170,9 @@ fn bench(c: &mut Criterion) {
         ("torus_1m", torus(1000, 500)),
     ];
     let (mut one, mut two) = (Fast::with_threads(1), Fast::with_threads(2));
+    let mut lavapipe = Gpu::new(Driver::Lavapipe)
+        .inspect_err(|why| eprintln!("lavapipe: SKIPPED: {why}"))
+        .ok();
     for (name, scene) in &scenes {
         let count = scene.mesh.triangles.len();
         let mut target = Framebuffer::new(WIDTH, HEIGHT).expect("1080p is a valid size");
@@ -179,6 +199,21 @@ fn bench(c: &mut Criterion) {
         for (threads, r) in [(1, &mut one), (2, &mut two)] {
             group.bench_function(format!("fast_{threads}t"), |b| {
                 b.iter(|| fast(r, &mut depth, &mut color, scene));
+            });
+        }
+        if let Some(gpu) = lavapipe.as_mut() {
+            let draw = fitted_draw(&two, scene);
+            group.bench_function("fast_resolve_2t", |b| {
+                b.iter(|| black_box(two.resolve(&draw).expect("draws")))
+            });
+            let draw = fitted_draw(gpu, scene);
+            // Each iteration draws and reads back; only the drawing is counted.
+            group.bench_function("lavapipe", |b| {
+                b.iter_custom(|n| {
+                    (0..n)
+                        .map(|_| gpu.resolve_timed(&draw).expect("lavapipe draws").1.drawing)
+                        .sum()
+                })
             });
         }
         group.finish();

@@ -3,7 +3,9 @@
 
 use glam::{Mat4, Vec3, Vec4};
 use refrast::pipeline::{Framebuffer, Mesh, Renderer, to_rgba8};
-use refrast::{DrawError, DrawState, Fragment, Rasterizer, Reference};
+use std::sync::atomic::{AtomicU32, Ordering};
+
+use refrast::{CompareOp, Draw, DrawError, DrawState, Fragment, Rasterizer, Reference};
 
 use crate::geometry::{edges, face_normal};
 use crate::mode::{Mode, depth_greys, normal_color, overdraw_color};
@@ -57,32 +59,14 @@ pub fn render(
     target: &mut Framebuffer,
 ) -> Result<Stats, DrawError> {
     target.clear(job.clear, job.state.depth.clear);
+    if let Some(stats) = draw_lines(job, target) {
+        return Ok(stats);
+    }
     let mesh = job.mesh;
-    // The reference's pipeline: its line rasterizer, and the clip-space draw of a mesh.
     let pipeline = Renderer {
         reference: Reference::default(),
         state: job.state,
     };
-    match job.mode {
-        Mode::Points => {
-            let written = pipeline.draw_points(target, &mesh.vertices, job.view_projection);
-            return Ok(Stats {
-                primitives: mesh.vertices.len(),
-                fragments: written,
-                written,
-            });
-        }
-        Mode::Wire => {
-            let segments = edges(mesh);
-            let written = pipeline.draw_lines(target, &mesh.vertices, &segments, job.view_projection);
-            return Ok(Stats {
-                primitives: segments.len(),
-                fragments: written,
-                written,
-            });
-        }
-        _ => {}
-    }
     let viewport = target.viewport();
     let draw = pipeline.mesh_draw(viewport, mesh, job.view_projection);
     draw.validate()?;
@@ -134,6 +118,98 @@ pub fn render(
         }
     }
     Ok(stats)
+}
+
+/// Points and wire modes through refrast's line rasterizer: what they took, or `None` for a
+/// mode of triangles.
+fn draw_lines(job: &Job<'_>, target: &mut Framebuffer) -> Option<Stats> {
+    let mesh = job.mesh;
+    // The reference's pipeline: its line rasterizer.
+    let pipeline = Renderer {
+        reference: Reference::default(),
+        state: job.state,
+    };
+    let (primitives, written) = match job.mode {
+        Mode::Points => (
+            mesh.vertices.len(),
+            pipeline.draw_points(target, &mesh.vertices, job.view_projection),
+        ),
+        Mode::Wire => {
+            let segments = edges(mesh);
+            let written = pipeline.draw_lines(target, &mesh.vertices, &segments, job.view_projection);
+            (segments.len(), written)
+        }
+        _ => return None,
+    };
+    Some(Stats {
+        primitives,
+        fragments: written,
+        written,
+    })
+}
+
+/// A shader as a rasterizer that shades as it goes calls it: a fragment's colour, or `None` to
+/// discard it (no depth or colour write).
+pub type Shade<'a> = dyn Fn(&Fragment) -> Option<[u8; 4]> + Sync + 'a;
+
+/// Clears `target` and draws `job` into it as [`render`] does, pixel for pixel, through a
+/// rasterizer that depth-tests and shades as it rasterizes (refrast-fast's `Fast::render`,
+/// passed as `rasterize_shaded(draw, depth, color, shade)`): no list of fragments is built,
+/// sorted or kept, so a frame costs what the covered pixels cost.
+///
+/// `rasterize_shaded` must visit each pixel's fragments in primitive order, test them against
+/// `draw`'s depth state, call `shade` on those that pass, and write depth and colour unless
+/// `shade` discards. Overdraw counts fragments through `shade` with the depth test off.
+pub fn render_shaded<R>(job: &Job<'_>, target: &mut Framebuffer, rasterize_shaded: R) -> Result<(), DrawError>
+where
+    R: FnOnce(&Draw, &mut [f32], &mut [[u8; 4]], &Shade<'_>) -> Result<(), DrawError>,
+{
+    target.clear(job.clear, job.state.depth.clear);
+    if draw_lines(job, target).is_some() {
+        return Ok(());
+    }
+    let viewport = target.viewport();
+    let pipeline = Renderer {
+        reference: Reference::default(),
+        state: job.state,
+    };
+    let mut draw = pipeline.mesh_draw(viewport, job.mesh, job.view_projection);
+    draw.validate()?;
+    let triangles = job.mesh.triangles.len();
+    let inside = |f: &Fragment| {
+        f.x < viewport.width() && f.y < viewport.height() && (f.primitive as usize) < triangles
+    };
+    let (color, depth) = target.color_and_depth_mut();
+    if job.mode == Mode::Overdraw {
+        draw.state.depth.compare = CompareOp::Always;
+        draw.state.depth.write = false;
+        let counts: Vec<AtomicU32> = (0..viewport.pixel_count()).map(|_| AtomicU32::new(0)).collect();
+        let count = |f: &Fragment| {
+            if inside(f) {
+                counts[viewport.index(f.x, f.y)].fetch_add(1, Ordering::Relaxed);
+            }
+            None
+        };
+        rasterize_shaded(&draw, depth, color, &count)?;
+        for (pixel, count) in color.iter_mut().zip(counts) {
+            if let Some(c) = overdraw_color(count.into_inner()) {
+                *pixel = c;
+            }
+        }
+        return Ok(());
+    }
+    let shader = Shader::new(job);
+    let shade = |f: &Fragment| inside(f).then(|| to_rgba8(shader.color(f)));
+    rasterize_shaded(&draw, depth, color, &shade)?;
+    if job.mode == Mode::Depth {
+        let greys = depth_greys(target.depth(), job.state.depth.clear);
+        for (pixel, grey) in target.color_mut().iter_mut().zip(greys) {
+            if let Some(g) = grey {
+                *pixel = [g, g, g, 255];
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The colour of a fragment under a job's mode and shading, with what is computed once per

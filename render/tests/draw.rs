@@ -40,6 +40,54 @@ fn picture_of(
     target
 }
 
+#[test]
+fn render_shaded_through_fast_is_render_through_the_reference_pixel_for_pixel() {
+    let mut fast = refrast_fast::Fast::with_threads(1);
+    let checker = Texture::checker(8, 8, Vec4::ONE, Vec4::new(0.2, 0.2, 0.25, 1.0));
+    for name in [
+        "room",
+        "torus",
+        "sphere",
+        "aligned-plane",
+        "clipped-torus",
+        "floor",
+        "lab000-depth",
+    ] {
+        let setup = scene::scene(name).unwrap();
+        let (w, h) = setup.size;
+        let camera = setup.camera(w as f32 / h as f32, &Overrides::default()).unwrap();
+        for mode in Mode::ALL {
+            let job = Job {
+                mesh: &setup.mesh,
+                view_projection: camera.view_projection,
+                eye: camera.eye,
+                state: setup.state,
+                mode,
+                shading: setup.shading,
+                light: setup.light(&camera),
+                texture: (name == "floor").then_some(&checker),
+                sampling: Sampling::Bilinear,
+                clear: setup.clear,
+            };
+            let mut expected = Framebuffer::new(w, h).unwrap();
+            refrast_render::render(&mut Reference::default(), &job, &mut expected).unwrap();
+            let mut shaded = Framebuffer::new(w, h).unwrap();
+            refrast_render::render_shaded(&job, &mut shaded, |draw, depth, color, shade| {
+                fast.render(draw, depth, color, shade)
+            })
+            .unwrap();
+            let differ = expected
+                .color()
+                .iter()
+                .zip(shaded.color())
+                .filter(|(a, b)| a != b)
+                .count();
+            assert_eq!(differ, 0, "{name}, {mode}: {differ} pixels differ");
+            assert_eq!(expected.depth(), shaded.depth(), "{name}, {mode}: depth");
+        }
+    }
+}
+
 fn count(target: &Framebuffer, color: Option<[u8; 4]>) -> usize {
     target.color().iter().filter(|&&c| Some(c) == color).count()
 }

@@ -8,7 +8,9 @@ use refrast::{
     ReferenceConfig,
 };
 use refrast_render::scene::{self, Setup};
-use refrast_render::{Job, Mode, Overrides, Sampling, Shading, Texture, mode::overdraw_color};
+use refrast_render::{
+    Job, Mode, Overrides, Sampling, Shading, ShadingRasterizer, Texture, mode::overdraw_color,
+};
 use refrast_zoo::mutant::{Bug, Mutant};
 
 /// Renders a built-in scene at its size with `rasterizer`, with the scene's defaults.
@@ -41,6 +43,25 @@ fn picture_of(
     let mut target = Framebuffer::new(w, h).unwrap();
     refrast_render::render(rasterizer, &job, &mut target).unwrap();
     target
+}
+
+/// refrast-fast's `Fast::render` as a [`ShadingRasterizer`].
+struct FastShading<'a>(&'a mut refrast_fast::Fast);
+
+impl ShadingRasterizer for FastShading<'_> {
+    fn rasterize_shaded<C, F>(
+        &mut self,
+        draw: &Draw,
+        depth: &mut [f32],
+        color: &mut [C],
+        shade: F,
+    ) -> Result<(), DrawError>
+    where
+        C: Send,
+        F: Fn(&Fragment) -> Option<C> + Sync,
+    {
+        self.0.render(draw, depth, color, shade)
+    }
 }
 
 #[test]
@@ -88,10 +109,7 @@ fn render_shaded_through_fast_is_render_through_the_reference_pixel_for_pixel() 
             let mut expected = Framebuffer::new(w, h).unwrap();
             refrast_render::render(&mut Reference::default(), &job, &mut expected).unwrap();
             let mut shaded = Framebuffer::new(w, h).unwrap();
-            refrast_render::render_shaded(&job, &mut shaded, |draw, depth, color, shade| {
-                fast.render(draw, depth, color, shade)
-            })
-            .unwrap();
+            refrast_render::render_shaded(&mut FastShading(&mut fast), &job, &mut shaded).unwrap();
             let differ = expected
                 .color()
                 .iter()

@@ -5,10 +5,10 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use refrast::pipeline::Framebuffer;
-use refrast::{CullMode, DrawError, DrawState, Rasterizer, ReferenceConfig};
+use refrast::{CullMode, Draw, DrawError, DrawState, Fragment, Rasterizer, ReferenceConfig};
 use refrast_fast::{Fast, FastConfig};
 use refrast_render::scene::{Camera, Framing};
-use refrast_render::{Light, Mode, View, geometry};
+use refrast_render::{Light, Mode, ShadingRasterizer, View, geometry};
 
 use super::camera::{FlyCamera, Motion};
 use super::keys::Action;
@@ -218,12 +218,10 @@ impl<'a> Viewer<'a> {
         let job = self.scene.job(self.mode, &camera, self.light, self.state);
         let start = Instant::now();
         let drawn = match &mut self.rasterizer {
-            // The same pixels as `render` (refrast-render's tests compare them), shaded inside
-            // the fast rasterizer's loop instead of from a sorted list of every fragment.
+            // The same pixels as `render` (refrast-render's tests compare them), with no list
+            // of fragments to build and sort, and each pixel shaded once.
             Drawer::Fast(fast) => {
-                refrast_render::render_shaded(&job, &mut self.target, |draw, depth, color, shade| {
-                    fast.render(draw, depth, color, shade)
-                })
+                refrast_render::render_shaded(&mut FastShading(fast), &job, &mut self.target)
             }
             Drawer::Fragments(r) => refrast_render::render(r.as_mut(), &job, &mut self.target).map(|_| ()),
         };
@@ -269,6 +267,26 @@ impl<'a> Viewer<'a> {
         refrast_render::output::save_png(&self.target, &path)
             .map_err(|e| format!("could not write {}: {e}", path.display()))?;
         Ok(path)
+    }
+}
+
+/// refrast-fast's `Fast::render`, which depth-tests and shades as it rasterizes, as
+/// refrast-render's [`ShadingRasterizer`].
+struct FastShading<'a>(&'a mut Fast);
+
+impl ShadingRasterizer for FastShading<'_> {
+    fn rasterize_shaded<C, F>(
+        &mut self,
+        draw: &Draw,
+        depth: &mut [f32],
+        color: &mut [C],
+        shade: F,
+    ) -> Result<(), DrawError>
+    where
+        C: Send,
+        F: Fn(&Fragment) -> Option<C> + Sync,
+    {
+        self.0.render(draw, depth, color, shade)
     }
 }
 

@@ -5,26 +5,14 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use refrast::pipeline::Framebuffer;
-use refrast::{CullMode, Draw, DrawError, DrawState, Fragment, Rasterizer, ReferenceConfig};
-use refrast_fast::{Fast, FastConfig};
+use refrast::{CullMode, DrawError, DrawState};
 use refrast_render::scene::{Camera, Framing};
-use refrast_render::{Light, Mode, ShadingRasterizer, View, geometry};
+use refrast_render::{Light, Mode, View, geometry};
 
 use super::camera::{FlyCamera, Motion};
+use super::drawer::{CYCLE, Drawer, build};
 use super::keys::Action;
-use crate::options::{Failure, Prepared, rasterizer};
-
-/// The implementations `I` steps through, in order: the reference, the fast one, the course
-/// labs, then two mutants whose fill-rule faults `overdraw` shows on shared edges.
-pub const CYCLE: [&str; 7] = [
-    "reference",
-    "fast",
-    "lab000",
-    "lab002-scanline",
-    "lab004-lineeq",
-    "mutant:inclusive-edges",
-    "mutant:exclusive-edges",
-];
+use crate::options::{Failure, Prepared};
 
 /// Radians the camera turns per pixel the mouse is dragged.
 const MOUSE_RADIANS_PER_PIXEL: f32 = 0.005;
@@ -217,14 +205,7 @@ impl<'a> Viewer<'a> {
         }
         let job = self.scene.job(self.mode, &camera, self.light, self.state);
         let start = Instant::now();
-        let drawn = match &mut self.rasterizer {
-            // The same pixels as `render` (refrast-render's tests compare them), with no list
-            // of fragments to build and sort, and each pixel shaded once.
-            Drawer::Fast(fast) => {
-                refrast_render::render_shaded(&mut FastShading(fast), &job, &mut self.target)
-            }
-            Drawer::Fragments(r) => refrast_render::render(r.as_mut(), &job, &mut self.target).map(|_| ()),
-        };
+        let drawn = self.rasterizer.draw(&job, &mut self.target);
         (drawn, start.elapsed())
     }
 
@@ -268,45 +249,6 @@ impl<'a> Viewer<'a> {
             .map_err(|e| format!("could not write {}: {e}", path.display()))?;
         Ok(path)
     }
-}
-
-/// refrast-fast's `Fast::render`, which depth-tests and shades as it rasterizes, as
-/// refrast-render's [`ShadingRasterizer`].
-struct FastShading<'a>(&'a mut Fast);
-
-impl ShadingRasterizer for FastShading<'_> {
-    fn rasterize_shaded<C, F>(
-        &mut self,
-        draw: &Draw,
-        depth: &mut [f32],
-        color: &mut [C],
-        shade: F,
-    ) -> Result<(), DrawError>
-    where
-        C: Send,
-        F: Fn(&Fragment) -> Option<C> + Sync,
-    {
-        self.0.render(draw, depth, color, shade)
-    }
-}
-
-/// How a frame gets its triangles drawn.
-enum Drawer {
-    /// refrast-fast, which depth-tests and shades as it rasterizes.
-    Fast(Fast),
-    /// Any rasterizer, through its list of fragments.
-    Fragments(Box<dyn Rasterizer>),
-}
-
-/// The rasterizer `name`: `fast` with `threads` threads, any other through `refrast render`'s lookup.
-fn build(name: &str, scene: &Prepared, threads: usize) -> Result<Drawer, Failure> {
-    if name == "fast" {
-        return Ok(Drawer::Fast(Fast::new(FastConfig {
-            reference: ReferenceConfig::default(),
-            threads,
-        })));
-    }
-    rasterizer(name, &scene.setup).map(Drawer::Fragments)
 }
 
 /// The view with room to fly: an automatically framed mesh's planes hug it, so that stepping

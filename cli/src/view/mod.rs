@@ -3,11 +3,13 @@
 //! by a key, so that a student sees what `certify` reports (a cracked edge in `overdraw`).
 //!
 //! One module per concern: [`camera`] (yaw, pitch, movement), [`keys`] (the bindings),
-//! [`app`] (the state the keys change, and one frame), [`overlay`] (the status line),
-//! [`timing`] (frame times), [`window`] (the display, through minifb).
+//! [`app`] (the state the keys change, and one frame), [`drawer`] (the implementations and how
+//! each draws), [`overlay`] (the status lines), [`timing`] (frame times), [`window`] (the
+//! display, through minifb).
 
 mod app;
 mod camera;
+mod drawer;
 mod keys;
 mod overlay;
 mod timing;
@@ -19,7 +21,8 @@ use std::time::{Duration, Instant};
 
 use refrast_render::Mode;
 
-use self::app::{CYCLE, Viewer};
+use self::app::Viewer;
+use self::drawer::CYCLE;
 use self::keys::Action;
 use self::timing::FrameTimes;
 use self::window::Screen;

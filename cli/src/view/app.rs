@@ -167,12 +167,13 @@ impl<'a> Viewer<'a> {
             return;
         };
         if self.moving_light {
-            self.light.position += fly.displacement(motion, dt);
-            self.headlight = false;
-            fly.turn(
-                motion.yaw * dt * 90f32.to_radians(),
-                motion.pitch * dt * 90f32.to_radians(),
-            );
+            let moved = fly.displacement(motion, dt);
+            if moved != glam::Vec3::ZERO {
+                // A headlight left behind stays where it was put.
+                self.light.position += moved;
+                self.headlight = false;
+            }
+            fly.steer(motion, dt);
         } else {
             fly.update(motion, dt);
         }

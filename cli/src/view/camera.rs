@@ -87,6 +87,11 @@ impl FlyCamera {
     /// Moves and turns the camera as `motion` asks for `dt` seconds.
     pub fn update(&mut self, motion: &Motion, dt: f32) {
         self.eye += self.displacement(motion, dt);
+        self.steer(motion, dt);
+    }
+
+    /// Turns the camera as `motion`'s yaw and pitch ask for `dt` seconds, without moving it.
+    pub fn steer(&mut self, motion: &Motion, dt: f32) {
         self.turn(
             motion.yaw * self.turn_speed * dt,
             motion.pitch * self.turn_speed * dt,

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Regenerates the README's pictures in docs/pictures/ with `refrast render` (release build).
+# Regenerates the README's pictures in docs/pictures/ with `refrast render` and, under Xvfb,
+# `refrast view` (release build).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release -q -p refrast-cli
@@ -29,4 +30,11 @@ r floor --size 320x240 --texture checker --sampling nearest --impl mutant:affine
 r star --size 320x240 --mode wire -o "$out/star-wire.png"
 r torus --size 320x240 --mode normals -o "$out/torus-normals.png"
 r plane --size 320x240 --mode overdraw --impl lab002-scanline -o "$out/plane-overdraw-lab002.png"
+# The viewer's window under Xvfb (scripts/check_viewer.py keeps its screenshots): the room, and
+# the aligned plane's overdraw once I reaches mutant:inclusive-edges.
+shots=$(mktemp -d)
+trap 'rm -rf "$shots"' EXIT
+python3 scripts/check_viewer.py --refrast "$refrast" --out "$shots" >/dev/null
+cp "$shots/room.png" "$out/view-room.png"
+cp "$shots/overdraw-mutant.png" "$out/view-overdraw-mutant.png"
 ls -1 "$out"

@@ -131,6 +131,12 @@ impl Framebuffer {
         &mut self.depth
     }
 
+    /// Colour and depth at once, to write both: for a rasterizer that depth-tests and shades as
+    /// it goes, straight into the buffers.
+    pub fn color_and_depth_mut(&mut self) -> (&mut [[u8; 4]], &mut [f32]) {
+        (&mut self.color, &mut self.depth)
+    }
+
     /// The colour buffer as an image (feature `png`, on by default).
     #[cfg(feature = "png")]
     #[must_use]

@@ -1,7 +1,10 @@
-//! The refrast command line: certify rasterizers, list the rules, render built-in scenes.
+//! The refrast command line: certify rasterizers, list the rules, render built-in scenes, view
+//! them in a window.
 
 mod certify;
+mod options;
 mod render;
+mod view;
 
 use std::process::ExitCode;
 
@@ -33,6 +36,10 @@ enum Command {
     Render(render::Args),
     /// List the built-in scenes.
     Scenes,
+    /// Open a window on a scene or mesh file, drawn every frame: fly the camera, switch the
+    /// mode with 1-7 and the implementation with I, save with P.
+    #[command(allow_negative_numbers = true)]
+    View(view::Args),
     /// Run one rule for `certify` and speak to it on stdout (not for people).
     #[command(hide = true)]
     RunRule(certify::RunRuleArgs),
@@ -88,6 +95,7 @@ fn main() -> ExitCode {
             ExitCode::SUCCESS
         }
         Command::Render(args) => render::run(&args),
+        Command::View(args) => view::run(&args),
     }
 }
 

@@ -1,9 +1,11 @@
 //! A picture through any [`Rasterizer`]: its fragments, depth-tested in API order, coloured by
 //! the mode and the shading.
 
-use glam::{Mat4, Vec3, Vec4};
+use glam::{Mat4, Vec3, Vec3A, Vec4};
 use refrast::pipeline::{Framebuffer, Mesh, Renderer, to_rgba8};
-use refrast::{DrawError, DrawState, Fragment, Rasterizer, Reference};
+use std::sync::atomic::{AtomicU32, Ordering};
+
+use refrast::{CompareOp, Draw, DrawError, DrawState, Fragment, Rasterizer, Reference};
 
 use crate::geometry::{edges, face_normal};
 use crate::mode::{Mode, depth_greys, normal_color, overdraw_color};
@@ -57,32 +59,14 @@ pub fn render(
     target: &mut Framebuffer,
 ) -> Result<Stats, DrawError> {
     target.clear(job.clear, job.state.depth.clear);
+    if let Some(stats) = draw_lines(job, target) {
+        return Ok(stats);
+    }
     let mesh = job.mesh;
-    // The reference's pipeline: its line rasterizer, and the clip-space draw of a mesh.
     let pipeline = Renderer {
         reference: Reference::default(),
         state: job.state,
     };
-    match job.mode {
-        Mode::Points => {
-            let written = pipeline.draw_points(target, &mesh.vertices, job.view_projection);
-            return Ok(Stats {
-                primitives: mesh.vertices.len(),
-                fragments: written,
-                written,
-            });
-        }
-        Mode::Wire => {
-            let segments = edges(mesh);
-            let written = pipeline.draw_lines(target, &mesh.vertices, &segments, job.view_projection);
-            return Ok(Stats {
-                primitives: segments.len(),
-                fragments: written,
-                written,
-            });
-        }
-        _ => {}
-    }
     let viewport = target.viewport();
     let draw = pipeline.mesh_draw(viewport, mesh, job.view_projection);
     draw.validate()?;
@@ -121,7 +105,7 @@ pub fn render(
             .depth
             .test_and_write(f.depth, &mut target.depth_mut()[i])
         {
-            target.color_mut()[i] = to_rgba8(shader.color(f));
+            target.color_mut()[i] = to_rgba8(shader.color(f.primitive, f.barycentric));
             stats.written += 1;
         }
     }
@@ -134,6 +118,133 @@ pub fn render(
         }
     }
     Ok(stats)
+}
+
+/// Points and wire modes through refrast's line rasterizer: what they took, or `None` for a
+/// mode of triangles.
+fn draw_lines(job: &Job<'_>, target: &mut Framebuffer) -> Option<Stats> {
+    let mesh = job.mesh;
+    // The reference's pipeline: its line rasterizer.
+    let pipeline = Renderer {
+        reference: Reference::default(),
+        state: job.state,
+    };
+    let (primitives, written) = match job.mode {
+        Mode::Points => (
+            mesh.vertices.len(),
+            pipeline.draw_points(target, &mesh.vertices, job.view_projection),
+        ),
+        Mode::Wire => {
+            let segments = edges(mesh);
+            let written = pipeline.draw_lines(target, &mesh.vertices, &segments, job.view_projection);
+            (segments.len(), written)
+        }
+        _ => return None,
+    };
+    Some(Stats {
+        primitives,
+        fragments: written,
+        written,
+    })
+}
+
+/// A rasterizer that depth-tests and shades as it rasterizes, writing straight into buffers
+/// (refrast-fast's `Fast::render` is one): what [`render_shaded`] draws through.
+pub trait ShadingRasterizer {
+    /// Draws `draw` into row-major `depth` and `color` of its viewport's size: each pixel's
+    /// fragments in primitive order, tested against `draw`'s depth state; `shade` gives those
+    /// that pass the value to write, or `None` to discard them (no depth or colour write).
+    fn rasterize_shaded<C, F>(
+        &mut self,
+        draw: &Draw,
+        depth: &mut [f32],
+        color: &mut [C],
+        shade: F,
+    ) -> Result<(), DrawError>
+    where
+        C: Send,
+        F: Fn(&Fragment) -> Option<C> + Sync;
+}
+
+/// What a pixel shows after the depth test: the last fragment that passed, as much of it as
+/// the shader reads; `primitive == u32::MAX` where none did.
+#[derive(Clone, Copy)]
+struct Visible {
+    primitive: u32,
+    barycentric: [f32; 3],
+}
+
+/// Clears `target` and draws `job` into it as [`render`] does, pixel for pixel, through a
+/// [`ShadingRasterizer`]: no list of fragments is built or sorted, and each pixel is shaded
+/// once, from the fragment that won its depth test (a visibility buffer; the shader reads
+/// nothing else of a fragment, so the colour is the one `render` leaves there).
+pub fn render_shaded<R: ShadingRasterizer + ?Sized>(
+    rasterizer: &mut R,
+    job: &Job<'_>,
+    target: &mut Framebuffer,
+) -> Result<(), DrawError> {
+    target.clear(job.clear, job.state.depth.clear);
+    if draw_lines(job, target).is_some() {
+        return Ok(());
+    }
+    let viewport = target.viewport();
+    let pipeline = Renderer {
+        reference: Reference::default(),
+        state: job.state,
+    };
+    let mut draw = pipeline.mesh_draw(viewport, job.mesh, job.view_projection);
+    draw.validate()?;
+    let triangles = job.mesh.triangles.len();
+    let inside = |f: &Fragment| {
+        f.x < viewport.width() && f.y < viewport.height() && (f.primitive as usize) < triangles
+    };
+    let (color, depth) = target.color_and_depth_mut();
+    if job.mode == Mode::Overdraw {
+        // Every fragment is counted, none written: the depth test is off for the count.
+        draw.state.depth.compare = CompareOp::Always;
+        draw.state.depth.write = false;
+        let counts: Vec<AtomicU32> = (0..viewport.pixel_count()).map(|_| AtomicU32::new(0)).collect();
+        let count = |f: &Fragment| -> Option<()> {
+            if inside(f) {
+                counts[viewport.index(f.x, f.y)].fetch_add(1, Ordering::Relaxed);
+            }
+            None
+        };
+        rasterizer.rasterize_shaded(&draw, depth, &mut vec![(); viewport.pixel_count()], count)?;
+        for (pixel, count) in color.iter_mut().zip(counts) {
+            if let Some(c) = overdraw_color(count.into_inner()) {
+                *pixel = c;
+            }
+        }
+        return Ok(());
+    }
+    let none = Visible {
+        primitive: u32::MAX,
+        barycentric: [0.0; 3],
+    };
+    let mut visible = vec![none; viewport.pixel_count()];
+    let record = |f: &Fragment| {
+        inside(f).then_some(Visible {
+            primitive: f.primitive,
+            barycentric: f.barycentric,
+        })
+    };
+    rasterizer.rasterize_shaded(&draw, depth, &mut visible, record)?;
+    let shader = Shader::new(job);
+    for (pixel, v) in color.iter_mut().zip(&visible) {
+        if v.primitive != u32::MAX {
+            *pixel = to_rgba8(shader.color(v.primitive, v.barycentric));
+        }
+    }
+    if job.mode == Mode::Depth {
+        let greys = depth_greys(target.depth(), job.state.depth.clear);
+        for (pixel, grey) in target.color_mut().iter_mut().zip(greys) {
+            if let Some(g) = grey {
+                *pixel = [g, g, g, 255];
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The colour of a fragment under a job's mode and shading, with what is computed once per
@@ -178,11 +289,10 @@ impl<'a> Shader<'a> {
     }
 
     /// The linear colour of `f`.
-    fn color(&self, f: &Fragment) -> Vec4 {
+    fn color(&self, primitive: u32, [wa, wb, wc]: [f32; 3]) -> Vec4 {
         let mesh = self.job.mesh;
-        let t = mesh.triangles[f.primitive as usize];
+        let t = mesh.triangles[primitive as usize];
         let [a, b, c] = t.map(|i| &mesh.vertices[i as usize]);
-        let [wa, wb, wc] = f.barycentric;
         let mix3 = |pa: Vec3, pb: Vec3, pc: Vec3| pa * wa + pb * wb + pc * wc;
         match self.job.mode {
             Mode::Barycentric => return Vec4::new(wa, wb, wc, 1.0),
@@ -191,7 +301,7 @@ impl<'a> Shader<'a> {
             _ => {}
         }
         let mut albedo = if self.job.shading == Shading::Flat {
-            self.flat_albedo[f.primitive as usize]
+            self.flat_albedo[primitive as usize]
         } else {
             a.color * wa + b.color * wb + c.color * wc
         };
@@ -201,15 +311,20 @@ impl<'a> Shader<'a> {
         }
         let (diffuse, specular) = match self.job.shading {
             Shading::None => return albedo,
-            Shading::Flat => self.lit[f.primitive as usize],
+            Shading::Flat => self.lit[primitive as usize],
             Shading::Gouraud => {
                 let [la, lb, lc] = t.map(|i| self.lit[i as usize]);
                 (mix3(la.0, lb.0, lc.0), mix3(la.1, lb.1, lc.1))
             }
             Shading::Phong => {
-                let position = mix3(a.position, b.position, c.position);
-                let normal = mix3(a.normal, b.normal, c.normal);
-                self.job.light.at(position, normal, self.job.eye)
+                // `mix3` in SIMD lanes: the same products and sums, lane by lane.
+                let mix3a = |pa: Vec3, pb: Vec3, pc: Vec3| {
+                    Vec3A::from(pa) * wa + Vec3A::from(pb) * wb + Vec3A::from(pc) * wc
+                };
+                let position = mix3a(a.position, b.position, c.position);
+                let normal = mix3a(a.normal, b.normal, c.normal);
+                let (diffuse, specular) = self.job.light.at_simd(position, normal, self.job.eye.into());
+                (diffuse.into(), specular.into())
             }
         };
         (albedo.truncate() * diffuse + specular).extend(albedo.w)

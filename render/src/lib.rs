@@ -25,7 +25,7 @@ pub mod shapes;
 pub mod texture;
 pub mod view;
 
-pub use draw::{Job, Stats, render};
+pub use draw::{Job, ShadingRasterizer, Stats, render, render_shaded};
 pub use mode::Mode;
 pub use shade::{Light, Shading};
 pub use texture::{Sampling, Texture};

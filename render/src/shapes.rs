@@ -137,9 +137,10 @@ pub fn star(points: u32) -> Mesh {
 }
 
 /// The 8×8 glyph of `ch` from `font8x8` (basic, Latin, Greek, blocks, box drawing), `?` for any
-/// other character;
-/// row 0 is the top, bit 0 the leftmost column.
-fn glyph(ch: char) -> [u8; 8] {
+/// other character; row 0 is the top, bit 0 the leftmost column. Public for the viewer's status
+/// line, which writes in the same font.
+#[must_use]
+pub fn glyph(ch: char) -> [u8; 8] {
     use font8x8::{BASIC_FONTS, BLOCK_FONTS, BOX_FONTS, GREEK_FONTS, LATIN_FONTS, UnicodeFonts};
     BASIC_FONTS
         .get(ch)

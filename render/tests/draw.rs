@@ -3,9 +3,14 @@
 
 use glam::{Vec3, Vec4};
 use refrast::pipeline::Framebuffer;
-use refrast::{Draw, DrawError, Fragment, Profile, Rasterizer, Reference, ReferenceConfig};
+use refrast::{
+    CompareOp, CullMode, Draw, DrawError, DrawState, Fragment, Profile, Rasterizer, Reference,
+    ReferenceConfig,
+};
 use refrast_render::scene::{self, Setup};
-use refrast_render::{Job, Mode, Overrides, Sampling, Shading, Texture, mode::overdraw_color};
+use refrast_render::{
+    Job, Mode, Overrides, Sampling, Shading, ShadingRasterizer, Texture, mode::overdraw_color,
+};
 use refrast_zoo::mutant::{Bug, Mutant};
 
 /// Renders a built-in scene at its size with `rasterizer`, with the scene's defaults.
@@ -38,6 +43,92 @@ fn picture_of(
     let mut target = Framebuffer::new(w, h).unwrap();
     refrast_render::render(rasterizer, &job, &mut target).unwrap();
     target
+}
+
+/// refrast-fast's `Fast::render` as a [`ShadingRasterizer`].
+struct FastShading<'a>(&'a mut refrast_fast::Fast);
+
+impl ShadingRasterizer for FastShading<'_> {
+    fn rasterize_shaded<C, F>(
+        &mut self,
+        draw: &Draw,
+        depth: &mut [f32],
+        color: &mut [C],
+        shade: F,
+    ) -> Result<(), DrawError>
+    where
+        C: Send,
+        F: Fn(&Fragment) -> Option<C> + Sync,
+    {
+        self.0.render(draw, depth, color, shade)
+    }
+}
+
+#[test]
+fn render_shaded_through_fast_is_render_through_the_reference_pixel_for_pixel() {
+    let mut fast = refrast_fast::Fast::with_threads(1);
+    let checker = Texture::checker(8, 8, Vec4::ONE, Vec4::new(0.2, 0.2, 0.25, 1.0));
+    for name in [
+        "room",
+        "torus",
+        "sphere",
+        "aligned-plane",
+        "clipped-torus",
+        "floor",
+        "lab000-depth",
+    ] {
+        let setup = scene::scene(name).unwrap();
+        let (w, h) = setup.size;
+        let camera = setup.camera(w as f32 / h as f32, &Overrides::default()).unwrap();
+        // Without culling too: the torus's back faces then fail the depth test behind its front.
+        // And GREATER, which no fragment passes against the clear value 1: overdraw counts all
+        // the same.
+        let mut greater = setup.state;
+        greater.depth.compare = CompareOp::Greater;
+        let states = [
+            setup.state,
+            DrawState {
+                cull: CullMode::None,
+                ..setup.state
+            },
+            greater,
+        ];
+        for (mode, state) in Mode::ALL.into_iter().flat_map(|m| states.map(|s| (m, s))) {
+            let job = Job {
+                mesh: &setup.mesh,
+                view_projection: camera.view_projection,
+                eye: camera.eye,
+                state,
+                mode,
+                shading: setup.shading,
+                light: setup.light(&camera),
+                texture: (name == "floor").then_some(&checker),
+                sampling: Sampling::Bilinear,
+                clear: setup.clear,
+            };
+            let mut expected = Framebuffer::new(w, h).unwrap();
+            refrast_render::render(&mut Reference::default(), &job, &mut expected).unwrap();
+            let mut shaded = Framebuffer::new(w, h).unwrap();
+            refrast_render::render_shaded(&mut FastShading(&mut fast), &job, &mut shaded).unwrap();
+            let differ = expected
+                .color()
+                .iter()
+                .zip(shaded.color())
+                .filter(|(a, b)| a != b)
+                .count();
+            assert_eq!(
+                differ, 0,
+                "{name}, {mode}, {:?}: {differ} pixels differ",
+                state.cull
+            );
+            assert_eq!(
+                expected.depth(),
+                shaded.depth(),
+                "{name}, {mode}, {:?}: depth",
+                state.cull
+            );
+        }
+    }
 }
 
 fn count(target: &Framebuffer, color: Option<[u8; 4]>) -> usize {

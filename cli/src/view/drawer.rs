@@ -1,0 +1,72 @@
+//! Which rasterizer draws a frame, and how: the list `I` steps through, and fast drawn through
+//! refrast-render's visibility buffer, any other through its list of fragments.
+
+use refrast::pipeline::Framebuffer;
+use refrast::{Draw, DrawError, Fragment, Rasterizer, ReferenceConfig};
+use refrast_fast::{Fast, FastConfig};
+use refrast_render::{Job, ShadingRasterizer};
+
+use crate::options::{Failure, Prepared, rasterizer};
+
+/// The implementations `I` steps through, in order: the reference, the fast one, the course
+/// labs, then two mutants whose fill-rule faults `overdraw` shows on shared edges.
+pub const CYCLE: [&str; 7] = [
+    "reference",
+    "fast",
+    "lab000",
+    "lab002-scanline",
+    "lab004-lineeq",
+    "mutant:inclusive-edges",
+    "mutant:exclusive-edges",
+];
+
+/// refrast-fast's `Fast::render`, which depth-tests and shades as it rasterizes, as
+/// refrast-render's [`ShadingRasterizer`].
+struct FastShading<'a>(&'a mut Fast);
+
+impl ShadingRasterizer for FastShading<'_> {
+    fn rasterize_shaded<C, F>(
+        &mut self,
+        draw: &Draw,
+        depth: &mut [f32],
+        color: &mut [C],
+        shade: F,
+    ) -> Result<(), DrawError>
+    where
+        C: Send,
+        F: Fn(&Fragment) -> Option<C> + Sync,
+    {
+        self.0.render(draw, depth, color, shade)
+    }
+}
+
+/// How a frame gets its triangles drawn.
+pub enum Drawer {
+    /// refrast-fast, which depth-tests and shades as it rasterizes.
+    Fast(Fast),
+    /// Any rasterizer, through its list of fragments.
+    Fragments(Box<dyn Rasterizer>),
+}
+
+/// The rasterizer `name`: `fast` with `threads` threads, any other through `refrast render`'s lookup.
+pub fn build(name: &str, scene: &Prepared, threads: usize) -> Result<Drawer, Failure> {
+    if name == "fast" {
+        return Ok(Drawer::Fast(Fast::new(FastConfig {
+            reference: ReferenceConfig::default(),
+            threads,
+        })));
+    }
+    rasterizer(name, &scene.setup).map(Drawer::Fragments)
+}
+
+impl Drawer {
+    /// Clears `target` and draws `job` into it.
+    pub fn draw(&mut self, job: &Job<'_>, target: &mut Framebuffer) -> Result<(), DrawError> {
+        match self {
+            // The same pixels as `render` (refrast-render's tests compare them), with no list
+            // of fragments to build and sort, and each pixel shaded once.
+            Self::Fast(fast) => refrast_render::render_shaded(&mut FastShading(fast), job, target),
+            Self::Fragments(r) => refrast_render::render(r.as_mut(), job, target).map(|_| ()),
+        }
+    }
+}

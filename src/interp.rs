@@ -68,11 +68,12 @@ pub fn interpolate<const N: usize>(corners: [&Varyings; N], s: [f64; N]) -> Bary
         .zip(q)
         .map(|(c, qi)| c.barycentric * (qi / q_sum))
         .sum();
-    let screen = corners
-        .iter()
-        .zip(s)
-        .map(|(c, si)| c.screen.map(|b| b * si))
-        .sum();
+    // `Option`'s `sum` (`None` if a corner has none, else `0 + t₀ + t₁ + …`), written out: the
+    // iterator form stopped being inlined into fast's per-sample loop.
+    let mut screen = Some(DVec3::ZERO);
+    for (c, si) in corners.iter().zip(s) {
+        screen = screen.zip(c.screen).map(|(sum, b)| sum + b * si);
+    }
     Barycentrics { perspective, screen }
 }
 

@@ -120,7 +120,7 @@ fn draw_in_tile<S: Sink>(
     if let Some(single) = &t.single {
         let varyings = single.varyings();
         let corners = Corners::whole(t.primitive, t.front_facing, single.area2, &varyings);
-        single.steps.traverse(rect, |row| sink.covered_row(&corners, row));
+        single.steps.traverse(rect, |row| sink.take_row(&corners, row));
         return;
     }
     let fans = &chunk.fans[t.fans.start as usize..t.fans.end as usize];

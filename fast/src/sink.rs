@@ -132,12 +132,29 @@ pub(crate) trait Sink: Send {
     /// Takes one covered sample.
     fn covered(&mut self, sample: &Covered<'_>);
 
-    /// Takes the covered lanes of `row` of a triangle with `corners`, in order.
+    /// Takes the covered lanes of `row` of a triangle with `corners`, in order: one by one
+    /// when there are few, else as a row.
     #[inline]
-    fn covered_row(&mut self, corners: &Corners<'_>, row: &Row) {
+    fn take_row(&mut self, corners: &Corners<'_>, row: &Row) {
+        if row.mask.count_ones() < FEW {
+            self.covered_lanes(corners, row);
+        } else {
+            self.covered_row(corners, row);
+        }
+    }
+
+    /// Takes the covered lanes of `row`, one sample at a time.
+    #[inline]
+    fn covered_lanes(&mut self, corners: &Corners<'_>, row: &Row) {
         Row::for_each_lane(row.mask, |lane| {
             self.covered(&corners.sample(row.x0 + lane, row.y, row.values_at(lane)));
         });
+    }
+
+    /// Takes a row of at least [`FEW`] covered lanes; one at a time unless the sink does better.
+    #[inline]
+    fn covered_row(&mut self, corners: &Corners<'_>, row: &Row) {
+        self.covered_lanes(corners, row);
     }
 }
 
@@ -196,11 +213,6 @@ impl Sink for ResolveBand<'_> {
 
     #[inline]
     fn covered_row(&mut self, corners: &Corners<'_>, row: &Row) {
-        if row.mask.count_ones() < FEW {
-            return Row::for_each_lane(row.mask, |lane| {
-                self.covered(&corners.sample(row.x0 + lane, row.y, row.values_at(lane)));
-            });
-        }
         let depths = corners.row_depths(row);
         let lanes = self.rows.lanes(row);
         let (depth, primitive) = (&mut self.depth[lanes.clone()], &mut self.primitive[lanes]);
@@ -250,11 +262,6 @@ impl<C: Send, F: Fn(&Fragment) -> Option<C> + Sync> Sink for ShadeBand<'_, C, F>
     /// per-sample order of work.
     #[inline]
     fn covered_row(&mut self, corners: &Corners<'_>, row: &Row) {
-        if row.mask.count_ones() < FEW {
-            return Row::for_each_lane(row.mask, |lane| {
-                self.covered(&corners.sample(row.x0 + lane, row.y, row.values_at(lane)));
-            });
-        }
         let depths = corners.row_depths(row);
         let lanes = self.rows.lanes(row);
         let (depth, color) = (&mut self.depth[lanes.clone()], &mut self.color[lanes]);

@@ -298,3 +298,46 @@ fn differential_fuzz_seeds_pass() {
     }
     assert!(passed > 0, "no seed decoded");
 }
+
+/// Found by `meshes_match_the_reference`: a triangle whose corners' outcodes say "cut" can be
+/// clipped to nothing (here by the near plane, with w < 0 corners), and then draws nothing,
+/// where a first version asserted it always left a polygon.
+#[test]
+fn a_triangle_the_outcodes_call_cut_can_be_clipped_to_nothing() {
+    let positions = vec![
+        [0.6083917, 0.75226825, -0.63448983, -0.60517853],
+        [0.036888298, -0.3798176, 0.43475032, 0.38603845],
+        [1.317501, -1.3182373, 1.3804243, 1.249443],
+        [1.2958847, -0.016650936, -1.3418539, -0.94055575],
+        [-0.024924818, 0.027955057, 0.23239012, 0.15759923],
+        [1.7626817, -0.31033516, 1.9233767, 1.4187059],
+        [1.0501438, -1.166624, -1.5352421, -0.83389395],
+        [0.07506698, 0.49553493, 0.7884813, 0.45015022],
+        [1.5468676, 1.4580411, 2.3415408, 1.3396623],
+    ];
+    let triangles = vec![
+        [0, 1, 4],
+        [0, 4, 3],
+        [1, 2, 5],
+        [1, 5, 4],
+        [3, 4, 7],
+        [3, 7, 6],
+        [4, 5, 8],
+        [4, 8, 7],
+    ];
+    let mut draw = Draw::new(Viewport::new(1, 1).unwrap(), positions, triangles);
+    draw.state = DrawState {
+        cull: CullMode::None,
+        front_face: FrontFace::CounterClockwise,
+        depth: DepthState {
+            compare: CompareOp::Less,
+            write: false,
+            clear: 1.0,
+        },
+        depth_range: DepthRange::ZeroToOne,
+        clip_far: true,
+    };
+    for threads in [1, 2] {
+        agree(&draw, threads).unwrap();
+    }
+}

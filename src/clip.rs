@@ -47,6 +47,22 @@ pub enum ClipMode {
     GuardBand,
     /// Clip against all six planes of the view volume, as the Sutherland–Hodgman lab does.
     Full,
+    /// Clip x/y this many pixels beyond each side of the viewport: a guard band of that reach
+    /// (at most [`GUARD_BAND_REACH`](crate::GUARD_BAND_REACH); `Reach(0)` clips as `Full` does).
+    Reach(u32),
+}
+
+impl ClipMode {
+    /// How far beyond each side of any viewport a triangle may reach unclipped in x/y, in
+    /// pixels: what a profile declares as its guard band.
+    #[must_use]
+    pub fn reach(self) -> u32 {
+        match self {
+            Self::GuardBand => crate::GUARD_BAND_REACH,
+            Self::Full => 0,
+            Self::Reach(px) => px.min(crate::GUARD_BAND_REACH),
+        }
+    }
 }
 
 /// One plane of the clip volume; a point is inside when its distance is `≥ 0`.
@@ -87,6 +103,7 @@ pub fn clip_planes(mode: ClipMode, viewport: Viewport, far: bool, range: DepthRa
     let (kx, ky) = match mode {
         ClipMode::GuardBand => viewport.guard_band_ndc(),
         ClipMode::Full => (1.0, 1.0),
+        ClipMode::Reach(_) => viewport.reach_ndc(mode.reach()),
     };
     let mut planes = vec![ClipPlane::Near(range)];
     if far {

@@ -87,10 +87,16 @@ impl FixedPoint {
     /// Snaps a raster-space point, or `None` when a coordinate is not finite or exceeds [`COORD_LIMIT`].
     #[must_use]
     pub fn snap(x: f64, y: f64, bits: SubpixelBits) -> Option<Self> {
-        // `snap` stays within COORD_LIMIT pixels, hence within LIMIT units at any grid.
+        Self::snap_rounding(x, y, bits, SnapRounding::NearestEven)
+    }
+
+    /// [`snap`](Self::snap) with another rounding.
+    #[must_use]
+    pub fn snap_rounding(x: f64, y: f64, bits: SubpixelBits, rounding: SnapRounding) -> Option<Self> {
+        // Snapping stays within COORD_LIMIT pixels, hence within LIMIT units at any grid.
         Some(Self {
-            x: snap(x, bits)?,
-            y: snap(y, bits)?,
+            x: rounding.snap(x, bits)?,
+            y: rounding.snap(y, bits)?,
         })
     }
 
@@ -126,17 +132,66 @@ impl FixedPoint {
 /// `None` when `v` is NaN, infinite or beyond [`COORD_LIMIT`].
 #[must_use]
 pub fn snap(v: f64, bits: SubpixelBits) -> Option<i64> {
-    if !v.is_finite() || v.abs() > COORD_LIMIT {
-        return None;
+    SnapRounding::NearestEven.snap(v, bits)
+}
+
+/// How a raster coordinate becomes a grid point: refrast's convention and the others a profile
+/// may declare, so that the reference can play any of them (`refrast impls`, the restricted
+/// configurations).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum SnapRounding {
+    /// To the nearest grid point, halves to even (D3D11 §3.2.4.1): refrast's convention.
+    #[default]
+    NearestEven,
+    /// To the nearest grid point, halves away from zero (dEQP's reference renderer); Vulkan
+    /// leaves ties to the implementation.
+    NearestAwayFromZero,
+    /// Down to the grid point at or below: always within one grid step of the exact value, on
+    /// the far side of it half the time.
+    Floor,
+}
+
+impl SnapRounding {
+    /// `v` pixels in grid units; `None` when `v` is NaN, infinite or beyond [`COORD_LIMIT`].
+    #[must_use]
+    pub fn snap(self, v: f64, bits: SubpixelBits) -> Option<i64> {
+        if !v.is_finite() || v.abs() > COORD_LIMIT {
+            return None;
+        }
+        // Exact: scaling by a power of two only changes the exponent.
+        let scaled = v * bits.one() as f64;
+        Some(match self {
+            Self::NearestEven => scaled.round_ties_even(),
+            Self::NearestAwayFromZero => scaled.round(),
+            Self::Floor => scaled.floor(),
+        } as i64)
     }
-    // Exact: scaling by a power of two only changes the exponent.
-    let scaled = v * bits.one() as f64;
-    Some(scaled.round_ties_even() as i64)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Each rounding at a tie, just past one, and on a grid point (4 bits: 1/16 px).
+    #[test]
+    fn roundings_differ_only_where_they_should() {
+        let bits = SubpixelBits::new(4).expect("4 bits");
+        let at = |r: SnapRounding, v: f64| r.snap(v, bits).expect("in range");
+        let tie = 2.5 / 16.0;
+        assert_eq!(at(SnapRounding::NearestEven, tie), 2);
+        assert_eq!(at(SnapRounding::NearestAwayFromZero, tie), 3);
+        assert_eq!(at(SnapRounding::NearestAwayFromZero, -tie), -3);
+        assert_eq!(at(SnapRounding::Floor, 2.9 / 16.0), 2);
+        assert_eq!(at(SnapRounding::Floor, -2.1 / 16.0), -3);
+        for r in [
+            SnapRounding::NearestEven,
+            SnapRounding::NearestAwayFromZero,
+            SnapRounding::Floor,
+        ] {
+            assert_eq!(at(r, 3.0 / 16.0), 3);
+            assert_eq!(r.snap(f64::NAN, bits), None);
+        }
+    }
 
     #[test]
     fn a_snapped_point_reads_back_its_units() {

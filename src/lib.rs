@@ -22,10 +22,10 @@
 //! | what | where | key items |
 //! |---|---|---|
 //! | the contract | `rasterizer.rs` | [`Rasterizer`], [`Draw`], [`DrawState`], [`Fragment`], [`Resolved`] |
-//! | what an implementation declares | `profile.rs` | [`Profile`], [`Snapping`], [`Features`], [`Supported`] |
+//! | what an implementation declares | `profile.rs`, `features.rs` | [`Profile`], [`Snapping`], [`Spec`], [`Features`], [`Supported`], [`SnapAccuracy`] |
 //! | state | `setup.rs`, `depth.rs` | [`CullMode`], [`FrontFace`], [`DepthState`], [`CompareOp`], [`DepthRange`] |
 //! | the reference | `reference.rs` | [`Reference`], [`ReferenceConfig`], [`Traversal`], [`ClipMode`], [`DrawStats`], [`Sample`] |
-//! | fixed point | `fixed.rs` | [`SubpixelBits`], [`FixedPoint`], [`snap`], [`COORD_LIMIT`] |
+//! | fixed point | `fixed.rs` | [`SubpixelBits`], [`FixedPoint`], [`snap`], [`SnapRounding`], [`COORD_LIMIT`] |
 //! | viewport | `viewport.rs` | [`Viewport`], [`MAX_VIEWPORT`] |
 //! | edge functions, fill rule | `edge.rs` | [`orient2d`], [`is_top_left`], [`FillConvention`] |
 //! | errors | `error.rs` | [`DrawError`], [`ConfigError`] |
@@ -52,7 +52,9 @@
 //! - **Raster space**: origin top-left, x right, y down; pixel `(x, y)` has its sample at
 //!   `(x + ½, y + ½)` ([`FixedPoint::sample`]).
 //! - **Viewport transform**: `x = (x_ndc + 1)/2 · W`, `y = (1 − y_ndc)/2 · H` ([`Viewport::to_raster`]).
-//! - **Snapping**: to `2^-bits` pixel, 8 bits by default (1..=8 accepted), round half to even ([`snap`]).
+//! - **Snapping**: to `2^-bits` pixel, 8 bits by default (1..=8 accepted), round half to even
+//!   ([`snap`]; other roundings are options, [`SnapRounding`], so the reference can play any
+//!   profile the suite accepts).
 //! - **Valid range**: snapped coordinates within ±[`COORD_LIMIT`] = ±32768 px, so edge functions
 //!   are exact in `i64`; viewports up to [`MAX_VIEWPORT`] = 16384 px a side.
 //! - **Edge functions**: [`orient2d`] in exact integers, positive for clockwise on screen.
@@ -90,6 +92,7 @@ mod clip;
 mod depth;
 mod edge;
 mod error;
+mod features;
 mod fixed;
 mod interp;
 mod line;
@@ -108,8 +111,9 @@ pub use clip::ClipMode;
 pub use depth::{CompareOp, DepthRange, DepthState};
 pub use edge::{FillConvention, is_top_left, orient2d};
 pub use error::{ConfigError, DrawError};
-pub use fixed::{COORD_LIMIT, FixedPoint, SubpixelBits, snap};
-pub use profile::{DepthConvention, Features, Profile, Setting, Snapping, Supported};
+pub use features::{Features, Setting, SnapAccuracy, Supported};
+pub use fixed::{COORD_LIMIT, FixedPoint, SnapRounding, SubpixelBits, snap};
+pub use profile::{DepthConvention, Profile, Snapping, Spec};
 pub use rasterizer::{Draw, DrawState, Fragment, Rasterizer, Resolved};
 pub use reference::{DrawStats, Reference, ReferenceConfig, Sample, Traversal};
 pub use setup::{CullMode, FrontFace, Winding};

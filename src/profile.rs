@@ -1,14 +1,12 @@
-//! What an implementation declares about itself: its conventions, its tolerance and the draw
-//! states it supports. The suite judges it by these, and sends it only states it supports.
+//! What an implementation declares about itself: its conventions, the specification it claims,
+//! its tolerance and the draw states it supports ([`Features`]). The suite judges it by these,
+//! and sends it only states it supports.
 
 use std::fmt;
-use std::marker::PhantomData;
 
-use crate::depth::{CompareOp, DepthRange};
 use crate::edge::FillConvention;
+use crate::features::Features;
 use crate::rasterizer::DrawState;
-use crate::setup::{CullMode, FrontFace};
-use crate::viewport::GUARD_BAND_REACH;
 
 /// How an implementation places vertices before it decides coverage.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -58,169 +56,53 @@ pub enum DepthConvention {
     Other,
 }
 
-/// A draw-state setting with a few values, each of which an implementation may support.
-pub trait Setting: Copy + PartialEq + fmt::Debug + 'static {
-    /// Every value, the one to fall back on first.
-    const VALUES: &'static [Self];
+/// The specification an implementation claims to follow: a rule checking something that
+/// specification leaves undefined or does not require reports a failure as beyond it, not as a
+/// failure of conformance.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum Spec {
+    /// refrast's own conventions (lib.rs): every rule is required.
+    #[default]
+    Refrast,
+    /// Vulkan 1.4.
+    Vulkan,
+    /// OpenGL 4.6 (and OpenGL ES 3, which says the same of rasterization).
+    OpenGl,
+    /// Direct3D 11.3's functional specification.
+    D3d11,
 }
 
-impl Setting for CullMode {
-    const VALUES: &'static [Self] = &[Self::None, Self::Back, Self::Front];
-}
+impl Spec {
+    /// Every specification, refrast's first.
+    pub const ALL: [Spec; 4] = [Self::Refrast, Self::Vulkan, Self::OpenGl, Self::D3d11];
 
-impl Setting for FrontFace {
-    const VALUES: &'static [Self] = &[Self::CounterClockwise, Self::Clockwise];
-}
-
-impl Setting for CompareOp {
-    const VALUES: &'static [Self] = &[
-        Self::Less,
-        Self::LessOrEqual,
-        Self::Greater,
-        Self::GreaterOrEqual,
-        Self::Equal,
-        Self::NotEqual,
-        Self::Always,
-        Self::Never,
-    ];
-}
-
-impl Setting for DepthRange {
-    const VALUES: &'static [Self] = &[Self::ZeroToOne, Self::NegativeOneToOne];
-}
-
-/// On and off, for switches such as far clipping and depth writes.
-impl Setting for bool {
-    const VALUES: &'static [Self] = &[false, true];
-}
-
-/// The values of one setting an implementation supports.
-pub struct Supported<T: Setting> {
-    mask: u16,
-    setting: PhantomData<fn() -> T>,
-}
-
-impl<T: Setting> Supported<T> {
-    /// Every value.
-    pub const ALL: Self = Self {
-        mask: (1 << T::VALUES.len()) - 1,
-        setting: PhantomData,
-    };
-
-    /// Exactly `values`.
+    /// The name reports, `--spec` and the pipe protocol use.
     #[must_use]
-    pub fn only(values: &[T]) -> Self {
-        let mask = T::VALUES
-            .iter()
-            .enumerate()
-            .filter(|(_, v)| values.contains(v))
-            .fold(0, |mask, (i, _)| mask | 1 << i);
-        Self {
-            mask,
-            setting: PhantomData,
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Refrast => "refrast",
+            Self::Vulkan => "vulkan",
+            Self::OpenGl => "opengl",
+            Self::D3d11 => "d3d11",
         }
     }
 
-    /// Whether `value` is supported.
+    /// The specification called `name` ([`Spec::name`]).
     #[must_use]
-    pub fn contains(self, value: T) -> bool {
-        T::VALUES
-            .iter()
-            .position(|v| *v == value)
-            .is_some_and(|i| self.mask & (1 << i) != 0)
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|s| s.name() == name)
     }
 
-    /// The supported values, in [`Setting::VALUES`] order.
-    pub fn values(self) -> impl Iterator<Item = T> {
-        T::VALUES.iter().copied().filter(move |&v| self.contains(v))
-    }
-
-    /// `value` when supported, else the first supported value (`value` when there is none).
+    /// As a sentence names it: "Vulkan 1.4".
     #[must_use]
-    pub fn fit(self, value: T) -> T {
-        if self.contains(value) {
-            value
-        } else {
-            self.values().next().unwrap_or(value)
+    pub fn title(self) -> &'static str {
+        match self {
+            Self::Refrast => "refrast's conventions",
+            Self::Vulkan => "Vulkan 1.4",
+            Self::OpenGl => "OpenGL 4.6",
+            Self::D3d11 => "D3D11.3",
         }
     }
-}
-
-impl<T: Setting> Clone for Supported<T> {
-    fn clone(&self) -> Self {
-        *self
-    }
-}
-
-impl<T: Setting> Copy for Supported<T> {}
-
-impl<T: Setting> PartialEq for Supported<T> {
-    fn eq(&self, other: &Self) -> bool {
-        self.mask == other.mask
-    }
-}
-
-impl<T: Setting> Eq for Supported<T> {}
-
-impl<T: Setting> std::hash::Hash for Supported<T> {
-    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
-        self.mask.hash(state);
-    }
-}
-
-impl<T: Setting> fmt::Debug for Supported<T> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_set().entries(self.values()).finish()
-    }
-}
-
-/// Optional abilities and supported states; a rule needing one that is absent is "not
-/// applicable", never "passed", and no draw asks for a state that is not supported.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct Features {
-    /// Fragments carry perspective-correct barycentrics.
-    pub perspective_barycentrics: bool,
-    /// Fragments carry screen-space barycentrics.
-    pub screen_barycentrics: bool,
-    /// The cull modes it implements (`None` at least).
-    pub cull_modes: Supported<CullMode>,
-    /// The front faces it can be told.
-    pub front_faces: Supported<FrontFace>,
-    /// `resolve` runs its own depth test, so the depth-test rules judge it.
-    pub depth_test: bool,
-    /// The depth compare ops of its depth test.
-    pub compare_ops: Supported<CompareOp>,
-    /// Depth writes on (`true`) and off (`false`).
-    pub depth_writes: Supported<bool>,
-    /// Far-plane clipping off (`false`: depth clamped instead) and on (`true`).
-    pub far_clipping: Supported<bool>,
-    /// The clip volumes' z ranges.
-    pub depth_ranges: Supported<DepthRange>,
-    /// How far beyond each side of the viewport, in pixels, a triangle may reach while x/y
-    /// clipping still moves no edge inside it (a guard band, so its coverage can be exact); 0 when
-    /// any reach outside may move one.
-    pub guard_band: u32,
-    /// Snapping rounds a coordinate exactly halfway between two grid points to the even one
-    /// (D3D11 §3.2.4.1); Vulkan leaves ties to the implementation, so without this claim the
-    /// suite moves every vertex off such a tie before drawing.
-    pub ties_to_even: bool,
-}
-
-impl Features {
-    /// Everything the reference does.
-    pub const ALL: Features = Features {
-        perspective_barycentrics: true,
-        screen_barycentrics: true,
-        cull_modes: Supported::ALL,
-        front_faces: Supported::ALL,
-        depth_test: true,
-        compare_ops: Supported::ALL,
-        depth_writes: Supported::ALL,
-        far_clipping: Supported::ALL,
-        depth_ranges: Supported::ALL,
-        guard_band: GUARD_BAND_REACH,
-        ties_to_even: true,
-    };
 }
 
 /// What an implementation declares about itself; the suite checks it against this.
@@ -249,6 +131,8 @@ pub struct Profile {
     pub precision_bits: u8,
     /// Optional abilities and supported states.
     pub features: Features,
+    /// The specification it claims to follow.
+    pub spec: Spec,
 }
 
 impl Profile {
@@ -257,6 +141,30 @@ impl Profile {
     #[must_use]
     pub fn band_px(&self) -> f64 {
         f64::from(self.tolerance_subpixels.max(1)) * self.snapping.unit_px()
+    }
+
+    /// `Err` with what to declare when the suite cannot judge this profile at all: a setting
+    /// with no supported value (no draw could be sent), or a grid finer than the 16 bits the
+    /// oracles snap to. Certification refuses such a profile before any rule runs.
+    pub fn judgeable(&self) -> Result<(), String> {
+        let mut problems: Vec<String> = self
+            .features
+            .empty_settings()
+            .into_iter()
+            .map(|what| format!("no value of {what}"))
+            .collect();
+        if let Snapping::Grid(bits) = self.snapping
+            && bits > 16
+        {
+            problems.push(format!(
+                "a grid of {bits} subpixel bits, finer than the 16 the oracles snap to (declare Snapping::Float)"
+            ));
+        }
+        if problems.is_empty() {
+            Ok(())
+        } else {
+            Err(format!("the profile declares {}", problems.join("; ")))
+        }
     }
 
     /// Whether every setting of `state` is supported.
@@ -283,16 +191,9 @@ impl Profile {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Two sets are equal when they hold the same settings, whatever order they were listed in
-    /// (`Profile` and `Features` derive their equality from it).
-    #[test]
-    fn sets_are_equal_by_their_settings() {
-        let both = Supported::only(&[CullMode::Back, CullMode::None]);
-        assert_eq!(both, Supported::only(&[CullMode::None, CullMode::Back]));
-        assert_ne!(both, Supported::only(&[CullMode::None]));
-        assert_ne!(both, Supported::<CullMode>::ALL);
-    }
+    use crate::depth::CompareOp;
+    use crate::features::Supported;
+    use crate::setup::{CullMode, FrontFace};
 
     /// The words `certify` prints for a profile's snapping (README, "Certified implementations").
     #[test]
@@ -301,29 +202,8 @@ mod tests {
         assert_eq!(Snapping::Float.to_string(), "no grid (float)");
     }
 
-    #[test]
-    fn a_set_keeps_what_it_supports_and_falls_back_in_order() {
-        let ops = Supported::only(&[CompareOp::GreaterOrEqual, CompareOp::LessOrEqual]);
-        assert!(ops.contains(CompareOp::LessOrEqual));
-        assert!(!ops.contains(CompareOp::Less));
-        assert_eq!(ops.fit(CompareOp::Less), CompareOp::LessOrEqual);
-        assert_eq!(ops.fit(CompareOp::GreaterOrEqual), CompareOp::GreaterOrEqual);
-        assert_eq!(
-            ops.values().collect::<Vec<_>>(),
-            [CompareOp::LessOrEqual, CompareOp::GreaterOrEqual]
-        );
-        assert_eq!(format!("{ops:?}"), "{LessOrEqual, GreaterOrEqual}");
-        let none: Supported<bool> = Supported::only(&[]);
-        assert!(!none.fit(false));
-        assert!(Supported::<CompareOp>::ALL.contains(CompareOp::Never));
-    }
-
-    #[test]
-    fn fitting_a_state_changes_only_what_is_unsupported() {
-        let mut features = Features::ALL;
-        features.far_clipping = Supported::only(&[true]);
-        features.front_faces = Supported::only(&[FrontFace::CounterClockwise]);
-        let profile = Profile {
+    fn gpu(features: Features) -> Profile {
+        Profile {
             name: "gpu".into(),
             snapping: Snapping::Grid(8),
             fill: Some(FillConvention::TopLeft),
@@ -331,7 +211,16 @@ mod tests {
             tolerance_subpixels: 1,
             precision_bits: 18,
             features,
-        };
+            spec: Spec::Vulkan,
+        }
+    }
+
+    #[test]
+    fn fitting_a_state_changes_only_what_is_unsupported() {
+        let mut features = Features::ALL;
+        features.far_clipping = Supported::only(&[true]);
+        features.front_faces = Supported::only(&[FrontFace::CounterClockwise]);
+        let profile = gpu(features);
         let state = DrawState {
             front_face: FrontFace::Clockwise,
             cull: CullMode::Front,
@@ -350,5 +239,40 @@ mod tests {
             ..profile
         };
         assert_eq!(float.band_px(), 4.0 / 256.0);
+    }
+
+    /// A profile with a setting left empty, or a grid the oracles cannot snap to, is refused
+    /// with what to declare; one supported value of each is enough.
+    #[test]
+    fn a_profile_is_judgeable_with_one_value_of_each_setting() {
+        let one = Features {
+            cull_modes: Supported::only(&[CullMode::Back]),
+            front_faces: Supported::only(&[FrontFace::Clockwise]),
+            compare_ops: Supported::only(&[CompareOp::Less]),
+            depth_writes: Supported::only(&[true]),
+            far_clipping: Supported::only(&[false]),
+            ..Features::ALL
+        };
+        assert_eq!(gpu(one).judgeable(), Ok(()));
+        let none = Features {
+            cull_modes: Supported::only(&[]),
+            ..one
+        };
+        let why = gpu(none).judgeable().expect_err("no cull mode");
+        assert!(why.contains("no value of cull_modes"), "{why}");
+        let fine = Profile {
+            snapping: Snapping::Grid(20),
+            ..gpu(one)
+        };
+        assert!(fine.judgeable().expect_err("20 bits").contains("Snapping::Float"));
+    }
+
+    /// Each specification reads back from its name.
+    #[test]
+    fn specifications_are_named_both_ways() {
+        for spec in Spec::ALL {
+            assert_eq!(Spec::from_name(spec.name()), Some(spec));
+        }
+        assert_eq!(Spec::from_name("metal"), None);
     }
 }

@@ -8,7 +8,7 @@ use glam::{DVec3, DVec4};
 
 use crate::clip::ClipVertex;
 use crate::depth::DepthRange;
-use crate::fixed::{FixedPoint, SubpixelBits};
+use crate::fixed::{FixedPoint, SnapRounding, SubpixelBits};
 use crate::interp::Varyings;
 use crate::viewport::Viewport;
 
@@ -66,6 +66,8 @@ pub struct ViewportTransform {
     pub viewport: Viewport,
     /// The snapping grid.
     pub bits: SubpixelBits,
+    /// How a coordinate becomes a grid point.
+    pub rounding: SnapRounding,
     /// How z/w maps to window depth.
     pub depth_range: DepthRange,
 }
@@ -85,7 +87,7 @@ impl ViewportTransform {
         }
         let (x, y) = self.viewport.to_raster(p.x / p.w, p.y / p.w);
         Some(ProjectedPoint {
-            position: FixedPoint::snap(x, y, self.bits)?,
+            position: FixedPoint::snap_rounding(x, y, self.bits, self.rounding)?,
             depth: self.depth_range.window_depth(p.z, p.w),
             inv_w: 1.0 / p.w,
         })
@@ -143,6 +145,7 @@ pub(crate) mod tests {
         ViewportTransform {
             viewport: Viewport::new(8, 8).expect("8×8 is a valid viewport"),
             bits: SubpixelBits::DEFAULT,
+            rounding: SnapRounding::NearestEven,
             depth_range: DepthRange::ZeroToOne,
         }
     }

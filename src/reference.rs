@@ -4,14 +4,14 @@ use crate::clip::{ClipMode, ClipOutcome, ClipPlane, ClipVertex, assemble, clip_p
 use crate::depth::fragment_depth;
 use crate::edge::FillConvention;
 use crate::error::DrawError;
-use crate::fixed::SubpixelBits;
+use crate::features::{Features, SnapAccuracy};
+use crate::fixed::{SnapRounding, SubpixelBits};
 use crate::interp::{Varyings, interpolate, interpolate_depth, screen_weights};
-use crate::profile::{DepthConvention, Features, Profile, Snapping};
+use crate::profile::{DepthConvention, Profile, Snapping, Spec};
 use crate::project::{RasterVertex, ViewportTransform, input_w};
 use crate::rasterizer::{Draw, Fragment, Rasterizer};
 use crate::setup::{SnappedTriangle, ZeroArea, drawn_winding, snap_before_clipping};
 use crate::traverse::{FanTriangle, Hit, PixelRect, build_fan, traverse};
-use crate::viewport::GUARD_BAND_REACH;
 
 /// Which pixels are tested against a triangle; both give identical output.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -28,9 +28,11 @@ pub enum Traversal {
 pub struct ReferenceConfig {
     /// Subpixel precision of snapping.
     pub subpixel_bits: SubpixelBits,
+    /// How a coordinate becomes a grid point (half to even, refrast's convention, by default).
+    pub snap_rounding: SnapRounding,
     /// Which edges own the samples on them.
     pub fill: FillConvention,
-    /// Guard band (default) or full six-plane clipping for x and y.
+    /// Guard band (default), a band of another reach, or full six-plane clipping for x and y.
     pub clip: ClipMode,
     /// Bounding-box (default) or whole-viewport traversal.
     pub traversal: Traversal,
@@ -146,6 +148,7 @@ impl Reference {
             transform: ViewportTransform {
                 viewport: draw.viewport,
                 bits: self.config.subpixel_bits,
+                rounding: self.config.snap_rounding,
                 depth_range: draw.state.depth_range,
             },
         };
@@ -322,12 +325,15 @@ impl Rasterizer for Reference {
             // f64 on exact edge values, rounded to f32 once: within 2^-24, claimed with room.
             precision_bits: 18,
             features: Features {
-                guard_band: match self.config.clip {
-                    ClipMode::GuardBand => GUARD_BAND_REACH,
-                    ClipMode::Full => 0,
+                guard_band: self.config.clip.reach(),
+                ties_to_even: self.config.snap_rounding == SnapRounding::NearestEven,
+                snap: match self.config.snap_rounding {
+                    SnapRounding::NearestEven | SnapRounding::NearestAwayFromZero => SnapAccuracy::Nearest,
+                    SnapRounding::Floor => SnapAccuracy::WithinOneStep,
                 },
                 ..Features::ALL
             },
+            spec: Spec::Refrast,
         }
     }
 

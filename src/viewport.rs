@@ -78,6 +78,14 @@ impl Viewport {
         )
     }
 
+    /// The half extent in NDC units of a band reaching `px` pixels beyond each side: `|x| ≤ kx·w`
+    /// keeps x inside it.
+    #[must_use]
+    pub fn reach_ndc(self, px: u32) -> (f64, f64) {
+        let k = |side: u32| 1.0 + 2.0 * f64::from(px) / f64::from(side);
+        (k(self.width), k(self.height))
+    }
+
     /// The guard band's half extent in NDC units for x and y: `|x| ≤ gx·w` keeps x inside it.
     #[must_use]
     pub fn guard_band_ndc(self) -> (f64, f64) {
@@ -91,6 +99,17 @@ impl Viewport {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A band of reach `px` ends `px` pixels beyond each side of the viewport.
+    #[test]
+    fn a_reach_ends_its_pixels_beyond_each_side() {
+        for (w, h) in [(64, 32), (7, 1)] {
+            let vp = Viewport::new(w, h).expect("a valid viewport");
+            let (kx, ky) = vp.reach_ndc(64);
+            let (x, y) = vp.to_raster(kx, ky);
+            assert_eq!((x, y), (f64::from(w) + 64.0, -64.0), "{w}×{h}");
+        }
+    }
 
     /// The guard band's edge lies `GUARD_BAND` pixels from the viewport's centre on each axis,
     /// whatever the viewport's shape.

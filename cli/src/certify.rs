@@ -18,11 +18,29 @@ use progress::Progress;
 
 use crate::{all_builtins, find_builtin, say};
 
+/// The built-ins `pattern` names: one by its name, or every one a glob with `*` matches (in
+/// `refrast impls` order); an error that lists the names when none is found.
+fn find_builtins(pattern: &str) -> Result<Vec<BuiltIn>, String> {
+    if !pattern.contains('*') {
+        return find_builtin(pattern).map(|b| vec![b]);
+    }
+    let found: Vec<BuiltIn> = all_builtins()
+        .into_iter()
+        .filter(|b| matches(pattern, &b.name))
+        .collect();
+    if found.is_empty() {
+        return Err(format!(
+            "no implementation's name matches '{pattern}'; `refrast impls` lists them"
+        ));
+    }
+    Ok(found)
+}
+
 /// Arguments of `refrast certify`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// Implementation to certify (repeatable; see `refrast impls`) [default: every correct
-    /// built-in, unless --exec is given].
+    /// Implementation to certify (repeatable; see `refrast impls`), or a glob of their names
+    /// (`'restricted:*'`, `'mutant:*'`) [default: every correct built-in, unless --exec is given].
     #[arg(long = "impl", value_name = "NAME")]
     impls: Vec<String>,
     /// A rasterizer in any language to certify: the command that starts it, speaking the pipe
@@ -89,7 +107,7 @@ const DEFAULT_EXEC_BUDGET: Duration = Duration::from_secs(10);
 #[serde(untagged)]
 enum Entry {
     /// Certified: the report.
-    Certified(Report),
+    Certified(Box<Report>),
     /// A child that could not be started or did not complete its handshake: a failure.
     FailedToStart {
         /// The command line.
@@ -119,8 +137,8 @@ pub fn run(args: &Args) -> ExitCode {
     } else {
         let mut chosen = Vec::new();
         for name in &args.impls {
-            match find_builtin(name) {
-                Ok(b) => chosen.push(b),
+            match find_builtins(name) {
+                Ok(found) => chosen.extend(found),
                 Err(e) => {
                     eprintln!("error: {e}");
                     return ExitCode::from(2);
@@ -283,7 +301,7 @@ fn certify_in_process(b: &BuiltIn, options: &Options, out: &Progress) -> Entry {
         refrast_conformance::certify(rasterizer.as_mut(), options, progress)
     });
     summarise(out, &report, start.elapsed().as_secs_f64());
-    Entry::Certified(report)
+    Entry::Certified(Box::new(report))
 }
 
 /// Certifies a rasterizer in a child process, started once and reused, in this process: the
@@ -311,7 +329,7 @@ fn certify_exec(command: &str, options: &Options, out: &Progress) -> Entry {
             process.starts() - 1
         ));
     }
-    Entry::Certified(report)
+    Entry::Certified(Box::new(report))
 }
 
 /// Runs `certify` (which calls its argument after each rule) with a bar for `name` and a line
@@ -342,18 +360,27 @@ fn one_at_a_time(
     report
 }
 
-/// The closing lines of one implementation: tallies, time, profile.
+/// The closing lines of one implementation: tallies, time, profile; or why it was refused.
 fn summarise(out: &Progress, report: &Report, seconds: f64) {
     let p = &report.profile;
+    if let Some(why) = &report.refused {
+        out.line(&format!("{}: REFUSED: {why}\n", p.name));
+        return;
+    }
     let (pass, fail, na) = report.tally();
+    let beyond = match report.beyond_spec() {
+        0 => String::new(),
+        n => format!(", {n} beyond {}", p.spec),
+    };
     out.line(&format!(
-        "{}: {pass} passed, {fail} failed, {na} not applicable ({:.1} s); profile: {}, {}, depth {}, band {} px",
+        "{}: {pass} passed, {fail} failed{beyond}, {na} not applicable ({:.1} s); profile: {}, {}, depth {}, band {} px, claims {}",
         p.name,
         seconds,
         p.snapping,
         p.fill,
         p.depth,
-        p.band_px
+        p.band_px,
+        p.spec
     ));
     if !p.about.is_empty() {
         out.line(&format!("  reports itself as: {}", p.about));
@@ -388,10 +415,16 @@ fn print_rule(out: &Progress, r: &RuleReport) {
             "      not applicable: {}",
             r.message.as_deref().unwrap_or("")
         )),
-        Status::Fail => {
+        Status::Fail | Status::BeyondSpec => {
+            if let Some(note) = &r.spec_note {
+                out.line(&format!("      beyond the specification: {note}"));
+            }
             out.line(&format!("      {}", r.message.as_deref().unwrap_or("")));
             for detail in r.details.iter().skip(1) {
                 out.line(&format!("        {detail}"));
+            }
+            if let Some(hint) = &r.hint {
+                out.line(&format!("      hint: {hint}"));
             }
             if let Some(p) = &r.picture {
                 out.line(&format!("      picture: {}", p.display()));

@@ -68,17 +68,19 @@ fn main() -> ExitCode {
             ExitCode::SUCCESS
         }
         Command::Impls => {
-            for b in all_builtins() {
+            let all = all_builtins();
+            let width = all.iter().map(|b| b.name.chars().count()).max().unwrap_or(0);
+            for b in all {
                 let p = match b.build() {
                     Ok(r) => r.profile(),
                     Err(why) => {
-                        say(&format!("{:<22} unavailable here: {why}", b.name));
+                        say(&format!("{:<width$} unavailable here: {why}", b.name));
                         continue;
                     }
                 };
                 let kind = b.origin.label();
                 say(&format!(
-                    "{:<22} {}, {}, band {} px, {kind}: {}",
+                    "{:<width$} {}, {}, band {} px, {kind}: {}",
                     b.name,
                     p.snapping,
                     refrast_conformance::fill_name(p.fill),

@@ -98,6 +98,71 @@ fn python_topleft_passes_every_rule() {
     assert_eq!(with_status(&rules, "n/a"), "");
 }
 
+/// The Python client as a fixed-function rasterizer: one cull mode declared and used whatever a
+/// draw asks. It must still pass every rule, none of them n/a but the one that needs no culling
+/// (issue 26: it failed a dozen when the rules expected the coverage of no culling).
+#[test]
+fn python_topleft_with_one_cull_mode_passes_every_rule() {
+    if !have("python3") {
+        return;
+    }
+    for mode in ["back", "front"] {
+        let command = format!("python3 clients/python/topleft.py --cull {mode}");
+        let (code, rules) = certify(
+            &format!("topleft-cull-{mode}"),
+            &["--exec", &command, "--cases", "40"],
+        );
+        assert_eq!(code, 0, "--cull {mode}: {rules:#?}");
+        assert_eq!(with_status(&rules, "fail"), "", "--cull {mode}");
+        assert_eq!(with_status(&rules, "n/a"), "", "--cull {mode}");
+    }
+}
+
+/// A child declaring no cull mode at all cannot be judged: it fails to start with the line to
+/// fix, and the next implementation of the same run is still certified.
+#[test]
+fn a_child_declaring_no_cull_mode_is_refused_and_the_run_goes_on() {
+    if !have("python3") {
+        return;
+    }
+    let json = Path::new(env!("CARGO_TARGET_TMPDIR")).join("refused.json");
+    let out = Command::new(REFRAST)
+        .current_dir(root())
+        .args([
+            "certify",
+            "--impl",
+            "reference",
+            "--rule",
+            "fill.fan.*",
+            "--cases",
+            "10",
+        ])
+        .args([
+            "--exec",
+            "python3 -c \"print('refrast-protocol 1'); print('cull'); print('ready')\"",
+        ])
+        .arg("--json")
+        .arg(&json)
+        .arg("--report")
+        .arg(Path::new(env!("CARGO_TARGET_TMPDIR")).join("refused"))
+        .output()
+        .expect("refrast runs");
+    assert_eq!(
+        out.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&out.stdout)
+    );
+    let report: Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).expect("a report")).expect("JSON");
+    assert_eq!(
+        report[0]["rules"][0]["status"], "pass",
+        "the reference, before it, is certified"
+    );
+    let why = report[1]["failed_to_start"].as_str().unwrap_or_default();
+    assert!(why.contains("cull") && why.contains("one or more of"), "{why}");
+}
+
 #[test]
 fn python_lab004_gets_the_verdicts_of_seed_004() {
     if !have("python3") {
@@ -113,8 +178,8 @@ fn python_lab004_gets_the_verdicts_of_seed_004() {
     assert_eq!(
         with_status(&rules, "fail"),
         "fill.mesh.exactly-once fill.fan.exactly-once fill.rotated-quad.exactly-once \
-         fill.projected-mesh.exactly-once fill.interior.matches-raycast bary.screen.reconstructs-sample \
-         depth.screen-linear.matches-raycast clip.interior.matches-raycast clip.mesh.watertight \
+         fill.projected-mesh.exactly-once fill.interior.matches-raycast bary.vertex.one \
+         bary.screen.reconstructs-sample depth.screen-linear.matches-raycast clip.interior.matches-raycast clip.mesh.watertight \
          clip.crossing-quad.watertight clip.far.respected clip.gl-range.matches-raycast \
          meta.reversal.flips-facing meta.translate.whole-pixels meta.translate.one-subpixel"
     );
@@ -140,12 +205,13 @@ fn cpp_lab000_gets_the_verdicts_of_seed_000() {
     // mirrors a vertex, as in the Rust port.
     assert_eq!(code, 1);
     // `≥ 0` on every edge, samples at pixel corners, clockwise only, no clipping
-    // (zoo/src/course/lab000.rs says why each fails).
+    // (zoo/src/course/lab000.rs says why each fails; the barycentric rules judge its
+    // screen-space weights since issue 26, as zoo/tests/course.rs says).
     assert_eq!(
         with_status(&rules, "fail"),
         "fill.mesh.exactly-once fill.fan.exactly-once fill.rotated-quad.exactly-once \
-         fill.projected-mesh.exactly-once fill.interior.matches-raycast bary.screen.reconstructs-sample \
-         clip.behind-eye.empty clip.interior.matches-raycast clip.mesh.watertight \
+         fill.projected-mesh.exactly-once fill.interior.matches-raycast bary.range.unit bary.vertex.one \
+         bary.screen.reconstructs-sample clip.behind-eye.empty clip.interior.matches-raycast clip.mesh.watertight \
          clip.crossing-quad.watertight meta.reversal.flips-facing meta.translate.one-subpixel \
          meta.facing.from-winding"
     );

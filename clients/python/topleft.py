@@ -10,8 +10,13 @@ around. Barycentrics are perspective-correct, depth is z/w linear on screen, and
 buffer answers `resolve`.
 
 Run it with refrast:  refrast certify --exec "python3 clients/python/topleft.py"
+
+With `--cull MODE` (none, back or front) it is a fixed-function rasterizer: it declares that one
+cull mode and uses it whatever a draw asks, as one that cannot switch culling would; refrast
+must still judge it on every rule (its triangles are turned to face front).
 """
 
+import argparse
 import os
 import struct
 import sys
@@ -226,8 +231,14 @@ def fan_fragments(draw, t, raster, front):
     return out
 
 
+# The one cull mode of a fixed-function rasterizer (--cull), or None for all three.
+FIXED_CULL = None
+
+
 def rasterize(draw):
     check_indices(draw)
+    if FIXED_CULL is not None:
+        draw = draw._replace(cull=FIXED_CULL)
     out = []
     for t, tri in enumerate(draw.triangles):
         out += triangle_fragments(draw, t, [draw.positions[i] for i in tri])
@@ -262,4 +273,14 @@ def resolve(draw):
 
 
 if __name__ == "__main__":
+    parser = argparse.ArgumentParser(description="A correct top-left rasterizer for refrast's pipe protocol.")
+    parser.add_argument(
+        "--cull",
+        choices=["none", "back", "front"],
+        help="declare and use only this cull mode, whatever a draw asks",
+    )
+    FIXED_CULL = parser.parse_args().cull
+    if FIXED_CULL is not None:
+        PROFILE["cull"] = FIXED_CULL
+        PROFILE["name"] = f"python-topleft-cull-{FIXED_CULL}"
     serve(PROFILE, rasterize, resolve)

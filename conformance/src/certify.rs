@@ -3,11 +3,11 @@
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use refrast::{Features, FillConvention, Profile, Rasterizer};
+use refrast::{Features, FillConvention, Profile, Rasterizer, SnapAccuracy};
 use serde::{Deserialize, Serialize};
 
 use crate::picture;
-use crate::rules::{Family, Kind, Rule, catalogue};
+use crate::rules::{Family, Kind, Level, Rule, catalogue, hint};
 use crate::runner::{Announce, DEFAULT_SEED, RunConfig, Verdict, guarded};
 use crate::violation::Counts;
 
@@ -72,16 +72,21 @@ pub enum Status {
     /// The rule does not apply to the profile.
     #[serde(rename = "n/a")]
     NotApplicable,
+    /// A case failed, on something the specification the profile claims does not require
+    /// ([`RuleReport::spec_note`] says why): not a failure of conformance, and not a pass.
+    #[serde(rename = "beyond-spec")]
+    BeyondSpec,
 }
 
 impl Status {
-    /// As printed: `pass`, `FAIL`, `n/a`.
+    /// As printed: `pass`, `FAIL`, `n/a`, `BEYOND` (beyond the claimed specification).
     #[must_use]
     pub fn label(self) -> &'static str {
         match self {
             Self::Pass => "pass",
             Self::Fail => "FAIL",
             Self::NotApplicable => "n/a",
+            Self::BeyondSpec => "BEYOND",
         }
     }
 }
@@ -117,6 +122,13 @@ pub struct RuleReport {
     pub details: Vec<String>,
     /// Sample tallies of a failed coverage check.
     pub counts: Option<Counts>,
+    /// For [`Status::BeyondSpec`]: what the claimed specification says instead, with its sentence.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spec_note: Option<String>,
+    /// Where the failure has the shape of a misdeclared profile, one line saying so, with the
+    /// bug that looks the same.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hint: Option<String>,
     /// The shrunk failing input, as Rust.
     pub counterexample: Option<String>,
     /// The counterexample picture, if one was written.
@@ -147,6 +159,9 @@ pub struct ProfileReport {
     pub band_px: f64,
     /// Optional abilities declared, and the supported values of each draw-state setting.
     pub features: Vec<String>,
+    /// The specification it claims to follow ([`refrast::Spec::title`]).
+    #[serde(default)]
+    pub spec: String,
 }
 
 impl ProfileReport {
@@ -178,6 +193,7 @@ impl From<&Profile> for ProfileReport {
             tolerance_subpixels: p.tolerance_subpixels,
             band_px: p.band_px(),
             features: feature_list(&p.features),
+            spec: p.spec.title().to_owned(),
         }
     }
 }
@@ -195,6 +211,7 @@ impl ProfileReport {
             tolerance_subpixels: 1,
             band_px: 0.0,
             features: Vec::new(),
+            spec: String::new(),
         }
     }
 }
@@ -213,6 +230,8 @@ pub fn feature_list(f: &Features) -> Vec<String> {
         (f.screen_barycentrics, "screen-barycentrics"),
         (f.depth_test, "depth-test"),
         (f.ties_to_even, "ties-to-even"),
+        (f.snap == SnapAccuracy::WithinOneStep, "snap within one step"),
+        (f.zero_area_before_clipping, "zero-area-before-clipping"),
     ];
     let mut list: Vec<String> = abilities
         .iter()
@@ -245,16 +264,29 @@ pub struct Report {
     /// The selected rules left unrun after a failure under [`Options::fail_fast`].
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub not_run: Vec<String>,
+    /// Why no rule ran: a profile the suite cannot judge ([`Profile::judgeable`]), with what to
+    /// declare instead. A refused implementation has not passed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub refused: Option<String>,
 }
 
 impl Report {
-    /// Whether every applicable rule passed.
+    /// Whether it was judged and every applicable rule passed.
     #[must_use]
     pub fn passed(&self) -> bool {
-        self.rules.iter().all(|r| r.status != Status::Fail)
+        self.refused.is_none() && self.rules.iter().all(|r| r.status != Status::Fail)
     }
 
-    /// How many rules passed, failed, and did not apply.
+    /// How many rules failed only on what the claimed specification does not require.
+    #[must_use]
+    pub fn beyond_spec(&self) -> usize {
+        self.rules
+            .iter()
+            .filter(|r| r.status == Status::BeyondSpec)
+            .count()
+    }
+
+    /// How many rules passed, failed, and did not apply ([`Report::beyond_spec`] counts the rest).
     #[must_use]
     pub fn tally(&self) -> (usize, usize, usize) {
         let n = |s| self.rules.iter().filter(|r| r.status == s).count();
@@ -317,6 +349,8 @@ fn judge(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options) -> Rul
         message: None,
         details: Vec::new(),
         counts: None,
+        spec_note: None,
+        hint: None,
         counterexample: None,
         picture: None,
         seconds: 0.0,
@@ -339,9 +373,21 @@ fn judge(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options) -> Rul
         seed: options.seed,
         announce: options.announce,
         budget: options.budget,
+        orient: !rule.keeps_winding,
     };
     report.planned = cfg.cases;
-    match (rule.run)(rasterizer, &cfg) {
+    // What the claimed specification requires runs first where it requires only part of the
+    // rule: a failure there is a failure; one only the whole rule finds is beyond it.
+    let level = rule.levels.of(profile.spec);
+    let (verdict, beyond) = match level {
+        Level::Required => ((rule.run)(rasterizer, &cfg), false),
+        Level::Partly { part, .. } => match part(rasterizer, &cfg) {
+            failed @ Verdict::Fail { .. } => (failed, false),
+            Verdict::Pass { .. } => ((rule.run)(rasterizer, &cfg), true),
+        },
+        Level::Undefined(_) | Level::NotCovered(_) => ((rule.run)(rasterizer, &cfg), true),
+    };
+    match verdict {
         Verdict::Pass { cases, budget_spent } => {
             report.cases = cases;
             report.budget_spent = budget_spent;
@@ -350,9 +396,15 @@ fn judge(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options) -> Rul
             cases,
             counterexample,
             violation,
+            scene,
         } => {
             report.cases = cases;
             report.status = Status::Fail;
+            if beyond && let Some(note) = level.note() {
+                report.status = Status::BeyondSpec;
+                report.spec_note = Some(format!("not required by {}: {note}", profile.spec.title()));
+            }
+            report.hint = scene.and_then(|s| guarded(|| hint::diagnose(rasterizer, rule, &s)).ok().flatten());
             report.message = Some(violation.to_string());
             report.details = violation.details.clone();
             report.counts = violation.counts;
@@ -391,6 +443,15 @@ pub fn certify(
     mut progress: impl FnMut(&RuleReport),
 ) -> Report {
     let profile = ProfileReport::of(rasterizer);
+    if let Some(refused) = refusal(rasterizer) {
+        return Report {
+            implementation: profile.name.clone(),
+            profile,
+            rules: Vec::new(),
+            not_run: Vec::new(),
+            refused: Some(refused),
+        };
+    }
     let run = |rule: &Rule| {
         let report = run_rule(rule, rasterizer, options);
         progress(&report);
@@ -402,7 +463,20 @@ pub fn certify(
         profile,
         rules,
         not_run,
+        refused: None,
     }
+}
+
+/// Why the suite refuses to judge `rasterizer` before any rule runs: a profile it cannot judge
+/// ([`Profile::judgeable`]); `None` when it can. A panicking `profile()` is left to the rules,
+/// which each report it.
+#[must_use]
+pub fn refusal(rasterizer: &dyn Rasterizer) -> Option<String> {
+    let profile = guarded(|| rasterizer.profile()).ok()?;
+    profile
+        .judgeable()
+        .err()
+        .map(|why| format!("{why}; nothing was run"))
 }
 
 /// Runs `run` on each rule `options` selects, in catalogue order, until one fails under

@@ -85,6 +85,14 @@ where
             std::process::exit(101);
         }
     };
+    // A profile the suite cannot judge fails before any rule runs, with what to declare.
+    if let Err(why) = profile.judgeable() {
+        eprintln!(
+            "error: refrast cannot judge {}: {why}; no rule was run",
+            profile.name
+        );
+        std::process::exit(101);
+    }
     let trials = catalogue()
         .into_iter()
         .map(|rule| {
@@ -111,6 +119,7 @@ where
                                 "the rasterizer cannot be built in a child: {why}"
                             )));
                         }
+                        Outcome::Refused(why, _) => return Err(Failed::from(format!("refused: {why}"))),
                     }
                 };
                 match report.status {
@@ -118,6 +127,12 @@ where
                     Status::NotApplicable => Ok(Completion::ignored_with(format!(
                         "n/a: {}",
                         report.message.as_deref().unwrap_or("")
+                    ))),
+                    // Not a failure of conformance, not a pass: shown as ignored, with why.
+                    Status::BeyondSpec => Ok(Completion::ignored_with(format!(
+                        "beyond the specification ({}): {}",
+                        report.spec_note.as_deref().unwrap_or(""),
+                        failure_text(&report)
                     ))),
                     Status::Fail => {
                         failed.store(true, Ordering::SeqCst);
@@ -145,6 +160,9 @@ pub fn failure_text(report: &RuleReport) -> String {
     );
     for detail in report.details.iter().skip(1) {
         text.push_str(&format!("\n  {detail}"));
+    }
+    if let Some(hint) = &report.hint {
+        text.push_str(&format!("\nhint: {hint}"));
     }
     if let Some(input) = &report.counterexample {
         text.push_str("\nshrunk counterexample:\n");

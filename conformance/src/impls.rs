@@ -5,6 +5,8 @@ use refrast::{
     SubpixelBits,
 };
 
+use crate::restricted::restrictions;
+
 /// Why an implementation cannot be built on this machine: no driver, no such adapter.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Unavailable(pub String);
@@ -29,6 +31,9 @@ pub enum Origin {
     Course,
     /// Broken on purpose: the suite must catch it.
     Mutant,
+    /// The reference restricted to what a simpler rasterizer supports: it must pass or be
+    /// `n/a` on every rule (the suite's own check that it judges any profile).
+    Restricted,
 }
 
 impl Origin {
@@ -40,6 +45,7 @@ impl Origin {
             Self::ThirdParty => "third party",
             Self::Course => "course lab",
             Self::Mutant => "broken on purpose",
+            Self::Restricted => "reference, restricted",
         }
     }
 }
@@ -144,10 +150,11 @@ impl Rasterizer for Named {
     }
 }
 
-/// Every built-in implementation of this crate: the reference and its configurations.
+/// Every built-in implementation of this crate: the reference, its configurations, and the
+/// reference restricted to each setting ([`crate::restricted`]).
 #[must_use]
 pub fn builtins() -> Vec<BuiltIn> {
-    vec![
+    let mut all = vec![
         BuiltIn::new(
             "reference",
             "the reference: 8 subpixel bits, top-left, guard-band clipping",
@@ -182,5 +189,15 @@ pub fn builtins() -> Vec<BuiltIn> {
                 ))
             },
         ),
-    ]
+    ];
+    all.extend(restrictions().into_iter().map(|r| {
+        let make = r.make;
+        BuiltIn::new(
+            format!("restricted:{}", r.name),
+            format!("the reference restricted: {}", r.description),
+            Origin::Restricted,
+            move || Box::new(make()),
+        )
+    }));
+    all
 }

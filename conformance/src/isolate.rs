@@ -22,7 +22,9 @@ use std::time::Instant;
 use refrast::Rasterizer;
 use serde::{Deserialize, Serialize};
 
-use crate::certify::{Options, ProfileReport, Report, RuleReport, Status, cases_for, run_rule, run_selected};
+use crate::certify::{
+    Options, ProfileReport, Report, RuleReport, Status, cases_for, refusal, run_rule, run_selected,
+};
 use crate::impls::Unavailable;
 use crate::process::{Tail, status_words};
 use crate::rules::{Rule, catalogue};
@@ -37,6 +39,8 @@ enum Message {
     Profile(Box<ProfileReport>),
     /// Why the rasterizer cannot be built in this process.
     Unavailable(String),
+    /// Why the suite refuses to judge the rasterizer's profile ([`crate::refusal`]).
+    Refused(String),
     /// The input about to be checked, as Rust.
     Case(String),
     /// The rule's outcome.
@@ -78,6 +82,10 @@ pub fn serve_rule(
     send(&Message::Profile(Box::new(ProfileReport::of(
         rasterizer.as_ref(),
     ))));
+    if let Some(why) = refusal(rasterizer.as_ref()) {
+        send(&Message::Refused(why));
+        return true;
+    }
     let options = Options {
         announce: Some(announce),
         ..options.clone()
@@ -94,6 +102,8 @@ pub enum Outcome {
     Ran(Box<RuleReport>, Option<Box<ProfileReport>>),
     /// The rasterizer cannot be built where the child runs.
     Unavailable(Unavailable),
+    /// The suite cannot judge the rasterizer's profile: what to declare instead.
+    Refused(String, Option<Box<ProfileReport>>),
 }
 
 /// Parent side: certifies the implementation the children build, each rule in a child started
@@ -105,23 +115,41 @@ pub fn certify_isolated(
     mut progress: impl FnMut(&RuleReport),
 ) -> Result<Report, Unavailable> {
     let mut profile = None;
-    let (rules, not_run) = run_selected(options, |rule| {
+    let mut refused = None;
+    let ran = run_selected(options, |rule| {
         match run_rule_isolated(rule, command(rule), options) {
-            Outcome::Unavailable(why) => Err(why),
+            Outcome::Unavailable(why) => Err(Stop::Unavailable(why)),
+            Outcome::Refused(why, reported) => {
+                profile = reported;
+                refused = Some(why);
+                Err(Stop::Refused)
+            }
             Outcome::Ran(report, reported) => {
                 profile = profile.take().or(reported);
                 progress(&report);
                 Ok(*report)
             }
         }
-    })?;
+    });
+    let (rules, not_run) = match ran {
+        Ok(ran) => ran,
+        Err(Stop::Unavailable(why)) => return Err(why),
+        Err(Stop::Refused) => (Vec::new(), Vec::new()),
+    };
     let profile = profile.map_or_else(ProfileReport::unknown, |p| *p);
     Ok(Report {
         implementation: profile.name.clone(),
         profile,
         rules,
         not_run,
+        refused,
     })
+}
+
+/// Why [`certify_isolated`] stops before the last rule.
+enum Stop {
+    Unavailable(Unavailable),
+    Refused,
 }
 
 /// A report of `rule` with nothing run yet.
@@ -139,6 +167,8 @@ fn blank(rule: &Rule, options: &Options, tolerance_subpixels: u32) -> RuleReport
         message: None,
         details: Vec::new(),
         counts: None,
+        spec_note: None,
+        hint: None,
         counterexample: None,
         picture: None,
         seconds: 0.0,
@@ -239,6 +269,10 @@ pub fn run_rule_watched(
             Ok(Line::Message(Message::Unavailable(why))) => {
                 let _ = child.wait();
                 return Outcome::Unavailable(Unavailable(why));
+            }
+            Ok(Line::Message(Message::Refused(why))) => {
+                let _ = child.wait();
+                return Outcome::Refused(why, profile);
             }
             Ok(Line::Message(Message::Report(report))) => {
                 let _ = child.wait();

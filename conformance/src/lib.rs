@@ -15,6 +15,7 @@
 //! | 8 | [`isolate`] | rules in child processes: a hang, an abort or a crash fails the rule it was running |
 //! | 9 | `harness`, [`fuzz`] | [`run_as_tests`]: one test per rule in your own crate; the cargo-fuzz targets as functions on any rasterizer |
 //! | — | `impls` | [`builtins`]: the implementations `refrast certify --impl` knows (refrast only) |
+//! | — | [`restricted`] | the reference restricted to one setting or a few, declaring and using only those (refrast only) |
 //! | — | [`process`] | [`Process`]: a rasterizer in any language, in a child speaking `PROTOCOL.md` (refrast only) |
 //!
 //! # Kinds and tolerance
@@ -34,6 +35,7 @@ pub mod isolate;
 pub mod oracle;
 pub mod picture;
 pub mod process;
+pub mod restricted;
 pub mod rules;
 mod runner;
 mod scene;
@@ -42,7 +44,7 @@ mod violation;
 
 pub use certify::{
     DEFAULT_CASE_TIMEOUT, Options, ProfileReport, Report, RuleReport, Status, cases_for, certify,
-    feature_list, fill_name, matches, run_rule,
+    feature_list, fill_name, matches, refusal, run_rule,
 };
 pub use harness::{failure_text, run_as_tests};
 pub use impls::{BuiltIn, Maker, Named, Origin, Unavailable, builtins};

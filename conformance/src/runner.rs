@@ -33,6 +33,9 @@ pub struct RunConfig {
     /// Wall time after which no new case starts and shrinking stops, for slow implementations
     /// (a rasterizer in another language behind a pipe); `None` runs every case.
     pub budget: Option<Duration>,
+    /// Turn the triangles a restricted cull mode would discard to face front before drawing
+    /// ([`Scene::orient_to_face_front`]); off for the rules about facing and culling themselves.
+    pub orient: bool,
 }
 
 /// How a property run ended.
@@ -53,6 +56,8 @@ pub enum Verdict {
         counterexample: String,
         /// Why it fails.
         violation: Violation,
+        /// The scene the minimal input draws (none when no case ran).
+        scene: Option<Box<Scene>>,
     },
 }
 
@@ -99,7 +104,8 @@ where
             .map_or(0, |b| u32::try_from(b.as_millis()).unwrap_or(u32::MAX).max(1)),
         ..Config::default()
     };
-    // Every case asks only for draw states the rasterizer declares it supports.
+    // Every case asks only for draw states the rasterizer declares it supports, and under a
+    // cull mode it cannot switch off, draws its triangles facing front.
     let profile = match guarded(|| rasterizer.profile()) {
         Ok(profile) => profile,
         Err(what) => {
@@ -107,12 +113,17 @@ where
                 cases: 0,
                 counterexample: String::new(),
                 violation: Violation::new(format!("profile() panicked: {what}")),
+                scene: None,
             };
         }
     };
+    let orient = cfg.orient;
     let strategy = strategy_for(&profile).prop_map(move |mut input| {
         let scene = input.scene_mut();
         scene.state = profile.fit(scene.state);
+        if orient {
+            scene.orient_to_face_front(&profile);
+        }
         input
     });
     let rng = TestRng::from_seed(RngAlgorithm::ChaCha, &seed_bytes(cfg.seed));
@@ -170,12 +181,14 @@ where
                 cases: tried.get(),
                 counterexample: format!("{input:?}"),
                 violation,
+                scene: Some(Box::new(input.scene().clone())),
             }
         }
         Err(TestError::Abort(reason)) => Verdict::Fail {
             cases: tried.get(),
             counterexample: String::new(),
             violation: Violation::new(format!("the case generator gave up: {reason}")),
+            scene: None,
         },
     }
 }

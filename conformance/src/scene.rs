@@ -4,6 +4,7 @@ use std::fmt;
 
 use refrast::{CullMode, DepthRange, Draw, DrawState, FrontFace, Profile, Viewport};
 
+use crate::oracle::facing::{Turn, turn};
 use crate::oracle::raster::to_ndc;
 
 /// A rule's input: it shows as a scene and can be made smaller after proptest has shrunk it.
@@ -74,11 +75,46 @@ impl Scene {
         Viewport::new(self.width, self.height).ok()
     }
 
-    /// The scene with its state fitted to what `profile` supports ([`Profile::fit`]).
+    /// The scene as a rule draws it for a rasterizer with `profile`: its state fitted to what
+    /// the profile supports ([`Profile::fit`]), its triangles turned to face front under a cull
+    /// mode the profile cannot switch off ([`Scene::orient_to_face_front`]).
     #[must_use]
     pub fn fitted(mut self, profile: &Profile) -> Self {
         self.state = profile.fit(self.state);
+        self.orient_to_face_front(profile);
         self
+    }
+
+    /// How each triangle turns as an implementation with `profile` may see it ([`turn`]);
+    /// [`Turn::Unsure`] for a triangle naming a vertex that does not exist.
+    #[must_use]
+    pub fn turns(&self, profile: &Profile) -> Vec<Turn> {
+        (0..self.triangles.len())
+            .map(|t| {
+                if self.triangles[t]
+                    .iter()
+                    .any(|&i| i as usize >= self.positions.len())
+                {
+                    return Turn::Unsure;
+                }
+                turn(&self.corners(t), self.width, self.height, &self.state, profile)
+            })
+            .collect()
+    }
+
+    /// Reverses the winding of every triangle its state surely culls, so that the rule still
+    /// asks its question of a rasterizer that cannot switch culling off: one that culls back
+    /// faces draws every triangle as a front face. Zero-area and unsure triangles are left as
+    /// they are (the rules accept either outcome for the unsure ones).
+    pub fn orient_to_face_front(&mut self, profile: &Profile) {
+        if self.state.cull == CullMode::None {
+            return;
+        }
+        for (t, turn) in self.turns(profile).into_iter().enumerate() {
+            if turn.drawn(&self.state) == Some(false) && turn != Turn::Degenerate {
+                self.triangles[t].swap(1, 2);
+            }
+        }
     }
 
     /// The draw the rasterizer under test receives.

@@ -1,24 +1,29 @@
 //! A rasterizer that hangs, aborts or prints to stdout, run as `certify` runs rules: in a child
 //! process. The hang and the abort fail the rule with a message naming what happened and the
-//! case it happened on; the noise does no harm. (This file is its own harness: started with
-//! `ISOLATION_CHILD` set, it is the child.)
+//! case it happened on; the noise does no harm; a profile the suite cannot judge is refused by
+//! the child before the rule runs, in a child as in this process. (This file is its own
+//! harness: started with `ISOLATION_CHILD` set, it is the child.)
 
 use std::process::Command;
 use std::time::{Duration, Instant};
 
-use refrast::{Draw, DrawError, Fragment, Profile, Rasterizer, Reference};
+use refrast::{Draw, DrawError, Fragment, Profile, Rasterizer, Reference, Supported};
 use refrast_conformance::isolate::{Outcome, run_rule_isolated, serve_rule};
-use refrast_conformance::{Options, Status, catalogue};
+use refrast_conformance::{Options, Status, catalogue, certify};
 
 /// The reference, misbehaving on any draw with a vertex far outside the view (|x| > 1000·|w|).
 struct Misbehaving(&'static str);
 
 impl Rasterizer for Misbehaving {
     fn profile(&self) -> Profile {
-        Profile {
+        let mut profile = Profile {
             name: format!("misbehaving-{}", self.0),
             ..Reference::default().profile()
+        };
+        if self.0 == "unjudgeable" {
+            profile.features.cull_modes = Supported::only(&[]);
         }
+        profile
     }
 
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
@@ -92,5 +97,30 @@ fn main() {
     let (noise, _) = run("noise");
     assert_eq!(noise.status, Status::Pass, "{noise:#?}");
 
-    println!("isolation: a hang and an abort each failed their rule with a message; noise did no harm");
+    // No cull mode at all: refused in the child, before the rule, and in this process alike.
+    let mut child = Command::new(std::env::current_exe().expect("this test binary"));
+    child.env("ISOLATION_CHILD", "unjudgeable");
+    let Outcome::Refused(why, profile) = run_rule_isolated(&rule, child, &options()) else {
+        panic!("a profile with no cull mode is refused");
+    };
+    assert!(why.contains("no value of cull_modes"), "{why}");
+    assert_eq!(
+        profile.map(|p| p.name).as_deref(),
+        Some("misbehaving-unjudgeable")
+    );
+    let report = certify(&mut Misbehaving("unjudgeable"), &options(), |_| {
+        panic!("no rule runs")
+    });
+    assert!(report.rules.is_empty() && !report.passed(), "{report:#?}");
+    assert!(
+        report
+            .refused
+            .unwrap_or_default()
+            .contains("at least one of None, Back, Front")
+    );
+
+    println!(
+        "isolation: a hang and an abort each failed their rule with a message; noise did no harm; an \
+         unjudgeable profile was refused"
+    );
 }

@@ -8,10 +8,11 @@
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
-/// Top-level modules, lowest layer first; `impls` and `process` stand apart (they use only refrast).
+/// Top-level modules, lowest layer first; `process`, `restricted` and `impls` (which lists the
+/// restricted ones) stand apart: they use only refrast.
 const LAYERS: &[&[&str]] = &[
-    &["oracle", "impls", "process"],
-    &["scene"],
+    &["oracle", "process", "restricted"],
+    &["scene", "impls"],
     &["violation"],
     &["picture"],
     &["strategy"],
@@ -25,13 +26,17 @@ const LAYERS: &[&[&str]] = &[
 /// Inside a top-level module, the layers of its child modules; a child may also use its
 /// parent's own items, and the parent its children.
 const INNER_LAYERS: &[(&str, &[&[&str]])] = &[
-    ("oracle", &[&["raster"], &["brute_force", "outline", "ray_cast"]]),
+    (
+        "oracle",
+        &[&["raster"], &["brute_force", "outline", "ray_cast"], &["facing"]],
+    ),
     (
         "rules",
         &[
-            &["common"],
+            &["common", "level"],
             &["fill"],
             &["bary", "clip", "depth", "meta", "robust"],
+            &["hint"],
         ],
     ),
 ];

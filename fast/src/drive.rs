@@ -58,6 +58,7 @@ pub(crate) fn run<S: Sink>(
     let transform = ViewportTransform {
         viewport: draw.viewport,
         bits: config.subpixel_bits,
+        rounding: config.snap_rounding,
         depth_range: draw.state.depth_range,
     };
     let Buffers { vertices, chunks } = buffers;

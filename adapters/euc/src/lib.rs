@@ -28,7 +28,7 @@ use euc::rasterizer::{BackfaceCullingDisabled, BackfaceCullingEnabled, Triangles
 use euc::{DepthStrategy, Pipeline};
 use refrast::{
     CompareOp, CullMode, DepthConvention, DepthRange, Draw, DrawError, Features, Fragment, FrontFace,
-    Profile, Rasterizer, Resolved, Snapping, Supported,
+    Profile, Rasterizer, Resolved, SnapAccuracy, Snapping, Spec, Supported,
 };
 use refrast_conformance::{BuiltIn, Origin};
 
@@ -145,7 +145,10 @@ impl Rasterizer for Euc {
                 guard_band: u32::MAX,
                 // No grid, so no snap ties.
                 ties_to_even: false,
+                snap: SnapAccuracy::Nearest,
+                zero_area_before_clipping: false,
             },
+            spec: Spec::Refrast,
         }
     }
 

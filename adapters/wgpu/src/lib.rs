@@ -53,7 +53,7 @@ use std::sync::{Arc, Mutex};
 
 use refrast::{
     CompareOp, DepthConvention, DepthRange, Draw, DrawError, Features, FillConvention, Fragment, Profile,
-    Rasterizer, Resolved, Snapping, Supported,
+    Rasterizer, Resolved, SnapAccuracy, Snapping, Spec, Supported,
 };
 use refrast_conformance::{BuiltIn, Origin, Unavailable};
 
@@ -175,6 +175,14 @@ impl Rasterizer for Gpu {
                 // tie found by `mutant:half-up-snap`; both exact rules at 20000 cases with ties);
                 // softpipe keeps no tie rule, so its exact rules do not apply either way.
                 ties_to_even: self.driver != Driver::Softpipe,
+                // Mesa's setup snaps the f32 viewport transform's result to nearest; no claim
+                // about zero-area triangles cut by the near plane (Mesa clips first).
+                snap: SnapAccuracy::Nearest,
+                zero_area_before_clipping: false,
+            },
+            spec: match self.driver {
+                Driver::Lavapipe | Driver::Vulkan => Spec::Vulkan,
+                Driver::Llvmpipe | Driver::Softpipe => Spec::OpenGl,
             },
         }
     }

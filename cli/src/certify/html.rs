@@ -133,8 +133,13 @@ fn matrix(page: &Page<'_>) -> String {
         h.push_str(&format!("<tr><th class=\"rule\">{}</th>", esc(rule.id)));
         for (column, (_, entry)) in page.entries.iter().enumerate() {
             let cell = match entry {
+                Entry::Certified(report) if report.refused.is_some() => {
+                    "<span class=\"status fail\">refused</span>".to_owned()
+                }
                 Entry::Certified(report) => match report.rules.iter().find(|r| r.id == rule.id) {
-                    Some(r) if r.status == Status::Fail => status_link(r.status, &format!("f{column}-{row}")),
+                    Some(r) if matches!(r.status, Status::Fail | Status::BeyondSpec) => {
+                        status_link(r.status, &format!("f{column}-{row}"))
+                    }
                     Some(r) => status_link(r.status, &format!("r{column}-{row}")),
                     None => "<span class=\"status other\">not run</span>".to_owned(),
                 },
@@ -164,6 +169,7 @@ fn class(status: Status) -> &'static str {
         Status::Pass => "pass",
         Status::Fail => "fail",
         Status::NotApplicable => "na",
+        Status::BeyondSpec => "beyond",
     }
 }
 
@@ -197,11 +203,25 @@ fn section(page: &Page<'_>, column: usize, subject: &Subject, entry: &Entry) -> 
                 esc(failed_to_start)
             ));
         }
+        Entry::Certified(report) if report.refused.is_some() => {
+            h.push_str(&format!(
+                "<p><span class=\"status fail\">refused</span> {}</p>\n",
+                esc(report.refused.as_deref().unwrap_or(""))
+            ));
+            h.push_str(&profile(&report.profile));
+        }
         Entry::Certified(report) => {
             let (pass, fail, na) = report.tally();
+            let beyond = match report.beyond_spec() {
+                0 => String::new(),
+                n => format!(
+                    ", {n} failed beyond what {} requires (<span class=\"status beyond\">BEYOND</span>)",
+                    esc(&report.profile.spec)
+                ),
+            };
             let seconds: f64 = report.rules.iter().map(|r| r.seconds).sum();
             h.push_str(&format!(
-                "<p>{pass} passed, {fail} failed, {na} not applicable; {seconds:.1} s of rule time</p>\n"
+                "<p>{pass} passed, {fail} failed{beyond}, {na} not applicable; {seconds:.1} s of rule time</p>\n"
             ));
             h.push_str(&profile(&report.profile));
             h.push_str(&table(page, column, report));
@@ -209,7 +229,7 @@ fn section(page: &Page<'_>, column: usize, subject: &Subject, entry: &Entry) -> 
                 if let Some(r) = report
                     .rules
                     .iter()
-                    .find(|r| r.id == rule.id && r.status == Status::Fail)
+                    .find(|r| r.id == rule.id && matches!(r.status, Status::Fail | Status::BeyondSpec))
                 {
                     h.push_str(&failure(page, column, row, subject, report, r));
                 }
@@ -232,6 +252,7 @@ fn profile(p: &ProfileReport) -> String {
         rows.push(("reports itself as", esc(&p.about)));
     }
     rows.extend([
+        ("claims", esc(&p.spec)),
         ("snapping", esc(&p.snapping)),
         ("fill", esc(&p.fill)),
         ("depth", esc(&p.depth)),
@@ -267,7 +288,7 @@ fn table(page: &Page<'_>, column: usize, report: &Report) -> String {
             continue;
         };
         let status = match r.status {
-            Status::Fail => status_link(r.status, &format!("f{column}-{row}")),
+            Status::Fail | Status::BeyondSpec => status_link(r.status, &format!("f{column}-{row}")),
             Status::Pass => format!("<span class=\"status pass\">{}</span>", r.status.label()),
             Status::NotApplicable => format!(
                 "<span class=\"status na\">n/a</span><span class=\"why\">{}</span>",
@@ -316,6 +337,15 @@ fn failure(
         esc(&report.implementation),
         esc(r.message.as_deref().unwrap_or(""))
     );
+    if let Some(note) = &r.spec_note {
+        h.push_str(&format!(
+            "<p class=\"hint\"><span class=\"status beyond\">beyond the specification</span> {}</p>\n",
+            esc(note)
+        ));
+    }
+    if let Some(hint) = &r.hint {
+        h.push_str(&format!("<p class=\"hint\"><b>Hint:</b> {}</p>\n", esc(hint)));
+    }
     if r.details.len() > 1 {
         let details: Vec<String> = r.details.iter().skip(1).map(|d| esc(d)).collect();
         h.push_str(&format!("<h4>Details</h4>\n<pre>{}</pre>\n", details.join("\n")));

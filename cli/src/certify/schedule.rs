@@ -26,6 +26,8 @@ enum Done {
     Ran(Box<RuleReport>, Option<Box<ProfileReport>>, Instant, Instant),
     /// The child says the implementation cannot be built here.
     Unavailable(String),
+    /// The child says the suite cannot judge the implementation's profile, and why.
+    Refused(String, Option<Box<ProfileReport>>),
     /// Never started: a failure came before it under `--fail-fast`, or its implementation is
     /// unavailable.
     NotStarted,
@@ -91,7 +93,7 @@ struct Run<'a> {
     next: AtomicUsize,
     /// Tasks from this one on do not start: one before it failed under `--fail-fast`.
     stop_at: AtomicUsize,
-    /// Per implementation: a child found it cannot be built here.
+    /// Per implementation: a child found it cannot be built here, or its profile refused.
     unavailable: Vec<AtomicBool>,
     emitter: Mutex<Emitter>,
 }
@@ -132,6 +134,10 @@ impl Run<'_> {
             Outcome::Unavailable(why) => {
                 self.unavailable[i].store(true, Ordering::SeqCst);
                 Done::Unavailable(why.to_string())
+            }
+            Outcome::Refused(why, profile) => {
+                self.unavailable[i].store(true, Ordering::SeqCst);
+                Done::Refused(why, profile)
             }
             Outcome::Ran(report, profile) => {
                 if report.status == Status::Fail && self.options.fail_fast {
@@ -225,6 +231,24 @@ impl Emitter {
                 self.current.skipped = true;
                 return;
             }
+            Done::Refused(why, profile) => {
+                run.out.line(&format!("== {}: REFUSED: {why}\n", b.name));
+                run.bars[i].abandon_with_message("refused");
+                let profile = profile.map_or_else(ProfileReport::unknown, |p| *p);
+                let report = Report {
+                    implementation: profile.name.clone(),
+                    profile,
+                    rules: Vec::new(),
+                    not_run: Vec::new(),
+                    refused: Some(why),
+                };
+                self.entries.push((
+                    Subject::BuiltIn(b.name.clone()),
+                    Entry::Certified(Box::new(report)),
+                ));
+                self.current.skipped = true;
+                return;
+            }
             // Only after an unavailable rule or a failure, both handled above; kept as not run.
             Done::NotStarted => {}
         }
@@ -245,6 +269,7 @@ impl Emitter {
             profile,
             rules: built.rules,
             not_run,
+            refused: None,
         };
         let seconds = built
             .span
@@ -258,6 +283,6 @@ impl Emitter {
         summarise(run.out, &report, seconds);
         let name = run.builtins[i].name.clone();
         self.entries
-            .push((Subject::BuiltIn(name), Entry::Certified(report)));
+            .push((Subject::BuiltIn(name), Entry::Certified(Box::new(report))));
     }
 }

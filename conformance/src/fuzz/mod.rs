@@ -17,11 +17,11 @@ use refrast::{Profile, Rasterizer};
 pub use input::{Clipping, GridTriangles, Overlapping, Perspective, Points, RawDraw, RawPipeline};
 
 use crate::rules::bary::{check_equal_w, check_matches_raycast, check_reconstructs, check_sum_one};
-use crate::rules::depth::{check_depth_matches_raycast, check_order_independent};
+use crate::rules::depth::{check_depth_matches_raycast, check_order_independent, extreme_depth};
 use crate::rules::fill::{check_exactly_once, check_guard_band};
 use crate::rules::robust::check_well_formed;
 use crate::rules::{
-    EXACT_COVERAGE, GUARD_BAND, NEARER_WINS, Need, PERSPECTIVE_BARYCENTRICS, SCREEN_BARYCENTRICS,
+    EXACT_COVERAGE, EXTREME_WINS, GUARD_BAND, Need, PERSPECTIVE_BARYCENTRICS, SCREEN_BARYCENTRICS,
     Z_OVER_W_DEPTH,
 };
 use crate::violation::Violation;
@@ -105,14 +105,15 @@ pub fn clipping(r: &mut dyn Rasterizer, input: &Clipping) -> Result<(), Failure>
 }
 
 /// Overlapping triangles leave the same depth buffer in any draw order (where the profile has
-/// a depth test keeping the nearer fragment).
+/// a depth test keeping the nearest or farthest fragment).
 pub fn depth_order(r: &mut dyn Rasterizer, input: &Overlapping) -> Result<(), Failure> {
     let profile = r.profile();
-    if !applies(&[NEARER_WINS], &profile) {
+    if !applies(&[EXTREME_WINS], &profile) {
         return Ok(());
     }
     let Some(scene) = input.scene() else { return Ok(()) };
-    let scene = scene.fitted(&profile);
+    let mut scene = scene.fitted(&profile);
+    scene.state.depth = extreme_depth(&profile);
     judged(input, || check_order_independent(r, &scene))
 }
 

@@ -10,8 +10,11 @@
 //!   depth, whatever the clipping.
 //! - [`outline`]: a triangle's visible outline in raster space and distances to it, for the
 //!   tolerance band and for pictures.
+//! - [`facing`]: which way a triangle turns as an implementation with a profile may snap it,
+//!   and where correct implementations may disagree; the grid points a vertex may snap to.
 
 pub mod brute_force;
+pub mod facing;
 pub mod outline;
 pub mod raster;
 pub mod ray_cast;

@@ -3,7 +3,7 @@
 
 use refrast::{
     CompareOp, CullMode, DepthConvention, DepthRange, Draw, FillConvention, Fragment, FrontFace, Profile,
-    Setting, Snapping, Supported,
+    Setting, SnapAccuracy, Snapping, Spec, Supported,
 };
 
 /// The protocol version this refrast speaks.
@@ -228,7 +228,10 @@ pub fn default_profile(name: &str) -> Profile {
             depth_ranges: Supported::only(&[DepthRange::ZeroToOne]),
             guard_band: 0,
             ties_to_even: false,
+            snap: SnapAccuracy::Nearest,
+            zero_area_before_clipping: false,
         },
+        spec: Spec::Refrast,
     }
 }
 
@@ -316,25 +319,38 @@ pub fn parse_profile(lines: &[String], fallback_name: &str) -> Result<Declared, 
                     f.screen_barycentrics,
                     f.depth_test,
                     f.ties_to_even,
-                ) = (false, false, false, false);
+                    f.zero_area_before_clipping,
+                ) = (false, false, false, false, false);
                 for word in &words {
                     let flag = match *word {
                         "perspective-barycentrics" => &mut f.perspective_barycentrics,
                         "screen-barycentrics" => &mut f.screen_barycentrics,
                         "depth-test" => &mut f.depth_test,
                         "ties-to-even" => &mut f.ties_to_even,
+                        "zero-area-before-clipping" => &mut f.zero_area_before_clipping,
                         // The word alone, from before the guard band had a size: the reach the
                         // rule drew then. A `guard-band PIXELS` line says more.
                         "guard-band" => &mut guard_band_word,
                         _ => {
                             return Err(bad(
                                 "features are perspective-barycentrics, screen-barycentrics, \
-                                 depth-test, ties-to-even and guard-band",
+                                 depth-test, ties-to-even, zero-area-before-clipping and guard-band",
                             ));
                         }
                     };
                     *flag = true;
                 }
+            }
+            "snap" => {
+                f.snap = match rest {
+                    "nearest" => SnapAccuracy::Nearest,
+                    "within-one-step" => SnapAccuracy::WithinOneStep,
+                    _ => return Err(bad("say nearest or within-one-step")),
+                }
+            }
+            "spec" => {
+                profile.spec =
+                    Spec::from_name(rest).ok_or_else(|| bad("say refrast, vulkan, opengl or d3d11"))?;
             }
             GUARD_BAND => {
                 f.guard_band = rest
@@ -414,6 +430,27 @@ mod tests {
         assert!(both.contains("keep the line `guard-band PIXELS`"), "{both}");
         let far = parsed(&["guard-band 40000"]).unwrap_err();
         assert!(far.contains("0 to 32768"), "{far}");
+    }
+
+    /// The specification claimed, how exactly snapping lands and the zero-area claim: refrast's
+    /// conventions, the nearest grid point and no claim unless said.
+    #[test]
+    fn spec_snap_and_zero_area_are_declared() {
+        let plain = parsed(&[]).unwrap();
+        assert_eq!(plain.spec, Spec::Refrast);
+        assert_eq!(plain.features.snap, SnapAccuracy::Nearest);
+        assert!(!plain.features.zero_area_before_clipping);
+        let said = parsed(&[
+            "spec vulkan",
+            "snap within-one-step",
+            "features zero-area-before-clipping",
+        ])
+        .unwrap();
+        assert_eq!(said.spec, Spec::Vulkan);
+        assert_eq!(said.features.snap, SnapAccuracy::WithinOneStep);
+        assert!(said.features.zero_area_before_clipping);
+        assert!(parsed(&["spec metal"]).unwrap_err().contains("vulkan"));
+        assert!(parsed(&["snap exact"]).unwrap_err().contains("within-one-step"));
     }
 
     /// Ties round to even only when the child says so.

@@ -1,9 +1,12 @@
 //! Barycentrics: they sum to one, stay in range, are one at their vertex, and equal the ray cast.
 
-use refrast::Rasterizer;
+use refrast::{Fragment, Profile, Rasterizer};
 
-use super::common::{fragments, precision, raycast_fragments, slack_note, snapped_triangle};
-use super::{Family, PERSPECTIVE_BARYCENTRICS, Rule, SCREEN_BARYCENTRICS};
+use super::common::{Expected, fragments, precision, raycast_fragments, slack_note, snapped_triangles};
+use super::{
+    ANY_BARYCENTRICS, Family, PERSPECTIVE_BARYCENTRICS, Rule, SCREEN_BARYCENTRICS, VERTEX_ON_SAMPLE,
+};
+use crate::oracle::facing::snap_candidates;
 use crate::oracle::outline::{distance_to_outline, visible_outline};
 use crate::oracle::raster::{project, sample_centre, unclipped};
 use crate::runner::property;
@@ -14,22 +17,23 @@ use crate::violation::{Findings, Violation, plural};
 pub(super) fn rules() -> Vec<Rule> {
     vec![
         Rule::invariant(Family::Bary, "bary.sum.one")
-            .sentence("Every fragment's barycentrics sum to 1 within three times the claimed precision (2^-18 for the reference).")
+            .sentence("Every fragment's barycentrics (perspective-correct and screen-space, whichever the profile declares) sum to 1 within three times the claimed precision (2^-18 for the reference).")
             .source("Vulkan 1.4 §28.7.5 (a + b + c = 1)")
             .cases(5000)
-            .needs(PERSPECTIVE_BARYCENTRICS)
+            .needs(ANY_BARYCENTRICS)
             .run(|r, cfg| property(r, cfg, strategy::float_scene(), check_sum_one)),
         Rule::invariant(Family::Bary, "bary.range.unit")
-            .sentence("Barycentrics of samples outside the tolerance band lie in [0, 1] within the claimed precision.")
+            .sentence("Barycentrics (of either declared kind) of samples outside the tolerance band lie in [0, 1] within the claimed precision.")
             .source("Vulkan 1.4 §28.7.5 (clipped polygons: convex combinations)")
             .cases(5000)
-            .needs(PERSPECTIVE_BARYCENTRICS)
+            .needs(ANY_BARYCENTRICS)
             .run(|r, cfg| property(r, cfg, strategy::crossing_scene(), check_in_range)),
         Rule::invariant(Family::Bary, "bary.vertex.one")
-            .sentence("A covered sample exactly on a vertex has weight 1 for that vertex and 0 for the others.")
+            .sentence("A covered sample exactly on a vertex has weight 1 for that vertex and 0 for the others (in either declared kind of barycentrics).")
             .source("Vulkan 1.4 §28.7.5 (aᵢ = 1 at vertex i)")
             .cases(10000)
-            .needs(PERSPECTIVE_BARYCENTRICS)
+            .needs(ANY_BARYCENTRICS)
+            .needs(VERTEX_ON_SAMPLE)
             .run(|r, cfg| property(r, cfg, strategy::perspective_inside_scene(), check_vertex_one)),
         Rule::invariant(Family::Bary, "bary.perspective.matches-raycast")
             .sentence("Perspective-correct barycentrics equal those of the ray-cast hit within the claimed precision (2^-18 for the reference); on a clipped triangle also within how far they move when the sample moves one grid step (its cut vertices are snapped).")
@@ -72,17 +76,39 @@ fn equal_w_scene() -> impl proptest::strategy::Strategy<Value = Scene> {
     prop_oneof![inside, strategy::equal_w_crossing_scene()]
 }
 
-/// Every fragment's barycentrics sum to 1 within three times [`precision`].
+/// Reads one kind of barycentrics from a fragment.
+type Weights = fn(&Fragment) -> Option<[f32; 3]>;
+
+/// The kinds of barycentrics a profile declares, each named and read from a fragment (`None`
+/// where the fragment has none: screen-space ones exist only while every `w > 0`).
+fn declared(profile: &Profile) -> Vec<(&'static str, Weights)> {
+    let mut kinds: Vec<(&'static str, Weights)> = Vec::new();
+    if profile.features.perspective_barycentrics {
+        kinds.push(("perspective", |f| Some(f.barycentric)));
+    }
+    if profile.features.screen_barycentrics {
+        kinds.push(("screen-space", |f| f.screen_barycentric));
+    }
+    kinds
+}
+
+/// Every fragment's barycentrics of each declared kind sum to 1 within three times
+/// [`precision`].
 pub fn check_sum_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let profile = r.profile();
     // Each within the claimed precision of its exact value, which sum to 1.
-    let eps = 3.0 * precision(&r.profile()) as f32;
+    let eps = 3.0 * precision(&profile) as f32;
     let mut found = Findings::new();
-    for f in fragments(r, scene)? {
-        let sum: f32 = f.barycentric.iter().sum();
-        if (sum - 1.0).abs() > eps {
-            found.add((f.x, f.y), || {
-                format!("{:?} has {:?}, summing to {sum}", (f.x, f.y), f.barycentric)
-            });
+    let frags = fragments(r, scene)?;
+    for (kind, weights) in declared(&profile) {
+        for f in &frags {
+            let Some(b) = weights(f) else { continue };
+            let sum: f32 = b.iter().sum();
+            if (sum - 1.0).abs() > eps || sum.is_nan() {
+                found.add((f.x, f.y), || {
+                    format!("{:?} has {kind} {b:?}, summing to {sum}", (f.x, f.y))
+                });
+            }
         }
     }
     found.verdict(|n| {
@@ -93,21 +119,27 @@ pub fn check_sum_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violat
     })
 }
 
-/// Barycentrics of samples outside the band lie in [0, 1] within [`precision`].
+/// Barycentrics of each declared kind of samples outside the band lie in [0, 1] within
+/// [`precision`].
 pub fn check_in_range(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let eps = precision(&r.profile()) as f32;
-    let band = r.profile().band_px();
+    let profile = r.profile();
+    let eps = precision(&profile) as f32;
+    let band = profile.band_px();
     let outline = visible_outline(&scene.positions_of(0), scene.width, scene.height, &scene.state);
     let mut found = Findings::new();
-    for f in fragments(r, scene)? {
-        let s = sample_centre(f.x, f.y);
-        if distance_to_outline(&outline, s, |_, _| true) < band {
-            continue;
-        }
-        if let Some(b) = f.barycentric.iter().find(|&&b| !(-eps..=1.0 + eps).contains(&b)) {
-            found.add((f.x, f.y), || {
-                format!("{:?} has {b} in {:?}", (f.x, f.y), f.barycentric)
-            });
+    let frags = fragments(r, scene)?;
+    for (kind, weights) in declared(&profile) {
+        for f in &frags {
+            let s = sample_centre(f.x, f.y);
+            if distance_to_outline(&outline, s, |_, _| true) < band {
+                continue;
+            }
+            let Some(all) = weights(f) else { continue };
+            if let Some(b) = all.iter().find(|&&b| !(-eps..=1.0 + eps).contains(&b)) {
+                found.add((f.x, f.y), || {
+                    format!("{:?} has {b} in {kind} {all:?}", (f.x, f.y))
+                });
+            }
         }
     }
     found.verdict(|n| {
@@ -118,23 +150,41 @@ pub fn check_in_range(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Viola
     })
 }
 
-/// A covered sample on a vertex has weight 1 there and 0 elsewhere.
+/// A covered sample on a vertex has weight 1 there and 0 elsewhere, in each declared kind.
 pub fn check_vertex_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let eps = precision(&r.profile()) as f32;
+    let profile = r.profile();
+    let eps = precision(&profile) as f32;
     let tri = scene.positions_of(0);
+    let corners = scene.corners(0);
+    // On a grid, a vertex counts as on a sample only where every way the profile lets it snap
+    // puts it there (snapping within one step may move one a hair off the sample to the next
+    // grid point); without one, within 1e-3 px of it.
+    let on_sample = |k: usize, x: u32, y: u32| match profile.snapping.grid_bits() {
+        // A whole-pixel grid has no point on a sample centre (the rule is n/a there).
+        Some(0) => false,
+        Some(bits) => {
+            let half = i128::from(1u32 << bits.min(16)) / 2;
+            let sample = (i128::from(x) * 2 * half + half, i128::from(y) * 2 * half + half);
+            snap_candidates(corners[k], scene.width, scene.height, &profile).is_some_and(|c| c == [sample])
+        }
+        None => {
+            let (p, s) = (project(scene.width, scene.height, tri[k]), sample_centre(x, y));
+            (p[0] - s[0]).abs() < 1e-3 && (p[1] - s[1]).abs() < 1e-3
+        }
+    };
     let mut found = Findings::new();
-    for f in fragments(r, scene)? {
-        let s = sample_centre(f.x, f.y);
-        for (k, v) in tri.iter().enumerate() {
-            let p = project(scene.width, scene.height, *v);
-            // Grid vertices are exact to f32 rounding of x·w: well within 1e-3 px of a sample.
-            if (p[0] - s[0]).abs() < 1e-3 && (p[1] - s[1]).abs() < 1e-3 {
-                let b = f.barycentric;
-                let ok = (0..3).all(|i| (b[i] - if i == k { 1.0 } else { 0.0 }).abs() <= eps);
-                if !ok {
-                    found.add((f.x, f.y), || {
-                        format!("{:?} lies on vertex {k} but has {b:?}", (f.x, f.y))
-                    });
+    let frags = fragments(r, scene)?;
+    for (kind, weights) in declared(&profile) {
+        for f in &frags {
+            for k in 0..3 {
+                if on_sample(k, f.x, f.y) {
+                    let Some(b) = weights(f) else { continue };
+                    let ok = (0..3).all(|i| (b[i] - if i == k { 1.0 } else { 0.0 }).abs() <= eps);
+                    if !ok {
+                        found.add((f.x, f.y), || {
+                            format!("{:?} lies on vertex {k} but has {kind} {b:?}", (f.x, f.y))
+                        });
+                    }
                 }
             }
         }
@@ -147,11 +197,18 @@ pub fn check_vertex_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Vio
 pub fn check_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let eps = precision(&r.profile());
     let mut found = Findings::new();
-    for (f, want) in raycast_fragments(r, scene)? {
-        let off = (0..3)
+    let cast = raycast_fragments(r, scene)?;
+    let off = |f: &Fragment, want: &Expected| {
+        (0..3)
             .map(|k| (f64::from(f.barycentric[k]) - want.barycentric[k]).abs())
-            .fold(0.0, f64::max);
-        if off > eps + want.barycentric_slack {
+            .fold(0.0, f64::max)
+    };
+    for &(f, want) in &cast.pairs {
+        let off_by = off(&f, &want);
+        if off_by > eps + want.barycentric_slack
+            && !cast.another_snap_accepts(&f, |w| off(&f, w) <= eps + w.barycentric_slack)
+        {
+            let off = off_by;
             found.add((f.x, f.y), || {
                 format!(
                     "{:?} has {:?}, the ray cast {:?} (off by {off:.3e}{})",
@@ -171,8 +228,9 @@ pub fn check_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<()
     })
 }
 
-/// Screen-space barycentrics weight the snapped vertices to the sample position; on a clipped
-/// triangle, the unsnapped ones to within one grid step per axis of it.
+/// Screen-space barycentrics weight the snapped vertices to the sample position (for some way
+/// the profile lets them snap); on a clipped triangle, the unsnapped ones to within one grid
+/// step per axis of it.
 ///
 /// Why the step: a rasterizer that clips then snaps reports at sample `s` the weights `μⱼ` of
 /// the snapped polygon vertices `p'ⱼ` (`s = Σ μⱼ p'ⱼ`) applied to their exact screen weights,
@@ -183,21 +241,23 @@ pub fn check_reconstructs(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), V
     let profile = r.profile();
     let eps = precision(&profile);
     let exact = scene.corners(0);
-    let (tri, slack) = if unclipped(&exact, scene.state.depth_range, scene.state.clip_far) {
-        let Some(tri) = snapped_triangle(scene, 0, profile.snapping) else {
-            return Ok(());
-        };
-        (tri, 0.0)
+    let (tris, slack) = if unclipped(&exact, scene.state.depth_range, scene.state.clip_far) {
+        (snapped_triangles(scene, 0, &profile), 0.0)
     } else if exact.iter().all(|v| v[3] > 0.0) {
         (
-            scene.positions_of(0),
+            vec![scene.positions_of(0)],
             std::f64::consts::SQRT_2 * profile.snapping.unit_px(),
         )
     } else {
         return Ok(());
     };
-    let p = tri.map(|v| project(scene.width, scene.height, v));
-    let extent = p.iter().flatten().fold(1.0f64, |m, c| m.max(c.abs()));
+    if tris.is_empty() {
+        return Ok(());
+    }
+    let projected: Vec<[[f64; 2]; 3]> = tris
+        .iter()
+        .map(|tri| tri.map(|v| project(scene.width, scene.height, v)))
+        .collect();
     let mut found = Findings::new();
     for f in fragments(r, scene)? {
         let Some(b) = f.screen_barycentric else {
@@ -207,11 +267,17 @@ pub fn check_reconstructs(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), V
             ));
         };
         let b = b.map(f64::from);
-        let at = [0, 1].map(|c| b[0] * p[0][c] + b[1] * p[1][c] + b[2] * p[2][c]);
         let s = sample_centre(f.x, f.y);
         // Weights within eps each move the point by at most 3·eps·extent; NaN weights fail.
-        let off = (at[0] - s[0]).hypot(at[1] - s[1]);
-        if off.is_nan() || off > 3.0 * eps * extent + slack {
+        let miss = |p: &[[f64; 2]; 3]| {
+            let extent = p.iter().flatten().fold(1.0f64, |m, c| m.max(c.abs()));
+            let at = [0, 1].map(|c| b[0] * p[0][c] + b[1] * p[1][c] + b[2] * p[2][c]);
+            let off = (at[0] - s[0]).hypot(at[1] - s[1]);
+            (off.is_nan() || off > 3.0 * eps * extent + slack).then_some((at, off))
+        };
+        if let Some((at, off)) = miss(&projected[0])
+            && projected[1..].iter().all(|p| miss(p).is_some())
+        {
             found.add((f.x, f.y), || {
                 format!(
                     "{:?}: screen barycentrics {b:?} give {at:?}, {off:.3e} px away",

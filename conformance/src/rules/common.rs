@@ -2,10 +2,11 @@
 
 use std::collections::{BTreeMap, HashMap};
 
-use refrast::{Fragment, Profile, Rasterizer, Reference, ReferenceConfig, Snapping, SubpixelBits};
+use refrast::{CullMode, Fragment, Profile, Rasterizer, Reference, ReferenceConfig, SubpixelBits};
 
+use crate::oracle::facing::snapped_variants;
 use crate::oracle::outline::{OutlinePoint, distance_to_outline, visible_outline};
-use crate::oracle::raster::{ndc_offset, sample_centre, sample_ndc, snap, to_ndc, unclipped};
+use crate::oracle::raster::{ndc_offset, sample_centre, sample_ndc, to_ndc, unclipped};
 use crate::oracle::ray_cast::{Hit, cut_rounding_px, ray_cast, spread};
 use crate::picture::{finite_outlines, scene_outlines};
 use crate::scene::Scene;
@@ -71,29 +72,42 @@ pub fn reference_for(profile: &Profile) -> Option<Reference> {
     }))
 }
 
-/// Triangle `t` as the rasterizer draws it: each vertex snapped to the profile's grid, then put
-/// back into clip space at its own `w` and `z` (unsnapped without a grid). `None` unless every
-/// `w > 0`.
+/// Triangle `t` as the rasterizer may draw it: each vertex at a grid point the profile lets it
+/// snap to ([`snapped_variants`]), refrast's own choice first, put back into clip space at its
+/// own `w` and `z` (unsnapped without a grid). Empty unless every `w > 0`.
 ///
-/// The oracles compare against this, not the f32 input, so that rounding the input on a sliver
+/// The oracles compare against these, not the f32 input, so that rounding the input on a sliver
 /// triangle does not count against the rasterizer.
 #[must_use]
-pub fn snapped_triangle(scene: &Scene, t: usize, snapping: Snapping) -> Option<[[f64; 4]; 3]> {
-    let Some(bits) = snapping.grid_bits() else {
+pub fn snapped_triangles(scene: &Scene, t: usize, profile: &Profile) -> Vec<[[f64; 4]; 3]> {
+    let corners = scene.corners(t);
+    let Some(bits) = profile.snapping.grid_bits() else {
         let tri = scene.positions_of(t);
-        return tri.iter().all(|v| v[3] > 0.0).then_some(tri);
+        return if tri.iter().all(|v| v[3] > 0.0) {
+            vec![tri]
+        } else {
+            Vec::new()
+        };
     };
-    let bits = bits.min(16);
-    let one = f64::from(1u32 << bits);
-    let mut out = [[0.0; 4]; 3];
-    for (k, &i) in scene.triangles[t].iter().enumerate() {
-        let p = scene.positions[i as usize];
-        let (x, y) = snap(p, scene.width, scene.height, bits)?;
-        let [nx, ny] = to_ndc(scene.width, scene.height, x as f64 / one, y as f64 / one);
-        let pw = f64::from(p[3]);
-        out[k] = [nx * pw, ny * pw, f64::from(p[2]), pw];
-    }
-    Some(out)
+    let one = f64::from(1u32 << bits.min(16));
+    let Some(variants) = snapped_variants(&corners, scene.width, scene.height, profile) else {
+        return Vec::new();
+    };
+    variants
+        .into_iter()
+        .map(|v| {
+            std::array::from_fn(|k| {
+                let [nx, ny] = to_ndc(
+                    scene.width,
+                    scene.height,
+                    v[k].0 as f64 / one,
+                    v[k].1 as f64 / one,
+                );
+                let [_, _, z, w] = corners[k].map(f64::from);
+                [nx * w, ny * w, z, w]
+            })
+        })
+        .collect()
 }
 
 /// What the ray cast expects of one fragment: its barycentrics and window depth (unclamped),
@@ -110,9 +124,33 @@ pub struct Expected {
     pub depth_slack: f64,
 }
 
+/// Fragments of triangle 0, each with what the ray cast expects at its sample, and where the
+/// profile lets a vertex snap to more than one grid point, what it expects of the others.
+pub struct RayCast {
+    /// Each fragment with refrast's own expectation (the vertices snapped to nearest, even).
+    pub pairs: Vec<(Fragment, Expected)>,
+    /// The other snapped triangles the profile allows (none for an exact snap or a clipped
+    /// triangle, whose slack already covers a grid step).
+    others: Vec<[[f64; 4]; 3]>,
+    width: u32,
+    height: u32,
+    state: refrast::DrawState,
+}
+
+impl RayCast {
+    /// Whether `accepts` holds for the expectation at `f` of any other snapped triangle.
+    pub fn another_snap_accepts(&self, f: &Fragment, accepts: impl Fn(&Expected) -> bool) -> bool {
+        let [nx, ny] = sample_ndc(self.width, self.height, f.x, f.y);
+        self.others
+            .iter()
+            .filter_map(|tri| ray_cast(tri, nx, ny, &self.state))
+            .any(|hit| accepts(&Expected::exact(hit)))
+    }
+}
+
 /// Each fragment of triangle 0 paired with what the ray cast expects at its sample.
 ///
-/// A triangle inside the clip volume is cast exactly as drawn (snapped, [`snapped_triangle`]);
+/// A triangle inside the clip volume is cast exactly as drawn (snapped, [`snapped_triangles`]);
 /// fragments whose ray misses (a covered sample on an edge, a hair outside in f64) are left
 /// out. A triangle that may be clipped is cast unsnapped, and the slack is the ray cast's
 /// [`spread`] over one grid step around the sample: the cut vertices are snapped, and every
@@ -120,39 +158,53 @@ pub struct Expected {
 /// band's unit without a grid). Fragments are left out where no bound exists (the box reaches
 /// the plane's horizon) or where the ray cast sees the triangle neither at the sample nor at a
 /// corner of the box (a covered sample there is for the coverage rules to judge).
-pub fn raycast_fragments(
-    r: &mut dyn Rasterizer,
-    scene: &Scene,
-) -> Result<Vec<(Fragment, Expected)>, Violation> {
+pub fn raycast_fragments(r: &mut dyn Rasterizer, scene: &Scene) -> Result<RayCast, Violation> {
     let profile = r.profile();
     let frags = fragments(r, scene)?;
-    let state = &scene.state;
+    Ok(raycast_expectations(&profile, scene, frags))
+}
+
+/// [`raycast_fragments`] for fragments already drawn: what the ray cast expects of each of
+/// `frags` for a rasterizer with `profile` drawing `scene`.
+#[must_use]
+pub fn raycast_expectations(profile: &Profile, scene: &Scene, frags: Vec<Fragment>) -> RayCast {
+    let state = scene.state;
     let (w, h) = (scene.width, scene.height);
-    let corners = scene
+    let mut cast = RayCast {
+        pairs: Vec::new(),
+        others: Vec::new(),
+        width: w,
+        height: h,
+        state,
+    };
+    let Some(corners) = scene
         .triangles
         .first()
-        .map(|t| t.map(|i| scene.positions[i as usize]));
-    let Some(corners) = corners else {
-        return Ok(Vec::new());
+        .map(|t| t.map(|i| scene.positions[i as usize]))
+    else {
+        return cast;
     };
     if unclipped(&corners, state.depth_range, state.clip_far) {
-        let Some(tri) = snapped_triangle(scene, 0, profile.snapping) else {
-            return Ok(Vec::new());
+        let mut tris = snapped_triangles(scene, 0, profile).into_iter();
+        let Some(tri) = tris.next() else {
+            return cast;
         };
-        return Ok(frags
+        cast.others = tris.collect();
+        cast.pairs = frags
             .into_iter()
             .filter(|f| f.primitive == 0)
             .filter_map(|f| {
                 let [nx, ny] = sample_ndc(w, h, f.x, f.y);
-                let hit = ray_cast(&tri, nx, ny, state)?;
+                let hit = ray_cast(&tri, nx, ny, &state)?;
                 Some((f, Expected::exact(hit)))
             })
-            .collect());
+            .collect();
+        return cast;
     }
     let tri = scene.positions_of(0);
     let step = profile.snapping.unit_px();
     let half = ndc_offset(w, h, step, step).map(f64::abs);
-    Ok(frags
+    cast.pairs = frags
         .into_iter()
         .filter(|f| f.primitive == 0)
         .filter_map(|f| {
@@ -162,7 +214,7 @@ pub fn raycast_fragments(
             let corners = [(0.0, 0.0), (-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0)];
             corners
                 .iter()
-                .find_map(|(sx, sy)| ray_cast(&tri, nx + sx * half[0], ny + sy * half[1], state))?;
+                .find_map(|(sx, sy)| ray_cast(&tri, nx + sx * half[0], ny + sy * half[1], &state))?;
             let s = spread(&tri, nx, ny, half, state.depth_range)?;
             let expected = Expected {
                 barycentric: s.at.barycentric,
@@ -172,7 +224,8 @@ pub fn raycast_fragments(
             };
             Some((f, expected))
         })
-        .collect())
+        .collect();
+    cast
 }
 
 /// ", allowed …" naming the slack a clipped triangle's snapped cut vertices earn, if any.
@@ -263,11 +316,49 @@ pub fn mesh_expectation(scene: &Scene, band: f64) -> (Vec<Expect>, Vec<Vec<[f64;
     (expected, finite_outlines(&outlines))
 }
 
-/// Checks a scene's coverage against [`mesh_expectation`].
+/// [`mesh_expectation`] of what the scene's state draws for a rasterizer with `profile`: a
+/// triangle its cull mode surely discards is expected absent, and where a triangle's facing is
+/// unsure ([`crate::oracle::facing::Turn::Unsure`]) whatever either outcome allows.
+#[must_use]
+pub fn drawn_expectation(scene: &Scene, profile: &Profile, band: f64) -> (Vec<Expect>, Vec<Vec<[f64; 2]>>) {
+    if scene.state.cull == CullMode::None {
+        return mesh_expectation(scene, band);
+    }
+    let drawn: Vec<Option<bool>> = scene
+        .turns(profile)
+        .iter()
+        .map(|t| t.drawn(&scene.state))
+        .collect();
+    let keeping = |unsure: bool| {
+        let mut kept = scene.clone();
+        kept.triangles = (0..scene.triangles.len())
+            .filter(|&t| drawn[t].unwrap_or(unsure))
+            .map(|t| scene.triangles[t])
+            .collect();
+        kept
+    };
+    let (with, outlines) = mesh_expectation(&keeping(true), band);
+    if drawn.iter().all(Option::is_some) {
+        return (with, outlines);
+    }
+    let (without, _) = mesh_expectation(&keeping(false), band);
+    let either = with
+        .iter()
+        .zip(&without)
+        .map(|(&a, &b)| match (a, b) {
+            _ if a == b => a,
+            (Expect::One, Expect::OneOrTwo) | (Expect::OneOrTwo, Expect::One) => Expect::OneOrTwo,
+            _ => Expect::ZeroOrOne,
+        })
+        .collect();
+    (either, outlines)
+}
+
+/// Checks a scene's coverage against [`drawn_expectation`].
 pub fn check_mesh_coverage(r: &mut dyn Rasterizer, scene: &Scene, what: &str) -> Result<(), Violation> {
-    let band = r.profile().band_px();
+    let profile = r.profile();
     let frags = fragments(r, scene)?;
-    let (expected, outlines) = mesh_expectation(scene, band);
+    let (expected, outlines) = drawn_expectation(scene, &profile, profile.band_px());
     let counts = count_fragments(&frags, scene.width, scene.height);
     compare_coverage(&counts, &expected, scene.width, scene.height, outlines, what)
 }
@@ -346,4 +437,18 @@ pub fn compare_sets(scene: &Scene, got: &[Fragment], want: &[Fragment], what: &s
             })
         }
     }
+}
+
+/// A sample of the viewport inside triangle `t`'s visible part and farther than `margin`
+/// pixels from its outline, if there is one.
+pub fn deep_sample(scene: &Scene, t: usize, margin: f64) -> Option<(u32, u32)> {
+    let tri = scene.positions_of(t);
+    let outline = visible_outline(&tri, scene.width, scene.height, &scene.state);
+    (0..scene.height)
+        .flat_map(|y| (0..scene.width).map(move |x| (x, y)))
+        .find(|&(x, y)| {
+            let [nx, ny] = sample_ndc(scene.width, scene.height, x, y);
+            distance_to_outline(&outline, sample_centre(x, y), |_, _| true) > margin
+                && ray_cast(&tri, nx, ny, &scene.state).is_some()
+        })
 }

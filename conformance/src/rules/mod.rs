@@ -5,6 +5,8 @@ pub mod clip;
 pub mod common;
 pub mod depth;
 pub mod fill;
+pub mod hint;
+pub mod level;
 pub mod meta;
 pub mod robust;
 
@@ -13,6 +15,7 @@ use std::fmt;
 use refrast::{CompareOp, CullMode, DepthConvention, DepthRange, Profile, Rasterizer, SubpixelBits};
 
 use crate::runner::{RunConfig, Verdict};
+pub use level::{Level, Levels};
 
 /// A rule family.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
@@ -86,6 +89,12 @@ pub struct Rule {
     pub default_cases: u32,
     /// What a profile must declare for the rule to apply; none for every profile.
     pub needs: Vec<Need>,
+    /// Whether its inputs are drawn as generated, whatever the cull mode: for the rules about
+    /// facing and culling themselves. Otherwise a triangle a restricted cull mode would discard
+    /// is turned to face front first.
+    pub keeps_winding: bool,
+    /// What Vulkan, OpenGL and D3D11.3 each require of what it checks.
+    pub levels: Levels,
     /// Runs the rule's property against a rasterizer.
     pub run: Run,
 }
@@ -128,6 +137,8 @@ pub struct RuleDraft {
     source: &'static str,
     default_cases: u32,
     needs: Vec<Need>,
+    keeps_winding: bool,
+    levels: Levels,
 }
 
 impl RuleDraft {
@@ -140,6 +151,8 @@ impl RuleDraft {
             source: "",
             default_cases: 1000,
             needs: Vec::new(),
+            keeps_winding: false,
+            levels: Levels::REQUIRED,
         }
     }
 
@@ -171,6 +184,37 @@ impl RuleDraft {
         self
     }
 
+    /// Draws its inputs with the winding they were generated with, under any cull mode: the
+    /// rule judges facing or culling itself.
+    #[must_use]
+    pub fn keeps_winding(self) -> Self {
+        Self {
+            keeps_winding: true,
+            ..self
+        }
+    }
+
+    /// Its level under Vulkan and OpenGL alike (required unless said).
+    #[must_use]
+    pub fn vulkan_and_opengl(mut self, level: Level) -> Self {
+        self.levels.vulkan = level;
+        self.levels.opengl = level;
+        self
+    }
+
+    /// Its level under D3D11.3 (required unless said).
+    #[must_use]
+    pub fn d3d11(mut self, level: Level) -> Self {
+        self.levels.d3d11 = level;
+        self
+    }
+
+    /// Its level under every specification but refrast's.
+    #[must_use]
+    pub fn every_spec(self, level: Level) -> Self {
+        self.vulkan_and_opengl(level).d3d11(level)
+    }
+
     /// The rule, with the property it runs.
     #[must_use]
     pub fn run(self, run: Run) -> Rule {
@@ -182,6 +226,8 @@ impl RuleDraft {
             source: self.source,
             default_cases: self.default_cases,
             needs: self.needs,
+            keeps_winding: self.keeps_winding,
+            levels: self.levels,
             run,
         }
     }
@@ -232,6 +278,17 @@ pub const PERSPECTIVE_BARYCENTRICS: Need = needs(
 /// Fragments carry screen-space barycentrics.
 pub const SCREEN_BARYCENTRICS: Need =
     needs(|p| p.features.screen_barycentrics, "no screen-space barycentrics");
+/// A vertex can lie on a sample centre as drawn: no grid, or one of at least one bit (a
+/// whole-pixel grid puts every vertex on a pixel corner).
+pub const VERTEX_ON_SAMPLE: Need = needs(
+    |p| p.snapping.grid_bits() != Some(0),
+    "a whole-pixel grid puts no vertex on a sample centre",
+);
+/// Fragments carry barycentrics of either kind.
+pub const ANY_BARYCENTRICS: Need = needs(
+    |p| p.features.perspective_barycentrics || p.features.screen_barycentrics,
+    "no barycentrics of either kind",
+);
 /// Depth is z/w interpolated linearly in screen space.
 pub const Z_OVER_W_DEPTH: Need = needs(
     |p| p.depth == DepthConvention::ScreenLinearZOverW,
@@ -239,15 +296,25 @@ pub const Z_OVER_W_DEPTH: Need = needs(
 );
 /// The depth test is implemented.
 pub const DEPTH_TEST: Need = needs(|p| p.features.depth_test, "no depth test");
-/// A depth test that keeps the nearer fragment and writes it: `Less` or `LessOrEqual`.
-pub const NEARER_WINS: Need = needs(
+/// The compare ops that keep the nearest or the farthest fragment with writes on, so that the
+/// depth buffer after them does not depend on the order of the draws: nearest first.
+pub const EXTREME_OPS: [CompareOp; 4] = [
+    CompareOp::Less,
+    CompareOp::LessOrEqual,
+    CompareOp::Greater,
+    CompareOp::GreaterOrEqual,
+];
+
+/// A depth test that keeps the nearest (or the farthest) fragment and writes it: `Less`,
+/// `LessOrEqual`, `Greater` or `GreaterOrEqual`, with writes on.
+pub const EXTREME_WINS: Need = needs(
     |p| {
         let f = &p.features;
         f.depth_test
             && f.depth_writes.contains(true)
-            && (f.compare_ops.contains(CompareOp::Less) || f.compare_ops.contains(CompareOp::LessOrEqual))
+            && EXTREME_OPS.iter().any(|&op| f.compare_ops.contains(op))
     },
-    "no depth test keeping the nearer fragment (Less or LessOrEqual, with writes)",
+    "no depth test keeping the nearest or farthest fragment (Less, LessOrEqual, Greater or GreaterOrEqual, with writes)",
 );
 /// Culling of front or back faces is implemented.
 pub const CULLING: Need = needs(

@@ -175,18 +175,22 @@ pub fn check_poisoned(r: &mut dyn Rasterizer, p: &Poisoned) -> Result<(), Violat
     )
 }
 
-/// Fragments are unique, have depth in [0, 1] within [`precision`] and finite barycentrics
-/// (that they lie in the viewport and name real primitives, [`fragments`] checks for every rule).
+/// Fragments are unique, have depth in [0, 1] within [`precision`] and finite barycentrics where
+/// the profile declares them (that they lie in the viewport and name real primitives,
+/// [`fragments`] checks for every rule).
 pub fn check_well_formed(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     // Window depth is claimed within the precision of its exact value, which lies in [0, 1].
-    let eps = precision(&r.profile()) as f32;
+    let profile = r.profile();
+    let eps = precision(&profile) as f32;
+    // Barycentrics the profile does not declare are whatever the fragment carries.
+    let declared = profile.features.perspective_barycentrics;
     let frags = fragments(r, scene)?;
     let mut seen = std::collections::HashSet::new();
     let mut found = Findings::new();
     for f in &frags {
         let problem = if !(-eps..=1.0 + eps).contains(&f.depth) {
             "has depth outside [0, 1] by more than the claimed precision"
-        } else if f.barycentric.iter().any(|b| !b.is_finite()) {
+        } else if declared && f.barycentric.iter().any(|b| !b.is_finite()) {
             "has a non-finite barycentric"
         } else if !seen.insert((f.primitive, f.x, f.y)) {
             "covers its pixel a second time"

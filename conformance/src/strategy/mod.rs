@@ -4,6 +4,7 @@
 //! so clip coordinates are exact in f32 and every implementation sees the same raster points.
 
 use proptest::prelude::*;
+use refrast::{DepthRange, Profile};
 use spade::{DelaunayTriangulation, Point2, Triangulation};
 
 use crate::scene::{Scene, clip_of};
@@ -123,15 +124,23 @@ pub fn perspective_inside_scene() -> impl Strategy<Value = Scene> {
     perspective(inside_triangle())
 }
 
-/// `scenes` under either clip volume: half of them move to OpenGL's `−w ≤ z ≤ w`, each `z`
-/// mapped to `2z − w` so that every vertex keeps its window depth.
+/// `scenes` under either clip volume the profile supports: where it supports both, half of them
+/// move to OpenGL's `−w ≤ z ≤ w`; where only that one, all of them. A scene moved there has each
+/// `z` mapped to `2z − w`, so that every vertex keeps its window depth.
 ///
 /// For the depth rules, which otherwise would never see the OpenGL range's window depth
-/// `(z/w + 1)/2` (mutation testing found it unjudged).
-pub fn either_depth_range(scenes: impl Strategy<Value = Scene>) -> impl Strategy<Value = Scene> {
-    (scenes, any::<bool>()).prop_map(|(mut scene, gl)| {
-        if gl {
-            scene.state.depth_range = refrast::DepthRange::NegativeOneToOne;
+/// `(z/w + 1)/2` (mutation testing found it unjudged); a profile with one range gets scenes
+/// drawn as generated under it, not moved into the other and clipped by its near plane.
+pub fn either_depth_range<S: Strategy<Value = Scene>>(
+    profile: &Profile,
+    scenes: S,
+) -> impl Strategy<Value = Scene> + use<S> {
+    let ranges = profile.features.depth_ranges;
+    let gl_only = !ranges.contains(DepthRange::ZeroToOne);
+    let both = ranges.contains(DepthRange::NegativeOneToOne) && !gl_only;
+    (scenes, any::<bool>()).prop_map(move |(mut scene, coin)| {
+        if gl_only || (both && coin) {
+            scene.state.depth_range = DepthRange::NegativeOneToOne;
             for p in &mut scene.positions {
                 p[2] = 2.0 * p[2] - p[3];
             }

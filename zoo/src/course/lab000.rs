@@ -24,7 +24,7 @@
 
 use refrast::{
     CullMode, DepthConvention, DepthRange, Draw, DrawError, Features, Fragment, Profile, Rasterizer,
-    Resolved, Snapping, Supported, Winding,
+    Resolved, SnapAccuracy, Snapping, Spec, Supported, Winding,
 };
 
 /// Seed 000's rasterizer: `f32` cross products at pixel corners, view-depth buffer, no clipping.
@@ -157,7 +157,10 @@ impl Rasterizer for Lab000 {
                 guard_band: u32::MAX,
                 // No grid, so no snap ties.
                 ties_to_even: false,
+                snap: SnapAccuracy::Nearest,
+                zero_area_before_clipping: false,
             },
+            spec: Spec::Refrast,
         }
     }
 

@@ -25,7 +25,7 @@
 
 use refrast::{
     COORD_LIMIT, CullMode, DepthConvention, DepthRange, Draw, DrawError, Features, Fragment, Profile,
-    Rasterizer, Resolved, Snapping, Supported, Winding,
+    Rasterizer, Resolved, SnapAccuracy, Snapping, Spec, Supported, Winding,
 };
 
 /// Seed 002's rasterizer: whole-pixel vertices, left/right rows from interpolated edges, 1/z depth.
@@ -250,7 +250,12 @@ impl Rasterizer for Lab002 {
                 guard_band: u32::MAX,
                 // It truncates to its grid: a tie rounds down, not to even.
                 ties_to_even: false,
+                // Truncation lands on the grid point at or below the exact position: within
+                // one step of it, not the nearest.
+                snap: SnapAccuracy::WithinOneStep,
+                zero_area_before_clipping: false,
             },
+            spec: Spec::Refrast,
         }
     }
 

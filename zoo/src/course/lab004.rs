@@ -32,7 +32,7 @@ use std::collections::HashSet;
 
 use refrast::{
     CullMode, DepthConvention, DepthRange, Draw, DrawError, Features, Fragment, Profile, Rasterizer,
-    Snapping, Supported, Winding,
+    SnapAccuracy, Snapping, Spec, Supported, Winding,
 };
 
 /// Seed 004's rasterizer: six-plane Sutherland–Hodgman with a 10⁻⁶ nudge, then line equations `O_i ≤ 0`.
@@ -231,7 +231,10 @@ impl Rasterizer for Lab004 {
                 guard_band: 0,
                 // No grid, so no snap ties.
                 ties_to_even: false,
+                snap: SnapAccuracy::Nearest,
+                zero_area_before_clipping: false,
             },
+            spec: Spec::Refrast,
         }
     }
 

@@ -64,11 +64,15 @@ pub enum Bug {
     /// halfway between two grid points rounds up, not to even as declared (no rule drew a snap
     /// tie at 8 bits before the exact rules learnt to, when a profile declares `ties_to_even`).
     HalfUpSnap,
+    /// Barycentrics numbered from the last vertex instead of the first, as a setup that starts
+    /// from its provoking vertex: each weight goes to the wrong vertex, though they still sum
+    /// to 1 and lie in [0, 1].
+    PermutedBarycentrics,
 }
 
 impl Bug {
     /// Every bug.
-    pub const ALL: [Bug; 24] = [
+    pub const ALL: [Bug; 25] = [
         Self::InclusiveEdges,
         Self::ExclusiveEdges,
         Self::BottomRightAsTopLeft,
@@ -93,6 +97,7 @@ impl Bug {
         Self::LerpedCutDepth,
         Self::PerspectiveCutScreen,
         Self::HalfUpSnap,
+        Self::PermutedBarycentrics,
     ];
 
     /// The name after `mutant:` in `--impl`.
@@ -123,6 +128,7 @@ impl Bug {
             Self::LerpedCutDepth => "lerped-cut-depth",
             Self::PerspectiveCutScreen => "perspective-cut-screen",
             Self::HalfUpSnap => "half-up-snap",
+            Self::PermutedBarycentrics => "permuted-barycentrics",
         }
     }
 
@@ -139,9 +145,11 @@ impl Bug {
             // Its cracks come from evaluating a shared edge from either end in f32: reversing one
             // triangle's winding shows the same on a single triangle.
             Self::FloatEdges => Family::Meta,
-            Self::AffineAttributes | Self::WrongArea | Self::AffineClipped | Self::PerspectiveCutScreen => {
-                Family::Bary
-            }
+            Self::AffineAttributes
+            | Self::WrongArea
+            | Self::AffineClipped
+            | Self::PerspectiveCutScreen
+            | Self::PermutedBarycentrics => Family::Bary,
             Self::DepthWithoutTest
             | Self::PerspectiveDepth
             | Self::UnmappedGlDepth

@@ -110,6 +110,15 @@ impl Rasterizer for Mutant {
                 self.walk(draw.viewport, tri, primitive as u32, front, unclipped, &mut out);
             }
         }
+        if self.bug == Bug::PermutedBarycentrics {
+            // Vertex k's weight handed to vertex k + 1.
+            for f in &mut out {
+                f.barycentric.rotate_right(1);
+                if let Some(s) = &mut f.screen_barycentric {
+                    s.rotate_right(1);
+                }
+            }
+        }
         Ok(out)
     }
 

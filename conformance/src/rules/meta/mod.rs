@@ -5,9 +5,9 @@ use std::collections::{HashMap, HashSet};
 
 use refrast::{CullMode, Fragment, FrontFace, Profile, Rasterizer};
 
-use super::common::{check_draws_nothing, compare_sets, fragments, precision};
-use super::{CULLING, EXACT_COVERAGE, Family, GUARD_BAND, Rule};
-use crate::oracle::brute_force;
+use super::common::{check_draws_nothing, compare_sets, deep_sample, fragments, precision};
+use super::{CULLING, EXACT_COVERAGE, Family, Rule};
+use crate::oracle::facing::Turn;
 use crate::oracle::outline::{distance_to_outline, visible_outline};
 use crate::oracle::raster::{self, sample_centre, sample_ndc};
 use crate::oracle::ray_cast::ray_cast;
@@ -57,11 +57,13 @@ pub(super) fn rules() -> Vec<Rule> {
             .source("dEQP-VK.rasterization.culling.*; seed 003 (back-face culling)")
             .cases(3000)
             .needs(CULLING)
+            .keeps_winding()
             .run(|r, cfg| property(r, cfg, cull_scene(), check_culling)),
         Rule::invariant(Family::Meta, "meta.facing.from-winding")
             .sentence("A fragment is front-facing exactly when its triangle turns on screen the way the front face says: by its snapped signed area, or by the sign of det[x y w] when it is clipped.")
             .source("Vulkan 1.4 §28.7.1 (polygon facing from the signed area); Olano and Greer 1997 (facing of clipped triangles); seed 003 (back-face culling)")
             .cases(6000)
+            .keeps_winding()
             .run(|r, cfg| property(r, cfg, facing_scene(), check_facing)),
         Rule::invariant(Family::Meta, "meta.degenerate.empty")
             .sentence("Zero-area triangles (collinear or repeated vertices, on sample centres too) draw nothing; without a guard band, those needing no x/y clipping.")
@@ -106,6 +108,22 @@ pub fn check_facing(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violati
         }
     };
     let mut found = Findings::new();
+    // Under a cull mode, a triangle surely facing the culled way draws nothing at all.
+    let sure = scene.turns(&profile)[0];
+    if sure.drawn(&scene.state) == Some(false) && sure != Turn::Degenerate {
+        for f in &frags {
+            found.add((f.x, f.y), || {
+                format!(
+                    "{:?} is drawn, but the triangle turns {} on screen, so it faces {} and {:?} culling discards it",
+                    (f.x, f.y),
+                    turn_word(sure),
+                    if sure.front_facing(&scene.state) == Some(true) { "front" } else { "back" },
+                    scene.state.cull
+                )
+            });
+        }
+        return found.verdict(|n| format!("a culled triangle drew {}", plural(n, "fragment")));
+    }
     let mut judge = |f: &Fragment, clockwise: bool, how: &str| {
         if f.front_facing != (clockwise == front_is_cw) {
             found.add((f.x, f.y), || {
@@ -118,17 +136,16 @@ pub fn check_facing(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violati
             });
         }
     };
-    if let Some(bits) = profile.snapping.grid_bits()
+    if profile.snapping.grid_bits().is_some()
         && raster::unclipped(&p, scene.state.depth_range, scene.state.clip_far)
     {
-        // Unclipped on a grid: exactly as the snapped triangle turns.
-        let snapped: Option<Vec<_>> = p
-            .iter()
-            .map(|&v| raster::snap(v, scene.width, scene.height, bits))
-            .collect();
-        let Some(v) = snapped else { return Ok(()) };
-        // Positive orient2d with y down is clockwise on screen.
-        let clockwise = brute_force::orient2d(v[0], v[1], v[2]) > 0;
+        // Unclipped on a grid: exactly as the snapped triangle turns, for every way the
+        // profile lets it snap (not judged where those disagree).
+        let clockwise = match sure {
+            Turn::Clockwise => true,
+            Turn::CounterClockwise => false,
+            Turn::Degenerate | Turn::Unsure => return Ok(()),
+        };
         for f in &frags {
             judge(f, clockwise, "its snapped signed area");
         }
@@ -195,15 +212,17 @@ fn degenerate_scene() -> impl Strategy<Value = Scene> {
 
 /// A zero-area triangle draws nothing, unless x/y clipping may have made it a real polygon.
 pub fn check_degenerate(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    // Without a guard band a triangle reaching outside the viewport is clipped, and the new
+    // Beyond the guard band a triangle reaching outside the viewport is clipped, and the new
     // vertices, computed on the boundary and snapped, need not stay on the old line (Vulkan
     // §"Primitive Clipping": intersecting edges are reconnected by new edges along the
     // boundary): the clipped polygon may have area.
-    let clipped = scene
-        .positions
-        .iter()
-        .any(|&[x, y, _, w]| x.abs() > w || y.abs() > w);
-    if clipped && GUARD_BAND.check(&r.profile()).is_err() {
+    let reach = f64::from(r.profile().features.guard_band);
+    let beyond = scene.positions.iter().any(|&p| {
+        let [x, y] = raster::project(scene.width, scene.height, p.map(f64::from));
+        !(-reach..=f64::from(scene.width) + reach).contains(&x)
+            || !(-reach..=f64::from(scene.height) + reach).contains(&y)
+    });
+    if beyond {
         return Ok(());
     }
     check_draws_nothing(r, scene)
@@ -230,7 +249,13 @@ fn compare_permuted(
         let (before, after) = (covered(base), covered(other));
         let mut found = Findings::new();
         for &(x, y) in before.symmetric_difference(&after) {
-            if !translate::near_edge(scene, profile.snapping, x, y, profile.band_px()) {
+            if !translate::near_edge(
+                scene,
+                profile.snapping,
+                x,
+                y,
+                profile.band_px() + translate::snap_slack(profile),
+            ) {
                 let how = if after.contains(&(x, y)) { "gained" } else { "lost" };
                 found.add((x, y), || format!("{how} {:?}", (x, y)));
             }
@@ -265,7 +290,7 @@ fn compare_permuted(
         let moved_apart = map.iter().enumerate().any(|(k, &to)| {
             f64::from((a.barycentric[k] - b.barycentric[to]).abs()) > 2.0 * precision(profile)
         });
-        if unclipped && moved_apart {
+        if unclipped && profile.features.perspective_barycentrics && moved_apart {
             weights.add((a.x, a.y), || {
                 format!(
                     "{:?} has {:?} then {:?}",
@@ -304,13 +329,52 @@ pub fn check_rotation(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Viola
 }
 
 /// Reversing the winding keeps coverage, swaps barycentrics, flips facing.
+///
+/// Under a cull mode the rasterizer cannot switch off, the reversed triangle faces the culled
+/// way: told the other front face too it faces front again and keeps its facing; with one front
+/// face, it must vanish.
 pub fn check_reversal(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let profile = r.profile();
     let base = fragments(r, scene)?;
     let mut reversed = scene.clone();
     let [a, b, c] = scene.triangles[0];
     reversed.triangles[0] = [a, c, b];
+    if scene.state.cull != CullMode::None {
+        let other = match scene.state.front_face {
+            FrontFace::CounterClockwise => FrontFace::Clockwise,
+            FrontFace::Clockwise => FrontFace::CounterClockwise,
+        };
+        if profile.features.front_faces.contains(other) {
+            reversed.state.front_face = other;
+            let flipped = fragments(r, &reversed)?;
+            return compare_permuted(
+                &profile,
+                scene,
+                &base,
+                &flipped,
+                [0, 2, 1],
+                false,
+                &format!("after reversing the winding and the front face (to {other:?})"),
+            );
+        }
+        let turn = reversed.turns(&profile)[0];
+        match turn.drawn(&reversed.state) {
+            Some(false) => {
+                return check_draws_nothing(r, &reversed).map_err(|mut v| {
+                    v.message = format!(
+                        "reversed, the triangle faces back under {:?} culling and {:?} front faces, yet {}",
+                        reversed.state.cull, reversed.state.front_face, v.message
+                    );
+                    v
+                });
+            }
+            // Where the facing is unsure, culling it or not are both right.
+            None => return Ok(()),
+            Some(true) => {}
+        }
+    }
     compare_permuted(
-        &r.profile(),
+        &profile,
         scene,
         &base,
         &fragments(r, &reversed)?,
@@ -349,8 +413,18 @@ pub fn check_batch_independent(r: &mut dyn Rasterizer, scene: &Scene) -> Result<
 }
 
 /// Culling removes exactly the fragments of the culled facing.
+///
+/// With `None` among the cull modes, each culled draw is compared with the unculled one. A
+/// rasterizer that cannot switch culling off is drawn the scene and its reversal under every
+/// supported cull mode and front face: a triangle surely facing the culled way draws nothing, one
+/// surely facing the other way has the facing it should and, where a sample lies farther than
+/// twice the band inside it, draws.
 pub fn check_culling(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let features = r.profile().features;
+    let profile = r.profile();
+    let features = profile.features;
+    if !features.cull_modes.contains(CullMode::None) {
+        return check_culling_by_facing(r, &profile, scene);
+    }
     for front_face in features.front_faces.values() {
         let mut none = scene.clone();
         none.state.front_face = front_face;
@@ -376,6 +450,86 @@ pub fn check_culling(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violat
         }
     }
     Ok(())
+}
+
+/// [`check_culling`] for a rasterizer that always culls: each triangle judged by its facing.
+fn check_culling_by_facing(
+    r: &mut dyn Rasterizer,
+    profile: &Profile,
+    scene: &Scene,
+) -> Result<(), Violation> {
+    let mut reversed = scene.clone();
+    for t in &mut reversed.triangles {
+        t.swap(1, 2);
+    }
+    let band = profile.band_px();
+    for front_face in profile.features.front_faces.values() {
+        for cull in profile.features.cull_modes.values() {
+            for (drawn, how) in [(scene, "as generated"), (&reversed, "reversed")] {
+                let mut s = drawn.clone();
+                s.state.front_face = front_face;
+                s.state.cull = cull;
+                let turns = s.turns(profile);
+                let frags = fragments(r, &s)?;
+                let mut found = Findings::new();
+                for f in &frags {
+                    let turn = turns[f.primitive as usize];
+                    match turn.drawn(&s.state) {
+                        Some(false) => found.add((f.x, f.y), || {
+                            format!(
+                                "{:?} of triangle {} is drawn, but the triangle turns {} on screen and {cull:?} culling discards it",
+                                (f.x, f.y),
+                                f.primitive,
+                                turn_word(turn)
+                            )
+                        }),
+                        Some(true) if turn.front_facing(&s.state) != Some(f.front_facing) => {
+                            found.add((f.x, f.y), || {
+                                format!(
+                                    "{:?} of triangle {} says front_facing = {}, but the triangle turns {} on screen",
+                                    (f.x, f.y),
+                                    f.primitive,
+                                    f.front_facing,
+                                    turn_word(turn)
+                                )
+                            });
+                        }
+                        _ => {}
+                    }
+                }
+                for (t, turn) in turns.iter().enumerate() {
+                    if turn.drawn(&s.state) == Some(true)
+                        && !frags.iter().any(|f| f.primitive as usize == t)
+                        && let Some(at) = deep_sample(&s, t, 2.0 * band)
+                    {
+                        found.add(at, || {
+                            format!(
+                                "triangle {t} turns {} on screen, so {cull:?} culling keeps it, but it drew nothing (not even {at:?}, deep inside it)",
+                                turn_word(*turn)
+                            )
+                        });
+                    }
+                }
+                found.verdict(|n| {
+                    format!(
+                        "{cull:?} culling with {front_face:?} front faces, the scene {how}: {} wrong",
+                        plural(n, "sample")
+                    )
+                })?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A turn in words.
+fn turn_word(turn: Turn) -> &'static str {
+    match turn {
+        Turn::Clockwise => "clockwise",
+        Turn::CounterClockwise => "counter-clockwise",
+        Turn::Degenerate => "nowhere (zero area)",
+        Turn::Unsure => "either way",
+    }
 }
 
 #[cfg(test)]

@@ -4,7 +4,7 @@
 use std::collections::HashSet;
 
 use proptest::prelude::*;
-use refrast::{Profile, Rasterizer, Snapping};
+use refrast::{Profile, Rasterizer, SnapAccuracy, Snapping};
 
 use crate::oracle::outline::segment_distance;
 use crate::oracle::raster::{self, sample_centre};
@@ -75,9 +75,22 @@ pub(super) fn near_edge(scene: &Scene, snapping: Snapping, x: u32, y: u32, limit
 }
 
 /// How far from an edge two correct drawings of one triangle may differ: clipping at a
-/// different viewport border snaps new vertices, moving an edge by up to the band, on either side.
+/// different viewport border snaps new vertices, moving an edge by up to the band, on either side;
+/// and where the profile lets a vertex snap to either of two grid points, one more grid step.
 fn clip_slack(profile: &Profile) -> f64 {
-    2.0 * profile.band_px()
+    2.0 * profile.band_px() + snap_slack(profile)
+}
+
+/// How far a vertex may snap from where the oracle's nearest-even snap puts it: nothing where
+/// the profile claims exactly that, one grid step where it may round a tie either way or land
+/// within one step ([`refrast::SnapAccuracy::WithinOneStep`]).
+pub(super) fn snap_slack(profile: &Profile) -> f64 {
+    let f = &profile.features;
+    if f.snap == SnapAccuracy::Nearest && f.ties_to_even {
+        0.0
+    } else {
+        profile.snapping.unit_px()
+    }
 }
 
 /// Moving by whole pixels moves coverage alike, except near an edge.
@@ -141,7 +154,7 @@ pub fn check_subpixel_translation(r: &mut dyn Rasterizer, scene: &Scene) -> Resu
     let Some(pts) = placed(scene, profile.snapping) else {
         return Ok(());
     };
-    let limit = unit + profile.band_px();
+    let limit = unit + profile.band_px() + snap_slack(&profile);
     let mut found = Findings::new();
     for &(_, x, y) in changed {
         let s = sample_centre(x, y);

@@ -1,0 +1,280 @@
+//! Hints: when a failure has the shape of a misdeclared profile, one line that says so.
+//!
+//! Each detector redraws the shrunk counterexample and asks whether one alternative explains
+//! every difference: the other winding (a front face or cull mode declared the wrong way round,
+//! or y pointing up), the facing inverted, another fill convention, another subpixel
+//! precision, the other clip volume's window depth, the barycentrics of a vertex order other
+//! than the draw's. A hint names both readings, a misdeclared profile or the bug that looks the
+//! same (the zoo's mutants have these shapes too), and fires only when the alternative
+//! explains the failure completely.
+
+use refrast::{DepthConvention, DepthRange, FillConvention, Fragment, Profile, Rasterizer};
+
+use super::common::{Expected, deep_sample, fragments, precision, raycast_expectations, raycast_fragments};
+use super::{Family, Rule};
+use crate::oracle::brute_force;
+use crate::oracle::facing::Turn;
+use crate::oracle::raster::{self, Point};
+use crate::scene::Scene;
+
+/// A detector: a hint when the failure on `scene` has its shape.
+type Detector = fn(&mut dyn Rasterizer, &Profile, &Scene, &[Fragment]) -> Option<String>;
+
+/// The hint for `rule`'s failure on `scene` (the shrunk counterexample), if its shape matches a
+/// misdeclaration; `None` when none explains it or the rasterizer cannot draw it again.
+///
+/// Only the detectors that speak of what the rule judges run: coverage for the fill, clip and
+/// metamorphic rules, facing for the rules about facing, depth for the depth rules,
+/// barycentrics for theirs.
+#[must_use]
+pub fn diagnose(r: &mut dyn Rasterizer, rule: &Rule, scene: &Scene) -> Option<String> {
+    let profile = r.profile();
+    let frags = fragments(r, scene).ok()?;
+    let facing = matches!(
+        rule.id,
+        "meta.facing.from-winding" | "meta.reversal.flips-facing" | "meta.cull.by-facing"
+    );
+    let detectors: Vec<Detector> = match rule.family {
+        Family::Fill | Family::Clip => vec![one_winding, mirrored_fill, other_bits],
+        Family::Meta if facing => vec![one_winding, inverted_facing],
+        Family::Meta => vec![one_winding, mirrored_fill, other_bits, permuted_barycentrics],
+        Family::Depth => vec![other_depth_range],
+        Family::Bary => vec![permuted_barycentrics],
+        Family::Robust => Vec::new(),
+    };
+    detectors
+        .iter()
+        .find_map(|detect| detect(r, &profile, scene, &frags))
+}
+
+/// Every triangle of one winding that should draw is missing, each draws once reversed, and
+/// every one of the other winding draws.
+fn one_winding(
+    r: &mut dyn Rasterizer,
+    profile: &Profile,
+    scene: &Scene,
+    frags: &[Fragment],
+) -> Option<String> {
+    let band = profile.band_px();
+    let turns = scene.turns(profile);
+    let judged: Vec<(usize, Turn, bool)> = (0..scene.triangles.len())
+        .filter(|&t| matches!(turns[t], Turn::Clockwise | Turn::CounterClockwise))
+        .filter(|&t| turns[t].drawn(&scene.state) == Some(true))
+        .filter(|&t| deep_sample(scene, t, 2.0 * band).is_some())
+        .map(|t| (t, turns[t], frags.iter().any(|f| f.primitive as usize == t)))
+        .collect();
+    let &(first, lost, _) = judged.iter().find(|(_, _, drawn)| !drawn)?;
+    if judged.iter().any(|&(_, turn, drawn)| drawn == (turn == lost)) {
+        return None;
+    }
+    let mut reversed = scene.clone();
+    reversed.triangles = vec![scene.triangles[first]];
+    reversed.triangles[0].swap(1, 2);
+    let reversed = reversed.compact();
+    if fragments(r, &reversed).ok()?.is_empty() {
+        return None;
+    }
+    let missing = judged.iter().filter(|(_, _, drawn)| !drawn).count();
+    Some(format!(
+        "every triangle here that turns {} on screen ({missing} of {}) is missing, and one drawn reversed is not: \
+         the profile may declare its front faces or cull modes the wrong way round (or the rasterizer's y axis points \
+         up), or a bug drops one winding (as mutant:one-winding does)",
+        turn_word(lost),
+        judged.len()
+    ))
+}
+
+/// Every fragment whose facing is sure says the opposite.
+fn inverted_facing(
+    _: &mut dyn Rasterizer,
+    profile: &Profile,
+    scene: &Scene,
+    frags: &[Fragment],
+) -> Option<String> {
+    let turns = scene.turns(profile);
+    let judged: Vec<bool> = frags
+        .iter()
+        .filter_map(|f| {
+            let want = turns.get(f.primitive as usize)?.front_facing(&scene.state)?;
+            (turns[f.primitive as usize] != Turn::Degenerate).then_some(f.front_facing == want)
+        })
+        .collect();
+    (!judged.is_empty() && judged.iter().all(|right| !right)).then(|| {
+        format!(
+            "every fragment says front_facing the opposite of what its triangle's winding gives under {:?} front \
+             faces: the profile may declare its front faces the wrong way round, or a bug inverts facing (as \
+             mutant:inverted-facing does)",
+            scene.state.front_face
+        )
+    })
+}
+
+/// Coverage is exactly another fill convention's, not the declared one's.
+fn mirrored_fill(
+    _: &mut dyn Rasterizer,
+    profile: &Profile,
+    scene: &Scene,
+    frags: &[Fragment],
+) -> Option<String> {
+    let (bits, declared) = (profile.snapping.grid_bits()?.min(16), profile.fill?);
+    let explains = |fill| explains_coverage(scene, frags, bits, fill);
+    if explains(declared)? {
+        return None;
+    }
+    let other = FillConvention::ALL
+        .into_iter()
+        .find(|&fill| fill != declared && explains(fill) == Some(true))?;
+    Some(format!(
+        "the coverage is exactly what the {} fill convention gives, not the declared {}: the profile may declare the \
+         wrong fill convention, or a bug breaks ties on edges the wrong way (as mutant:bottom-right-as-top-left does)",
+        other.name(),
+        declared.name()
+    ))
+}
+
+/// Coverage is exactly another subpixel precision's, not the declared one's.
+fn other_bits(
+    _: &mut dyn Rasterizer,
+    profile: &Profile,
+    scene: &Scene,
+    frags: &[Fragment],
+) -> Option<String> {
+    let (declared, fill) = (profile.snapping.grid_bits()?.min(16), profile.fill?);
+    if explains_coverage(scene, frags, declared, fill)? {
+        return None;
+    }
+    // The nearest precision that explains it: a small triangle agrees with many coarse grids.
+    let mut nearest: Vec<u8> = (1..=16u8).filter(|&b| b != declared).collect();
+    nearest.sort_by_key(|&b| (b.abs_diff(declared), b));
+    let other = nearest
+        .into_iter()
+        .find(|&b| explains_coverage(scene, frags, b, fill) == Some(true))?;
+    Some(format!(
+        "the coverage is exactly what {other} subpixel bits give, not the declared {declared}: the profile may declare \
+         the wrong subpixel precision, or a bug snaps to a coarser grid (as mutant:dropped-subpixel-bit does)"
+    ))
+}
+
+/// Whether the brute-force oracle at `bits` under `fill` gives exactly `frags`, triangle by
+/// triangle, culling by the snapped facing; `None` when it cannot say (a triangle needs
+/// clipping, a vertex does not project).
+fn explains_coverage(scene: &Scene, frags: &[Fragment], bits: u8, fill: FillConvention) -> Option<bool> {
+    for t in 0..scene.triangles.len() {
+        let corners = scene.corners(t);
+        if !raster::unclipped(&corners, scene.state.depth_range, scene.state.clip_far) {
+            return None;
+        }
+        let snapped: Vec<Point> = corners
+            .iter()
+            .map(|&p| raster::snap(p, scene.width, scene.height, bits))
+            .collect::<Option<_>>()?;
+        let tri = [snapped[0], snapped[1], snapped[2]];
+        let turn = match brute_force::orient2d(tri[0], tri[1], tri[2]).signum() {
+            1 => Turn::Clockwise,
+            -1 => Turn::CounterClockwise,
+            _ => Turn::Degenerate,
+        };
+        let mut want = if turn.drawn(&scene.state) == Some(false) {
+            Vec::new()
+        } else {
+            brute_force::coverage(tri, scene.width, scene.height, bits, fill)
+        };
+        let mut got: Vec<(u32, u32)> = frags
+            .iter()
+            .filter(|f| f.primitive as usize == t)
+            .map(|f| (f.x, f.y))
+            .collect();
+        want.sort_unstable();
+        got.sort_unstable();
+        if got != want {
+            return Some(false);
+        }
+    }
+    Some(true)
+}
+
+/// Depths are what the ray cast gives under the other clip volume (its near plane and its
+/// window depth), not under the draw's.
+fn other_depth_range(
+    r: &mut dyn Rasterizer,
+    profile: &Profile,
+    scene: &Scene,
+    frags: &[Fragment],
+) -> Option<String> {
+    if profile.depth != DepthConvention::ScreenLinearZOverW {
+        return None;
+    }
+    let eps = precision(profile);
+    let off = |f: &Fragment, w: &Expected| {
+        (f64::from(f.depth) - w.depth.clamp(0.0, 1.0)).abs() > eps + w.depth_slack
+    };
+    let declared = raycast_fragments(r, scene).ok()?;
+    if !declared.pairs.iter().any(|(f, w)| off(f, w)) {
+        return None;
+    }
+    let range = scene.state.depth_range;
+    let mut other = scene.clone();
+    other.state.depth_range = match range {
+        DepthRange::ZeroToOne => DepthRange::NegativeOneToOne,
+        DepthRange::NegativeOneToOne => DepthRange::ZeroToOne,
+    };
+    let explained = raycast_expectations(profile, &other, frags.to_vec());
+    if explained.pairs.is_empty() || explained.pairs.iter().any(|(f, w)| off(f, w)) {
+        return None;
+    }
+    let (said, other) = match range {
+        DepthRange::ZeroToOne => (
+            "0 ≤ z ≤ w, window depth z/w",
+            "−w ≤ z ≤ w volume's window depth (z/w + 1)/2",
+        ),
+        DepthRange::NegativeOneToOne => (
+            "−w ≤ z ≤ w, window depth (z/w + 1)/2",
+            "0 ≤ z ≤ w volume's window depth z/w",
+        ),
+    };
+    Some(format!(
+        "every depth is the {other}, where the draw asked for {said}: the profile may declare the wrong depth ranges, \
+         or a bug maps z to window depth the other way (as mutant:unmapped-gl-depth does)"
+    ))
+}
+
+/// The perspective barycentrics are the ray cast's with the vertices in another order.
+fn permuted_barycentrics(
+    r: &mut dyn Rasterizer,
+    profile: &Profile,
+    scene: &Scene,
+    _: &[Fragment],
+) -> Option<String> {
+    if !profile.features.perspective_barycentrics {
+        return None;
+    }
+    let eps = precision(profile);
+    let cast = raycast_fragments(r, scene).ok()?;
+    let fits = |order: [usize; 3]| {
+        cast.pairs.iter().all(|(f, w): &(Fragment, Expected)| {
+            (0..3).all(|k| {
+                (f64::from(f.barycentric[k]) - w.barycentric[order[k]]).abs() <= eps + w.barycentric_slack
+            })
+        })
+    };
+    if cast.pairs.is_empty() || fits([0, 1, 2]) {
+        return None;
+    }
+    let order = [[1, 2, 0], [2, 0, 1], [0, 2, 1], [2, 1, 0], [1, 0, 2]]
+        .into_iter()
+        .find(|&o| fits(o))?;
+    Some(format!(
+        "every fragment's barycentrics are the ray cast's weights of vertices {}, {}, {} in that order: the weights go \
+         to the wrong vertices, as in a rasterizer that numbers them otherwise than the draw (from its provoking \
+         vertex, say) or one with a bug in its setup",
+        order[0], order[1], order[2]
+    ))
+}
+
+/// A turn in words.
+fn turn_word(turn: Turn) -> &'static str {
+    match turn {
+        Turn::Clockwise => "clockwise",
+        _ => "counter-clockwise",
+    }
+}

@@ -1,0 +1,83 @@
+//! The restricted-profile matrix: the reference restricted to each setting's values (and a few
+//! combinations), using only those whatever a draw asks, passes or is `n/a` on every rule, and
+//! the rules that go `n/a` under each restriction are the ones `docs/profiles.md` lists.
+//!
+//! A few cases a rule here (`REFRAST_MATRIX_CASES`, default 24); the long-run form is
+//! `refrast certify --impl 'restricted:*'` at every rule's default cases.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+
+use refrast_conformance::restricted::restrictions;
+use refrast_conformance::{Options, Status, certify};
+
+/// Cases per rule: few, since the matrix is wide; the nightly run takes each rule's default.
+fn cases() -> u32 {
+    std::env::var("REFRAST_MATRIX_CASES")
+        .ok()
+        .and_then(|c| c.parse().ok())
+        .unwrap_or(24)
+}
+
+/// The docs table: one row per restriction, the rules it leaves `n/a` and why.
+fn not_applicable_table(rows: &BTreeMap<String, Vec<(String, String)>>) -> String {
+    let mut table = String::from("| restriction | n/a | rules not applicable, and why |\n|---|---|---|");
+    for (name, na) in rows {
+        let why: Vec<String> = na
+            .iter()
+            .map(|(id, reason)| format!("`{id}` ({reason})"))
+            .collect();
+        let listed = if why.is_empty() {
+            "none".to_owned()
+        } else {
+            why.join("; ")
+        };
+        let _ = write!(table, "\n| `restricted:{name}` | {} | {listed} |", na.len());
+    }
+    table
+}
+
+#[test]
+fn every_restricted_reference_passes_or_is_not_applicable() {
+    let options = Options {
+        cases: Some(cases()),
+        ..Options::default()
+    };
+    let mut failures = Vec::new();
+    let mut rows = BTreeMap::new();
+    for restriction in restrictions() {
+        let mut r = (restriction.make)();
+        let report = certify(&mut r, &options, |_| {});
+        assert_eq!(
+            report.refused, None,
+            "restricted:{} was refused",
+            restriction.name
+        );
+        for rule in &report.rules {
+            if rule.status == Status::Fail {
+                failures.push(format!(
+                    "restricted:{} fails {}: {}\n{}",
+                    restriction.name,
+                    rule.id,
+                    rule.message.as_deref().unwrap_or(""),
+                    rule.counterexample.as_deref().unwrap_or("")
+                ));
+            }
+        }
+        let na: Vec<(String, String)> = report
+            .rules
+            .iter()
+            .filter(|r| r.status == Status::NotApplicable)
+            .map(|r| (r.id.clone(), r.message.clone().unwrap_or_default()))
+            .collect();
+        rows.insert(restriction.name.clone(), na);
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+    let table = not_applicable_table(&rows);
+    let docs = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/profiles.md"))
+        .unwrap_or_default();
+    assert!(
+        docs.contains(&table),
+        "docs/profiles.md does not hold the n/a table the matrix measured; put this in it:\n\n{table}\n"
+    );
+}

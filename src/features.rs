@@ -1,0 +1,284 @@
+//! What an implementation supports: the draw states it can be sent, its optional outputs, and
+//! the conventions it claims beyond the profile's core ([`crate::Profile`]).
+
+use std::fmt;
+use std::marker::PhantomData;
+
+use crate::depth::{CompareOp, DepthRange};
+use crate::setup::{CullMode, FrontFace};
+use crate::viewport::GUARD_BAND_REACH;
+
+/// A draw-state setting with a few values, each of which an implementation may support.
+pub trait Setting: Copy + PartialEq + fmt::Debug + 'static {
+    /// Every value, the one to fall back on first.
+    const VALUES: &'static [Self];
+}
+
+impl Setting for CullMode {
+    const VALUES: &'static [Self] = &[Self::None, Self::Back, Self::Front];
+}
+
+impl Setting for FrontFace {
+    const VALUES: &'static [Self] = &[Self::CounterClockwise, Self::Clockwise];
+}
+
+impl Setting for CompareOp {
+    const VALUES: &'static [Self] = &[
+        Self::Less,
+        Self::LessOrEqual,
+        Self::Greater,
+        Self::GreaterOrEqual,
+        Self::Equal,
+        Self::NotEqual,
+        Self::Always,
+        Self::Never,
+    ];
+}
+
+impl Setting for DepthRange {
+    const VALUES: &'static [Self] = &[Self::ZeroToOne, Self::NegativeOneToOne];
+}
+
+/// On and off, for switches such as far clipping and depth writes.
+impl Setting for bool {
+    const VALUES: &'static [Self] = &[false, true];
+}
+
+/// The values of one setting an implementation supports.
+pub struct Supported<T: Setting> {
+    mask: u16,
+    setting: PhantomData<fn() -> T>,
+}
+
+impl<T: Setting> Supported<T> {
+    /// Every value.
+    pub const ALL: Self = Self {
+        mask: (1 << T::VALUES.len()) - 1,
+        setting: PhantomData,
+    };
+
+    /// Exactly `values`.
+    #[must_use]
+    pub fn only(values: &[T]) -> Self {
+        let mask = T::VALUES
+            .iter()
+            .enumerate()
+            .filter(|(_, v)| values.contains(v))
+            .fold(0, |mask, (i, _)| mask | 1 << i);
+        Self {
+            mask,
+            setting: PhantomData,
+        }
+    }
+
+    /// Whether no value at all is supported: a profile the suite cannot judge.
+    #[must_use]
+    pub fn is_empty(self) -> bool {
+        self.mask == 0
+    }
+
+    /// Whether `value` is supported.
+    #[must_use]
+    pub fn contains(self, value: T) -> bool {
+        T::VALUES
+            .iter()
+            .position(|v| *v == value)
+            .is_some_and(|i| self.mask & (1 << i) != 0)
+    }
+
+    /// The supported values, in [`Setting::VALUES`] order.
+    pub fn values(self) -> impl Iterator<Item = T> {
+        T::VALUES.iter().copied().filter(move |&v| self.contains(v))
+    }
+
+    /// `value` when supported, else the first supported value (`value` when there is none).
+    #[must_use]
+    pub fn fit(self, value: T) -> T {
+        if self.contains(value) {
+            value
+        } else {
+            self.values().next().unwrap_or(value)
+        }
+    }
+}
+
+impl<T: Setting> Clone for Supported<T> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<T: Setting> Copy for Supported<T> {}
+
+impl<T: Setting> PartialEq for Supported<T> {
+    fn eq(&self, other: &Self) -> bool {
+        self.mask == other.mask
+    }
+}
+
+impl<T: Setting> Eq for Supported<T> {}
+
+impl<T: Setting> std::hash::Hash for Supported<T> {
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        self.mask.hash(state);
+    }
+}
+
+impl<T: Setting> fmt::Debug for Supported<T> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_set().entries(self.values()).finish()
+    }
+}
+
+/// How close to the exact projected position snapping puts a vertex.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum SnapAccuracy {
+    /// On the grid point nearest the exact `x/w` (refrast; D3D11.3 §3.2.4.1 allows 0.6 ulp);
+    /// at an exact tie, on the even one if `ties_to_even` says so, else on either.
+    #[default]
+    Nearest,
+    /// On either grid point next to the exact `x/w`, per axis: within one grid step of it.
+    /// Vulkan computes the viewport transform in floating point, so a vertex a hair from a
+    /// snap tie may land on its far side (SwiftShader's `(x·(1/w))·scale + offset` in f32).
+    WithinOneStep,
+}
+
+/// Optional abilities and supported states; a rule needing one that is absent is "not
+/// applicable", never "passed", and no draw asks for a state that is not supported.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Features {
+    /// Fragments carry perspective-correct barycentrics.
+    pub perspective_barycentrics: bool,
+    /// Fragments carry screen-space barycentrics.
+    pub screen_barycentrics: bool,
+    /// The cull modes it implements (at least one; the suite orients what it draws to face
+    /// front when `None` is not among them).
+    pub cull_modes: Supported<CullMode>,
+    /// The front faces it can be told (at least one).
+    pub front_faces: Supported<FrontFace>,
+    /// `resolve` runs its own depth test, so the depth-test rules judge it.
+    pub depth_test: bool,
+    /// The depth compare ops of its depth test (at least one).
+    pub compare_ops: Supported<CompareOp>,
+    /// Depth writes on (`true`) and off (`false`) (at least one).
+    pub depth_writes: Supported<bool>,
+    /// Far-plane clipping off (`false`: depth clamped instead) and on (`true`) (at least one).
+    pub far_clipping: Supported<bool>,
+    /// The clip volumes' z ranges (at least one).
+    pub depth_ranges: Supported<DepthRange>,
+    /// How far beyond each side of the viewport, in pixels, a triangle may reach while x/y
+    /// clipping still moves no edge inside it (a guard band, so its coverage can be exact); 0 when
+    /// any reach outside may move one.
+    pub guard_band: u32,
+    /// Snapping rounds a coordinate exactly halfway between two grid points to the even one
+    /// (D3D11 §3.2.4.1); Vulkan leaves ties to the implementation, so without this claim the
+    /// suite moves every vertex off such a tie before drawing.
+    pub ties_to_even: bool,
+    /// How close to the exact `x/w` snapping lands; the exact rules and the interpolation
+    /// rules accept either neighbouring grid point under [`SnapAccuracy::WithinOneStep`].
+    pub snap: SnapAccuracy,
+    /// Zero area is decided on the snapped input triangle before clipping, as the reference
+    /// does: a triangle whose vertices all project onto one line draws nothing even where the
+    /// near plane cuts it. Without this claim, clipping first may leave a sliver along the line
+    /// (Vulkan allows it), which the suite then judges only outside the tolerance band.
+    pub zero_area_before_clipping: bool,
+}
+
+impl Features {
+    /// Everything the reference does.
+    pub const ALL: Features = Features {
+        perspective_barycentrics: true,
+        screen_barycentrics: true,
+        cull_modes: Supported::ALL,
+        front_faces: Supported::ALL,
+        depth_test: true,
+        compare_ops: Supported::ALL,
+        depth_writes: Supported::ALL,
+        far_clipping: Supported::ALL,
+        depth_ranges: Supported::ALL,
+        guard_band: GUARD_BAND_REACH,
+        ties_to_even: true,
+        snap: SnapAccuracy::Nearest,
+        zero_area_before_clipping: true,
+    };
+
+    /// The settings of which it supports no value, each as what to declare instead: a profile
+    /// with any is one the suite cannot judge (no draw could be sent to it).
+    #[must_use]
+    pub fn empty_settings(&self) -> Vec<&'static str> {
+        [
+            (
+                self.cull_modes.is_empty(),
+                "cull_modes (at least one of None, Back, Front)",
+            ),
+            (
+                self.front_faces.is_empty(),
+                "front_faces (CounterClockwise, Clockwise or both)",
+            ),
+            (
+                self.compare_ops.is_empty(),
+                "compare_ops (at least one compare op, such as Less)",
+            ),
+            (self.depth_writes.is_empty(), "depth_writes (true, false or both)"),
+            (
+                self.far_clipping.is_empty(),
+                "far_clipping (false for depth clamping, true, or both)",
+            ),
+            (
+                self.depth_ranges.is_empty(),
+                "depth_ranges (ZeroToOne, NegativeOneToOne or both)",
+            ),
+        ]
+        .into_iter()
+        .filter_map(|(empty, what)| empty.then_some(what))
+        .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two sets are equal when they hold the same settings, whatever order they were listed in
+    /// (`Profile` and `Features` derive their equality from it).
+    #[test]
+    fn sets_are_equal_by_their_settings() {
+        let both = Supported::only(&[CullMode::Back, CullMode::None]);
+        assert_eq!(both, Supported::only(&[CullMode::None, CullMode::Back]));
+        assert_ne!(both, Supported::only(&[CullMode::None]));
+        assert_ne!(both, Supported::<CullMode>::ALL);
+    }
+
+    #[test]
+    fn a_set_keeps_what_it_supports_and_falls_back_in_order() {
+        let ops = Supported::only(&[CompareOp::GreaterOrEqual, CompareOp::LessOrEqual]);
+        assert!(ops.contains(CompareOp::LessOrEqual));
+        assert!(!ops.contains(CompareOp::Less));
+        assert_eq!(ops.fit(CompareOp::Less), CompareOp::LessOrEqual);
+        assert_eq!(ops.fit(CompareOp::GreaterOrEqual), CompareOp::GreaterOrEqual);
+        assert_eq!(
+            ops.values().collect::<Vec<_>>(),
+            [CompareOp::LessOrEqual, CompareOp::GreaterOrEqual]
+        );
+        assert_eq!(format!("{ops:?}"), "{LessOrEqual, GreaterOrEqual}");
+        let none: Supported<bool> = Supported::only(&[]);
+        assert!(!none.fit(false));
+        assert!(none.is_empty() && !ops.is_empty());
+        assert!(Supported::<CompareOp>::ALL.contains(CompareOp::Never));
+    }
+
+    /// Every setting left without a value is named, with what to declare; none for the
+    /// reference's features.
+    #[test]
+    fn empty_settings_are_named_with_what_to_declare() {
+        assert!(Features::ALL.empty_settings().is_empty());
+        let features = Features {
+            cull_modes: Supported::only(&[]),
+            depth_ranges: Supported::only(&[]),
+            ..Features::ALL
+        };
+        let named = features.empty_settings();
+        assert_eq!(named.len(), 2);
+        assert!(named[0].starts_with("cull_modes") && named[1].starts_with("depth_ranges"));
+    }
+}

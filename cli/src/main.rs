@@ -26,8 +26,11 @@ enum Command {
     /// List the rules: ID, kind, family, source, sentence.
     Rules {
         /// Print the README's table instead: `| rule | kind | sentence |`.
-        #[arg(long)]
+        #[arg(long, conflicts_with = "levels")]
         markdown: bool,
+        /// Print what Vulkan, OpenGL and D3D11.3 each require of every rule (docs/levels.md).
+        #[arg(long)]
+        levels: bool,
     },
     /// List the built-in implementations and their profiles.
     Impls,
@@ -50,11 +53,15 @@ fn main() -> ExitCode {
     match cli.command {
         Command::Certify(args) => certify::run(&args),
         Command::RunRule(args) => certify::run_rule(&args),
-        Command::Rules { markdown: true } => {
+        Command::Rules { markdown: true, .. } => {
             say(&refrast_conformance::markdown_table());
             ExitCode::SUCCESS
         }
-        Command::Rules { markdown: false } => {
+        Command::Rules { levels: true, .. } => {
+            say(refrast_conformance::levels_markdown().trim_end());
+            ExitCode::SUCCESS
+        }
+        Command::Rules { .. } => {
             for rule in catalogue() {
                 say(&format!(
                     "{:<38} {:<9} {:<6} [{}] {}",

@@ -51,7 +51,9 @@ pub use impls::{BuiltIn, Maker, Named, Origin, Unavailable, builtins};
 pub use process::{Process, ProcessError};
 pub use rules::meta::Translated;
 pub use rules::robust::Poisoned;
-pub use rules::{Family, Kind, Need, Rule, RuleDraft, catalogue, markdown_table, needs};
+pub use rules::{
+    Family, Kind, Level, Levels, Need, Rule, RuleDraft, catalogue, levels_markdown, markdown_table, needs,
+};
 pub use runner::{DEFAULT_SEED, RunConfig, Verdict, property, property_for};
 pub use scene::{Case, Scene, clip_of};
 pub use violation::{Class, Counts, Expect, Findings, Picture, Violation, compare_coverage, count_fragments};

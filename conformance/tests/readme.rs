@@ -1,6 +1,18 @@
-//! The README's rule table is the catalogue: same rules, same order, same kinds and sentences.
+//! The README's rule table is the catalogue: same rules, same order, same kinds and sentences;
+//! and docs/levels.md says what each specification requires of each rule, as the catalogue does.
 
-use refrast_conformance::markdown_table;
+use refrast_conformance::{levels_markdown, markdown_table};
+
+#[test]
+fn the_levels_page_is_the_catalogues() {
+    let page = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/levels.md"))
+        .expect("docs/levels.md exists");
+    let want = levels_markdown();
+    assert!(
+        page.contains(want.trim_end()),
+        "docs/levels.md is out of date: put the output of `cargo run -- rules --levels` in it"
+    );
+}
 
 #[test]
 fn the_readme_rule_table_is_the_catalogue() {

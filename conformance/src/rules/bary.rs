@@ -3,6 +3,7 @@
 use refrast::{Fragment, Profile, Rasterizer};
 
 use super::common::{Expected, fragments, precision, raycast_fragments, slack_note, snapped_triangles};
+use super::level::{CLIPPED_VALUES, CONVEX_COMBINATION, Level, NO_BARYCENTRICS};
 use super::{
     ANY_BARYCENTRICS, Family, PERSPECTIVE_BARYCENTRICS, Rule, SCREEN_BARYCENTRICS, VERTEX_ON_SAMPLE,
 };
@@ -21,12 +22,18 @@ pub(super) fn rules() -> Vec<Rule> {
             .source("Vulkan 1.4 §28.7.5 (a + b + c = 1)")
             .cases(5000)
             .needs(ANY_BARYCENTRICS)
+            .d3d11(Level::NotCovered(NO_BARYCENTRICS))
             .run(|r, cfg| property(r, cfg, strategy::float_scene(), check_sum_one)),
         Rule::invariant(Family::Bary, "bary.range.unit")
             .sentence("Barycentrics (of either declared kind) of samples outside the tolerance band lie in [0, 1] within the claimed precision.")
             .source("Vulkan 1.4 §28.7.5 (clipped polygons: convex combinations)")
             .cases(5000)
             .needs(ANY_BARYCENTRICS)
+            .vulkan_and_opengl(Level::Partly {
+                part: |r, cfg| property(r, cfg, strategy::perspective_inside_scene(), check_in_range),
+                note: CLIPPED_VALUES,
+            })
+            .d3d11(Level::NotCovered(NO_BARYCENTRICS))
             .run(|r, cfg| property(r, cfg, strategy::crossing_scene(), check_in_range)),
         Rule::invariant(Family::Bary, "bary.vertex.one")
             .sentence("A covered sample exactly on a vertex has weight 1 for that vertex and 0 for the others (in either declared kind of barycentrics).")
@@ -34,12 +41,18 @@ pub(super) fn rules() -> Vec<Rule> {
             .cases(10000)
             .needs(ANY_BARYCENTRICS)
             .needs(VERTEX_ON_SAMPLE)
+            .d3d11(Level::NotCovered(NO_BARYCENTRICS))
             .run(|r, cfg| property(r, cfg, strategy::perspective_inside_scene(), check_vertex_one)),
         Rule::invariant(Family::Bary, "bary.perspective.matches-raycast")
             .sentence("Perspective-correct barycentrics equal those of the ray-cast hit within the claimed precision (2^-18 for the reference); on a clipped triangle also within how far they move when the sample moves one grid step (its cut vertices are snapped).")
             .source("seed 002 (q/z interpolation); Vulkan 1.4 §28.7.5")
             .cases(5000)
             .needs(PERSPECTIVE_BARYCENTRICS)
+            .vulkan_and_opengl(Level::Partly {
+                part: |r, cfg| property(r, cfg, strategy::perspective_inside_scene(), check_matches_raycast),
+                note: CONVEX_COMBINATION,
+            })
+            .d3d11(Level::NotCovered(NO_BARYCENTRICS))
             .run(|r, cfg| {
                 property(
                     r,
@@ -53,6 +66,11 @@ pub(super) fn rules() -> Vec<Rule> {
             .source("seed 000 (P = W0·V0 + W1·V1 + W2·V2); Vulkan 1.4, Clipping Shader Outputs (NoPerspective outputs at cut vertices vary linearly in framebuffer space)")
             .cases(5000)
             .needs(SCREEN_BARYCENTRICS)
+            .vulkan_and_opengl(Level::Partly {
+                part: |r, cfg| property(r, cfg, strategy::perspective_inside_scene(), check_reconstructs),
+                note: CONVEX_COMBINATION,
+            })
+            .d3d11(Level::NotCovered(NO_BARYCENTRICS))
             .run(|r, cfg| property(r, cfg, strategy::inside_or_crossing_scene(), check_reconstructs)),
         Rule::invariant(Family::Bary, "bary.equal-w.affine")
             .sentence("With equal w at every vertex, perspective-correct and screen-space barycentrics agree within the claimed precision, on clipped triangles (half the cases) too.")
@@ -60,20 +78,30 @@ pub(super) fn rules() -> Vec<Rule> {
             .cases(5000)
             .needs(SCREEN_BARYCENTRICS)
             .needs(PERSPECTIVE_BARYCENTRICS)
+            .vulkan_and_opengl(Level::Partly {
+                part: |r, cfg| property(r, cfg, equal_w_inside_scene(), check_equal_w),
+                note: CONVEX_COMBINATION,
+            })
+            .d3d11(Level::NotCovered(NO_BARYCENTRICS))
             .run(|r, cfg| property(r, cfg, equal_w_scene(), check_equal_w)),
     ]
 }
 
-/// Grid scenes with one `w` for all three vertices.
+/// Grid scenes with one `w` for all three vertices, unclipped or clipped.
 fn equal_w_scene() -> impl proptest::strategy::Strategy<Value = Scene> {
     use proptest::prelude::*;
-    let inside = (strategy::inside_scene(), 0.1f32..4.0).prop_map(|(mut s, w)| {
+    prop_oneof![equal_w_inside_scene(), strategy::equal_w_crossing_scene()]
+}
+
+/// Grid scenes inside the viewport with one `w` for all three vertices.
+fn equal_w_inside_scene() -> impl proptest::strategy::Strategy<Value = Scene> {
+    use proptest::prelude::*;
+    (strategy::inside_scene(), 0.1f32..4.0).prop_map(|(mut s, w)| {
         for p in &mut s.positions {
             *p = p.map(|c| c * w);
         }
         s
-    });
-    prop_oneof![inside, strategy::equal_w_crossing_scene()]
+    })
 }
 
 /// Reads one kind of barycentrics from a fragment.

@@ -4,7 +4,8 @@ use proptest::prelude::*;
 use refrast::DepthRange;
 
 use super::common::check_draws_nothing;
-use super::fill::check_exactly_once;
+use super::fill::{check_exactly_once, check_exactly_once_cuts_apart};
+use super::level::{CUT_VERTICES, Level, NO_GL_RANGE};
 use super::{FAR_CLIPPING, Family, GL_DEPTH_RANGE, Rule};
 use crate::runner::property;
 use crate::scene::Scene;
@@ -26,11 +27,19 @@ pub(super) fn rules() -> Vec<Rule> {
             .sentence("A viewport-covering mesh whose shared edges cross the near plane covers each visible sample exactly once. Known limit: at 4 subpixel bits, snapping the vertices the near plane makes on a sliver can fold its clipped polygon and open a hole (reference-4bit, at seeds 13 and 15 of 1–20).")
             .source("dEQP fill_rules.clipped_*; nvdiffrast #225; seed 004 (Sutherland–Hodgman)")
             .cases(1500)
+            .every_spec(Level::Partly {
+                part: |r, cfg| property(r, cfg, strategy::clipped_mesh_scene(), check_exactly_once_cuts_apart),
+                note: CUT_VERTICES,
+            })
             .run(|r, cfg| property(r, cfg, strategy::clipped_mesh_scene(), check_exactly_once)),
         Rule::invariant(Family::Clip, "clip.crossing-quad.watertight")
             .sentence("A quad with corners at ±30000·w whose shared diagonal crosses the near plane inside the viewport leaves no hole there.")
             .source("dEQP-GLES3.functional.clipping (±30000·w); design.md (canonical clip intersections)")
             .cases(3000)
+            .every_spec(Level::Partly {
+                part: |r, cfg| property(r, cfg, crossing_quad_scene(), check_exactly_once_cuts_apart),
+                note: CUT_VERTICES,
+            })
             .run(|r, cfg| property(r, cfg, crossing_quad_scene(), check_exactly_once)),
         Rule::invariant(Family::Clip, "clip.far.respected")
             .sentence("With far clipping on, samples whose hit lies beyond z = w are not covered, the rest as the ray cast says.")
@@ -43,6 +52,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .source("OpenGL 4.6 §13.7; Vulkan VK_EXT_depth_clip_control")
             .cases(3000)
             .needs(GL_DEPTH_RANGE)
+            .d3d11(Level::NotCovered(NO_GL_RANGE))
             .run(|r, cfg| property(r, cfg, gl_scene(), check_exactly_once)),
     ]
 }

@@ -260,6 +260,34 @@ impl Expected {
 /// shared edge ending at a cut vertex, where one or two is right ([`Expect::OneOrTwo`]).
 #[must_use]
 pub fn mesh_expectation(scene: &Scene, band: f64) -> (Vec<Expect>, Vec<Vec<[f64; 2]>>) {
+    mesh_expectation_with(scene, band, Relax::NONE)
+}
+
+/// What a coverage check leaves to the implementation beyond refrast's conventions, for a
+/// specification that requires less ([`super::level::Level::Partly`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Relax {
+    /// A sample exactly on a vertex shared by three or more triangles may be covered any number
+    /// of times: Vulkan's and OpenGL's exactly-once speaks of two polygons on either side of
+    /// an edge ([`super::level::SHARED_EDGE_ONLY`]).
+    pub vertices_of_three: bool,
+    /// A shared edge ending at a vertex made by clipping is a boundary (with the band and the
+    /// clipper's rounding): two triangles need not cut it at the same point
+    /// ([`super::level::CUT_VERTICES`]).
+    pub cut_shared_edges: bool,
+}
+
+impl Relax {
+    /// All of refrast's conventions.
+    pub const NONE: Relax = Relax {
+        vertices_of_three: false,
+        cut_shared_edges: false,
+    };
+}
+
+/// [`mesh_expectation`], leaving to the implementation what `relax` says.
+#[must_use]
+pub fn mesh_expectation_with(scene: &Scene, band: f64, relax: Relax) -> (Vec<Expect>, Vec<Vec<[f64; 2]>>) {
     // Shared means identical endpoints (Vulkan's wording), whatever the vertex indices.
     let key = |i: u32| scene.positions[i as usize].map(f32::to_bits);
     let edge = |t: &[u32; 3], k: usize| {
@@ -296,9 +324,16 @@ pub fn mesh_expectation(scene: &Scene, band: f64) -> (Vec<Expect>, Vec<Vec<[f64;
             let near_boundary = outlines.iter().zip(&shared).any(|(o, &sh)| {
                 // Segments not lying on a shared input edge: the boundary and the cuts.
                 distance_to_outline(o, s, |a, b| a.edges & b.edges & sh == 0) < band
-            }) || outlines.iter().zip(&tris).any(|(o, t)| {
-                // Cuts by a plane also move by an f32 clipper's rounding.
-                let d = distance_to_outline(o, s, |a, b| a.edges & b.edges == 0);
+            }) || outlines.iter().zip(&tris).zip(&shared).any(|((o, t), &sh)| {
+                // Cuts by a plane also move by an f32 clipper's rounding; so, relaxed, does a
+                // shared edge ending at one.
+                let cut = |a: &OutlinePoint, b: &OutlinePoint| {
+                    a.edges & b.edges == 0
+                        || (relax.cut_shared_edges
+                            && a.edges & b.edges & sh != 0
+                            && (a.is_cut() || b.is_cut()))
+                };
+                let d = distance_to_outline(o, s, cut);
                 d.is_finite() && d < band + cut_rounding_px(t, scene.width, scene.height, s, &scene.state)
             });
             let near_cut_vertex = outlines
@@ -313,16 +348,52 @@ pub fn mesh_expectation(scene: &Scene, band: f64) -> (Vec<Expect>, Vec<Vec<[f64;
             });
         }
     }
+    if relax.vertices_of_three {
+        for (x, y) in samples_on_vertices_of_three(scene) {
+            expected[(y * scene.width + x) as usize] = Expect::ZeroOrOne;
+        }
+    }
     (expected, finite_outlines(&outlines))
+}
+
+/// The samples lying exactly on a vertex (as drawn, `w > 0`) that three or more triangles of
+/// the scene share.
+fn samples_on_vertices_of_three(scene: &Scene) -> Vec<(u32, u32)> {
+    let mut users: HashMap<[u32; 4], u32> = HashMap::new();
+    for t in &scene.triangles {
+        for &i in t {
+            if let Some(p) = scene.positions.get(i as usize) {
+                *users.entry(p.map(f32::to_bits)).or_default() += 1;
+            }
+        }
+    }
+    users
+        .into_iter()
+        .filter(|&(_, n)| n >= 3)
+        .filter_map(|(bits, _)| {
+            let p = bits.map(f32::from_bits).map(f64::from);
+            if p[3] <= 0.0 {
+                return None;
+            }
+            let [x, y] = crate::oracle::raster::project(scene.width, scene.height, p).map(|c| c - 0.5);
+            let on = |c: f64, side: u32| c.fract() == 0.0 && (0.0..f64::from(side)).contains(&c);
+            (on(x, scene.width) && on(y, scene.height)).then_some((x as u32, y as u32))
+        })
+        .collect()
 }
 
 /// [`mesh_expectation`] of what the scene's state draws for a rasterizer with `profile`: a
 /// triangle its cull mode surely discards is expected absent, and where a triangle's facing is
 /// unsure ([`crate::oracle::facing::Turn::Unsure`]) whatever either outcome allows.
 #[must_use]
-pub fn drawn_expectation(scene: &Scene, profile: &Profile, band: f64) -> (Vec<Expect>, Vec<Vec<[f64; 2]>>) {
+pub fn drawn_expectation(
+    scene: &Scene,
+    profile: &Profile,
+    band: f64,
+    relax: Relax,
+) -> (Vec<Expect>, Vec<Vec<[f64; 2]>>) {
     if scene.state.cull == CullMode::None {
-        return mesh_expectation(scene, band);
+        return mesh_expectation_with(scene, band, relax);
     }
     let drawn: Vec<Option<bool>> = scene
         .turns(profile)
@@ -337,11 +408,11 @@ pub fn drawn_expectation(scene: &Scene, profile: &Profile, band: f64) -> (Vec<Ex
             .collect();
         kept
     };
-    let (with, outlines) = mesh_expectation(&keeping(true), band);
+    let (with, outlines) = mesh_expectation_with(&keeping(true), band, relax);
     if drawn.iter().all(Option::is_some) {
         return (with, outlines);
     }
-    let (without, _) = mesh_expectation(&keeping(false), band);
+    let (without, _) = mesh_expectation_with(&keeping(false), band, relax);
     let either = with
         .iter()
         .zip(&without)
@@ -354,11 +425,17 @@ pub fn drawn_expectation(scene: &Scene, profile: &Profile, band: f64) -> (Vec<Ex
     (either, outlines)
 }
 
-/// Checks a scene's coverage against [`drawn_expectation`].
-pub fn check_mesh_coverage(r: &mut dyn Rasterizer, scene: &Scene, what: &str) -> Result<(), Violation> {
+/// Checks a scene's coverage against [`drawn_expectation`], leaving to the implementation what
+/// `relax` says.
+pub fn check_mesh_coverage(
+    r: &mut dyn Rasterizer,
+    scene: &Scene,
+    what: &str,
+    relax: Relax,
+) -> Result<(), Violation> {
     let profile = r.profile();
     let frags = fragments(r, scene)?;
-    let (expected, outlines) = drawn_expectation(scene, &profile, profile.band_px());
+    let (expected, outlines) = drawn_expectation(scene, &profile, profile.band_px(), relax);
     let counts = count_fragments(&frags, scene.width, scene.height);
     compare_coverage(&counts, &expected, scene.width, scene.height, outlines, what)
 }

@@ -4,6 +4,7 @@ use proptest::prelude::*;
 use refrast::{CompareOp, DepthState, Profile, Rasterizer, Resolved};
 
 use super::common::{fragments, precision, raycast_fragments, slack_note};
+use super::level::{CONVEX_COMBINATION, Level};
 use super::{DEPTH_TEST, EXTREME_OPS, EXTREME_WINS, Family, Rule, Z_OVER_W_DEPTH};
 use crate::oracle::raster::{replay_depth, window_depth};
 use crate::runner::{property, property_for};
@@ -31,6 +32,17 @@ pub(super) fn rules() -> Vec<Rule> {
             .source("Vulkan 1.4 §28.7.5; D3D11.3 §15.6")
             .cases(5000)
             .needs(Z_OVER_W_DEPTH)
+            .vulkan_and_opengl(Level::Partly {
+                part: |r, cfg| {
+                    property_for(
+                        r,
+                        cfg,
+                        |p| strategy::either_depth_range(p, strategy::perspective_inside_scene()),
+                        check_depth_matches_raycast,
+                    )
+                },
+                note: CONVEX_COMBINATION,
+            })
             .run(|r, cfg| {
                 property_for(
                     r,

@@ -2,7 +2,8 @@
 
 use refrast::{CullMode, Fragment, Profile, Rasterizer};
 
-use super::common::{check_mesh_coverage, compare_sets, coverage_set, fragments, reference_for};
+use super::common::{Relax, check_mesh_coverage, compare_sets, coverage_set, fragments, reference_for};
+use super::level::{Level, NO_TIE_RULE, SHARED_EDGE_ONLY};
 use super::{EXACT_COVERAGE, Family, GUARD_BAND, REFERENCE_PROFILE, Rule};
 use crate::oracle::facing::{Turn, snapped_variants};
 use crate::oracle::raster::Point;
@@ -18,11 +19,19 @@ pub(super) fn rules() -> Vec<Rule> {
             .sentence("A spade triangulation of grid points and the viewport corners covers every sample exactly once.")
             .source("Vulkan 1.4 §28.7.1 (shared edges covered by exactly one polygon); design.md")
             .cases(2000)
+            .vulkan_and_opengl(Level::Partly {
+                part: |r, cfg| property(r, cfg, strategy::mesh_scene(), check_exactly_once_between_two),
+                note: SHARED_EDGE_ONLY,
+            })
             .run(|r, cfg| property(r, cfg, strategy::mesh_scene(), check_exactly_once)),
         Rule::invariant(Family::Fill, "fill.fan.exactly-once")
             .sentence("A fan around an interior vertex on a sample centre covers its interior samples exactly once.")
             .source("piglit triangle-rasterization-overdraw; design.md")
             .cases(3000)
+            .vulkan_and_opengl(Level::Partly {
+                part: |r, cfg| property(r, cfg, strategy::fan_scene(), check_exactly_once_between_two),
+                note: SHARED_EDGE_ONLY,
+            })
             .run(|r, cfg| property(r, cfg, strategy::fan_scene(), check_exactly_once)),
         Rule::invariant(Family::Fill, "fill.rotated-quad.exactly-once")
             .sentence("A rotated quad split on either diagonal covers its interior samples exactly once.")
@@ -33,6 +42,10 @@ pub(super) fn rules() -> Vec<Rule> {
             .sentence("A viewport-covering mesh with w in [0.1, 4] per vertex covers every sample exactly once.")
             .source("dEQP-VK.rasterization.fill_rules.projected")
             .cases(2000)
+            .vulkan_and_opengl(Level::Partly {
+                part: |r, cfg| property(r, cfg, strategy::projected_mesh_scene(), check_exactly_once_between_two),
+                note: SHARED_EDGE_ONLY,
+            })
             .run(|r, cfg| property(r, cfg, strategy::projected_mesh_scene(), check_exactly_once)),
         Rule::invariant(Family::Fill, "fill.interior.matches-raycast")
             .sentence("Samples farther than the tolerance band from every edge are covered exactly when the ray through them hits the triangle.")
@@ -44,6 +57,10 @@ pub(super) fn rules() -> Vec<Rule> {
             .source("D3D11.3 §3.4 (top-left rule), §3.2.4.1 (16.8 snapping, ties to even)")
             .cases(20000)
             .needs(REFERENCE_PROFILE)
+            .vulkan_and_opengl(Level::Partly {
+                part: |r, cfg| property_for(r, cfg, strategy::exact_scene, check_exactly_once),
+                note: NO_TIE_RULE,
+            })
             .run(|r, cfg| property_for(r, cfg, strategy::exact_scene, check_matches_reference)),
         Rule::exact(Family::Fill, "fill.guard-band.exact")
             .sentence("Coverage of a triangle reaching outside the viewport as far as the declared guard band (up to 8192 px) equals the brute-force oracle, as a guard band promises.")
@@ -51,6 +68,12 @@ pub(super) fn rules() -> Vec<Rule> {
             .cases(5000)
             .needs(EXACT_COVERAGE)
             .needs(GUARD_BAND)
+            .vulkan_and_opengl(Level::Partly {
+                part: |r, cfg| {
+                    property_for(r, cfg, |p| strategy::guard_band_scene(p.features.guard_band), check_exactly_once)
+                },
+                note: NO_TIE_RULE,
+            })
             .run(|r, cfg| {
                 property_for(r, cfg, |p| strategy::guard_band_scene(p.features.guard_band), check_guard_band)
             }),
@@ -59,13 +82,47 @@ pub(super) fn rules() -> Vec<Rule> {
             .source("Giesen, Triangle rasterization in practice; piglit triangle-rasterization; D3D11.3 §3.2.4.1")
             .cases(20000)
             .needs(EXACT_COVERAGE)
+            .vulkan_and_opengl(Level::Partly {
+                part: |r, cfg| property_for(r, cfg, strategy::exact_scene, check_exactly_once),
+                note: NO_TIE_RULE,
+            })
             .run(|r, cfg| property_for(r, cfg, strategy::exact_scene, check_matches_brute_force)),
     ]
 }
 
 /// Every sample is covered as often as the ray-cast mesh says: once inside, never outside.
 pub fn check_exactly_once(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    check_mesh_coverage(r, scene, "the ray-cast mesh (each sample inside exactly once)")
+    check_mesh_coverage(
+        r,
+        scene,
+        "the ray-cast mesh (each sample inside exactly once)",
+        Relax::NONE,
+    )
+}
+
+/// [`check_exactly_once`] but for samples exactly on a vertex three or more triangles share:
+/// what Vulkan's and OpenGL's exactly-once requires ([`SHARED_EDGE_ONLY`]).
+pub fn check_exactly_once_between_two(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let relax = Relax {
+        vertices_of_three: true,
+        ..Relax::NONE
+    };
+    check_mesh_coverage(
+        r,
+        scene,
+        "the ray-cast mesh (samples on shared edges exactly once)",
+        relax,
+    )
+}
+
+/// [`check_exactly_once`] with a shared edge ending at a cut vertex judged as a boundary: what
+/// every specification requires of clipped shared edges ([`super::level::CUT_VERTICES`]).
+pub fn check_exactly_once_cuts_apart(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let relax = Relax {
+        cut_shared_edges: true,
+        ..Relax::NONE
+    };
+    check_mesh_coverage(r, scene, "the ray-cast mesh (away from cut shared edges)", relax)
 }
 
 /// Coverage bit-identical to the reference under the same profile: snapping each vertex where

@@ -95,6 +95,10 @@ pub const NO_TIE_RULE: &str = "Vulkan fixes no tie rule (only \"exactly one of t
 /// Vulkan and OpenGL ask of a clipped polygon's values only a convex combination.
 pub const CONVEX_COMBINATION: &str = "for a polygon produced by clipping, Vulkan (Basic Polygon Rasterization) requires only that \"a convex combination of the values of the datum at the polygon's vertices must be used\" (OpenGL 4.6 §14.6.1: \"we require only\"): matching the ray cast on a clipped triangle is refrast's convention";
 
+/// No specification bounds interpolation error, and Vulkan and OpenGL ask of a clipped polygon
+/// only a convex combination.
+pub const CLIPPED_VALUES: &str = "no specification bounds interpolation error (Vulkan: only \"accurate to about 1 part in 10^5\" per floating-point operation), and of a polygon produced by clipping Vulkan and OpenGL require only \"a convex combination\": the claimed precision is held on triangles drawn whole, while a clipped polygon's values (whose plane equations may rest on a vertex far outside the viewport) are held only to being a convex combination";
+
 /// D3D11.3 has no barycentric output.
 pub const NO_BARYCENTRICS: &str = "D3D11.3 defines no barycentric output (only interpolation modes, §16.4)";
 

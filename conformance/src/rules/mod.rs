@@ -378,6 +378,46 @@ pub fn markdown_table() -> String {
     table
 }
 
+/// Every rule's requirement level under Vulkan, OpenGL and D3D11.3, as Markdown: a table of
+/// levels, then for each rule not required everywhere what each specification leaves out
+/// (`refrast rules --levels`; `docs/levels.md` holds it).
+#[must_use]
+pub fn levels_markdown() -> String {
+    let mut table = String::from("| rule | Vulkan 1.4 | OpenGL 4.6 | D3D11.3 |\n|---|---|---|---|");
+    let mut notes = String::new();
+    for rule in catalogue() {
+        let l = rule.levels;
+        table.push_str(&format!(
+            "\n| `{}` | {} | {} | {} |",
+            rule.id,
+            l.vulkan.word(),
+            l.opengl.word(),
+            l.d3d11.word()
+        ));
+        let mut said: Vec<(Vec<&str>, Level)> = Vec::new();
+        for (spec, level) in [("Vulkan", l.vulkan), ("OpenGL", l.opengl), ("D3D11.3", l.d3d11)] {
+            let Some(note) = level.note() else { continue };
+            match said
+                .iter_mut()
+                .find(|(_, l)| l.word() == level.word() && l.note() == Some(note))
+            {
+                Some((specs, _)) => specs.push(spec),
+                None => said.push((vec![spec], level)),
+            }
+        }
+        for (specs, level) in said {
+            notes.push_str(&format!(
+                "\n- `{}`, {}: {}: {}.",
+                rule.id,
+                specs.join(" and "),
+                level.word(),
+                level.note().unwrap_or("")
+            ));
+        }
+    }
+    format!("{table}\n{notes}\n")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

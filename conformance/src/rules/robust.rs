@@ -4,6 +4,10 @@ use proptest::prelude::*;
 use refrast::{DrawError, Fragment, Rasterizer};
 
 use super::common::{compare_sets, fragments, precision};
+use super::level::{
+    BAD_INDEX_D3D, BAD_INDEX_UNDEFINED, BARYCENTRICS_UNJUDGED, IN_RANGE_ONLY, INFINITY_EITHER_WAY, Level,
+    NON_FINITE_UNSPECIFIED,
+};
 use super::{Family, Rule};
 use crate::picture;
 use crate::runner::property;
@@ -61,27 +65,57 @@ pub(super) fn rules() -> Vec<Rule> {
             .sentence("A NaN or infinite coordinate discards every triangle using its vertex and nothing else, without an error.")
             .source("D3D11.3 §3.3.1 (NaN positions are discarded); design.md")
             .cases(3000)
+            .vulkan_and_opengl(Level::Undefined(NON_FINITE_UNSPECIFIED))
+            .d3d11(Level::Partly {
+                part: |r, cfg| property(r, cfg, poisoned_with(NAN_ONLY), check_poisoned),
+                note: INFINITY_EITHER_WAY,
+            })
             .run(|r, cfg| property(r, cfg, poisoned(), check_poisoned)),
         Rule::invariant(Family::Robust, "robust.bit-patterns.sane-output")
             .sentence("Arbitrary f32 bit patterns (NaN, Inf, subnormal, huge, w = 0) give no panic, no error, and only well-formed fragments.")
             .source("zeno #1, raqote #107, tiny-skia #112 (ecosystem.md); D3D11.3 §3.3.1")
             .cases(20000)
+            .vulkan_and_opengl(Level::Partly {
+                part: |r, cfg| property(r, cfg, in_range_pattern_scene(), check_well_formed),
+                note: IN_RANGE_ONLY,
+            })
+            .d3d11(Level::Partly {
+                part: |r, cfg| property(r, cfg, bit_pattern_scene(), check_well_formed_but_barycentrics),
+                note: BARYCENTRICS_UNJUDGED,
+            })
             .run(|r, cfg| property(r, cfg, bit_pattern_scene(), check_well_formed)),
         Rule::invariant(Family::Robust, "robust.output.well-formed")
             .sentence("Fragments lie in the viewport, name a real primitive, cover a pixel at most once per primitive, and have depth in [0, 1] within the claimed precision.")
             .source("design.md (what must be observable)")
             .cases(5000)
+            .d3d11(Level::Partly {
+                part: |r, cfg| property(r, cfg, strategy::crossing_scene(), check_well_formed_but_barycentrics),
+                note: BARYCENTRICS_UNJUDGED,
+            })
             .run(|r, cfg| property(r, cfg, strategy::crossing_scene(), check_well_formed)),
         Rule::invariant(Family::Robust, "robust.bad-index.error")
             .sentence("A triangle naming a vertex that does not exist makes the draw fail with an error, not a panic.")
             .source("design.md (bad input gets a clear error)")
             .cases(1000)
+            .vulkan_and_opengl(Level::Undefined(BAD_INDEX_UNDEFINED))
+            .d3d11(Level::NotCovered(BAD_INDEX_D3D))
             .run(|r, cfg| property(r, cfg, bad_index_scene(), check_bad_index)),
     ]
 }
 
+/// The values a coordinate is poisoned with.
+const NON_FINITE: [f32; 3] = [f32::NAN, f32::INFINITY, f32::NEG_INFINITY];
+
+/// NaN alone: what D3D11.3 discards.
+const NAN_ONLY: [f32; 1] = [f32::NAN];
+
 fn poisoned() -> impl Strategy<Value = Poisoned> {
-    let value = prop_oneof![Just(f32::NAN), Just(f32::INFINITY), Just(f32::NEG_INFINITY)];
+    poisoned_with(NON_FINITE)
+}
+
+/// Scenes with one coordinate of triangle 0 set to one of `values`.
+fn poisoned_with<const N: usize>(values: [f32; N]) -> impl Strategy<Value = Poisoned> {
+    let value = proptest::sample::select(values.to_vec());
     (
         strategy::overlapping_scene(),
         0..3usize,
@@ -100,6 +134,20 @@ fn poisoned() -> impl Strategy<Value = Poisoned> {
                 value,
             }
         })
+}
+
+/// [`bit_pattern_scene`] with every coordinate finite, normal or zero, and at most 2^32 in
+/// magnitude: the input Vulkan and OpenGL define results for. Each other pattern becomes a
+/// value drawn from its bits in ±4.
+fn in_range_pattern_scene() -> impl Strategy<Value = Scene> {
+    bit_pattern_scene().prop_map(|mut s| {
+        for c in s.positions.iter_mut().flatten() {
+            if !(c.is_normal() || *c == 0.0) || c.abs() > 4_294_967_296.0 {
+                *c = (f64::from(c.to_bits()) / f64::from(u32::MAX) * 8.0 - 4.0) as f32;
+            }
+        }
+        s
+    })
 }
 
 fn bit_pattern_scene() -> impl Strategy<Value = Scene> {
@@ -179,11 +227,21 @@ pub fn check_poisoned(r: &mut dyn Rasterizer, p: &Poisoned) -> Result<(), Violat
 /// the profile declares them (that they lie in the viewport and name real primitives,
 /// [`fragments`] checks for every rule).
 pub fn check_well_formed(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    well_formed(r, scene, true)
+}
+
+/// [`check_well_formed`] without the barycentrics, which D3D11.3 does not define.
+pub fn check_well_formed_but_barycentrics(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    well_formed(r, scene, false)
+}
+
+/// Fragments well formed; their barycentrics finite too when `barycentrics` (and declared).
+fn well_formed(r: &mut dyn Rasterizer, scene: &Scene, barycentrics: bool) -> Result<(), Violation> {
     // Window depth is claimed within the precision of its exact value, which lies in [0, 1].
     let profile = r.profile();
     let eps = precision(&profile) as f32;
     // Barycentrics the profile does not declare are whatever the fragment carries.
-    let declared = profile.features.perspective_barycentrics;
+    let declared = barycentrics && profile.features.perspective_barycentrics;
     let frags = fragments(r, scene)?;
     let mut seen = std::collections::HashSet::new();
     let mut found = Findings::new();

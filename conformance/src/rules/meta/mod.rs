@@ -1,23 +1,20 @@
 //! Metamorphic relations: changes to the input that must leave coverage alone, or move it predictably.
 
-use proptest::prelude::*;
-use std::collections::{HashMap, HashSet};
-
-use refrast::{CullMode, Fragment, FrontFace, Profile, Rasterizer};
-
-use super::common::{check_draws_nothing, compare_sets, deep_sample, fragments, precision};
-use super::{CULLING, EXACT_COVERAGE, Family, Rule};
-use crate::oracle::facing::Turn;
-use crate::oracle::outline::{distance_to_outline, visible_outline};
-use crate::oracle::raster::{self, sample_centre, sample_ndc};
-use crate::oracle::ray_cast::ray_cast;
+use super::level::{EDGES_NOT_PINNED, Level, ZERO_AREA_LINE};
+use super::{CULLING, Family, Rule};
 use crate::runner::property;
-use crate::scene::Scene;
 use crate::strategy;
-use crate::violation::{Findings, Violation, plural};
 
+mod facing;
+mod order;
 mod translate;
 
+pub use facing::{check_culling, check_degenerate, check_degenerate_off_line, check_facing};
+use facing::{cull_scene, degenerate_scene, facing_scene};
+pub use order::{
+    check_batch_away_from_edges, check_batch_independent, check_reversal, check_reversal_away_from_edges,
+    check_rotation, check_rotation_away_from_edges,
+};
 pub use translate::{Translated, check_subpixel_translation, check_translation, check_viewport_neutral};
 
 pub(super) fn rules() -> Vec<Rule> {
@@ -26,11 +23,19 @@ pub(super) fn rules() -> Vec<Rule> {
             .sentence("Rotating a triangle's vertex order leaves its coverage unchanged and rotates its barycentrics.")
             .source("conformance-anchors d3 (llvmpipe attributes change under rotation); DRTK #9")
             .cases(10000)
+            .vulkan_and_opengl(Level::Partly {
+                part: |r, cfg| property(r, cfg, strategy::perspective_grid_scene(), check_rotation_away_from_edges),
+                note: EDGES_NOT_PINNED,
+            })
             .run(|r, cfg| property(r, cfg, strategy::perspective_grid_scene(), check_rotation)),
         Rule::invariant(Family::Meta, "meta.reversal.flips-facing")
             .sentence("Reversing a triangle's winding keeps its coverage, swaps two barycentrics and flips its facing.")
             .source("conformance-anchors d3; Vulkan 1.4 §28.7.1")
             .cases(10000)
+            .vulkan_and_opengl(Level::Partly {
+                part: |r, cfg| property(r, cfg, strategy::perspective_grid_scene(), check_reversal_away_from_edges),
+                note: EDGES_NOT_PINNED,
+            })
             .run(|r, cfg| property(r, cfg, strategy::perspective_grid_scene(), check_reversal)),
         Rule::invariant(Family::Meta, "meta.translate.whole-pixels")
             .sentence("Moving a triangle by whole pixels moves its coverage by the same pixels (near an edge, clipping may differ by the band).")
@@ -51,6 +56,10 @@ pub(super) fn rules() -> Vec<Rule> {
             .sentence("Each triangle of a draw covers the same samples as when drawn alone, in any submission order.")
             .source("conformance-anchors d3 (tile, thread and traversal-order independence); piglit quad-invariance")
             .cases(3000)
+            .vulkan_and_opengl(Level::Partly {
+                part: |r, cfg| property(r, cfg, strategy::overlapping_scene(), check_batch_away_from_edges),
+                note: EDGES_NOT_PINNED,
+            })
             .run(|r, cfg| property(r, cfg, strategy::overlapping_scene(), check_batch_independent)),
         Rule::invariant(Family::Meta, "meta.cull.by-facing")
             .sentence("Culling removes exactly the fragments of triangles with the culled facing, under either front face.")
@@ -69,490 +78,10 @@ pub(super) fn rules() -> Vec<Rule> {
             .sentence("Zero-area triangles (collinear or repeated vertices, on sample centres too) draw nothing; without a guard band, those needing no x/y clipping.")
             .source("Vulkan 1.4 §28.7.1 (zero area is back-facing); D3D11.3 §15.16")
             .cases(10000)
+            .every_spec(Level::Partly {
+                part: |r, cfg| property(r, cfg, degenerate_scene(), check_degenerate_off_line),
+                note: ZERO_AREA_LINE,
+            })
             .run(|r, cfg| property(r, cfg, degenerate_scene(), check_degenerate)),
     ]
-}
-
-/// Overlapping grid triangles, or one across clip planes (w of either sign or 0): culling must
-/// follow the facing of clipped triangles too, not a wrongly signed area before clipping.
-fn cull_scene() -> impl Strategy<Value = Scene> {
-    prop_oneof![strategy::overlapping_scene(), strategy::crossing_scene()]
-}
-
-/// Unclipped grid triangles, and triangles across clip planes with `w` of either sign, under
-/// either front face.
-fn facing_scene() -> impl Strategy<Value = Scene> {
-    let scene = prop_oneof![strategy::inside_scene(), strategy::crossing_scene()];
-    (scene, any::<bool>()).prop_map(|(mut s, cw)| {
-        s.state.front_face = if cw {
-            FrontFace::Clockwise
-        } else {
-            FrontFace::CounterClockwise
-        };
-        s
-    })
-}
-
-/// `front_facing` follows the winding and the front face: the snapped signed area for a
-/// triangle that needs no clipping, `−sign(det[x y w])` for one that does.
-pub fn check_facing(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let profile = r.profile();
-    let front_is_cw = scene.state.front_face == FrontFace::Clockwise;
-    let p = scene.corners(0);
-    let frags = fragments(r, scene)?;
-    let turn = |clockwise: bool| {
-        if clockwise {
-            "clockwise"
-        } else {
-            "counter-clockwise"
-        }
-    };
-    let mut found = Findings::new();
-    // Under a cull mode, a triangle surely facing the culled way draws nothing at all.
-    let sure = scene.turns(&profile)[0];
-    if sure.drawn(&scene.state) == Some(false) && sure != Turn::Degenerate {
-        for f in &frags {
-            found.add((f.x, f.y), || {
-                format!(
-                    "{:?} is drawn, but the triangle turns {} on screen, so it faces {} and {:?} culling discards it",
-                    (f.x, f.y),
-                    turn_word(sure),
-                    if sure.front_facing(&scene.state) == Some(true) { "front" } else { "back" },
-                    scene.state.cull
-                )
-            });
-        }
-        return found.verdict(|n| format!("a culled triangle drew {}", plural(n, "fragment")));
-    }
-    let mut judge = |f: &Fragment, clockwise: bool, how: &str| {
-        if f.front_facing != (clockwise == front_is_cw) {
-            found.add((f.x, f.y), || {
-                format!(
-                    "{:?} says front_facing = {}, but the triangle turns {} there ({how})",
-                    (f.x, f.y),
-                    f.front_facing,
-                    turn(clockwise)
-                )
-            });
-        }
-    };
-    if profile.snapping.grid_bits().is_some()
-        && raster::unclipped(&p, scene.state.depth_range, scene.state.clip_far)
-    {
-        // Unclipped on a grid: exactly as the snapped triangle turns, for every way the
-        // profile lets it snap (not judged where those disagree).
-        let clockwise = match sure {
-            Turn::Clockwise => true,
-            Turn::CounterClockwise => false,
-            Turn::Degenerate | Turn::Unsure => return Ok(()),
-        };
-        for f in &frags {
-            judge(f, clockwise, "its snapped signed area");
-        }
-    } else {
-        // Clipped, or without a grid: the visible part turns as det[x y w] says, whatever the
-        // signs of w (Olano–Greer), and the ray cast decides that sign exactly at each sample it
-        // hits. A rasterizer may take facing from its snapped, clipped polygon instead (Vulkan):
-        // snapping moves each vertex by less than the band, which can turn over a sliver but not
-        // the polygon around a sample more than twice the band inside it (a heuristic, not a
-        // proof; cuts at the viewport snap onto the grid and add no risk). Samples nearer the
-        // visible outline are not judged.
-        let tri = scene.positions_of(0);
-        let outline = visible_outline(&tri, scene.width, scene.height, &scene.state);
-        let band = profile.band_px();
-        for f in &frags {
-            if distance_to_outline(&outline, sample_centre(f.x, f.y), |_, _| true) <= 2.0 * band {
-                continue;
-            }
-            let [nx, ny] = sample_ndc(scene.width, scene.height, f.x, f.y);
-            if let Some(hit) = ray_cast(&tri, nx, ny, &scene.state) {
-                judge(f, hit.clockwise, "the sign of det[x y w] of its visible part");
-            }
-        }
-    }
-    found.verdict(|n| {
-        format!(
-            "the wrong facing for {:?} front faces at {}",
-            scene.state.front_face,
-            plural(n, "fragment")
-        )
-    })
-}
-
-fn degenerate_scene() -> impl Strategy<Value = Scene> {
-    // Half-pixel points stay collinear on every grid of one subpixel bit or more.
-    let half = strategy::GRID / 2;
-    let point = || (-8i64..72, -8i64..72);
-    // Powers of two, so that x·w and (x·w)/w are exact in f32: with any other w a driver that
-    // divides in f32 and snaps by truncation can land a vertex one unit off and give the
-    // triangle area (softpipe did, a false positive; `degenerate_scenes_project_exactly`).
-    let ws = prop::array::uniform3((-3i32..=2).prop_map(|k| 2.0f32.powi(k)));
-    let shape = (point(), point(), -3i64..4, 0..2u8);
-    (shape, ws, any::<bool>(), strategy::side()).prop_map(move |((a, b, k, shape), ws, cw, s)| {
-        let a = (a.0 * half, a.1 * half);
-        let b = (b.0 * half, b.1 * half);
-        // c on the line through a and b at a whole multiple of b − a, or a repeated vertex.
-        let c = if shape == 0 {
-            (a.0 + k * (b.0 - a.0), a.1 + k * (b.1 - a.1))
-        } else {
-            a
-        };
-        let mut scene = Scene::from_subpixels(s, s, 8, &[[a, b, c]], 0.5);
-        // Each vertex at its own w: the same screen points exactly, so still zero area, but no
-        // longer an affine triangle.
-        for (p, w) in scene.positions.iter_mut().zip(ws) {
-            *p = p.map(|v| v * w);
-        }
-        if cw {
-            scene.state.front_face = FrontFace::Clockwise;
-        }
-        scene
-    })
-}
-
-/// A zero-area triangle draws nothing, unless x/y clipping may have made it a real polygon.
-pub fn check_degenerate(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    // Beyond the guard band a triangle reaching outside the viewport is clipped, and the new
-    // vertices, computed on the boundary and snapped, need not stay on the old line (Vulkan
-    // §"Primitive Clipping": intersecting edges are reconnected by new edges along the
-    // boundary): the clipped polygon may have area.
-    let reach = f64::from(r.profile().features.guard_band);
-    let beyond = scene.positions.iter().any(|&p| {
-        let [x, y] = raster::project(scene.width, scene.height, p.map(f64::from));
-        !(-reach..=f64::from(scene.width) + reach).contains(&x)
-            || !(-reach..=f64::from(scene.height) + reach).contains(&y)
-    });
-    if beyond {
-        return Ok(());
-    }
-    check_draws_nothing(r, scene)
-}
-
-/// Compares two fragment lists of one triangle drawn two ways; `map[k]` is where weight k went.
-fn compare_permuted(
-    profile: &Profile,
-    scene: &Scene,
-    base: &[Fragment],
-    other: &[Fragment],
-    map: [usize; 3],
-    flip: bool,
-    what: &str,
-) -> Result<(), Violation> {
-    if EXACT_COVERAGE.check(profile).is_ok() {
-        // With exact coverage the same edges give the same samples, whatever the vertex order.
-        compare_sets(scene, other, base, what)?;
-    } else {
-        // Without it, a sample within the band of an edge may go either way, and which way may
-        // depend on the order the vertices come in; farther in, coverage must not change.
-        let covered =
-            |frags: &[Fragment]| -> HashSet<(u32, u32)> { frags.iter().map(|f| (f.x, f.y)).collect() };
-        let (before, after) = (covered(base), covered(other));
-        let mut found = Findings::new();
-        for &(x, y) in before.symmetric_difference(&after) {
-            if !translate::near_edge(
-                scene,
-                profile.snapping,
-                x,
-                y,
-                profile.band_px() + translate::snap_slack(profile),
-            ) {
-                let how = if after.contains(&(x, y)) { "gained" } else { "lost" };
-                found.add((x, y), || format!("{how} {:?}", (x, y)));
-            }
-        }
-        found.verdict(|n| {
-            format!(
-                "{what}: coverage changed at {} away from every edge",
-                plural(n, "sample")
-            )
-        })?;
-    }
-    // A clipped triangle is drawn as a fan that starts at another vertex once rotated, and its
-    // new vertices snap differently: only unclipped barycentrics must match. Each draw is within
-    // the claimed precision of the exact values, so the two are within twice that of each other.
-    let p = scene.corners(0);
-    let unclipped = raster::unclipped(&p, scene.state.depth_range, scene.state.clip_far);
-    // Fragment pairs by pixel (one triangle covers a pixel once), in row order.
-    let by_pixel: HashMap<(u32, u32), &Fragment> = other.iter().map(|f| ((f.x, f.y), f)).collect();
-    let mut base_sorted: Vec<&Fragment> = base.iter().collect();
-    base_sorted.sort_by_key(|f| (f.y, f.x));
-    let pairs = base_sorted
-        .iter()
-        .filter_map(|a| by_pixel.get(&(a.x, a.y)).map(|b| (*a, *b)));
-    let mut facing = Findings::new();
-    let mut weights = Findings::new();
-    for (a, b) in pairs {
-        if (a.front_facing == b.front_facing) == flip {
-            facing.add((a.x, a.y), || {
-                format!("{:?} is {} then {}", (a.x, a.y), a.front_facing, b.front_facing)
-            });
-        }
-        let moved_apart = map.iter().enumerate().any(|(k, &to)| {
-            f64::from((a.barycentric[k] - b.barycentric[to]).abs()) > 2.0 * precision(profile)
-        });
-        if unclipped && profile.features.perspective_barycentrics && moved_apart {
-            weights.add((a.x, a.y), || {
-                format!(
-                    "{:?} has {:?} then {:?}",
-                    (a.x, a.y),
-                    a.barycentric,
-                    b.barycentric
-                )
-            });
-        }
-    }
-    facing.verdict(|n| format!("{what}: the facing is wrong at {}", plural(n, "fragment")))?;
-    weights.verdict(|n| {
-        format!(
-            "{what}: barycentrics did not move with their vertices at {}",
-            plural(n, "fragment")
-        )
-    })
-}
-
-/// Rotating the vertex order keeps coverage and rotates barycentrics.
-pub fn check_rotation(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let base = fragments(r, scene)?;
-    let mut rotated = scene.clone();
-    let [a, b, c] = scene.triangles[0];
-    rotated.triangles[0] = [b, c, a];
-    // Vertex a is now third: weight 0 moved to slot 2, 1 to 0, 2 to 1.
-    compare_permuted(
-        &r.profile(),
-        scene,
-        &base,
-        &fragments(r, &rotated)?,
-        [2, 0, 1],
-        false,
-        "after rotating the vertices",
-    )
-}
-
-/// Reversing the winding keeps coverage, swaps barycentrics, flips facing.
-///
-/// Under a cull mode the rasterizer cannot switch off, the reversed triangle faces the culled
-/// way: told the other front face too it faces front again and keeps its facing; with one front
-/// face, it must vanish.
-pub fn check_reversal(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let profile = r.profile();
-    let base = fragments(r, scene)?;
-    let mut reversed = scene.clone();
-    let [a, b, c] = scene.triangles[0];
-    reversed.triangles[0] = [a, c, b];
-    if scene.state.cull != CullMode::None {
-        let other = match scene.state.front_face {
-            FrontFace::CounterClockwise => FrontFace::Clockwise,
-            FrontFace::Clockwise => FrontFace::CounterClockwise,
-        };
-        if profile.features.front_faces.contains(other) {
-            reversed.state.front_face = other;
-            let flipped = fragments(r, &reversed)?;
-            return compare_permuted(
-                &profile,
-                scene,
-                &base,
-                &flipped,
-                [0, 2, 1],
-                false,
-                &format!("after reversing the winding and the front face (to {other:?})"),
-            );
-        }
-        let turn = reversed.turns(&profile)[0];
-        match turn.drawn(&reversed.state) {
-            Some(false) => {
-                return check_draws_nothing(r, &reversed).map_err(|mut v| {
-                    v.message = format!(
-                        "reversed, the triangle faces back under {:?} culling and {:?} front faces, yet {}",
-                        reversed.state.cull, reversed.state.front_face, v.message
-                    );
-                    v
-                });
-            }
-            // Where the facing is unsure, culling it or not are both right.
-            None => return Ok(()),
-            Some(true) => {}
-        }
-    }
-    compare_permuted(
-        &profile,
-        scene,
-        &base,
-        &fragments(r, &reversed)?,
-        [0, 2, 1],
-        true,
-        "after reversing the winding",
-    )
-}
-
-/// Each triangle covers the same samples alone, together, in any order.
-pub fn check_batch_independent(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let together = fragments(r, scene)?;
-    for (i, t) in scene.triangles.iter().enumerate() {
-        let mut alone = scene.clone();
-        alone.triangles = vec![*t];
-        let want = fragments(r, &alone)?;
-        let got: Vec<Fragment> = together
-            .iter()
-            .filter(|f| f.primitive == i as u32)
-            .map(|f| Fragment { primitive: 0, ..*f })
-            .collect();
-        compare_sets(&alone, &got, &want, &format!("triangle {i} drawn alone"))?;
-    }
-    let mut reversed = scene.clone();
-    reversed.triangles.reverse();
-    let n = scene.triangles.len() as u32;
-    let back: Vec<Fragment> = fragments(r, &reversed)?
-        .into_iter()
-        .map(|f| Fragment {
-            // A primitive id out of range stays out of range instead of wrapping into one.
-            primitive: (n - 1).checked_sub(f.primitive).unwrap_or(u32::MAX),
-            ..f
-        })
-        .collect();
-    compare_sets(scene, &back, &together, "the draw in reverse order")
-}
-
-/// Culling removes exactly the fragments of the culled facing.
-///
-/// With `None` among the cull modes, each culled draw is compared with the unculled one. A
-/// rasterizer that cannot switch culling off is drawn the scene and its reversal under every
-/// supported cull mode and front face: a triangle surely facing the culled way draws nothing, one
-/// surely facing the other way has the facing it should and, where a sample lies farther than
-/// twice the band inside it, draws.
-pub fn check_culling(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let profile = r.profile();
-    let features = profile.features;
-    if !features.cull_modes.contains(CullMode::None) {
-        return check_culling_by_facing(r, &profile, scene);
-    }
-    for front_face in features.front_faces.values() {
-        let mut none = scene.clone();
-        none.state.front_face = front_face;
-        none.state.cull = CullMode::None;
-        let all = fragments(r, &none)?;
-        for cull in [CullMode::Front, CullMode::Back] {
-            if !features.cull_modes.contains(cull) {
-                continue;
-            }
-            let mut culled = none.clone();
-            culled.state.cull = cull;
-            let want: Vec<Fragment> = all
-                .iter()
-                .filter(|f| !cull.culls(f.front_facing))
-                .copied()
-                .collect();
-            compare_sets(
-                scene,
-                &fragments(r, &culled)?,
-                &want,
-                &format!("{cull:?} culling with {front_face:?} front faces"),
-            )?;
-        }
-    }
-    Ok(())
-}
-
-/// [`check_culling`] for a rasterizer that always culls: each triangle judged by its facing.
-fn check_culling_by_facing(
-    r: &mut dyn Rasterizer,
-    profile: &Profile,
-    scene: &Scene,
-) -> Result<(), Violation> {
-    let mut reversed = scene.clone();
-    for t in &mut reversed.triangles {
-        t.swap(1, 2);
-    }
-    let band = profile.band_px();
-    for front_face in profile.features.front_faces.values() {
-        for cull in profile.features.cull_modes.values() {
-            for (drawn, how) in [(scene, "as generated"), (&reversed, "reversed")] {
-                let mut s = drawn.clone();
-                s.state.front_face = front_face;
-                s.state.cull = cull;
-                let turns = s.turns(profile);
-                let frags = fragments(r, &s)?;
-                let mut found = Findings::new();
-                for f in &frags {
-                    let turn = turns[f.primitive as usize];
-                    match turn.drawn(&s.state) {
-                        Some(false) => found.add((f.x, f.y), || {
-                            format!(
-                                "{:?} of triangle {} is drawn, but the triangle turns {} on screen and {cull:?} culling discards it",
-                                (f.x, f.y),
-                                f.primitive,
-                                turn_word(turn)
-                            )
-                        }),
-                        Some(true) if turn.front_facing(&s.state) != Some(f.front_facing) => {
-                            found.add((f.x, f.y), || {
-                                format!(
-                                    "{:?} of triangle {} says front_facing = {}, but the triangle turns {} on screen",
-                                    (f.x, f.y),
-                                    f.primitive,
-                                    f.front_facing,
-                                    turn_word(turn)
-                                )
-                            });
-                        }
-                        _ => {}
-                    }
-                }
-                for (t, turn) in turns.iter().enumerate() {
-                    if turn.drawn(&s.state) == Some(true)
-                        && !frags.iter().any(|f| f.primitive as usize == t)
-                        && let Some(at) = deep_sample(&s, t, 2.0 * band)
-                    {
-                        found.add(at, || {
-                            format!(
-                                "triangle {t} turns {} on screen, so {cull:?} culling keeps it, but it drew nothing (not even {at:?}, deep inside it)",
-                                turn_word(*turn)
-                            )
-                        });
-                    }
-                }
-                found.verdict(|n| {
-                    format!(
-                        "{cull:?} culling with {front_face:?} front faces, the scene {how}: {} wrong",
-                        plural(n, "sample")
-                    )
-                })?;
-            }
-        }
-    }
-    Ok(())
-}
-
-/// A turn in words.
-fn turn_word(turn: Turn) -> &'static str {
-    match turn {
-        Turn::Clockwise => "clockwise",
-        Turn::CounterClockwise => "counter-clockwise",
-        Turn::Degenerate => "nowhere (zero area)",
-        Turn::Unsure => "either way",
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Regression (softpipe, issue 12): with w from a continuous range, a vertex of a
-    /// "zero-area" triangle projected to 383.9995 of 1/256 px in f32, which truncating snaps to
-    /// 383 and rounding to 384, so the triangle had area for some drivers. Every vertex must
-    /// project, in f32 as in f64, exactly onto the half-pixel lattice it was built on.
-    #[test]
-    fn degenerate_scenes_project_exactly() {
-        for scene in strategy::samples(degenerate_scene(), 2000) {
-            let (w, h) = (scene.width as f32, scene.height as f32);
-            for p in &scene.positions {
-                let (nx, ny) = (p[0] / p[3], p[1] / p[3]);
-                let raster = [(nx + 1.0) * 0.5 * w, (1.0 - ny) * 0.5 * h];
-                for c in raster {
-                    assert_eq!((c * 2.0).fract(), 0.0, "{p:?} projects to {raster:?}");
-                    assert_eq!(f64::from(c), f64::from(c * 2.0) / 2.0);
-                }
-                assert_eq!(f64::from(nx), f64::from(p[0]) / f64::from(p[3]), "{p:?}");
-            }
-        }
-    }
 }

@@ -143,7 +143,12 @@ impl Rasterizer for Gpu {
             // llvmpipe's subPixelPrecisionBits and its setup's top-left rule (see the crate docs);
             // OpenGL names no tie rule, and softpipe keeps none: it covers a sample on a vertex
             // where two right edges meet (tests/drivers.rs).
-            snapping: Snapping::Grid(8),
+            snapping: match self.driver {
+                // SwiftShader as Chromium builds it (`SWIFTSHADER_LEGACY_PRECISION`) reports
+                // `subPixelPrecisionBits = 4` and snaps to sixteenths (`vk::SUBPIXEL_PRECISION_BITS`).
+                Driver::Swiftshader => Snapping::Grid(4),
+                _ => Snapping::Grid(8),
+            },
             fill: match self.driver {
                 Driver::Softpipe => None,
                 _ => Some(FillConvention::TopLeft),
@@ -210,6 +215,9 @@ pub fn builtins() -> Vec<BuiltIn> {
                 Driver::Llvmpipe => "Mesa's llvmpipe through wgpu's OpenGL ES backend (EGL)",
                 Driver::Softpipe => {
                     "Mesa's softpipe (GALLIUM_DRIVER=softpipe) through wgpu's OpenGL ES backend"
+                }
+                Driver::Swiftshader => {
+                    "Google's SwiftShader (Vulkan on the CPU, as Chromium ships it) through wgpu"
                 }
                 Driver::Vulkan => "whatever Vulkan adapter this machine has (a GPU first) through wgpu",
             };

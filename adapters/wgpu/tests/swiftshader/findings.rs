@@ -166,6 +166,24 @@ pub fn swiftshader(gpu: &mut Gpu) {
         "swiftshader: a strip to 160 000 px, all w = 1: weights {g:?} at (11, 12), exact [0.909066, 0.090884, 0.00005]"
     );
 
+    // And worse, equal w, a vertex 166 000 px away: at (0, 12) a weight of 0.084 where exact
+    // arithmetic on the same snapped vertices gives 5·10⁻⁶ (found by bary.equal-w.affine once
+    // the profile claimed only 5 bits).
+    let worse = draw(
+        16,
+        64,
+        vec![
+            [-0.120_826_77, 0.206_112_82, 0.0, 0.2],
+            [-4_152.041, -5_038.468, 0.0, 0.2],
+            [-0.210_416_7, 0.090_537_33, 0.0, 0.2],
+        ],
+    );
+    let g = at(&run(&worse), 0, 12)[0].barycentric;
+    assert!((g[1] - 0.083_804_32).abs() < 1e-6, "{g:?}");
+    println!(
+        "swiftshader: equal w, a vertex 166 000 px away: weights {g:?} at (0, 12), exact [0.497247, 0.000005, 0.502748]"
+    );
+
     // 6. Near a near-plane cut the clipped polygon is snapped on its own, while attributes and
     // depth come from the input triangle's plane: at (13, 6), inside the snapped polygon but
     // 0.02 px beyond the exact cut, SwiftShader extrapolates depth -0.0188 and weights

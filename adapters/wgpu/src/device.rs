@@ -14,13 +14,25 @@ pub enum Driver {
     Llvmpipe,
     /// Mesa's older softpipe behind OpenGL ES (`GALLIUM_DRIVER=softpipe`), over EGL.
     Softpipe,
+    /// Google's SwiftShader (Vulkan on the CPU), as Chromium ships it: chosen by pointing the
+    /// Vulkan loader at its ICD file ([`SWIFTSHADER_ICD`]).
+    Swiftshader,
     /// Whatever Vulkan adapter the machine has, a GPU before a CPU one.
     Vulkan,
 }
 
+/// SwiftShader's Vulkan ICD file, where Debian's `chromium` package installs it.
+pub const SWIFTSHADER_ICD: &str = "/usr/lib/chromium/vk_swiftshader_icd.json";
+
 impl Driver {
     /// Every driver, as `--impl` names them.
-    pub const ALL: [Driver; 4] = [Self::Lavapipe, Self::Llvmpipe, Self::Softpipe, Self::Vulkan];
+    pub const ALL: [Driver; 5] = [
+        Self::Lavapipe,
+        Self::Llvmpipe,
+        Self::Softpipe,
+        Self::Swiftshader,
+        Self::Vulkan,
+    ];
 
     /// The name `--impl` takes.
     #[must_use]
@@ -29,23 +41,45 @@ impl Driver {
             Self::Lavapipe => "lavapipe",
             Self::Llvmpipe => "llvmpipe",
             Self::Softpipe => "softpipe",
+            Self::Swiftshader => "swiftshader",
             Self::Vulkan => "vulkan",
         }
     }
 
-    /// The environment its process needs: Mesa picks softpipe only when told before it loads.
+    /// The environment its process needs: Mesa picks softpipe only when told before it loads,
+    /// and the Vulkan loader reads the ICD files to load (only SwiftShader's) when an instance
+    /// is created.
     #[must_use]
     pub fn env(self) -> &'static [(&'static str, &'static str)] {
         match self {
             Self::Softpipe => &[("GALLIUM_DRIVER", "softpipe")],
+            Self::Swiftshader => &[("VK_ICD_FILENAMES", SWIFTSHADER_ICD)],
             _ => &[],
         }
     }
 
+    /// Why the driver cannot be here at all, before looking for adapters.
+    fn missing(self) -> Option<String> {
+        (self == Self::Swiftshader && !std::path::Path::new(SWIFTSHADER_ICD).is_file()).then(|| {
+            format!(
+                "SwiftShader's Vulkan ICD file {SWIFTSHADER_ICD} is absent; on Debian, apt-get \
+                 install chromium (which ships libvk_swiftshader.so beside it)"
+            )
+        })
+    }
+
     fn backends(self) -> wgpu::Backends {
         match self {
-            Self::Lavapipe | Self::Vulkan => wgpu::Backends::VULKAN,
+            Self::Lavapipe | Self::Swiftshader | Self::Vulkan => wgpu::Backends::VULKAN,
             Self::Llvmpipe | Self::Softpipe => wgpu::Backends::GL,
+        }
+    }
+
+    /// The Debian packages that bring it.
+    fn install(self) -> &'static str {
+        match self {
+            Self::Swiftshader => "chromium libvulkan1",
+            _ => "mesa-vulkan-drivers libvulkan1 libegl1 libegl-mesa0 libgl1-mesa-dri",
         }
     }
 
@@ -60,6 +94,7 @@ impl Driver {
             Self::Lavapipe => info.backend == wgpu::Backend::Vulkan && named("llvmpipe"),
             Self::Llvmpipe => info.backend == wgpu::Backend::Gl && named("llvmpipe"),
             Self::Softpipe => info.backend == wgpu::Backend::Gl && named("softpipe"),
+            Self::Swiftshader => info.backend == wgpu::Backend::Vulkan && named("swiftshader"),
             Self::Vulkan => info.backend == wgpu::Backend::Vulkan,
         }
     }
@@ -108,6 +143,9 @@ pub fn context(driver: Driver) -> Result<Arc<Context>, Unavailable> {
 
 /// Opens the adapter that is `driver`, or says which adapters there are instead.
 fn open(driver: Driver) -> Result<Context, Unavailable> {
+    if let Some(why) = driver.missing() {
+        return Err(Unavailable(why));
+    }
     for (name, value) in driver.env() {
         if std::env::var(name).as_deref() != Ok(*value) {
             return Err(Unavailable(format!(
@@ -140,10 +178,10 @@ fn open(driver: Driver) -> Result<Context, Unavailable> {
             found.join("; ")
         };
         return Err(Unavailable(format!(
-            "no {} adapter here ({:?} adapters found: {found}); on Debian, apt-get install \
-             mesa-vulkan-drivers libvulkan1 libegl1 libegl-mesa0 libgl1-mesa-dri",
+            "no {} adapter here ({:?} adapters found: {found}); on Debian, apt-get install {}",
             driver.name(),
-            driver.backends()
+            driver.backends(),
+            driver.install()
         )));
     };
     let adapter = &adapters[index];

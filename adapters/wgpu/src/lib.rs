@@ -1,5 +1,6 @@
 //! Real GPU drivers behind refrast's [`Rasterizer`] trait, through wgpu: Mesa's lavapipe
-//! (Vulkan), llvmpipe and softpipe (OpenGL ES over EGL), or any Vulkan adapter.
+//! (Vulkan), llvmpipe and softpipe (OpenGL ES over EGL), Google's SwiftShader (Vulkan), or any
+//! Vulkan adapter.
 //!
 //! The draw's clip-space positions go straight to the vertex stage, so the driver does its own
 //! clipping, snapping, fill rule and depth test; that is what gets certified. Two passes read
@@ -29,6 +30,18 @@
 //!   top-left; `fill.top-left.exact` and `fill.brute-force.exact` pass 20 000 cases each.
 //! - OpenGL names no tie rule, and softpipe keeps none (it covers a sample on a vertex where
 //!   two right edges meet): declared an 8-bit grid and no tie rule.
+//! - SwiftShader as Chromium builds it (`SWIFTSHADER_LEGACY_PRECISION`) reports
+//!   `subPixelPrecisionBits = 4`; its setup (`SetupRoutine::edge`) walks edges in exact integers
+//!   with ceiling divisions, spans `[left, right)` and rows from the top vertex's inclusive:
+//!   the top-left rule. It clips x/y at the viewport (`Clipper.cpp`) and rounds with
+//!   `cvtps2dq`, ties to even. Declared: lavapipe's profile on a 4-bit grid. Measured
+//!   (`tests/swiftshader.rs`): the tie rule, exact ties and no guard band hold; it snaps
+//!   `x·(1/w)·scale + offset` computed in f32, not `x/w` rounded, so a vertex within a few f32
+//!   ulps of a tie (`2.5·10⁻⁶` px on a 64-px target) may land one step from the reference's
+//!   (on a 2.8-px triangle with w from 0.1 to 3.3 that moved a weight by 0.46); and its f32
+//!   plane equations, anchored at the vertex of largest w, keep 13 bits on slivers but as few
+//!   as 3.6 on triangles reaching 10⁵ px. Lavapipe does not round x/w either (the same probe), on a grid
+//!   16 times finer.
 //! - Measured, against what a first profile assumed: Mesa clips x/y against the viewport (a
 //!   tie on an edge leaving it flips), so no guard band is declared; and its f32 interpolation
 //!   keeps 8 bits on slivers with very unequal w, so `precision_bits` is 8. Both are checked
@@ -143,7 +156,12 @@ impl Rasterizer for Gpu {
             // llvmpipe's subPixelPrecisionBits and its setup's top-left rule (see the crate docs);
             // OpenGL names no tie rule, and softpipe keeps none: it covers a sample on a vertex
             // where two right edges meet (tests/drivers.rs).
-            snapping: Snapping::Grid(8),
+            snapping: match self.driver {
+                // SwiftShader as Chromium builds it (`SWIFTSHADER_LEGACY_PRECISION`) reports
+                // `subPixelPrecisionBits = 4` and snaps to sixteenths (`vk::SUBPIXEL_PRECISION_BITS`).
+                Driver::Swiftshader => Snapping::Grid(4),
+                _ => Snapping::Grid(8),
+            },
             fill: match self.driver {
                 Driver::Softpipe => None,
                 _ => Some(FillConvention::TopLeft),
@@ -156,6 +174,8 @@ impl Rasterizer for Gpu {
             // plane equations keep about 14 bits on ordinary triangles, but on a 0.008-px sliver
             // with a 30:1 w ratio lavapipe's weight at a vertex is 0.99744 (2^-8.6 off;
             // tests/drivers.rs). 8 bits is what they keep on every case the suite draws.
+            // SwiftShader keeps 13 on slivers but as few as 3.6 on triangles reaching 10⁵ px
+            // (tests/swiftshader.rs): no claim would hold there, so it claims 8 and fails those.
             precision_bits: 8,
             features: Features {
                 perspective_barycentrics: true,
@@ -167,13 +187,16 @@ impl Rasterizer for Gpu {
                 depth_writes: Supported::ALL,
                 far_clipping: Supported::only(&[true]),
                 depth_ranges: Supported::only(&[DepthRange::ZeroToOne]),
-                // Mesa clips x/y against the viewport for a triangle reaching outside it: a tie
-                // sample on an edge crossing the boundary can flip (tests/drivers.rs).
+                // Mesa and SwiftShader clip x/y against the viewport for a triangle reaching
+                // outside it: a tie sample on an edge crossing the boundary can flip
+                // (tests/drivers.rs, tests/swiftshader.rs).
                 guard_band: 0,
                 // Mesa's setup snaps with `util_iround`, to nearest under the CPU's default
                 // rounding: ties to even. Checked on lavapipe and llvmpipe (tests/drivers.rs, a
                 // tie found by `mutant:half-up-snap`; both exact rules at 20000 cases with ties);
                 // softpipe keeps no tie rule, so its exact rules do not apply either way.
+                // SwiftShader rounds with `cvtps2dq` (tests/swiftshader.rs: exact ties in x and
+                // y go to even).
                 ties_to_even: self.driver != Driver::Softpipe,
                 // Mesa's setup snaps the f32 viewport transform's result to nearest; no claim
                 // about zero-area triangles cut by the near plane (Mesa clips first).
@@ -218,6 +241,9 @@ pub fn builtins() -> Vec<BuiltIn> {
                 Driver::Llvmpipe => "Mesa's llvmpipe through wgpu's OpenGL ES backend (EGL)",
                 Driver::Softpipe => {
                     "Mesa's softpipe (GALLIUM_DRIVER=softpipe) through wgpu's OpenGL ES backend"
+                }
+                Driver::Swiftshader => {
+                    "Google's SwiftShader (Vulkan on the CPU, as Chromium ships it) through wgpu"
                 }
                 Driver::Vulkan => "whatever Vulkan adapter this machine has (a GPU first) through wgpu",
             };

@@ -1,0 +1,241 @@
+//! SwiftShader's failures under `refrast certify`, each reduced to a minimal draw and checked
+//! against the reference on SwiftShader's own 4-bit grid and against exact arithmetic (README,
+//! "Certified implementations"). The numbers are SwiftShader's as Chromium 148 ships it; every
+//! one was also reproduced bit for bit by an f32 trace of SwiftShader's source (`VertexRoutine`,
+//! `Clipper`, `SetupRoutine`, `QuadRasterizer`, `PixelRoutine`).
+
+use refrast::{ClipMode, Rasterizer};
+use refrast_wgpu::Gpu;
+
+use super::{apart, at, draw, exact_barycentrics, reference};
+
+/// The reference on SwiftShader's grid, clipping x/y at the viewport as SwiftShader does.
+fn expected(d: &refrast::Draw) -> Vec<refrast::Fragment> {
+    reference(4, ClipMode::Full, d)
+}
+
+pub fn swiftshader(gpu: &mut Gpu) {
+    let mut run = |d: &refrast::Draw| gpu.rasterize(d).expect("SwiftShader draws");
+    let pixels = |f: &[refrast::Fragment]| {
+        let mut p: Vec<(u32, u32)> = f.iter().map(|f| (f.x, f.y)).collect();
+        p.sort_unstable();
+        p
+    };
+
+    // 1. A vertex at w = 0 (a point at infinity, outside the view volume: y > w), the others
+    // inside: the clipped polygon covers (2..=5, 0..=1). SwiftShader projects the w = 0 vertex
+    // as if w were 1 (`VertexRoutine`), takes the winding from that projection
+    // (`SetupRoutine`: area of the input vertices' projections), gets it backwards, and so
+    // assigns the clipped polygon's edges to the wrong sides: nothing is drawn.
+    let lost = draw(
+        8,
+        8,
+        vec![[-0.5, 0.5, 0.5, 1.0], [0.5, 0.5, 0.5, 1.0], [0.0, 0.25, 0.0, 0.0]],
+    );
+    assert_eq!(expected(&lost).len(), 8, "the reference covers 8 samples");
+    assert!(
+        run(&lost).is_empty(),
+        "swiftshader: the w = 0 triangle draws nothing"
+    );
+    println!("swiftshader: a triangle with a vertex at w = 0 draws 0 of its 8 samples");
+
+    // 2. The same kind of vertex where the winding comes out right: coverage is right, but every
+    // vertex of the clipped polygon has depth 0.5, so every fragment must (a convex
+    // combination). SwiftShader's depth plane runs through the input vertices' projections, the
+    // w = 0 one projected as if w were 1 (to NDC (0, 1) at depth 0): 0.04 to 0.46. Its
+    // perspective weights are (1, 0, 0) everywhere: the setup scales each vertex by its w, 0 at
+    // infinity, so the plane equations degenerate (`a = 0` in `SetupRoutine`).
+    let flat = draw(
+        8,
+        8,
+        vec![
+            [-0.5, -0.5, 0.5, 1.0],
+            [0.5, -0.5, 0.5, 1.0],
+            [0.0, 1.0, 0.0, 0.0],
+        ],
+    );
+    let (got, want) = (run(&flat), expected(&flat));
+    assert_eq!(
+        pixels(&got),
+        pixels(&want),
+        "swiftshader: the w = 0 strip's coverage"
+    );
+    assert!(want.iter().all(|f| f.depth == 0.5));
+    let corner = at(&got, 2, 0)[0];
+    assert!(
+        (corner.depth - 0.041_666_657).abs() < 1e-6,
+        "depth at (2, 0): {}",
+        corner.depth
+    );
+    assert!(got.iter().all(|f| f.barycentric == [1.0, 0.0, 0.0]));
+    assert!(
+        apart(
+            at(&want, 2, 2)[0].barycentric,
+            [7.0 / 15.0, 1.0 / 15.0, 7.0 / 15.0]
+        ) < 1e-6
+    );
+    println!(
+        "swiftshader: the w = 0 strip: depth {} at (2, 0) (must be 0.5), weights (1, 0, 0) everywhere",
+        corner.depth
+    );
+
+    // 3. A snap near a tie (x/w computed as x·(1/w), scaled and offset in f32): vertex 0 is at
+    // x = 2.84374982 px, 1.8·10⁻⁷ px below the tie between 2.8125 and 2.875; SwiftShader snaps it
+    // to 2.875. Its weights at (2, 0) are exactly those of that snapped triangle; the
+    // reference's, of the correctly rounded one, differ by 0.46 (a 2.8-px triangle, w 0.1 to 3.3).
+    let near_tie = draw(
+        16,
+        16,
+        vec![
+            [-2.123_448_6, 3.294_562_6, 0.0, 3.294_562_6],
+            [-0.1, 0.059_765_626, 0.0, 0.1],
+            [-2.072_205_8, 2.423_055_4, 0.0, 2.806_797_3],
+        ],
+    );
+    let w = [3.294_562_6, 0.1, 2.806_797_3].map(|w: f32| f64::from(w));
+    let theirs = exact_barycentrics([[2.875, 0.0], [0.0, 3.25], [2.125, 1.125]], w, [2.5, 0.5]).0;
+    let ours = exact_barycentrics([[2.8125, 0.0], [0.0, 3.25], [2.125, 1.125]], w, [2.5, 0.5]).0;
+    let got = at(&run(&near_tie), 2, 0)[0].barycentric;
+    let want = at(&expected(&near_tie), 2, 0)[0].barycentric;
+    assert!(apart(got, theirs) < 1e-5 && apart(want, ours) < 1e-5 && apart(got, ours) > 0.45);
+    println!("swiftshader: a vertex 1.8e-7 px below a snap tie: weights {got:?}, the reference {want:?}");
+
+    // 4. The same on depth: vertex 0's y is 4.21874994 px (tie 4.21875), vertex 2's x 0.84374991
+    // px (tie 0.84375); SwiftShader snaps both up, and (0, 4) gets the depth of that triangle.
+    let depth_tie = draw(
+        16,
+        16,
+        vec![
+            [-0.099_560_55, 0.047_265_626, 0.0, 0.1],
+            [-0.1, 0.046_435_546, 0.0, 0.1],
+            [-1.870_128_4, 0.872_794_6, 0.622_909_9, 2.090_623_9],
+        ],
+    );
+    let (got, want) = (
+        at(&run(&depth_tie), 0, 4)[0].depth,
+        at(&expected(&depth_tie), 0, 4)[0].depth,
+    );
+    assert!((got - 0.163_874_75).abs() < 1e-6 && (want - 0.176_910_24).abs() < 1e-6);
+    println!("swiftshader: two vertices just below snap ties: depth {got} at (0, 4), the reference {want}");
+
+    // 5. f32 plane equations anchored at the vertex of largest w, here 158 000 px away (the
+    // triangle is clipped; vertex 0 is behind the eye): at (0, 7) the weight of the far vertex
+    // is -0.0041 (exact arithmetic on the same snapped vertices: +4.3e-5, as the reference).
+    let far = draw(
+        16,
+        16,
+        vec![
+            [2.467_343_3, -2.080_675_6, 0.0, -1.893_268],
+            [0.0, -3.226_922_3, 0.0, 2.425_679],
+            [-50_646.65, 76_644.29, 0.0, 2.554_809_6],
+        ],
+    );
+    let (got, want) = (run(&far), expected(&far));
+    assert_eq!(
+        pixels(&got),
+        pixels(&want),
+        "swiftshader: the far triangle's coverage"
+    );
+    let (g, r) = (at(&got, 0, 7)[0].barycentric, at(&want, 0, 7)[0].barycentric);
+    assert!(
+        g[2] < -0.004 && r[2] > 0.0,
+        "the far vertex's weight at (0, 7): {g:?}"
+    );
+    println!("swiftshader: planes anchored 158 000 px away: weights {g:?} at (0, 7), the reference {r:?}");
+    // The same with every w = 1 and every near vertex on the grid: a strip from (2.5, 2.5)-(13.5,
+    // 13.5) towards a vertex 160 000 px away. At (11, 12) the far vertex weighs 0.0054 (exact:
+    // 5·10⁻⁵, lavapipe 5.000003·10⁻⁵).
+    let strip = draw(
+        16,
+        16,
+        vec![
+            [-0.6875, 0.6875, 0.5, 1.0],
+            [0.6875, -0.6875, 0.5, 1.0],
+            [20_000.0, -22_500.0, 0.5, 1.0],
+        ],
+    );
+    let g = at(&run(&strip), 11, 12)[0].barycentric;
+    // The ray cast's (`oracle::ray_cast`).
+    let exact = [0.909_065_909_090_909_1, 0.090_884_090_909_090_91, 5e-5];
+    assert!(apart(g, exact) > 0.003, "{g:?}");
+    assert!(
+        (g[2] - 0.005_396_133).abs() < 1e-6,
+        "the far vertex's weight at (11, 12): {g:?}"
+    );
+    println!(
+        "swiftshader: a strip to 160 000 px, all w = 1: weights {g:?} at (11, 12), exact [0.909066, 0.090884, 0.00005]"
+    );
+
+    // And worse, equal w, a vertex 166 000 px away: at (0, 12) a weight of 0.084 where exact
+    // arithmetic on the same snapped vertices gives 5·10⁻⁶ (found by bary.equal-w.affine once
+    // the profile claimed only 5 bits).
+    let worse = draw(
+        16,
+        64,
+        vec![
+            [-0.120_826_77, 0.206_112_82, 0.0, 0.2],
+            [-4_152.041, -5_038.468, 0.0, 0.2],
+            [-0.210_416_7, 0.090_537_33, 0.0, 0.2],
+        ],
+    );
+    let g = at(&run(&worse), 0, 12)[0].barycentric;
+    assert!((g[1] - 0.083_804_32).abs() < 1e-6, "{g:?}");
+    println!(
+        "swiftshader: equal w, a vertex 166 000 px away: weights {g:?} at (0, 12), exact [0.497247, 0.000005, 0.502748]"
+    );
+
+    // 6. Near a near-plane cut the clipped polygon is snapped on its own, while attributes and
+    // depth come from the input triangle's plane: at (13, 6), inside the snapped polygon but
+    // 0.02 px beyond the exact cut, SwiftShader extrapolates depth -0.0188 and weights
+    // (1.023, -0.047, 0.023) (the same in exact arithmetic); the reference clamps to the cut's
+    // values, depth 0.
+    let cut = draw(
+        16,
+        16,
+        vec![
+            [0.070_751_96, 0.018_75, -0.001_414_671_5, 0.1],
+            [0.035_546_876, 0.0125, 0.035_246_246, 0.1],
+            [-0.1, 0.00625, 0.051_944_89, 0.1],
+        ],
+    );
+    let (got, want) = (run(&cut), expected(&cut));
+    assert_eq!(pixels(&got), vec![(13, 6)]);
+    assert_eq!(pixels(&want), vec![(13, 6)]);
+    assert!((got[0].depth + 0.018_789_083).abs() < 1e-6 && want[0].depth == 0.0);
+    println!(
+        "swiftshader: beyond a snapped near cut: depth {}, weights {:?} at (13, 6)",
+        got[0].depth, got[0].barycentric
+    );
+
+    // 7. w = NaN at one vertex (the other two span a segment): 10 fragments. Vulkan leaves NaN
+    // input unspecified; SwiftShader tests x, y and z for finiteness, not w (`VertexRoutine`).
+    let nan = draw(
+        8,
+        8,
+        vec![
+            [0.5, 0.5, 0.5, f32::NAN],
+            [0.5, 0.5, 0.5, 1.0],
+            [-0.5, 0.5, 0.5, 1.0],
+        ],
+    );
+    assert_eq!(
+        run(&nan).len(),
+        10,
+        "swiftshader: fragments of a w = NaN triangle"
+    );
+
+    // 8. Finite coordinates to 1.4·10³⁵: the clipper's products overflow to ∞ and NaN, and 5
+    // fragments with NaN depth come out of a triangle whose visible part has no area (x = 0).
+    let huge = draw(
+        2,
+        9,
+        vec![
+            [0.0, -1.088_515_6e17, 3_296_528_000_000.0, -0.0],
+            [0.0, 0.0, 1.415_189e35, 0.0],
+            [0.0, -0.0, -0.0, 2_404.501_2],
+        ],
+    );
+    let got = run(&huge);
+    assert!(got.len() == 5 && got.iter().all(|f| f.depth.is_nan()) && expected(&huge).is_empty());
+    println!("swiftshader: every hand-checked finding holds");
+}

@@ -204,7 +204,7 @@ impl Rasterizer for Gpu {
                 zero_area_before_clipping: false,
             },
             spec: match self.driver {
-                Driver::Lavapipe | Driver::Vulkan => Spec::Vulkan,
+                Driver::Lavapipe | Driver::Swiftshader | Driver::Vulkan => Spec::Vulkan,
                 Driver::Llvmpipe | Driver::Softpipe => Spec::OpenGl,
             },
         }

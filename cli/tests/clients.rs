@@ -181,7 +181,8 @@ fn python_lab004_gets_the_verdicts_of_seed_004() {
          fill.projected-mesh.exactly-once fill.interior.matches-raycast bary.vertex.one \
          bary.screen.reconstructs-sample depth.screen-linear.matches-raycast clip.interior.matches-raycast clip.mesh.watertight \
          clip.crossing-quad.watertight clip.far.respected clip.gl-range.matches-raycast \
-         meta.reversal.flips-facing meta.translate.whole-pixels meta.translate.one-subpixel"
+         meta.reversal.flips-facing meta.translate.whole-pixels meta.translate.one-subpixel \
+         meta.degenerate.empty"
     );
     same_as_port(&rules, "lab004-lineeq", "200");
 }

@@ -4,8 +4,10 @@
 use refrast::{Draw, DrawError, Fragment, FrontFace, Profile, Rasterizer, Reference};
 use refrast_conformance::{Options, Status, certify};
 
-/// The reference, except that facing comes from the projected input vertices, a negative `w`
-/// included: the visible part of a triangle with a vertex behind the eye gets the wrong facing.
+/// The reference, except that facing comes from the projected input vertices when one has
+/// `w ≤ 0`: the visible part of a triangle with a vertex behind the eye gets the wrong facing.
+/// (Everywhere else it keeps the reference's facing, so that a sliver snapping turns over does
+/// not give it away first.)
 struct FacingByDivision;
 
 impl Rasterizer for FacingByDivision {
@@ -20,6 +22,9 @@ impl Rasterizer for FacingByDivision {
         let mut fragments = Reference::default().rasterize(draw)?;
         for f in &mut fragments {
             let p = draw.triangles[f.primitive as usize].map(|i| draw.positions[i as usize].map(f64::from));
+            if p.iter().all(|v| v[3] > 0.0) {
+                continue;
+            }
             let [a, b, c] = p.map(|v| [v[0] / v[3], v[1] / v[3]]);
             // Positive in NDC (y up) is counter-clockwise on screen.
             let ccw = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]) > 0.0;

@@ -259,13 +259,17 @@ const EXPECTED: [Expected; 3] = [
                bary.vertex.one bary.screen.reconstructs-sample depth.screen-linear.matches-raycast \
                clip.interior.matches-raycast clip.mesh.watertight clip.crossing-quad.watertight \
                clip.far.respected clip.gl-range.matches-raycast meta.reversal.flips-facing \
-               meta.translate.whole-pixels meta.translate.one-subpixel",
-        // meta.degenerate.empty: its zero-area triangles drew only once clipped, which without a
-        // guard band may give new vertices off the line (passes 10 000 cases). The barycentric
+               meta.translate.whole-pixels meta.translate.one-subpixel meta.degenerate.empty",
+        // meta.degenerate.empty: its zero-area triangles draw only once clipped; since issue 26
+        // the rule draws some the near plane cuts, and on 64×64 the line y = 2 px through
+        // (6.5, 2), (−0.5, 2), (13.5, 2), the middle vertex before the near plane, it draws
+        // pixels (7..=9, 2): their corners, where it samples, lie on the line, their centres
+        // 0.5 px off it (hand-checked; every zero-area triangle it draws unclipped it skips).
+        // The barycentric
         // rules judge its screen-space weights since issue 26: weighed at pixel corners, a vertex
         // on a sample does not get weight 1 (bary.vertex.one, as bary.screen.reconstructs-sample).
         pass: "bary.sum.one bary.range.unit depth.range.vertices clip.behind-eye.empty meta.rotation.same-coverage meta.viewport.neutral \
-               meta.batch.independent meta.facing.from-winding meta.degenerate.empty robust.non-finite.discarded \
+               meta.batch.independent meta.facing.from-winding robust.non-finite.discarded \
                robust.bit-patterns.sane-output robust.output.well-formed robust.bad-index.error",
         not_applicable: "fill.top-left.exact fill.guard-band.exact fill.brute-force.exact \
                bary.perspective.matches-raycast bary.equal-w.affine depth.order.independent \

@@ -3,7 +3,8 @@
 use refrast::{Fragment, Profile, Rasterizer};
 
 use super::common::{Expected, fragments, precision, raycast_fragments, slack_note, snapped_triangles};
-use super::level::{CLIPPED_VALUES, CONVEX_COMBINATION, Level, NO_BARYCENTRICS};
+use super::common::{Values, check_values_finite, reaches_far};
+use super::level::{FAR_VALUES, Level, NO_BARYCENTRICS};
 use super::{
     ANY_BARYCENTRICS, Family, PERSPECTIVE_BARYCENTRICS, Rule, SCREEN_BARYCENTRICS, VERTEX_ON_SAMPLE,
 };
@@ -30,8 +31,8 @@ pub(super) fn rules() -> Vec<Rule> {
             .cases(5000)
             .needs(ANY_BARYCENTRICS)
             .vulkan_and_opengl(Level::Partly {
-                part: |r, cfg| property(r, cfg, strategy::perspective_inside_scene(), check_in_range),
-                note: CLIPPED_VALUES,
+                part: |r, cfg| property(r, cfg, strategy::crossing_scene(), check_in_range_where_bounded),
+                note: FAR_VALUES,
             })
             .d3d11(Level::NotCovered(NO_BARYCENTRICS))
             .run(|r, cfg| property(r, cfg, strategy::crossing_scene(), check_in_range)),
@@ -49,8 +50,10 @@ pub(super) fn rules() -> Vec<Rule> {
             .cases(5000)
             .needs(PERSPECTIVE_BARYCENTRICS)
             .vulkan_and_opengl(Level::Partly {
-                part: |r, cfg| property(r, cfg, strategy::perspective_inside_scene(), check_matches_raycast),
-                note: CONVEX_COMBINATION,
+                part: |r, cfg| {
+                    property(r, cfg, strategy::inside_or_crossing_scene(), check_matches_raycast_where_bounded)
+                },
+                note: FAR_VALUES,
             })
             .d3d11(Level::NotCovered(NO_BARYCENTRICS))
             .run(|r, cfg| {
@@ -67,8 +70,8 @@ pub(super) fn rules() -> Vec<Rule> {
             .cases(5000)
             .needs(SCREEN_BARYCENTRICS)
             .vulkan_and_opengl(Level::Partly {
-                part: |r, cfg| property(r, cfg, strategy::perspective_inside_scene(), check_reconstructs),
-                note: CONVEX_COMBINATION,
+                part: |r, cfg| property(r, cfg, strategy::inside_or_crossing_scene(), check_reconstructs_where_bounded),
+                note: FAR_VALUES,
             })
             .d3d11(Level::NotCovered(NO_BARYCENTRICS))
             .run(|r, cfg| property(r, cfg, strategy::inside_or_crossing_scene(), check_reconstructs)),
@@ -79,8 +82,8 @@ pub(super) fn rules() -> Vec<Rule> {
             .needs(SCREEN_BARYCENTRICS)
             .needs(PERSPECTIVE_BARYCENTRICS)
             .vulkan_and_opengl(Level::Partly {
-                part: |r, cfg| property(r, cfg, equal_w_inside_scene(), check_equal_w),
-                note: CONVEX_COMBINATION,
+                part: |r, cfg| property(r, cfg, equal_w_scene(), check_equal_w_where_bounded),
+                note: FAR_VALUES,
             })
             .d3d11(Level::NotCovered(NO_BARYCENTRICS))
             .run(|r, cfg| property(r, cfg, equal_w_scene(), check_equal_w)),
@@ -346,4 +349,57 @@ pub fn check_equal_w(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violat
             plural(n, "fragment")
         )
     })
+}
+
+/// Both kinds of barycentrics, not depth.
+const BARYCENTRICS: Values = Values {
+    depth: false,
+    perspective: true,
+    screen: true,
+};
+
+/// [`check_in_range`] where the triangle stays near the viewport, finite barycentrics elsewhere.
+pub fn check_in_range_where_bounded(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    if reaches_far(scene) {
+        check_values_finite(r, scene, BARYCENTRICS)
+    } else {
+        check_in_range(r, scene)
+    }
+}
+
+/// [`check_matches_raycast`] where the triangle stays near the viewport, finite perspective
+/// barycentrics elsewhere.
+pub fn check_matches_raycast_where_bounded(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    if reaches_far(scene) {
+        let perspective = Values {
+            screen: false,
+            ..BARYCENTRICS
+        };
+        check_values_finite(r, scene, perspective)
+    } else {
+        check_matches_raycast(r, scene)
+    }
+}
+
+/// [`check_reconstructs`] where the triangle stays near the viewport, finite screen-space
+/// barycentrics elsewhere.
+pub fn check_reconstructs_where_bounded(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    if reaches_far(scene) {
+        let screen = Values {
+            perspective: false,
+            ..BARYCENTRICS
+        };
+        check_values_finite(r, scene, screen)
+    } else {
+        check_reconstructs(r, scene)
+    }
+}
+
+/// [`check_equal_w`] where the triangle stays near the viewport, finite barycentrics elsewhere.
+pub fn check_equal_w_where_bounded(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    if reaches_far(scene) {
+        check_values_finite(r, scene, BARYCENTRICS)
+    } else {
+        check_equal_w(r, scene)
+    }
 }

@@ -529,3 +529,55 @@ pub fn deep_sample(scene: &Scene, t: usize, margin: f64) -> Option<(u32, u32)> {
                 && ray_cast(&tri, nx, ny, &scene.state).is_some()
         })
 }
+
+/// Whether triangle 0 reaches far from the viewport: a vertex at `w ≤ 0`, or one projecting
+/// farther than the viewport's own width or height beyond its sides. There floating-point
+/// interpolation is not bounded by any specification ([`super::level::FAR_VALUES`]).
+#[must_use]
+pub fn reaches_far(scene: &Scene) -> bool {
+    scene.corners(0).iter().any(|&p| {
+        let w = f64::from(p[3]);
+        if w.is_nan() || w <= 0.0 {
+            return true;
+        }
+        let [x, y] = crate::oracle::raster::project(scene.width, scene.height, p.map(f64::from));
+        let (sw, sh) = (f64::from(scene.width), f64::from(scene.height));
+        !(-sw..=2.0 * sw).contains(&x) || !(-sh..=2.0 * sh).contains(&y)
+    })
+}
+
+/// Which of a fragment's values a rule judges.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Values {
+    /// Window depth.
+    pub depth: bool,
+    /// Perspective-correct barycentrics (where declared).
+    pub perspective: bool,
+    /// Screen-space barycentrics (where declared).
+    pub screen: bool,
+}
+
+/// Every value of every fragment that `values` names (and the profile declares) is finite:
+/// what every specification asks of values it does not bound ([`reaches_far`]).
+pub fn check_values_finite(r: &mut dyn Rasterizer, scene: &Scene, values: Values) -> Result<(), Violation> {
+    let features = r.profile().features;
+    let mut found = crate::violation::Findings::new();
+    for f in fragments(r, scene)? {
+        let screen = (values.screen && features.screen_barycentrics)
+            .then_some(f.screen_barycentric)
+            .flatten();
+        let finite = (!values.depth || f.depth.is_finite())
+            && (!(values.perspective && features.perspective_barycentrics)
+                || f.barycentric.iter().all(|b| b.is_finite()))
+            && screen.is_none_or(|s| s.iter().all(|b| b.is_finite()));
+        if !finite {
+            found.add((f.x, f.y), || format!("{f:?} has a value that is not finite"));
+        }
+    }
+    found.verdict(|n| {
+        format!(
+            "{} with a value that is not finite",
+            crate::violation::plural(n, "fragment")
+        )
+    })
+}

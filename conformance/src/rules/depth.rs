@@ -3,8 +3,9 @@
 use proptest::prelude::*;
 use refrast::{CompareOp, DepthState, Profile, Rasterizer, Resolved};
 
+use super::common::{Values, check_values_finite, reaches_far};
 use super::common::{fragments, precision, raycast_fragments, slack_note};
-use super::level::{CONVEX_COMBINATION, Level};
+use super::level::{FAR_VALUES, Level};
 use super::{DEPTH_TEST, EXTREME_OPS, EXTREME_WINS, Family, Rule, Z_OVER_W_DEPTH};
 use crate::oracle::raster::{replay_depth, window_depth};
 use crate::runner::{property, property_for};
@@ -32,16 +33,16 @@ pub(super) fn rules() -> Vec<Rule> {
             .source("Vulkan 1.4 §28.7.5; D3D11.3 §15.6")
             .cases(5000)
             .needs(Z_OVER_W_DEPTH)
-            .vulkan_and_opengl(Level::Partly {
+            .every_spec(Level::Partly {
                 part: |r, cfg| {
                     property_for(
                         r,
                         cfg,
-                        |p| strategy::either_depth_range(p, strategy::perspective_inside_scene()),
-                        check_depth_matches_raycast,
+                        |p| strategy::either_depth_range(p, strategy::inside_or_crossing_scene()),
+                        check_depth_matches_raycast_where_bounded,
                     )
                 },
-                note: CONVEX_COMBINATION,
+                note: FAR_VALUES,
             })
             .run(|r, cfg| {
                 property_for(
@@ -310,4 +311,22 @@ pub fn check_resolve(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violat
             plural(n, "pixel")
         )
     })
+}
+
+/// [`check_depth_matches_raycast`] where the triangle stays near the viewport, finite values
+/// elsewhere.
+pub fn check_depth_matches_raycast_where_bounded(
+    r: &mut dyn Rasterizer,
+    scene: &Scene,
+) -> Result<(), Violation> {
+    if reaches_far(scene) {
+        let depth = Values {
+            depth: true,
+            perspective: false,
+            screen: false,
+        };
+        check_values_finite(r, scene, depth)
+    } else {
+        check_depth_matches_raycast(r, scene)
+    }
 }

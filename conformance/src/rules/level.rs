@@ -92,12 +92,9 @@ pub const SHARED_EDGE_ONLY: &str = "Vulkan (Basic Polygon Rasterization) and Ope
 /// Vulkan and OpenGL fix neither a tie rule nor how a coordinate rounds to the subpixel grid.
 pub const NO_TIE_RULE: &str = "Vulkan fixes no tie rule (only \"exactly one of the polygons\" covers a sample on a shared edge) and no rounding of x_f and y_f (\"x_f and y_f have limited precision\", Controlling the Viewport); OpenGL 4.6 §14.6.1 likewise: only samples away from every edge are required, and the declared tie rule and rounding are the profile's own claim";
 
-/// Vulkan and OpenGL ask of a clipped polygon's values only a convex combination.
-pub const CONVEX_COMBINATION: &str = "for a polygon produced by clipping, Vulkan (Basic Polygon Rasterization) requires only that \"a convex combination of the values of the datum at the polygon's vertices must be used\" (OpenGL 4.6 §14.6.1: \"we require only\"): matching the ray cast on a clipped triangle is refrast's convention";
-
-/// No specification bounds interpolation error, and Vulkan and OpenGL ask of a clipped polygon
-/// only a convex combination.
-pub const CLIPPED_VALUES: &str = "no specification bounds interpolation error (Vulkan: only \"accurate to about 1 part in 10^5\" per floating-point operation), and of a polygon produced by clipping Vulkan and OpenGL require only \"a convex combination\": the claimed precision is held on triangles drawn whole, while a clipped polygon's values (whose plane equations may rest on a vertex far outside the viewport) are held only to being a convex combination";
+/// No specification bounds interpolation error; refrast holds the claimed precision where the
+/// triangle stays near the viewport.
+pub const FAR_VALUES: &str = "no specification bounds interpolation error: Vulkan asks each floating-point operation to be \"accurate to about 1 part in 10^5\" (Floating-Point Computation; OpenGL 4.6 §2.3.4.1 likewise; D3D11.3 §3.1 half an ulp of f32), which on a triangle reaching 10^4 px and more from the viewport, or to w ≤ 0, allows errors of a pixel's worth and more; there only finite values are required (a NaN is no convex combination, Basic Polygon Rasterization). Nearer, on triangles whole or clipped, the values are required within the claimed precision: a clipped polygon's vertices carry exactly defined values (Clipping Shader Outputs), and any triangulation of it interpolates them as the ray cast does";
 
 /// D3D11.3 has no barycentric output.
 pub const NO_BARYCENTRICS: &str = "D3D11.3 defines no barycentric output (only interpolation modes, §16.4)";

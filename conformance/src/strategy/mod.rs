@@ -10,8 +10,10 @@ use spade::{DelaunayTriangulation, Point2, Triangulation};
 use crate::scene::{Scene, clip_of};
 
 mod exact;
+mod sliver;
 
 pub use exact::{FINE_BITS, exact_scene, guard_band_scene};
+pub use sliver::{flipped_sliver, zero_area_across_near};
 
 /// Subpixel units per pixel in grid strategies.
 pub const GRID: i64 = 256;

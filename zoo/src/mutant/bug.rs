@@ -68,11 +68,18 @@ pub enum Bug {
     /// from its provoking vertex: each weight goes to the wrong vertex, though they still sum
     /// to 1 and lie in [0, 1].
     PermutedBarycentrics,
+    /// Facing and culling of a triangle drawn whole taken from its unsnapped area: a sliver
+    /// that snapping turns over faces (and is culled) the wrong way.
+    UnsnappedFacing,
+    /// Zero area decided on the clipped, snapped polygon while the profile claims the
+    /// reference's order (on the snapped input, before clipping): a collinear triangle the near
+    /// plane cuts draws a sliver along its line.
+    ZeroAreaAfterClipping,
 }
 
 impl Bug {
     /// Every bug.
-    pub const ALL: [Bug; 25] = [
+    pub const ALL: [Bug; 27] = [
         Self::InclusiveEdges,
         Self::ExclusiveEdges,
         Self::BottomRightAsTopLeft,
@@ -98,6 +105,8 @@ impl Bug {
         Self::PerspectiveCutScreen,
         Self::HalfUpSnap,
         Self::PermutedBarycentrics,
+        Self::UnsnappedFacing,
+        Self::ZeroAreaAfterClipping,
     ];
 
     /// The name after `mutant:` in `--impl`.
@@ -129,6 +138,8 @@ impl Bug {
             Self::PerspectiveCutScreen => "perspective-cut-screen",
             Self::HalfUpSnap => "half-up-snap",
             Self::PermutedBarycentrics => "permuted-barycentrics",
+            Self::UnsnappedFacing => "unsnapped-facing",
+            Self::ZeroAreaAfterClipping => "zero-area-after-clipping",
         }
     }
 
@@ -156,9 +167,12 @@ impl Bug {
             | Self::StrictCompare
             | Self::LerpedCutDepth => Family::Depth,
             Self::NoNearClip | Self::DirectionalClip => Family::Clip,
-            Self::OneWinding | Self::InvertedFacing | Self::RotatedEdgeOrigin | Self::DegenerateFragments => {
-                Family::Meta
-            }
+            Self::OneWinding
+            | Self::InvertedFacing
+            | Self::RotatedEdgeOrigin
+            | Self::DegenerateFragments
+            | Self::UnsnappedFacing
+            | Self::ZeroAreaAfterClipping => Family::Meta,
             Self::UnclampedBbox => Family::Robust,
         }
     }

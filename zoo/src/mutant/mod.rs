@@ -66,6 +66,15 @@ impl Rasterizer for Mutant {
                 continue;
             }
             let input = [0, 1, 2].map(|k| ClipVertex::corner(p[k], k));
+            // Zero area is decided on the snapped input before clipping, as the reference does
+            // (its profile claims it), unless that is the bug.
+            if !matches!(self.bug, Bug::ZeroAreaAfterClipping | Bug::DegenerateFragments)
+                && input.iter().all(|c| c.position.w > 0.0)
+                && let Some(v) = self.project(draw, &input, &input)
+                && orient(v[0].fixed, v[1].fixed, v[2].fixed) == 0
+            {
+                continue;
+            }
             let polygon = match self.bug {
                 Bug::NoNearClip => input.to_vec(),
                 Bug::DirectionalClip => clip_walking(&input, &planes),
@@ -90,7 +99,14 @@ impl Rasterizer for Mutant {
             if area == 0 && self.bug != Bug::DegenerateFragments {
                 continue;
             }
-            let clockwise = area > 0;
+            let unclipped = polygon.len() == 3 && polygon == input;
+            let clockwise = if self.bug == Bug::UnsnappedFacing && unclipped {
+                // The bug: the unsnapped positions' area, which a sliver's snapping can reverse.
+                let r = verts.iter().map(|v| v.raster).collect::<Vec<_>>();
+                (r[1][0] - r[0][0]) * (r[2][1] - r[0][1]) - (r[1][1] - r[0][1]) * (r[2][0] - r[0][0]) > 0.0
+            } else {
+                area > 0
+            };
             if self.bug == Bug::OneWinding && clockwise {
                 continue;
             }
@@ -104,7 +120,6 @@ impl Rasterizer for Mutant {
             if state.cull.culls(front) {
                 continue;
             }
-            let unclipped = polygon.len() == 3 && polygon == input;
             for i in 1..verts.len() - 1 {
                 let tri = [verts[0], verts[i], verts[i + 1]];
                 self.walk(draw.viewport, tri, primitive as u32, front, unclipped, &mut out);

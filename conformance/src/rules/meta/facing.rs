@@ -17,14 +17,23 @@ use crate::violation::{Findings, Violation, plural};
 
 /// Overlapping grid triangles, or one across clip planes (w of either sign or 0): culling must
 /// follow the facing of clipped triangles too, not a wrongly signed area before clipping.
-pub(super) fn cull_scene() -> impl Strategy<Value = Scene> {
-    prop_oneof![strategy::overlapping_scene(), strategy::crossing_scene()]
+pub(super) fn cull_scene(profile: &Profile) -> impl Strategy<Value = Scene> + use<> {
+    prop_oneof![
+        2 => strategy::overlapping_scene(),
+        2 => strategy::crossing_scene(),
+        1 => strategy::flipped_sliver(profile),
+    ]
 }
 
-/// Unclipped grid triangles, and triangles across clip planes with `w` of either sign, under
-/// either front face.
-pub(super) fn facing_scene() -> impl Strategy<Value = Scene> {
-    let scene = prop_oneof![strategy::inside_scene(), strategy::crossing_scene()];
+/// Unclipped grid triangles, triangles across clip planes with `w` of either sign, and slivers
+/// that snapping turns over (whose facing is that of their snapped area), under either front
+/// face.
+pub(super) fn facing_scene(profile: &Profile) -> impl Strategy<Value = Scene> + use<> {
+    let scene = prop_oneof![
+        2 => strategy::inside_scene(),
+        2 => strategy::crossing_scene(),
+        1 => strategy::flipped_sliver(profile),
+    ];
     (scene, any::<bool>()).prop_map(|(mut s, cw)| {
         s.state.front_face = if cw {
             FrontFace::Clockwise
@@ -121,7 +130,15 @@ pub fn check_facing(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violati
     })
 }
 
+/// Zero-area triangles drawn whole ([`collinear_scene`]), and a sixth of the time one the near
+/// plane cuts ([`strategy::zero_area_across_near`]).
 pub(super) fn degenerate_scene() -> impl Strategy<Value = Scene> {
+    prop_oneof![5 => collinear_scene(), 1 => strategy::zero_area_across_near()]
+}
+
+/// Zero-area triangles: three points of the half-pixel lattice on one line (or one repeated),
+/// each at its own `w`, under either front face.
+fn collinear_scene() -> impl Strategy<Value = Scene> {
     // Half-pixel points stay collinear on every grid of one subpixel bit or more.
     let half = strategy::GRID / 2;
     let point = || (-8i64..72, -8i64..72);
@@ -152,13 +169,26 @@ pub(super) fn degenerate_scene() -> impl Strategy<Value = Scene> {
     })
 }
 
-/// A zero-area triangle draws nothing, unless x/y clipping may have made it a real polygon.
+/// A zero-area triangle draws nothing, unless clipping may have made it a real polygon: x/y
+/// clipping beyond the guard band, or the near plane where the profile does not claim to decide
+/// zero area before clipping (then only samples away from its line are judged).
 pub fn check_degenerate(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let profile = r.profile();
+    let range = scene.state.depth_range;
+    let cut = scene
+        .corners(0)
+        .iter()
+        .any(|&[_, _, z, w]| raster::near_distance(range, z, w) < 0.0);
+    if cut && !profile.features.zero_area_before_clipping {
+        // Clipping first, a cut vertex snapped off the line makes a sliver along it (Vulkan
+        // decides zero area on the clipped polygon).
+        return check_degenerate_off_line(r, scene);
+    }
     // Beyond the guard band a triangle reaching outside the viewport is clipped, and the new
     // vertices, computed on the boundary and snapped, need not stay on the old line (Vulkan
     // §"Primitive Clipping": intersecting edges are reconnected by new edges along the
     // boundary): the clipped polygon may have area.
-    let reach = f64::from(r.profile().features.guard_band);
+    let reach = f64::from(profile.features.guard_band);
     let beyond = scene.positions.iter().any(|&p| {
         let [x, y] = raster::project(scene.width, scene.height, p.map(f64::from));
         !(-reach..=f64::from(scene.width) + reach).contains(&x)
@@ -319,7 +349,7 @@ mod tests {
     /// project, in f32 as in f64, exactly onto the half-pixel lattice it was built on.
     #[test]
     fn degenerate_scenes_project_exactly() {
-        for scene in strategy::samples(degenerate_scene(), 2000) {
+        for scene in strategy::samples(collinear_scene(), 2000) {
             let (w, h) = (scene.width as f32, scene.height as f32);
             for p in &scene.positions {
                 let (nx, ny) = (p[0] / p[3], p[1] / p[3]);

@@ -2,7 +2,7 @@
 
 use super::level::{EDGES_NOT_PINNED, Level, ZERO_AREA_LINE};
 use super::{CULLING, Family, Rule};
-use crate::runner::property;
+use crate::runner::{property, property_for};
 use crate::strategy;
 
 mod facing;
@@ -62,20 +62,20 @@ pub(super) fn rules() -> Vec<Rule> {
             })
             .run(|r, cfg| property(r, cfg, strategy::overlapping_scene(), check_batch_independent)),
         Rule::invariant(Family::Meta, "meta.cull.by-facing")
-            .sentence("Culling removes exactly the fragments of triangles with the culled facing, under either front face.")
+            .sentence("Culling removes exactly the fragments of triangles with the culled facing (a sliver by its snapped area), under either front face.")
             .source("dEQP-VK.rasterization.culling.*; seed 003 (back-face culling)")
             .cases(3000)
             .needs(CULLING)
             .keeps_winding()
-            .run(|r, cfg| property(r, cfg, cull_scene(), check_culling)),
+            .run(|r, cfg| property_for(r, cfg, cull_scene, check_culling)),
         Rule::invariant(Family::Meta, "meta.facing.from-winding")
-            .sentence("A fragment is front-facing exactly when its triangle turns on screen the way the front face says: by its snapped signed area, or by the sign of det[x y w] when it is clipped.")
+            .sentence("A fragment is front-facing exactly when its triangle turns on screen the way the front face says: by its snapped signed area (also for a sliver that snapping turns over), or by the sign of det[x y w] when it is clipped; a triangle its cull mode discards draws nothing.")
             .source("Vulkan 1.4 §28.7.1 (polygon facing from the signed area); Olano and Greer 1997 (facing of clipped triangles); seed 003 (back-face culling)")
             .cases(6000)
             .keeps_winding()
-            .run(|r, cfg| property(r, cfg, facing_scene(), check_facing)),
+            .run(|r, cfg| property_for(r, cfg, facing_scene, check_facing)),
         Rule::invariant(Family::Meta, "meta.degenerate.empty")
-            .sentence("Zero-area triangles (collinear or repeated vertices, on sample centres too) draw nothing; without a guard band, those needing no x/y clipping.")
+            .sentence("Zero-area triangles (collinear or repeated vertices, on sample centres too) draw nothing; without a guard band, those needing no x/y clipping; one the near plane cuts, nothing where the profile decides zero area before clipping, else nothing away from its line.")
             .source("Vulkan 1.4 §28.7.1 (zero area is back-facing); D3D11.3 §15.16")
             .cases(10000)
             .every_spec(Level::Partly {

@@ -22,11 +22,10 @@ use std::time::Instant;
 use refrast::Rasterizer;
 use serde::{Deserialize, Serialize};
 
-use crate::certify::{
-    Options, ProfileReport, Report, RuleReport, Status, cases_for, refusal, run_rule, run_selected,
-};
+use crate::certify::{Options, cases_for, refusal, run_rule, run_selected};
 use crate::impls::Unavailable;
 use crate::process::{Tail, status_words};
+use crate::report::{ProfileReport, Report, RuleReport, Status};
 use crate::rules::{Rule, catalogue};
 
 /// The prefix of every protocol line on the child's stdout.

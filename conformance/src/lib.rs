@@ -11,9 +11,10 @@
 //! | 4 | [`strategy`] | free functions that build valid scenes: grid triangles, spade meshes, fans, quads, clip crossings |
 //! | 5 | `runner` | [`property`]: one rule's property, seeded, shrunk, panics caught |
 //! | 6 | [`rules`] | [`catalogue`], [`Rule`], [`Family`], [`Kind`], [`Need`]: six families, each rule a proptest property |
-//! | 7 | `certify` | [`certify`], [`Options`], [`Report`] |
-//! | 8 | [`isolate`] | rules in child processes: a hang, an abort or a crash fails the rule it was running |
-//! | 9 | `harness`, [`fuzz`] | [`run_as_tests`]: one test per rule in your own crate; the cargo-fuzz targets as functions on any rasterizer |
+//! | 7 | `report` | [`Report`], [`RuleReport`], [`Status`], [`ProfileReport`] |
+//! | 8 | `certify` | [`certify`], [`Options`] |
+//! | 9 | [`isolate`] | rules in child processes: a hang, an abort or a crash fails the rule it was running |
+//! | 10 | `harness`, [`fuzz`] | [`run_as_tests`]: one test per rule in your own crate; the cargo-fuzz targets as functions on any rasterizer |
 //! | — | `impls` | [`builtins`]: the implementations `refrast certify --impl` knows (refrast only) |
 //! | — | [`restricted`] | the reference restricted to one setting or a few, declaring and using only those (refrast only) |
 //! | — | [`process`] | [`Process`]: a rasterizer in any language, in a child speaking `PROTOCOL.md` (refrast only) |
@@ -35,6 +36,7 @@ pub mod isolate;
 pub mod oracle;
 pub mod picture;
 pub mod process;
+mod report;
 pub mod restricted;
 pub mod rules;
 mod runner;
@@ -42,13 +44,11 @@ mod scene;
 pub mod strategy;
 mod violation;
 
-pub use certify::{
-    DEFAULT_CASE_TIMEOUT, Options, ProfileReport, Report, RuleReport, Status, cases_for, certify,
-    feature_list, fill_name, matches, refusal, run_rule,
-};
+pub use certify::{DEFAULT_CASE_TIMEOUT, Options, cases_for, certify, matches, refusal, run_rule};
 pub use harness::{failure_text, run_as_tests};
 pub use impls::{BuiltIn, Maker, Named, Origin, Unavailable, builtins};
 pub use process::{Process, ProcessError};
+pub use report::{ProfileReport, Report, RuleReport, Status, feature_list, fill_name};
 pub use rules::meta::Translated;
 pub use rules::robust::Poisoned;
 pub use rules::{

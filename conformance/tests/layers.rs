@@ -18,6 +18,7 @@ const LAYERS: &[&[&str]] = &[
     &["strategy"],
     &["runner"],
     &["rules"],
+    &["report"],
     &["certify"],
     &["isolate"],
     &["harness", "fuzz"],
@@ -34,6 +35,7 @@ const INNER_LAYERS: &[(&str, &[&[&str]])] = &[
         "rules",
         &[
             &["common", "level"],
+            &["cast", "mesh"],
             &["fill"],
             &["bary", "clip", "depth", "meta", "robust"],
             &["hint"],

@@ -2,8 +2,8 @@
 
 use refrast::{Fragment, Profile, Rasterizer};
 
-use super::common::{Expected, fragments, precision, raycast_fragments, slack_note, snapped_triangles};
-use super::common::{Values, check_values_finite, reaches_far};
+use super::cast::{Expected, raycast_fragments, slack_note, snapped_triangles};
+use super::common::{Values, check_values_finite, fragments, precision, reaches_far};
 use super::level::{FAR_VALUES, Level, NO_BARYCENTRICS};
 use super::{
     ANY_BARYCENTRICS, Family, PERSPECTIVE_BARYCENTRICS, Rule, SCREEN_BARYCENTRICS, VERTEX_ON_SAMPLE,

@@ -3,8 +3,8 @@
 use proptest::prelude::*;
 use refrast::{CompareOp, DepthState, Profile, Rasterizer, Resolved};
 
-use super::common::{Values, check_values_finite, reaches_far};
-use super::common::{fragments, precision, raycast_fragments, slack_note};
+use super::cast::{Expected, raycast_fragments, slack_note};
+use super::common::{Values, check_values_finite, fragments, precision, reaches_far};
 use super::level::{FAR_VALUES, Level};
 use super::{DEPTH_TEST, EXTREME_OPS, EXTREME_WINS, Family, Rule, Z_OVER_W_DEPTH};
 use crate::oracle::raster::{replay_depth, window_depth};
@@ -172,9 +172,8 @@ pub fn check_depth_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Res
     let mut found = Findings::new();
     let cast = raycast_fragments(r, scene)?;
     // Clamping moves two values no further apart, so the slack still holds.
-    let off = |f: &refrast::Fragment, want: &super::common::Expected| {
-        (f64::from(f.depth) - want.depth.clamp(0.0, 1.0)).abs()
-    };
+    let off =
+        |f: &refrast::Fragment, want: &Expected| (f64::from(f.depth) - want.depth.clamp(0.0, 1.0)).abs();
     for &(f, want) in &cast.pairs {
         let depth = want.depth.clamp(0.0, 1.0);
         let off_by = off(&f, &want);

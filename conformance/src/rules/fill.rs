@@ -2,8 +2,9 @@
 
 use refrast::{CullMode, Fragment, Profile, Rasterizer};
 
-use super::common::{Relax, check_mesh_coverage, compare_sets, coverage_set, fragments, reference_for};
+use super::common::{compare_sets, coverage_set, fragments, reference_for};
 use super::level::{Level, NO_TIE_RULE, SHARED_EDGE_ONLY};
+use super::mesh::{Relax, check_mesh_coverage};
 use super::{EXACT_COVERAGE, Family, GUARD_BAND, REFERENCE_PROFILE, Rule};
 use crate::oracle::facing::{Turn, snapped_variants};
 use crate::oracle::raster::Point;

@@ -10,7 +10,8 @@
 
 use refrast::{DepthConvention, DepthRange, FillConvention, Fragment, Profile, Rasterizer};
 
-use super::common::{Expected, deep_sample, fragments, precision, raycast_expectations, raycast_fragments};
+use super::cast::{Expected, raycast_expectations, raycast_fragments};
+use super::common::{deep_sample, fragments, precision};
 use super::{Family, Rule};
 use crate::oracle::brute_force;
 use crate::oracle::facing::Turn;

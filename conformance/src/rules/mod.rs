@@ -1,12 +1,14 @@
 //! The rule catalogue: one entry per rule, grouped by family.
 
 pub mod bary;
+pub mod cast;
 pub mod clip;
 pub mod common;
 pub mod depth;
 pub mod fill;
 pub mod hint;
 pub mod level;
+pub mod mesh;
 pub mod meta;
 pub mod robust;
 

@@ -82,7 +82,7 @@ mod tests {
     use super::*;
     use crate::oracle::outline::{distance_to_outline, visible_outline};
     use crate::oracle::raster::sample_centre;
-    use crate::rules::common::mesh_expectation;
+    use crate::rules::mesh::mesh_expectation;
     use crate::scene::Scene;
     use crate::violation::Expect;
 

@@ -1,0 +1,245 @@
+//! What certification reports: a status per rule, the profile as printed, and the whole
+//! report of one implementation (text, HTML and JSON are written from these).
+
+use std::path::PathBuf;
+
+use refrast::{Features, FillConvention, Profile, Rasterizer, SnapAccuracy};
+use serde::{Deserialize, Serialize};
+
+use crate::rules::{Family, Kind};
+use crate::runner::guarded;
+use crate::violation::Counts;
+
+/// A rule's outcome.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Status {
+    /// Every case held.
+    #[serde(rename = "pass")]
+    Pass,
+    /// A case failed.
+    #[serde(rename = "fail")]
+    Fail,
+    /// The rule does not apply to the profile.
+    #[serde(rename = "n/a")]
+    NotApplicable,
+    /// A case failed, on something the specification the profile claims does not require
+    /// ([`RuleReport::spec_note`] says why): not a failure of conformance, and not a pass.
+    #[serde(rename = "beyond-spec")]
+    BeyondSpec,
+}
+
+impl Status {
+    /// As printed: `pass`, `FAIL`, `n/a`, `BEYOND` (beyond the claimed specification).
+    #[must_use]
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::Pass => "pass",
+            Self::Fail => "FAIL",
+            Self::NotApplicable => "n/a",
+            Self::BeyondSpec => "BEYOND",
+        }
+    }
+}
+
+/// One rule's line in the report.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RuleReport {
+    /// The rule's ID.
+    pub id: String,
+    /// Its family.
+    pub family: Family,
+    /// Invariant or exact.
+    pub kind: Kind,
+    /// Pass, fail or not applicable.
+    pub status: Status,
+    /// Cases tried (0 when not applicable): up to the failing one, or fewer than planned when
+    /// the time budget ran out.
+    pub cases: u32,
+    /// Cases the rule would have tried (0 when not applicable).
+    #[serde(default)]
+    pub planned: u32,
+    /// Whether the time budget ran out before every planned case was tried.
+    #[serde(default)]
+    pub budget_spent: bool,
+    /// The generator's seed.
+    pub seed: u64,
+    /// The tolerance band used, in subpixels.
+    pub tolerance_subpixels: u32,
+    /// Why it failed, or why it does not apply.
+    pub message: Option<String>,
+    /// The numbers behind a failure, one line per wrong sample (the first few).
+    #[serde(default)]
+    pub details: Vec<String>,
+    /// Sample tallies of a failed coverage check.
+    pub counts: Option<Counts>,
+    /// For [`Status::BeyondSpec`]: what the claimed specification says instead, with its sentence.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spec_note: Option<String>,
+    /// Where the failure has the shape of a misdeclared profile, one line saying so, with the
+    /// bug that looks the same.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hint: Option<String>,
+    /// The shrunk failing input, as Rust.
+    pub counterexample: Option<String>,
+    /// The counterexample picture, if one was written.
+    pub picture: Option<PathBuf>,
+    /// Seconds the rule took where it ran (in its child process, for an isolated rule; from the
+    /// parent's side when the child died without a report).
+    #[serde(default)]
+    pub seconds: f64,
+}
+
+/// The profile as the report prints it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ProfileReport {
+    /// Declared name.
+    pub name: String,
+    /// What the implementation reports itself to be ([`Rasterizer::about`]).
+    #[serde(default)]
+    pub about: String,
+    /// Snapping: a grid's bits, or none.
+    pub snapping: String,
+    /// Tie rule on edges, or none.
+    pub fill: String,
+    /// Depth convention.
+    pub depth: String,
+    /// Tolerance band in grid steps, as declared.
+    pub tolerance_subpixels: u32,
+    /// The band used, in pixels.
+    pub band_px: f64,
+    /// Optional abilities declared, and the supported values of each draw-state setting.
+    pub features: Vec<String>,
+    /// The specification it claims to follow ([`refrast::Spec::title`]).
+    #[serde(default)]
+    pub spec: String,
+}
+
+impl ProfileReport {
+    /// The report of `rasterizer`'s profile, with what it says about itself; a panic in either
+    /// is reported as the name.
+    #[must_use]
+    pub fn of(rasterizer: &dyn Rasterizer) -> Self {
+        match guarded(|| (rasterizer.profile(), rasterizer.about())) {
+            Ok((profile, about)) => Self {
+                about,
+                ..Self::from(&profile)
+            },
+            Err(what) => Self {
+                name: format!("unknown (profile() or about() panicked: {what})"),
+                ..Self::unknown()
+            },
+        }
+    }
+}
+
+impl From<&Profile> for ProfileReport {
+    fn from(p: &Profile) -> Self {
+        Self {
+            name: p.name.clone(),
+            about: String::new(),
+            snapping: p.snapping.to_string(),
+            fill: fill_name(p.fill).to_owned(),
+            depth: format!("{:?}", p.depth),
+            tolerance_subpixels: p.tolerance_subpixels,
+            band_px: p.band_px(),
+            features: feature_list(&p.features),
+            spec: p.spec.title().to_owned(),
+        }
+    }
+}
+
+impl ProfileReport {
+    /// A profile nobody reported (every rule's process died before it could).
+    #[must_use]
+    pub fn unknown() -> Self {
+        Self {
+            name: "unknown (no rule's process reported a profile)".into(),
+            about: String::new(),
+            snapping: String::new(),
+            fill: String::new(),
+            depth: String::new(),
+            tolerance_subpixels: 1,
+            band_px: 0.0,
+            features: Vec::new(),
+            spec: String::new(),
+        }
+    }
+}
+
+/// A tie rule as reports print it.
+#[must_use]
+pub fn fill_name(fill: Option<FillConvention>) -> &'static str {
+    fill.map_or("no tie rule", FillConvention::name)
+}
+
+/// The abilities a profile declares, then each setting's supported values.
+#[must_use]
+pub fn feature_list(f: &Features) -> Vec<String> {
+    let abilities = [
+        (f.perspective_barycentrics, "perspective-barycentrics"),
+        (f.screen_barycentrics, "screen-barycentrics"),
+        (f.depth_test, "depth-test"),
+        (f.ties_to_even, "ties-to-even"),
+        (f.snap == SnapAccuracy::WithinOneStep, "snap within one step"),
+        (f.zero_area_before_clipping, "zero-area-before-clipping"),
+    ];
+    let mut list: Vec<String> = abilities
+        .iter()
+        .filter(|(on, _)| *on)
+        .map(|(_, name)| (*name).to_owned())
+        .collect();
+    match f.guard_band {
+        0 => {}
+        u32::MAX => list.push("guard-band unbounded".to_owned()),
+        px => list.push(format!("guard-band {px} px")),
+    }
+    list.push(format!("cull {:?}", f.cull_modes));
+    list.push(format!("front faces {:?}", f.front_faces));
+    list.push(format!("compare {:?}", f.compare_ops));
+    list.push(format!("depth writes {:?}", f.depth_writes));
+    list.push(format!("far clipping {:?}", f.far_clipping));
+    list.push(format!("depth ranges {:?}", f.depth_ranges));
+    list
+}
+
+/// The whole certification of one implementation.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Report {
+    /// The implementation's name.
+    pub implementation: String,
+    /// Its declared profile.
+    pub profile: ProfileReport,
+    /// One entry per rule run.
+    pub rules: Vec<RuleReport>,
+    /// The selected rules left unrun after a failure under [`crate::Options::fail_fast`].
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub not_run: Vec<String>,
+    /// Why no rule ran: a profile the suite cannot judge ([`Profile::judgeable`]), with what to
+    /// declare instead. A refused implementation has not passed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub refused: Option<String>,
+}
+
+impl Report {
+    /// Whether it was judged and every applicable rule passed.
+    #[must_use]
+    pub fn passed(&self) -> bool {
+        self.refused.is_none() && self.rules.iter().all(|r| r.status != Status::Fail)
+    }
+
+    /// How many rules failed only on what the claimed specification does not require.
+    #[must_use]
+    pub fn beyond_spec(&self) -> usize {
+        self.rules
+            .iter()
+            .filter(|r| r.status == Status::BeyondSpec)
+            .count()
+    }
+
+    /// How many rules passed, failed, and did not apply ([`Report::beyond_spec`] counts the rest).
+    #[must_use]
+    pub fn tally(&self) -> (usize, usize, usize) {
+        let n = |s| self.rules.iter().filter(|r| r.status == s).count();
+        (n(Status::Pass), n(Status::Fail), n(Status::NotApplicable))
+    }
+}

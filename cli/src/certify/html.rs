@@ -50,9 +50,21 @@ pub fn write(dir: &Path, page: &Page<'_>) -> io::Result<PathBuf> {
 /// The whole page.
 fn render(page: &Page<'_>) -> String {
     let failed = page.entries.iter().filter(|(_, e)| !super::passed(e)).count();
+    let beyond: usize = page
+        .entries
+        .iter()
+        .map(|(_, e)| match e {
+            Entry::Certified(report) => report.beyond_spec(),
+            _ => 0,
+        })
+        .sum();
+    let beyond = match beyond {
+        0 => String::new(),
+        n => format!(" ({n} failed beyond the specification claimed)"),
+    };
     let verdict = if failed == 0 {
         format!(
-            "<p class=\"verdict pass-text\">{} certified, every applicable rule passed</p>",
+            "<p class=\"verdict pass-text\">{} certified, every applicable rule passed{beyond}</p>",
             page.entries.len()
         )
     } else {
@@ -330,8 +342,13 @@ fn failure(
     report: &Report,
     r: &RuleReport,
 ) -> String {
+    let kind = if r.status == Status::BeyondSpec {
+        "failure beyond-spec"
+    } else {
+        "failure"
+    };
     let mut h = format!(
-        "<div class=\"failure\" id=\"f{column}-{row}\">\n<h3><code>{}</code> on {}</h3>\n\
+        "<div class=\"{kind}\" id=\"f{column}-{row}\">\n<h3><code>{}</code> on {}</h3>\n\
          <p class=\"message\">{}</p>\n",
         esc(&r.id),
         esc(&report.implementation),

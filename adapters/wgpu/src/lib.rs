@@ -60,6 +60,7 @@
 pub mod device;
 mod draw;
 mod pipelines;
+pub mod probe;
 mod targets;
 
 use std::sync::{Arc, Mutex};

@@ -61,6 +61,7 @@ pub mod device;
 mod draw;
 mod pipelines;
 pub mod probe;
+pub mod reported;
 mod targets;
 
 use std::sync::{Arc, Mutex};

@@ -29,6 +29,21 @@ const UNAVAILABLE: i32 = 3;
 /// SwiftShader's verdicts at [`CASES`] cases a rule under its measured profile (Vulkan, 4 bits,
 /// snapping within one step, 12 bits of precision): each failure a class checked by hand
 /// (`findings`, README "Certified implementations").
+///
+/// How each moved from the pins of the hand-written profile (snapping to nearest, 8 bits of
+/// precision, every failure a failure), and why:
+/// - `bary.perspective.matches-raycast`, `depth.screen-linear.matches-raycast`: fail → beyond.
+///   Snapping within one step is declared, so the snaps near ties (findings 3, 4) pass on
+///   triangles drawn whole; what fails is a clipped triangle's values (a vertex at w = 0,
+///   finding 2's mechanism), which Vulkan holds only to a convex combination.
+/// - `bary.range.unit`, `bary.equal-w.affine`: pass → beyond. With 12 bits claimed (measured
+///   14.9 on triangles drawn whole) the far-anchored f32 planes of clipped triangles (finding 5)
+///   fail within 300 cases; Vulkan bounds neither.
+/// - `robust.non-finite.discarded` (w = NaN or ∞ drawn, finding 7): fail → beyond, as Vulkan
+///   leaves non-finite input unspecified.
+/// - `robust.bit-patterns.sane-output` still fails, now on finite input within 2³² (finding 9,
+///   a vertex at w = −FLT_MIN); the 10³⁵ overflow (finding 8) is beyond Vulkan.
+/// - `robust.output.well-formed` still fails (finding 2).
 const PINNED: Pinned = Pinned {
     fail: "robust.bit-patterns.sane-output robust.output.well-formed",
     beyond: "bary.range.unit bary.perspective.matches-raycast bary.equal-w.affine \

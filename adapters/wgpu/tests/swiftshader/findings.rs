@@ -262,5 +262,27 @@ pub fn swiftshader(gpu: &mut Gpu) {
         "swiftshader: a vertex at w = -1.2e-38: depth {} at (0, 0)",
         got[0].depth
     );
+
+    // 10. A vertex behind the eye (w = −0.1): the screen-space (`@interpolate(linear)`) planes
+    // run through the input vertices' projections, as in finding 2, and at (8, 2) the weights are
+    // (−1.72, 0.053, 2.67), no convex combination (`bary.range.unit`, reported beyond Vulkan by
+    // its level; the f32 trace gives the same numbers). The perspective ones are in [0, 1].
+    let behind = draw(
+        16,
+        16,
+        vec![
+            [0.0, 0.0, 0.0, -0.1],
+            [0.233_922_76, 0.0, 0.0, 0.2],
+            [0.0, 0.052_034_557, 0.0, 0.2],
+        ],
+    );
+    let f = at(&run(&behind), 8, 2)[0];
+    let screen = f.screen_barycentric.expect("screen weights");
+    assert!(
+        apart(screen, [-1.72, 0.053_333_33, 2.666_666_7]) < 1e-5
+            && f.barycentric.iter().all(|b| (0.0..=1.0).contains(b)),
+        "swiftshader: screen weights with a vertex behind the eye: {f:?}"
+    );
+    println!("swiftshader: a vertex behind the eye: screen weights {screen:?} at (8, 2)");
     println!("swiftshader: every hand-checked finding holds");
 }

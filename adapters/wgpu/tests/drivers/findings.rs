@@ -243,11 +243,11 @@ pub fn findings(d: Driver, gpu: &mut Gpu) {
 
     // `robust.bit-patterns.sane-output` at case 289 (2×33): vertex 0 at the centre (depth 0),
     // vertex 1 at w = 0 (a point at infinity, +x), vertex 2 behind the eye. The visible part is
-    // a wedge below the row y = 16.5 whose left edge passes 0.001 px below the sample (0.5,
-    // 16.5); the clipped polygon's vertex there snaps onto the row (a 1/256-px tie, to even),
-    // so the sample is covered, and the depth plane, evaluated there (Mesa interpolates its
-    // float plane, not the snapped polygon's), gives −0.82: it rises 1.65 per px along the row
-    // and 843 per px across the 0.001-px gap. The reference leaves the sample out.
+    // a wedge below the row y = 16.5 whose left edge passes 0.001 px (a quarter of a 1/256-px
+    // step) below the sample (0.5, 16.5), and 0.50024 steps below the row at x = 0, a hair past
+    // a snap tie. Mesa covers the sample and gives it the exact depth plane's value there, −0.82:
+    // the plane rises 1.65 per px along the row and 843 per px across it (exact arithmetic:
+    // −0.8232). The reference leaves the sample out.
     let wedge = draw(
         2,
         33,

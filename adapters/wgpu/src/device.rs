@@ -3,6 +3,7 @@
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
+use refrast::Spec;
 use refrast_conformance::Unavailable;
 
 /// The driver a built-in asks for; never quietly another.
@@ -68,10 +69,21 @@ impl Driver {
         })
     }
 
-    fn backends(self) -> wgpu::Backends {
+    /// The wgpu backend it is behind.
+    pub(crate) fn backends(self) -> wgpu::Backends {
         match self {
             Self::Lavapipe | Self::Swiftshader | Self::Vulkan => wgpu::Backends::VULKAN,
             Self::Llvmpipe | Self::Softpipe => wgpu::Backends::GL,
+        }
+    }
+
+    /// The specification it claims: Vulkan's drivers Vulkan 1.4, OpenGL ES's OpenGL (whose
+    /// rasterization OpenGL ES 3 states alike).
+    #[must_use]
+    pub fn spec(self) -> Spec {
+        match self {
+            Self::Lavapipe | Self::Swiftshader | Self::Vulkan => Spec::Vulkan,
+            Self::Llvmpipe | Self::Softpipe => Spec::OpenGl,
         }
     }
 

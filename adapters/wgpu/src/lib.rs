@@ -19,60 +19,73 @@
 //!   holds (with writes off the buffer keeps its clear value, and a driver writing it anyway
 //!   would show in the ids).
 //!
-//! # What the driver promises, and what the profile says
+//! # The profile is measured on the driver, never assumed from another
 //!
-//! wgpu cannot ask for a fill rule or a subpixel precision, so the profile states what the
-//! driver documents, and the suite measures whether it holds:
+//! wgpu cannot ask for a fill rule or a subpixel precision, and reports neither, so each
+//! driver's profile is measured when it is opened ([`Gpu::new`]), and [`Rasterizer::about`] says
+//! what was chosen and why (`refrast certify` prints it as "reports itself as"):
 //!
-//! - Mesa's llvmpipe (lavapipe's rasterizer) reports `subPixelPrecisionBits = 8` and
-//!   `standardSampleLocations` (`vulkaninfo` on Mesa 22.3.6); its setup code (`lp_setup_tri.c`)
-//!   breaks ties with D3D's top-left rule in a y-down framebuffer. Declared: an 8-bit grid,
-//!   top-left; `fill.top-left.exact` and `fill.brute-force.exact` pass 20 000 cases each.
-//! - OpenGL names no tie rule, and softpipe keeps none (it covers a sample on a vertex where
-//!   two right edges meet): declared an 8-bit grid and no tie rule.
-//! - SwiftShader as Chromium builds it (`SWIFTSHADER_LEGACY_PRECISION`) reports
-//!   `subPixelPrecisionBits = 4`; its setup (`SetupRoutine::edge`) walks edges in exact integers
-//!   with ceiling divisions, spans `[left, right)` and rows from the top vertex's inclusive:
-//!   the top-left rule. It clips x/y at the viewport (`Clipper.cpp`) and rounds with
-//!   `cvtps2dq`, ties to even. Declared: lavapipe's profile on a 4-bit grid. Measured
-//!   (`tests/swiftshader.rs`): the tie rule, exact ties and no guard band hold; it snaps
-//!   `x·(1/w)·scale + offset` computed in f32, not `x/w` rounded, so a vertex within a few f32
-//!   ulps of a tie (`2.5·10⁻⁶` px on a 64-px target) may land one step from the reference's
-//!   (on a 2.8-px triangle with w from 0.1 to 3.3 that moved a weight by 0.46); and its f32
-//!   plane equations, anchored at the vertex of largest w, keep 13 bits on slivers but as few
-//!   as 3.6 on triangles reaching 10⁵ px. Lavapipe does not round x/w either (the same probe), on a grid
-//!   16 times finer.
-//! - Measured, against what a first profile assumed: Mesa clips x/y against the viewport (a
-//!   tie on an edge leaving it flips), so no guard band is declared; and its f32 interpolation
-//!   keeps 8 bits on slivers with very unequal w, so `precision_bits` is 8. Both are checked
-//!   in `tests/drivers.rs`.
-//! - Vulkan asks only that a sample on an edge shared by two polygons be covered by exactly one
-//!   of them (§28.7.1); the `fill.*.exactly-once` rules judge that whatever the profile says.
-//! - WebGPU clips depth to `0 ≤ z ≤ w` always (far clipping cannot be switched off without a
-//!   feature that also drops near clipping) and has no `−w ≤ z` range: those are declared
-//!   unsupported, and the suite sends no such draw.
+//! - **Grid.** A Vulkan driver's is the `subPixelPrecisionBits` it reports, read from
+//!   `vulkaninfo` run with the driver's environment (`reported.rs`: the device whose name and
+//!   IDs are the adapter's); the grid probe checks it. `vulkaninfo` missing makes the driver
+//!   unavailable (`apt-get install vulkan-tools`). OpenGL reports nothing through wgpu: the
+//!   probe measures the finest vertex move that changes coverage, and a driver moved by every
+//!   step down to 2^-16 px (softpipe) has no grid (`Snapping::Float`, its band from how far
+//!   from an edge a sample was decided against exact arithmetic).
+//! - **Tie rule.** Which single edges own a sample exactly on them, over 262 tie samples: the
+//!   convention that fits every one, else none. Shared edges covered twice are reported as the
+//!   bug they are (Vulkan and OpenGL require exactly one), never read as a declaration.
+//! - **Snapping.** A vertex a few f32 ulps from a snap tie landing on the farther grid point
+//!   declares `SnapAccuracy::WithinOneStep` (Vulkan computes the viewport transform in floating
+//!   point); exact ties all going to the even grid point declare `ties_to_even`.
+//! - **Guard band.** 0 when a tie sample on an edge leaving the viewport flips (the driver clips
+//!   x/y at the viewport and snaps the cut); else the largest reach tried that flips none.
+//! - **Precision.** The bits kept on 1206 unclipped slivers and triangles, less
+//!   [`measured::MARGIN`]: Vulkan and OpenGL hold a clipped polygon's values only to being a
+//!   convex combination, and the suite judges them so (docs/levels.md).
+//!
+//! Every probe is a few batched draws read back by primitive id (`probe/`, well under a second
+//! a process); the result is kept per driver and version under the target folder (`cache.rs`),
+//! so each rule's child process reads it instead. `tests/measured.rs` pins every choice on this
+//! project's machine: lavapipe 8 bits, top-left, within one step, ties to even, no guard band,
+//! 7 bits of precision (measured 9.4); llvmpipe the same with 8 (10.1); softpipe no grid, no tie
+//! rule, 7 (9.3); SwiftShader 4 bits (reported and measured), top-left, within one step, ties
+//! to even, no guard band, 12 (14.9). What stays declared, not measured: depth is z/w
+//! interpolated linearly on screen (Vulkan §28.7.5), zero area is not decided before clipping
+//! (Mesa and SwiftShader clip first), and the draw states WebGPU allows: it clips depth to
+//! `0 ≤ z ≤ w` always (far clipping cannot be switched off without a feature that also drops
+//! near clipping) and has no `−w ≤ z` range, so the suite sends no such draw. Vulkan asks only
+//! that a sample on an edge shared by two polygons be covered by exactly one of them (§28.7.1);
+//! the `fill.*.exactly-once` rules judge that whatever the profile says.
 //!
 //! One device per process and driver is created, on first use ([`device::context`]). A driver
 //! that is missing, or an adapter that is not the one asked for, makes the built-in
 //! unavailable, with the reason; it never quietly falls back to another driver.
 #![forbid(unsafe_code)]
 
+mod cache;
 pub mod device;
 mod draw;
+pub mod measured;
 mod pipelines;
+pub mod probe;
+pub mod reported;
 mod targets;
 
 use std::sync::{Arc, Mutex};
 
 use refrast::{
-    CompareOp, DepthConvention, DepthRange, Draw, DrawError, Features, FillConvention, Fragment, Profile,
-    Rasterizer, Resolved, SnapAccuracy, Snapping, Spec, Supported,
+    CompareOp, DepthConvention, DepthRange, Draw, DrawError, Features, Fragment, Profile, Rasterizer,
+    Resolved, Supported,
 };
 use refrast_conformance::{BuiltIn, Origin, Unavailable};
 
 pub use device::Driver;
 use device::{Context, context, describe};
+use measured::Measured;
 use pipelines::{Method, Pipelines};
+use probe::Probes;
+use reported::Reported;
 
 /// How long a resolve took on the device.
 #[derive(Clone, Copy, Debug)]
@@ -88,18 +101,43 @@ pub struct Gpu {
     driver: Driver,
     context: Arc<Context>,
     pipelines: Mutex<Pipelines>,
+    measured: Arc<Measured>,
 }
 
 impl Gpu {
-    /// The driver asked for, on this process's device for it; why not, when there is none.
+    /// The driver asked for, on this process's device for it, with its profile measured (once
+    /// per process, and kept on disk per driver and version: see `cache.rs`); why not, when
+    /// there is none, when it is a Vulkan driver and `vulkaninfo` is missing, or when measuring
+    /// fails.
     pub fn new(driver: Driver) -> Result<Self, Unavailable> {
         let context = context(driver)?;
-        let pipelines = Mutex::new(Pipelines::new(&context.device));
+        if let Some(why) = reported::missing(driver) {
+            return Err(why);
+        }
+        let mut pipelines = Pipelines::new(&context.device);
+        let measured = cache::measured(driver, &context, || {
+            let (reported, probes) = probe_now(driver, &context, &mut pipelines)?;
+            Ok(measured::choose(driver.spec(), reported.as_ref(), &probes))
+        })?;
         Ok(Self {
             driver,
             context,
-            pipelines,
+            pipelines: Mutex::new(pipelines),
+            measured,
         })
+    }
+
+    /// What the driver reports and what the probes see, read and run now (not from the file
+    /// [`Gpu::new`] may have read its profile from): the tests pin these.
+    pub fn probe(&mut self) -> Result<(Option<Reported>, Probes), Unavailable> {
+        let mut pipelines = self.pipelines();
+        probe_now(self.driver, &self.context, &mut pipelines)
+    }
+
+    /// The profile's measured declarations, with why.
+    #[must_use]
+    pub fn measured(&self) -> &Measured {
+        &self.measured
     }
 
     /// [`Rasterizer::resolve`], with how long the device took to draw and how long reading
@@ -149,34 +187,34 @@ impl Gpu {
     }
 }
 
+/// Reads `vulkaninfo` (Vulkan drivers) and runs every probe through the capture pass.
+fn probe_now(
+    driver: Driver,
+    ctx: &Context,
+    pipelines: &mut Pipelines,
+) -> Result<(Option<Reported>, Probes), Unavailable> {
+    let reported = if driver.spec() == refrast::Spec::Vulkan {
+        Some(reported::read(driver, &ctx.info)?)
+    } else {
+        None
+    };
+    let bits = reported.as_ref().and_then(|r| r.subpixel_bits);
+    let probes = probe::measure(&mut |d| draw::capture(ctx, pipelines, d), bits)
+        .map_err(|e| Unavailable(format!("measuring {}'s profile failed: {e}", driver.name())))?;
+    Ok((reported, probes))
+}
+
 impl Rasterizer for Gpu {
     fn profile(&self) -> Profile {
+        let m = &self.measured;
         Profile {
             name: self.driver.name().into(),
-            // llvmpipe's subPixelPrecisionBits and its setup's top-left rule (see the crate docs);
-            // OpenGL names no tie rule, and softpipe keeps none: it covers a sample on a vertex
-            // where two right edges meet (tests/drivers.rs).
-            snapping: match self.driver {
-                // SwiftShader as Chromium builds it (`SWIFTSHADER_LEGACY_PRECISION`) reports
-                // `subPixelPrecisionBits = 4` and snaps to sixteenths (`vk::SUBPIXEL_PRECISION_BITS`).
-                Driver::Swiftshader => Snapping::Grid(4),
-                _ => Snapping::Grid(8),
-            },
-            fill: match self.driver {
-                Driver::Softpipe => None,
-                _ => Some(FillConvention::TopLeft),
-            },
+            snapping: m.snapping,
+            fill: m.fill,
             // Window depth is z/w, interpolated linearly on screen (Vulkan §28.7.5).
             depth: DepthConvention::ScreenLinearZOverW,
-            // Snapping moves an edge by up to √2/2 subpixel from where the float input puts it.
-            tolerance_subpixels: 1,
-            // Neither Vulkan nor Mesa bounds interpolation. Measured, not assumed: Mesa's f32
-            // plane equations keep about 14 bits on ordinary triangles, but on a 0.008-px sliver
-            // with a 30:1 w ratio lavapipe's weight at a vertex is 0.99744 (2^-8.6 off;
-            // tests/drivers.rs). 8 bits is what they keep on every case the suite draws.
-            // SwiftShader keeps 13 on slivers but as few as 3.6 on triangles reaching 10⁵ px
-            // (tests/swiftshader.rs): no claim would hold there, so it claims 8 and fails those.
-            precision_bits: 8,
+            tolerance_subpixels: m.tolerance_subpixels,
+            precision_bits: m.precision_bits,
             features: Features {
                 perspective_barycentrics: true,
                 screen_barycentrics: true,
@@ -187,26 +225,13 @@ impl Rasterizer for Gpu {
                 depth_writes: Supported::ALL,
                 far_clipping: Supported::only(&[true]),
                 depth_ranges: Supported::only(&[DepthRange::ZeroToOne]),
-                // Mesa and SwiftShader clip x/y against the viewport for a triangle reaching
-                // outside it: a tie sample on an edge crossing the boundary can flip
-                // (tests/drivers.rs, tests/swiftshader.rs).
-                guard_band: 0,
-                // Mesa's setup snaps with `util_iround`, to nearest under the CPU's default
-                // rounding: ties to even. Checked on lavapipe and llvmpipe (tests/drivers.rs, a
-                // tie found by `mutant:half-up-snap`; both exact rules at 20000 cases with ties);
-                // softpipe keeps no tie rule, so its exact rules do not apply either way.
-                // SwiftShader rounds with `cvtps2dq` (tests/swiftshader.rs: exact ties in x and
-                // y go to even).
-                ties_to_even: self.driver != Driver::Softpipe,
-                // Mesa's setup snaps the f32 viewport transform's result to nearest; no claim
-                // about zero-area triangles cut by the near plane (Mesa clips first).
-                snap: SnapAccuracy::Nearest,
+                guard_band: m.guard_band,
+                ties_to_even: m.ties_to_even,
+                snap: m.snap,
+                // Mesa and SwiftShader clip first; no probe shows the reference's order.
                 zero_area_before_clipping: false,
             },
-            spec: match self.driver {
-                Driver::Lavapipe | Driver::Swiftshader | Driver::Vulkan => Spec::Vulkan,
-                Driver::Llvmpipe | Driver::Softpipe => Spec::OpenGl,
-            },
+            spec: self.driver.spec(),
         }
     }
 
@@ -217,7 +242,17 @@ impl Rasterizer for Gpu {
                 "; no storage buffers in fragment shaders, so captured one triangle per pass"
             }
         };
-        format!("{}{how}", describe(&self.context.info))
+        let m = &self.measured;
+        let reported = if m.reported.is_empty() {
+            String::new()
+        } else {
+            format!("; vulkaninfo: {}", m.reported)
+        };
+        format!(
+            "{}{how}{reported}; measured: {}",
+            describe(&self.context.info),
+            m.why
+        )
     }
 
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {

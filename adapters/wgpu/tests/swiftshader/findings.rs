@@ -79,7 +79,8 @@ pub fn swiftshader(gpu: &mut Gpu) {
         corner.depth
     );
 
-    // 3. A snap near a tie (x/w computed as x·(1/w), scaled and offset in f32): vertex 0 is at
+    // 3. A snap near a tie (x/w computed as x·(1/w), scaled and offset in f32), which the
+    // measured profile now declares (`SnapAccuracy::WithinOneStep`): vertex 0 is at
     // x = 2.84374982 px, 1.8·10⁻⁷ px below the tie between 2.8125 and 2.875; SwiftShader snaps it
     // to 2.875. Its weights at (2, 0) are exactly those of that snapped triangle; the
     // reference's, of the correctly rounded one, differ by 0.46 (a 2.8-px triangle, w 0.1 to 3.3).
@@ -237,5 +238,51 @@ pub fn swiftshader(gpu: &mut Gpu) {
     );
     let got = run(&huge);
     assert!(got.len() == 5 && got.iter().all(|f| f.depth.is_nan()) && expected(&huge).is_empty());
+
+    // 9. Finding 1's mechanism with w = −1.2·10⁻³⁸ (−FLT_MIN, a normal float) instead of 0
+    // (`robust.bit-patterns.sane-output` at case 41 under the measured profile): the vertex is
+    // projected with 1/w = −8.5·10³⁷, and the depth plane through the input vertices'
+    // projections gives −3.56·10²⁹ at (0, 0), where the clipped polygon's vertices have depths
+    // 0 to 0.79 (an f32 trace of SwiftShader's source gives the same −3.5574267·10²⁹).
+    let tiny_w = draw(
+        1,
+        2,
+        vec![
+            [-0.452_509_43, 0.240_404_3, -0.368_272_66, -0.698_964_54],
+            [3.160_516_5, 1.175_494_4e-38, 2.484_375, 3.040_919_3],
+            [-1.430_746_9, -6.426_126e-8, -1.122_525_9, -1.175_494_4e-38],
+        ],
+    );
+    let got = run(&tiny_w);
+    assert!(
+        got.len() == 1 && (got[0].depth + 3.557_426_7e29).abs() < 1e23,
+        "swiftshader: a vertex at w = −FLT_MIN: {got:?}"
+    );
+    println!(
+        "swiftshader: a vertex at w = -1.2e-38: depth {} at (0, 0)",
+        got[0].depth
+    );
+
+    // 10. A vertex behind the eye (w = −0.1): the screen-space (`@interpolate(linear)`) planes
+    // run through the input vertices' projections, as in finding 2, and at (8, 2) the weights are
+    // (−1.72, 0.053, 2.67), no convex combination (`bary.range.unit`, reported beyond Vulkan by
+    // its level; the f32 trace gives the same numbers). The perspective ones are in [0, 1].
+    let behind = draw(
+        16,
+        16,
+        vec![
+            [0.0, 0.0, 0.0, -0.1],
+            [0.233_922_76, 0.0, 0.0, 0.2],
+            [0.0, 0.052_034_557, 0.0, 0.2],
+        ],
+    );
+    let f = at(&run(&behind), 8, 2)[0];
+    let screen = f.screen_barycentric.expect("screen weights");
+    assert!(
+        apart(screen, [-1.72, 0.053_333_33, 2.666_666_7]) < 1e-5
+            && f.barycentric.iter().all(|b| (0.0..=1.0).contains(b)),
+        "swiftshader: screen weights with a vertex behind the eye: {f:?}"
+    );
+    println!("swiftshader: a vertex behind the eye: screen weights {screen:?} at (8, 2)");
     println!("swiftshader: every hand-checked finding holds");
 }

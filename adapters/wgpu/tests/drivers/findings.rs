@@ -1,0 +1,412 @@
+//! The hand-checked findings of the README's write-up (lavapipe, llvmpipe, softpipe), each as the
+//! driver does it today.
+
+use refrast::{Draw, Fragment, FrontFace, Rasterizer, Reference, Viewport};
+use refrast_wgpu::{Driver, Gpu};
+
+/// A draw on a `width`×`height` target with far clipping on (WebGPU cannot turn it off).
+pub fn draw(width: u32, height: u32, positions: Vec<[f32; 4]>, triangles: Vec<[u32; 3]>) -> Draw {
+    let mut draw = Draw::new(
+        Viewport::new(width, height).expect("a viewport"),
+        positions,
+        triangles,
+    );
+    draw.state.clip_far = true;
+    draw
+}
+
+/// The reference's fragments for `draw`: what each finding's input should give, exactly (i128
+/// edge functions on the same 8-bit grid, the top-left rule).
+pub fn expected(draw: &Draw) -> Vec<Fragment> {
+    Reference::default().rasterize(draw).expect("the reference draws")
+}
+
+/// The fragments at pixel `(x, y)`.
+pub fn at(frags: &[Fragment], x: u32, y: u32) -> Vec<Fragment> {
+    frags.iter().filter(|f| (f.x, f.y) == (x, y)).copied().collect()
+}
+
+/// Each finding of the README's write-up for driver `d`, as the driver does it today.
+pub fn findings(d: Driver, gpu: &mut Gpu) {
+    let mut run = |draw: &Draw| gpu.rasterize(draw).expect("the driver draws");
+
+    // The front face as seen on screen (y down): counter-clockwise there is front-facing.
+    let mut ccw = draw(
+        8,
+        8,
+        vec![
+            [-0.5, 0.5, 0.5, 1.0],
+            [-0.5, -0.5, 0.5, 1.0],
+            [0.5, 0.5, 0.5, 1.0],
+        ],
+        vec![[0, 1, 2]],
+    );
+    for (face, front) in [(FrontFace::CounterClockwise, true), (FrontFace::Clockwise, false)] {
+        ccw.state.front_face = face;
+        let frags = run(&ccw);
+        assert!(
+            !frags.is_empty() && frags.iter().all(|f| f.front_facing == front),
+            "{}: facing under {face:?}",
+            d.name()
+        );
+    }
+
+    // Outside-the-framebuffer fragments from extreme inputs (w = 0, a subnormal w, 10³³).
+    let extreme = draw(
+        2,
+        2,
+        vec![
+            [0.0, 0.0, 0.0, 1.546_945_5e33],
+            [0.0, 1.387_206_3e25, 0.0, 0.0],
+            [-9.870_036e-26, -0.0, 1.974_007_4e-25, f32::MIN_POSITIVE],
+        ],
+        vec![[0, 1, 2]],
+    );
+    let frags = run(&extreme);
+    let outside = frags.iter().filter(|f| f.x >= 2 || f.y >= 2).count();
+    let non_finite = frags
+        .iter()
+        .filter(|f| f.barycentric.iter().any(|b| !b.is_finite()))
+        .count();
+    println!(
+        "{}: the extreme triangle gives {} fragments, {outside} outside the 2×2 target, {non_finite} with non-finite weights",
+        d.name(),
+        frags.len()
+    );
+
+    // Screen-space weights on a triangle clipped by x = w and then the near plane, all w equal
+    // (so they must equal the perspective weights): Mesa's draw clipper (`draw_pipe_clip.c`,
+    // `interp()`) takes a noperspective output's t from the first axis whose clip coordinates
+    // differ, here x, on which both ends of the near cut lie one ulp apart, so t = 0 there.
+    let equal_w = draw(
+        16,
+        16,
+        vec![
+            [0.034_362_59, -0.156_878_2, 0.095_027_015, 0.2],
+            [0.289_709_93, 0.0, 0.0, 0.2],
+            [0.0, 0.0, -0.036_756_188, 0.2],
+        ],
+        vec![[0, 1, 2]],
+    );
+    let drawn = at(&run(&equal_w), 15, 9);
+    let want = at(&expected(&equal_w), 15, 9);
+    let (Some(got), Some(want)) = (drawn.first(), want.first()) else {
+        panic!("{}: (15, 9) covered by the driver and the reference", d.name());
+    };
+    let screen = got.screen_barycentric.expect("screen weights");
+    let apart = |a: [f32; 3], b: [f32; 3]| (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0, f32::max);
+    println!(
+        "{}: clipped, equal w, at (15, 9): perspective {:?}, screen {screen:?} (reference {:?})",
+        d.name(),
+        got.barycentric,
+        want.barycentric
+    );
+    assert!(
+        apart(got.barycentric, want.barycentric) < 0.5f32.powi(8)
+            && apart(screen, [0.18407, 0.62537, 0.19056]) < 1e-4,
+        "{}: clipped screen weights",
+        d.name()
+    );
+
+    // The same choice of axis, when both ends of the cut project to x = 1 exactly but differ in
+    // w: t = 0/0, and every screen weight of the fragments beside that cut is NaN.
+    let nan = draw(
+        16,
+        16,
+        vec![
+            [0.160_769_08, 0.0, -0.097_080_015, 0.2],
+            [0.235_439_35, 0.0, 0.0, 0.2],
+            [0.0, -0.362_214_3, 0.897_783_8, 0.897_783_8],
+        ],
+        vec![[0, 1, 2]],
+    );
+    let drawn = at(&run(&nan), 15, 8);
+    let screen = drawn.first().and_then(|f| f.screen_barycentric);
+    println!(
+        "{}: clipped at x = w and z = 0, at (15, 8): screen {screen:?}",
+        d.name()
+    );
+    assert!(
+        screen.is_some_and(|b| b.iter().all(|w| w.is_nan())) && !at(&expected(&nan), 15, 8).is_empty(),
+        "{}: NaN screen weights beside the near cut",
+        d.name()
+    );
+
+    // The same 0/0 at a corner of the view volume (`bary.sum.one` at case 5): vertex 1 lies
+    // beyond x = w and y = −w, both w = 0.1. Clipping at x = w leaves an edge with both ends on
+    // x = w (w 0.1 and 0.1074); clipping that edge at y = −w takes t from x, where both ends
+    // have x/w = 1. The fan triangle through the new vertex gets NaN screen weights: every
+    // sample along the diagonal (8, 8)…(15, 15), which the reference covers with finite ones.
+    let corner = draw(
+        16,
+        16,
+        vec![
+            [0.0, 0.0, 0.0, 0.1],
+            [0.117_693_14, -0.112_314_224, 0.0, 0.1],
+            [-3.616_577, 0.0, 0.0, 2.782_967],
+        ],
+        vec![[0, 1, 2]],
+    );
+    let (got, want) = (run(&corner), expected(&corner));
+    let nan: Vec<(u32, u32)> = got
+        .iter()
+        .filter(|f| f.screen_barycentric.is_some_and(|b| b.iter().any(|w| w.is_nan())))
+        .map(|f| (f.x, f.y))
+        .collect();
+    println!(
+        "{}: corner of the view volume: NaN screen weights at {nan:?}",
+        d.name()
+    );
+    assert!(
+        nan.len() == 8 && nan.iter().all(|&(x, y)| x == y && !at(&want, x, y).is_empty()),
+        "{}: NaN screen weights along the diagonal",
+        d.name()
+    );
+
+    if d == Driver::Softpipe {
+        softpipe(&mut run);
+        return;
+    }
+    assert_eq!(
+        (frags.len(), outside),
+        (12, 10),
+        "{}: fragments outside the framebuffer",
+        d.name()
+    );
+    assert!(
+        frags
+            .iter()
+            .all(|f| f.screen_barycentric.is_some_and(|b| b.iter().all(|w| w.is_nan()))),
+        "{}: NaN screen-space weights",
+        d.name()
+    );
+
+    // A sample exactly on an edge leaving the viewport is covered; the same triangle moved
+    // inside (8 px right and down, on a 64×64 target; pixel x / 32 − 1 in NDC) leaves it out,
+    // as the top-left rule says.
+    let leaving = draw(
+        32,
+        32,
+        vec![
+            [-0.53125, 0.65625, 0.5, 1.0],
+            [-0.635_253_9, 0.21875, 0.5, 1.0],
+            [1.172_851_6, 1.09375, 0.5, 1.0],
+        ],
+        vec![[0, 1, 2]],
+    );
+    let inside = draw(
+        64,
+        64,
+        vec![
+            [-0.515625, 0.578125, 0.5, 1.0],
+            [13.835_937_5 / 32.0 - 1.0, 0.359375, 0.5, 1.0],
+            [42.765_625 / 32.0 - 1.0, 0.796875, 0.5, 1.0],
+        ],
+        vec![[0, 1, 2]],
+    );
+    assert_eq!(
+        at(&run(&leaving), 26, 2).len(),
+        1,
+        "{}: clipped tie covered",
+        d.name()
+    );
+    assert!(
+        at(&run(&inside), 34, 10).is_empty(),
+        "{}: unclipped tie left out",
+        d.name()
+    );
+    assert!(at(&expected(&leaving), 26, 2).is_empty() && at(&expected(&inside), 34, 10).is_empty());
+
+    // A 0.008-px sliver with a 30:1 w ratio: the sample on vertex 0 weighs 0.99744 there.
+    let sliver = draw(
+        32,
+        16,
+        vec![
+            [1.594_691, -1.313_275, 0.0, 3.001_771_5],
+            [0.053_173_83, -0.081_25, 0.0, 0.1],
+            [0.053_173_83, -0.036_425_78, 0.0, 0.1],
+        ],
+        vec![[0, 1, 2]],
+    );
+    let on_vertex = at(&run(&sliver), 24, 11);
+    let off = (1.0
+        - on_vertex
+            .first()
+            .expect("the vertex sample is covered")
+            .barycentric[0])
+        .abs();
+    assert!(
+        off > 0.5f32.powi(14) && off < 0.5f32.powi(8),
+        "{}: off by {off}",
+        d.name()
+    );
+
+    // `robust.bit-patterns.sane-output` at case 289 (2×33): vertex 0 at the centre (depth 0),
+    // vertex 1 at w = 0 (a point at infinity, +x), vertex 2 behind the eye. The visible part is
+    // a wedge below the row y = 16.5 whose left edge passes 0.001 px (a quarter of a 1/256-px
+    // step) below the sample (0.5, 16.5), and 0.50024 steps below the row at x = 0, a hair past
+    // a snap tie. Mesa covers the sample and gives it the exact depth plane's value there, −0.82:
+    // the plane rises 1.65 per px along the row and 843 per px across it (exact arithmetic:
+    // −0.8232). The reference leaves the sample out.
+    let wedge = draw(
+        2,
+        33,
+        vec![
+            [1.175_494_4e-38, 1.175_494_4e-38, 1.175_494_4e-38, 2.484_375],
+            [1.508_894, -1.175_494_4e-38, 2.484_375, 0.0],
+            [-12332.554, -1.460_532_1, 2.484_375, -3.986_368_7],
+        ],
+        vec![[0, 1, 2]],
+    );
+    let outside = at(&run(&wedge), 0, 16);
+    assert!(
+        outside.len() == 1
+            && (-0.83..-0.81).contains(&outside[0].depth)
+            && at(&expected(&wedge), 0, 16).is_empty(),
+        "{}: the wedge's extrapolated depth: {outside:?}",
+        d.name()
+    );
+
+    // w = +∞ at a vertex: lavapipe draws a fragment, llvmpipe through OpenGL ES draws none.
+    let infinite = draw(
+        16,
+        16,
+        vec![
+            [-0.631_347_66, 1.0, 0.0, f32::INFINITY],
+            [-0.631_347_66, 1.0, 0.0, 1.0],
+            [-0.631_347_66, 0.9375, 0.0, 1.0],
+        ],
+        vec![[0, 1, 2]],
+    );
+    let drawn: Vec<(u32, u32)> = run(&infinite).iter().map(|f| (f.x, f.y)).collect();
+    let expected = if d == Driver::Lavapipe {
+        vec![(4, 2)]
+    } else {
+        vec![]
+    };
+    assert_eq!(
+        drawn,
+        expected,
+        "{}: fragments of a triangle with w = ∞",
+        d.name()
+    );
+    // A snap tie: vertex 0's x is (0.21508789 + 1) / 2 · 16 = 9.720703125 px = 2488.5 units,
+    // exactly halfway. Rounded to even (2488) it covers what the reference covers, 55 pixels;
+    // rounded up (`mutant:half-up-snap`) one more. So the profile claims `ties_to_even`.
+    let tie = draw(
+        16,
+        16,
+        vec![
+            [0.215_087_89, -0.1875, 0.0, 1.0],
+            [-1.0, 1.0, 0.0, 1.0],
+            [0.6875, 0.875, 0.0, 1.0],
+        ],
+        vec![[0, 1, 2]],
+    );
+    assert_eq!((f64::from(tie.positions[0][0]) + 1.0) * 8.0 * 256.0, 2488.5);
+    let pixels = |f: Vec<Fragment>| {
+        let mut p: Vec<(u32, u32)> = f.iter().map(|f| (f.x, f.y)).collect();
+        p.sort_unstable();
+        p
+    };
+    let want = pixels(Reference::default().rasterize(&tie).expect("the reference draws"));
+    assert_eq!(want.len(), 55);
+    assert_eq!(
+        pixels(run(&tie)),
+        want,
+        "{}: a snap tie rounded to even",
+        d.name()
+    );
+    println!("{}: every hand-checked finding holds", d.name());
+}
+
+/// softpipe's findings.
+fn softpipe(run: &mut dyn FnMut(&Draw) -> Vec<Fragment>) {
+    // Two triangles sharing the edge (32.5, 32.5)–(18.5, 50.5); its midpoint is the sample of
+    // pixel (25, 41), covered by both.
+    let fan = draw(
+        64,
+        64,
+        vec![
+            [0.015625, -0.015625, 0.5, 1.0],
+            [0.0, -0.1875, 0.5, 1.0],
+            [-0.421875, -0.578125, 0.5, 1.0],
+            [-0.046875, -0.015625, 0.5, 1.0],
+        ],
+        vec![[0, 1, 2], [0, 2, 3]],
+    );
+    assert_eq!(
+        at(&run(&fan), 25, 41).len(),
+        2,
+        "softpipe: the shared-edge sample twice"
+    );
+
+    // The sample (12.5, 0.5) is vertex 1, where two right edges meet: softpipe covers it, as
+    // top-right would; its float edges follow top-right on 259 of the probe's 262 tie samples,
+    // not all, so it declares no tie rule (tests/measured.rs).
+    let corner = draw(
+        16,
+        16,
+        vec![
+            [-1.0, 1.0, 0.5, 1.0],
+            [0.5625, 0.9375, 0.5, 1.0],
+            [-1.0, 0.937_011_7, 0.5, 1.0],
+        ],
+        vec![[0, 1, 2]],
+    );
+    assert_eq!(at(&run(&corner), 12, 0).len(), 1, "softpipe: the vertex sample");
+    assert!(at(&expected(&corner), 12, 0).is_empty(), "top-left leaves it out");
+    assert_eq!(
+        at(&expected(&fan), 25, 41).len(),
+        1,
+        "exactly one triangle covers it"
+    );
+
+    // All three vertices project to y = 4.5000004 to 4.5000005 (exact area 1.2·10⁻⁸ px²; on an
+    // 8-bit grid zero, but softpipe snaps to no grid), and (24, 4), whose sample lies 4·10⁻⁷ px
+    // outside the triangle, is drawn weighted 0, 0, 0: the weights sum to 0, not 1.
+    let flat = draw(
+        32,
+        32,
+        vec![
+            [0.053125, 0.071875, 0.0, 0.1],
+            [1.355_272_4, 2.509_384_9, 0.0, 3.491_318_2],
+            [0.050_903_32, 0.071875, 0.0, 0.1],
+        ],
+        vec![[0, 1, 2]],
+    );
+    assert!(
+        expected(&flat).is_empty(),
+        "zero area on the reference's grid: nothing drawn"
+    );
+    let frags = run(&flat);
+    assert_eq!(frags.len(), 1, "softpipe: one fragment of the flat triangle");
+    assert_eq!(
+        (frags[0].x, frags[0].y),
+        (24, 4),
+        "softpipe: the flat triangle's pixel"
+    );
+    assert_eq!(frags[0].barycentric, [0.0; 3], "softpipe: weighted nothing");
+    assert_eq!(
+        frags[0].screen_barycentric,
+        Some([2.0, 0.0, -2.0]),
+        "softpipe: screen weights"
+    );
+    // A triangle crossing w = 0 (w = 0, −2·10⁻⁶, 27.7): (2, 10) is weighted (∞, NaN, ∞).
+    let crossing = draw(
+        3,
+        21,
+        vec![
+            [1.876_499_6e14, 0.0, 0.0, 0.0],
+            [-0.0, 0.0, 0.0, -2.011_305e-6],
+            [0.0, -1.257_901_8e-6, 0.0, 27.699_118],
+        ],
+        vec![[0, 1, 2]],
+    );
+    let weights = at(&run(&crossing), 2, 10);
+    assert!(
+        weights.len() == 1 && weights[0].barycentric.iter().all(|b| !b.is_finite()),
+        "softpipe: non-finite weights at (2, 10): {weights:?}"
+    );
+    println!("softpipe: every hand-checked finding holds");
+}

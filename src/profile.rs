@@ -5,7 +5,7 @@
 use std::fmt;
 
 use crate::edge::FillConvention;
-use crate::features::Features;
+use crate::features::{Features, SnapAccuracy};
 use crate::rasterizer::DrawState;
 
 /// How an implementation places vertices before it decides coverage.
@@ -136,11 +136,16 @@ pub struct Profile {
 }
 
 impl Profile {
-    /// The tolerance band in pixels: never under one unit, because snapping alone moves an edge
-    /// by up to √2/2 of a grid step.
+    /// The tolerance band in pixels: never under one unit, because snapping to the nearest grid
+    /// point alone moves an edge by up to √2/2 of a grid step; never under two where a vertex
+    /// may land on either neighbour ([`SnapAccuracy::WithinOneStep`]: up to √2 of a step).
     #[must_use]
     pub fn band_px(&self) -> f64 {
-        f64::from(self.tolerance_subpixels.max(1)) * self.snapping.unit_px()
+        let least = match self.features.snap {
+            SnapAccuracy::Nearest => 1,
+            SnapAccuracy::WithinOneStep => 2,
+        };
+        f64::from(self.tolerance_subpixels.max(least)) * self.snapping.unit_px()
     }
 
     /// `Err` with what to declare when the suite cannot judge this profile at all: a setting
@@ -239,6 +244,13 @@ mod tests {
             ..profile
         };
         assert_eq!(float.band_px(), 4.0 / 256.0);
+        let mut either = gpu(Features::ALL);
+        either.features.snap = SnapAccuracy::WithinOneStep;
+        assert_eq!(
+            either.band_px(),
+            2.0 / 256.0,
+            "either neighbour moves an edge up to √2 steps"
+        );
     }
 
     /// A profile with a setting left empty, or a grid the oracles cannot snap to, is refused

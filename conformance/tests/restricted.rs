@@ -81,3 +81,78 @@ fn every_restricted_reference_passes_or_is_not_applicable() {
         "docs/profiles.md does not hold the n/a table the matrix measured; put this in it:\n\n{table}\n"
     );
 }
+
+/// The reference snapping down (within one grid step of x/w), by name.
+fn snapping_down() -> refrast_conformance::restricted::Restricted {
+    let r = restrictions()
+        .into_iter()
+        .find(|r| r.name == "snap=floor")
+        .expect("listed");
+    (r.make)()
+}
+
+/// Regressions of the full matrix (`certify --impl 'restricted:*'`): with snapping within one
+/// step an edge moves up to √2 grid steps, not √2/2, and the band of one step failed the floor
+/// reference on a sample that close to an edge (fill.interior.matches-raycast at case 2563,
+/// clip.far.respected at 2546, clip.gl-range.matches-raycast at 1521). The band is two steps
+/// for such a profile now (`Profile::band_px`).
+#[test]
+fn snapping_within_one_step_is_judged_outside_two_steps_of_an_edge() {
+    use refrast::{CompareOp, CullMode, DepthRange, DepthState, DrawState, FrontFace};
+    use refrast_conformance::Scene;
+    use refrast_conformance::rules::fill::check_exactly_once;
+    let state = |range, clip_far| DrawState {
+        cull: CullMode::None,
+        front_face: FrontFace::CounterClockwise,
+        depth: DepthState {
+            compare: CompareOp::Less,
+            write: true,
+            clear: 1.0,
+        },
+        depth_range: range,
+        clip_far,
+    };
+    let scenes = [
+        (
+            32,
+            32,
+            [
+                [-0.036305554, -0.08583549, 0.0, 0.1],
+                [0.0, 0.0, 0.0, 0.1],
+                [0.05969065, -0.014887135, 0.0, 0.1],
+            ],
+            state(DepthRange::ZeroToOne, false),
+        ),
+        (
+            64,
+            80,
+            [
+                [0.0, 0.0, 0.0, 0.1],
+                [0.021248478, 0.030762175, 0.0, 0.1],
+                [-0.11996859, -0.10734619, 0.0, 0.1],
+            ],
+            state(DepthRange::ZeroToOne, true),
+        ),
+        (
+            32,
+            32,
+            [
+                [0.0077443034, -0.020770863, -0.14216962, 0.1],
+                [0.0, 0.0, 0.0, 0.1],
+                [-0.12880902, -0.046137314, 0.118317924, 0.1],
+            ],
+            state(DepthRange::NegativeOneToOne, false),
+        ),
+    ];
+    let mut floor = snapping_down();
+    for (width, height, positions, state) in scenes {
+        let scene = Scene {
+            width,
+            height,
+            positions: positions.to_vec(),
+            triangles: vec![[0, 1, 2]],
+            state,
+        };
+        check_exactly_once(&mut floor, &scene).unwrap_or_else(|v| panic!("{v}\n{scene:?}"));
+    }
+}

@@ -54,12 +54,14 @@ fn pinned(d: Driver) -> Pinned {
 // 8 bits of precision; every failure a failure), and why:
 // - `bary.sum.one` now fails, at case 5: the corner finding (NaN screen weights, Mesa's clipper).
 //   It fails the same at 1ca24fb under the old profiles (checked); the old pin was stale.
-// - `bary.screen.reconstructs-sample`, `bary.equal-w.affine` fail → beyond: their failures are
-//   the clipper's wrong screen weights on clipped triangles, which Vulkan and OpenGL hold only to
-//   being a convex combination (docs/levels.md); on triangles drawn whole both pass.
-// - `bary.range.unit` pass → beyond: NaN screen weights on a clipped triangle (the clipper).
-// - `robust.bit-patterns.sane-output` still fails, now at case 289 on finite input within 2³²
-//   (the snapped wedge finding); the old one, 10³³ and w = 0, is beyond Vulkan and OpenGL.
+// - `bary.range.unit` (pass → fail), `bary.screen.reconstructs-sample`, `bary.equal-w.affine`
+//   (fail): NaN screen weights on clipped triangles near the viewport (the clipper's 0/0,
+//   findings "noperspective outputs" and "a corner of the view volume"). Vulkan and OpenGL
+//   bound no interpolation error far out, but a NaN is no convex combination of the polygon's
+//   vertex values, and near the viewport the values are required (docs/levels.md).
+// - `robust.bit-patterns.sane-output` (lavapipe, llvmpipe) still fails: fragments outside the
+//   framebuffer, which the scissor forbids whatever the input (the first Mesa finding); the
+//   snapped wedge's depth outside [0, 1] is beyond Vulkan and OpenGL ("z_f is undefined").
 // - lavapipe's `robust.non-finite.discarded` (w = +∞ drawn): beyond, as Vulkan leaves it
 //   undefined; it now fails at case 24.
 // - softpipe: no grid and no tie rule measured (float edges), so `fill.top-left.exact` and
@@ -67,15 +69,14 @@ fn pinned(d: Driver) -> Pinned {
 //   is the w = 0 finding with a vertex at 1.9·10¹⁴ (beyond 2³²): beyond. At the default cases
 //   `clip.mesh.watertight`, `meta.rotation.same-coverage` and `meta.reversal.flips-facing` still
 //   fail (README); the last two are pinned through the weights-summing-to-0 finding.
-const LLVMPIPE_FAIL: &str = "bary.sum.one robust.bit-patterns.sane-output";
-const LAVAPIPE_FAIL: &str = LLVMPIPE_FAIL;
-const MESA_BEYOND: &str = "bary.range.unit bary.screen.reconstructs-sample bary.equal-w.affine";
-const LAVAPIPE_BEYOND: &str =
-    "bary.range.unit bary.screen.reconstructs-sample bary.equal-w.affine robust.non-finite.discarded";
-const SOFTPIPE_FAIL: &str =
-    "fill.mesh.exactly-once fill.fan.exactly-once fill.projected-mesh.exactly-once bary.sum.one";
-const SOFTPIPE_BEYOND: &str = "bary.range.unit bary.screen.reconstructs-sample bary.equal-w.affine \
+const LLVMPIPE_FAIL: &str = "bary.sum.one bary.range.unit bary.screen.reconstructs-sample bary.equal-w.affine \
     robust.bit-patterns.sane-output";
+const LAVAPIPE_FAIL: &str = LLVMPIPE_FAIL;
+const MESA_BEYOND: &str = "";
+const LAVAPIPE_BEYOND: &str = "robust.non-finite.discarded";
+const SOFTPIPE_FAIL: &str = "fill.mesh.exactly-once fill.fan.exactly-once fill.projected-mesh.exactly-once \
+    bary.sum.one bary.range.unit bary.screen.reconstructs-sample bary.equal-w.affine";
+const SOFTPIPE_BEYOND: &str = "robust.bit-patterns.sane-output";
 const NOT_APPLICABLE: &str = "fill.guard-band.exact clip.gl-range.matches-raycast";
 /// Softpipe claims no grid and no tie rule: no exact rule applies.
 const SOFTPIPE_NOT_APPLICABLE: &str =

@@ -32,22 +32,25 @@ const UNAVAILABLE: i32 = 3;
 ///
 /// How each moved from the pins of the hand-written profile (snapping to nearest, 8 bits of
 /// precision, every failure a failure), and why:
-/// - `bary.perspective.matches-raycast`, `depth.screen-linear.matches-raycast`: fail → beyond.
-///   Snapping within one step is declared, so the snaps near ties (findings 3, 4) pass on
-///   triangles drawn whole; what fails is a clipped triangle's values (a vertex at w = 0,
-///   finding 2's mechanism), which Vulkan holds only to a convex combination.
-/// - `bary.range.unit`, `bary.equal-w.affine`: pass → beyond. With 12 bits claimed (measured
-///   14.9 on triangles drawn whole) the far-anchored f32 planes of clipped triangles (finding 5)
-///   fail within 300 cases; Vulkan bounds neither.
+/// - `bary.perspective.matches-raycast`: fail → beyond. Snapping within one step is declared,
+///   so the snaps near ties (findings 3, 4) pass; what fails within 300 cases is a triangle
+///   reaching far out, whose f32 planes Vulkan does not bound (finding 5).
+/// - `depth.screen-linear.matches-raycast` still fails: a vertex at w = 0 near the viewport
+///   (finding 2's mechanism: depth 1.21 where the ray cast gives 0.88).
+/// - `bary.range.unit`: pass → fail. Screen-space weights of −1.09 with a vertex behind the eye
+///   and coordinates near the viewport (finding 10): no convex combination of the clipped
+///   polygon's vertex values.
+/// - `bary.equal-w.affine`: pass → beyond (finding 5, far-anchored planes; 12 bits claimed).
 /// - `robust.non-finite.discarded` (w = NaN or ∞ drawn, finding 7): fail → beyond, as Vulkan
 ///   leaves non-finite input unspecified.
-/// - `robust.bit-patterns.sane-output` still fails, now on finite input within 2³² (finding 9,
-///   a vertex at w = −FLT_MIN); the 10³⁵ overflow (finding 8) is beyond Vulkan.
-/// - `robust.output.well-formed` still fails (finding 2).
+/// - `robust.bit-patterns.sane-output`, `robust.output.well-formed`: fail → beyond. What they
+///   find is depth outside [0, 1] (findings 8, 9 and 2), which Vulkan leaves undefined
+///   ("z_f is undefined"); the wrong depths of the w = 0 mechanism are failures of
+///   `depth.screen-linear.matches-raycast` instead, which compares them with the ray cast.
 const PINNED: Pinned = Pinned {
-    fail: "robust.bit-patterns.sane-output robust.output.well-formed",
-    beyond: "bary.range.unit bary.perspective.matches-raycast bary.equal-w.affine \
-        depth.screen-linear.matches-raycast robust.non-finite.discarded",
+    fail: "bary.range.unit depth.screen-linear.matches-raycast",
+    beyond: "bary.perspective.matches-raycast bary.equal-w.affine robust.non-finite.discarded \
+        robust.bit-patterns.sane-output robust.output.well-formed",
     not_applicable: "fill.guard-band.exact clip.gl-range.matches-raycast",
 };
 const CASES: u32 = 300;

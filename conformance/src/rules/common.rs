@@ -161,21 +161,23 @@ pub fn deep_sample(scene: &Scene, t: usize, margin: f64) -> Option<(u32, u32)> {
         })
 }
 
-/// Whether triangle 0 reaches far from the viewport: a vertex at `w ≤ 0`, or one projecting
-/// farther than the viewport's own width or height beyond its sides. There floating-point
-/// interpolation is not bounded by any specification ([`super::level::FAR_VALUES`]).
+/// Whether triangle 0 reaches far out: a vertex whose x or y is more than [`FAR`] times the
+/// largest `|w|` of the three (thousands of pixels beyond the viewport, where f32 plane equations
+/// lose whole pixels and no specification bounds the error, [`super::level::FAR_VALUES`]).
+/// A vertex at `w ≤ 0` alone is not far: clipping it happens in clip space, where nothing is
+/// divided by it.
 #[must_use]
 pub fn reaches_far(scene: &Scene) -> bool {
-    scene.corners(0).iter().any(|&p| {
-        let w = f64::from(p[3]);
-        if w.is_nan() || w <= 0.0 {
-            return true;
-        }
-        let [x, y] = crate::oracle::raster::project(scene.width, scene.height, p.map(f64::from));
-        let (sw, sh) = (f64::from(scene.width), f64::from(scene.height));
-        !(-sw..=2.0 * sw).contains(&x) || !(-sh..=2.0 * sh).contains(&y)
-    })
+    let corners = scene.corners(0).map(|p| p.map(f64::from));
+    let w = corners.iter().map(|p| p[3].abs()).fold(0.0, f64::max);
+    corners
+        .iter()
+        .any(|p| p[0].abs().max(p[1].abs()) > FAR * w || p.iter().any(|c| !c.is_finite()))
 }
+
+/// How many times its largest `|w|` a vertex's x or y may be before [`reaches_far`] says so:
+/// NDC ±1000, 8000 px from the centre of a 16-px viewport.
+pub const FAR: f64 = 1000.0;
 
 /// Which of a fragment's values a rule judges.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

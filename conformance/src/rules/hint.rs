@@ -14,7 +14,7 @@ use super::cast::{Expected, raycast_expectations, raycast_fragments};
 use super::common::{deep_sample, fragments, precision};
 use super::{Family, Rule};
 use crate::oracle::brute_force;
-use crate::oracle::facing::Turn;
+use crate::oracle::facing::{Turn, snapped_variants};
 use crate::oracle::raster::{self, Point};
 use crate::scene::Scene;
 
@@ -118,8 +118,8 @@ fn mirrored_fill(
     frags: &[Fragment],
 ) -> Option<String> {
     let (bits, declared) = (profile.snapping.grid_bits()?.min(16), profile.fill?);
-    let explains = |fill| explains_coverage(scene, frags, bits, fill);
-    if explains(declared)? {
+    let explains = |fill| explains_coverage(scene, frags, bits, fill, None);
+    if explains_coverage(scene, frags, bits, declared, Some(profile))? {
         return None;
     }
     let other = FillConvention::ALL
@@ -141,7 +141,7 @@ fn other_bits(
     frags: &[Fragment],
 ) -> Option<String> {
     let (declared, fill) = (profile.snapping.grid_bits()?.min(16), profile.fill?);
-    if explains_coverage(scene, frags, declared, fill)? {
+    if explains_coverage(scene, frags, declared, fill, Some(profile))? {
         return None;
     }
     // The nearest precision that explains it: a small triangle agrees with many coarse grids.
@@ -149,7 +149,7 @@ fn other_bits(
     nearest.sort_by_key(|&b| (b.abs_diff(declared), b));
     let other = nearest
         .into_iter()
-        .find(|&b| explains_coverage(scene, frags, b, fill) == Some(true))?;
+        .find(|&b| explains_coverage(scene, frags, b, fill, None) == Some(true))?;
     Some(format!(
         "the coverage is exactly what {other} subpixel bits give, not the declared {declared}: the profile may declare \
          the wrong subpixel precision, or a bug snaps to a coarser grid (as mutant:dropped-subpixel-bit does)"
@@ -157,37 +157,52 @@ fn other_bits(
 }
 
 /// Whether the brute-force oracle at `bits` under `fill` gives exactly `frags`, triangle by
-/// triangle, culling by the snapped facing; `None` when it cannot say (a triangle needs
-/// clipping, a vertex does not project).
-fn explains_coverage(scene: &Scene, frags: &[Fragment], bits: u8, fill: FillConvention) -> Option<bool> {
+/// triangle, culling by the snapped facing: with each vertex snapped to the nearest grid point,
+/// or, given the profile that declares `bits`, to any grid point it lets a vertex snap to.
+/// `None` when it cannot say (a triangle needs clipping, a vertex does not project).
+fn explains_coverage(
+    scene: &Scene,
+    frags: &[Fragment],
+    bits: u8,
+    fill: FillConvention,
+    declared: Option<&Profile>,
+) -> Option<bool> {
     for t in 0..scene.triangles.len() {
         let corners = scene.corners(t);
         if !raster::unclipped(&corners, scene.state.depth_range, scene.state.clip_far) {
             return None;
         }
-        let snapped: Vec<Point> = corners
-            .iter()
-            .map(|&p| raster::snap(p, scene.width, scene.height, bits))
-            .collect::<Option<_>>()?;
-        let tri = [snapped[0], snapped[1], snapped[2]];
-        let turn = match brute_force::orient2d(tri[0], tri[1], tri[2]).signum() {
-            1 => Turn::Clockwise,
-            -1 => Turn::CounterClockwise,
-            _ => Turn::Degenerate,
-        };
-        let mut want = if turn.drawn(&scene.state) == Some(false) {
-            Vec::new()
-        } else {
-            brute_force::coverage(tri, scene.width, scene.height, bits, fill)
+        let variants: Vec<[Point; 3]> = match declared {
+            Some(profile) => snapped_variants(&corners, scene.width, scene.height, profile)?,
+            None => {
+                let snapped: Vec<Point> = corners
+                    .iter()
+                    .map(|&p| raster::snap(p, scene.width, scene.height, bits))
+                    .collect::<Option<_>>()?;
+                vec![[snapped[0], snapped[1], snapped[2]]]
+            }
         };
         let mut got: Vec<(u32, u32)> = frags
             .iter()
             .filter(|f| f.primitive as usize == t)
             .map(|f| (f.x, f.y))
             .collect();
-        want.sort_unstable();
         got.sort_unstable();
-        if got != want {
+        let explained = variants.iter().any(|&tri| {
+            let turn = match brute_force::orient2d(tri[0], tri[1], tri[2]).signum() {
+                1 => Turn::Clockwise,
+                -1 => Turn::CounterClockwise,
+                _ => Turn::Degenerate,
+            };
+            let mut want = if turn.drawn(&scene.state) == Some(false) {
+                Vec::new()
+            } else {
+                brute_force::coverage(tri, scene.width, scene.height, bits, fill)
+            };
+            want.sort_unstable();
+            got == want
+        });
+        if !explained {
             return Some(false);
         }
     }

@@ -94,7 +94,7 @@ pub const NO_TIE_RULE: &str = "Vulkan fixes no tie rule (only \"exactly one of t
 
 /// No specification bounds interpolation error; refrast holds the claimed precision where the
 /// triangle stays near the viewport.
-pub const FAR_VALUES: &str = "no specification bounds interpolation error: Vulkan asks each floating-point operation to be \"accurate to about 1 part in 10^5\" (Floating-Point Computation; OpenGL 4.6 §2.3.4.1 likewise; D3D11.3 §3.1 half an ulp of f32), which on a triangle reaching 10^4 px and more from the viewport, or to w ≤ 0, allows errors of a pixel's worth and more; there only finite values are required (a NaN is no convex combination, Basic Polygon Rasterization). Nearer, on triangles whole or clipped, the values are required within the claimed precision: a clipped polygon's vertices carry exactly defined values (Clipping Shader Outputs), and any triangulation of it interpolates them as the ray cast does";
+pub const FAR_VALUES: &str = "no specification bounds interpolation error: Vulkan asks each floating-point operation to be \"accurate to about 1 part in 10^5\" (Floating-Point Computation; OpenGL 4.6 §2.3.4.1 likewise; D3D11.3 §3.1 half an ulp of f32), which on a triangle with a vertex a thousand times its largest |w| off axis in clip space (thousands of pixels beyond the viewport) allows errors of a pixel's worth and more; there only finite values are required (a NaN is no convex combination, Basic Polygon Rasterization). Nearer, on triangles whole or clipped, the values are required within the claimed precision: a clipped polygon's vertices carry exactly defined values (Clipping Shader Outputs), and any triangulation of it interpolates them as the ray cast does";
 
 /// D3D11.3 has no barycentric output.
 pub const NO_BARYCENTRICS: &str = "D3D11.3 defines no barycentric output (only interpolation modes, §16.4)";
@@ -115,7 +115,10 @@ pub const NON_FINITE_UNSPECIFIED: &str = "\"providing a NaN or Inf yields unspec
 pub const INFINITY_EITHER_WAY: &str = "D3D11.3 §15.4 discards \"Coordinates with NaN at x,y,z or w coming out of clipping\" but says \"Coordinates coming in to clipping with infinities at x,y,z may or may not result in a discarded primitive\"";
 
 /// Vulkan and OpenGL: well-formed output for finite input in range only.
-pub const IN_RANGE_ONLY: &str = "NaN and Inf yield \"unspecified results\" and floats need only reach 2^32 in magnitude (Vulkan, General Requirements and Floating-Point Computation; OpenGL 4.6 §2.3.4.1): well-formed output is required only of finite input within that range";
+pub const IN_RANGE_ONLY: &str = "NaN and Inf yield \"unspecified results\" and floats need only reach 2^32 in magnitude (Vulkan, General Requirements and Floating-Point Computation; OpenGL 4.6 §2.3.4.1): fragments inside the viewport are required whatever the input (\"Samples with coordinates outside the scissor rectangle … will have their coverage set to 0\", Scissor Test), well-formed values only of finite input within that range, and a depth outside [0, 1] not even there (\"If z_f is not in the range [z_min, z_max], then z_f is undefined\", Depth Clamping and Range Adjustment)";
+
+/// Vulkan and OpenGL leave a depth outside the range undefined; refrast clamps.
+pub const DEPTH_OUT_OF_RANGE: &str = "\"If z_f is not in the range [z_min, z_max], then z_f is undefined following this step\" (Vulkan, Depth Clamping and Range Adjustment; OpenGL 4.6 §13.8.1 clamps only under DEPTH_CLAMP): a sample a grid step outside a steep clipped polygon, covered because of snapping, extrapolates its depth plane beyond [0, 1], where refrast clamps and these specifications leave the value undefined";
 
 /// D3D11.3 says nothing of barycentrics, so their finiteness is not required.
 pub const BARYCENTRICS_UNJUDGED: &str = "D3D11.3 requires fragments inside the viewport (§15.6) and depth clamped (§17.10) whatever the input, but defines no barycentric output to be finite";

@@ -5,8 +5,8 @@ use refrast::{DrawError, Fragment, Rasterizer};
 
 use super::common::{compare_sets, fragments, precision};
 use super::level::{
-    BAD_INDEX_D3D, BAD_INDEX_UNDEFINED, BARYCENTRICS_UNJUDGED, IN_RANGE_ONLY, INFINITY_EITHER_WAY, Level,
-    NON_FINITE_UNSPECIFIED,
+    BAD_INDEX_D3D, BAD_INDEX_UNDEFINED, BARYCENTRICS_UNJUDGED, DEPTH_OUT_OF_RANGE, IN_RANGE_ONLY,
+    INFINITY_EITHER_WAY, Level, NON_FINITE_UNSPECIFIED,
 };
 use super::{Family, Rule};
 use crate::picture;
@@ -67,7 +67,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .cases(3000)
             .vulkan_and_opengl(Level::Undefined(NON_FINITE_UNSPECIFIED))
             .d3d11(Level::Partly {
-                part: |r, cfg| property(r, cfg, poisoned_with(NAN_ONLY), check_poisoned),
+                part: |r, cfg| property(r, cfg, poisoned(), check_poisoned_by_nan),
                 note: INFINITY_EITHER_WAY,
             })
             .run(|r, cfg| property(r, cfg, poisoned(), check_poisoned)),
@@ -76,7 +76,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .source("zeno #1, raqote #107, tiny-skia #112 (ecosystem.md); D3D11.3 §3.3.1")
             .cases(20000)
             .vulkan_and_opengl(Level::Partly {
-                part: |r, cfg| property(r, cfg, in_range_pattern_scene(), check_well_formed),
+                part: |r, cfg| property(r, cfg, bit_pattern_scene(), check_sane_where_defined),
                 note: IN_RANGE_ONLY,
             })
             .d3d11(Level::Partly {
@@ -88,6 +88,10 @@ pub(super) fn rules() -> Vec<Rule> {
             .sentence("Fragments lie in the viewport, name a real primitive, cover a pixel at most once per primitive, and have depth in [0, 1] within the claimed precision.")
             .source("design.md (what must be observable)")
             .cases(5000)
+            .vulkan_and_opengl(Level::Partly {
+                part: |r, cfg| property(r, cfg, strategy::crossing_scene(), check_well_formed_but_depth),
+                note: DEPTH_OUT_OF_RANGE,
+            })
             .d3d11(Level::Partly {
                 part: |r, cfg| property(r, cfg, strategy::crossing_scene(), check_well_formed_but_barycentrics),
                 note: BARYCENTRICS_UNJUDGED,
@@ -106,16 +110,9 @@ pub(super) fn rules() -> Vec<Rule> {
 /// The values a coordinate is poisoned with.
 const NON_FINITE: [f32; 3] = [f32::NAN, f32::INFINITY, f32::NEG_INFINITY];
 
-/// NaN alone: what D3D11.3 discards.
-const NAN_ONLY: [f32; 1] = [f32::NAN];
-
+/// Scenes with one coordinate of triangle 0 set to NaN or an infinity.
 fn poisoned() -> impl Strategy<Value = Poisoned> {
-    poisoned_with(NON_FINITE)
-}
-
-/// Scenes with one coordinate of triangle 0 set to one of `values`.
-fn poisoned_with<const N: usize>(values: [f32; N]) -> impl Strategy<Value = Poisoned> {
-    let value = proptest::sample::select(values.to_vec());
+    let value = proptest::sample::select(NON_FINITE.to_vec());
     (
         strategy::overlapping_scene(),
         0..3usize,
@@ -134,20 +131,6 @@ fn poisoned_with<const N: usize>(values: [f32; N]) -> impl Strategy<Value = Pois
                 value,
             }
         })
-}
-
-/// [`bit_pattern_scene`] with every coordinate finite, normal or zero, and at most 2^32 in
-/// magnitude: the input Vulkan and OpenGL define results for. Each other pattern becomes a
-/// value drawn from its bits in ±4.
-fn in_range_pattern_scene() -> impl Strategy<Value = Scene> {
-    bit_pattern_scene().prop_map(|mut s| {
-        for c in s.positions.iter_mut().flatten() {
-            if !(c.is_normal() || *c == 0.0) || c.abs() > 4_294_967_296.0 {
-                *c = (f64::from(c.to_bits()) / f64::from(u32::MAX) * 8.0 - 4.0) as f32;
-            }
-        }
-        s
-    })
 }
 
 fn bit_pattern_scene() -> impl Strategy<Value = Scene> {
@@ -175,6 +158,15 @@ fn bad_index_scene() -> impl Strategy<Value = Scene> {
         }
         s
     })
+}
+
+/// [`check_poisoned`] for a NaN, which D3D11.3 discards; an infinity may go either way there.
+pub fn check_poisoned_by_nan(r: &mut dyn Rasterizer, p: &Poisoned) -> Result<(), Violation> {
+    if p.value.is_nan() {
+        check_poisoned(r, p)
+    } else {
+        Ok(())
+    }
 }
 
 /// A non-finite coordinate discards every triangle using its vertex and nothing else.
@@ -227,26 +219,80 @@ pub fn check_poisoned(r: &mut dyn Rasterizer, p: &Poisoned) -> Result<(), Violat
 /// the profile declares them (that they lie in the viewport and name real primitives,
 /// [`fragments`] checks for every rule).
 pub fn check_well_formed(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    well_formed(r, scene, true)
+    well_formed(
+        r,
+        scene,
+        Judged {
+            barycentrics: true,
+            depth: true,
+        },
+    )
 }
 
 /// [`check_well_formed`] without the barycentrics, which D3D11.3 does not define.
 pub fn check_well_formed_but_barycentrics(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    well_formed(r, scene, false)
+    well_formed(
+        r,
+        scene,
+        Judged {
+            barycentrics: false,
+            depth: true,
+        },
+    )
 }
 
-/// Fragments well formed; their barycentrics finite too when `barycentrics` (and declared).
-fn well_formed(r: &mut dyn Rasterizer, scene: &Scene, barycentrics: bool) -> Result<(), Violation> {
+/// [`check_well_formed`] without the depth range, which Vulkan and OpenGL leave undefined
+/// outside `[0, 1]` (a sample a grid step outside a steep clipped polygon extrapolates its
+/// plane there; refrast clamps).
+pub fn check_well_formed_but_depth(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    well_formed(
+        r,
+        scene,
+        Judged {
+            barycentrics: true,
+            depth: false,
+        },
+    )
+}
+
+/// What Vulkan and OpenGL define for any input: fragments inside the viewport, naming real
+/// primitives (the scissor sets coverage outside it to 0 whatever the input); for finite input
+/// within 2^32 (subnormals included: they "must yield deterministic results", flushed to zero
+/// or not), well-formed values too, the depth range aside.
+pub fn check_sane_where_defined(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let defined = scene
+        .positions
+        .iter()
+        .flatten()
+        .all(|c| c.is_finite() && c.abs() <= 4_294_967_296.0);
+    if defined {
+        check_well_formed_but_depth(r, scene)
+    } else {
+        fragments(r, scene).map(drop)
+    }
+}
+
+/// Which values [`well_formed`] judges besides positions and uniqueness.
+#[derive(Clone, Copy)]
+struct Judged {
+    /// Declared barycentrics finite.
+    barycentrics: bool,
+    /// Depth in [0, 1] within the claimed precision.
+    depth: bool,
+}
+
+/// Fragments well formed; their depth in range and barycentrics finite as `judged` says.
+fn well_formed(r: &mut dyn Rasterizer, scene: &Scene, judged: Judged) -> Result<(), Violation> {
     // Window depth is claimed within the precision of its exact value, which lies in [0, 1].
     let profile = r.profile();
     let eps = precision(&profile) as f32;
     // Barycentrics the profile does not declare are whatever the fragment carries.
-    let declared = barycentrics && profile.features.perspective_barycentrics;
+    let declared = judged.barycentrics && profile.features.perspective_barycentrics;
     let frags = fragments(r, scene)?;
     let mut seen = std::collections::HashSet::new();
     let mut found = Findings::new();
     for f in &frags {
-        let problem = if !(-eps..=1.0 + eps).contains(&f.depth) {
+        let problem = if judged.depth && !(-eps..=1.0 + eps).contains(&f.depth) {
             "has depth outside [0, 1] by more than the claimed precision"
         } else if declared && f.barycentric.iter().any(|b| !b.is_finite()) {
             "has a non-finite barycentric"

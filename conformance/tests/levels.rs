@@ -110,3 +110,39 @@ fn beyond_spec_does_not_fail_a_report() {
     assert_eq!(report.beyond_spec(), 1);
     assert!(report.passed());
 }
+
+/// SwiftShader's NaN weights at default cases (robust.bit-patterns, case 1285): every input
+/// finite and small, but vertex 1 lies inside the view volume at w = 1.9·10⁻¹⁹, so the clipped
+/// polygon needs 1/w far beyond the 2^32 Vulkan asks floats to represent: not required. A
+/// vertex at w = −FLT_MIN clipped away is nothing to divide by (SwiftShader's finding 9 stays
+/// required), and a coordinate beyond 2^32 is out of range.
+#[test]
+fn arithmetic_beyond_two_to_the_32_is_not_required_of_vulkan() {
+    use refrast_conformance::Scene;
+    use refrast_conformance::rules::robust::within_float_range;
+    let tiny_w_inside = Scene::new(
+        1,
+        1,
+        vec![
+            [0.0, -1.383_254_8e-5, 0.0, 1.855_197e-19],
+            [0.0, -0.0, 0.0, 1.855_197e-19],
+            [6.336_223_5e-20, -0.0, 0.0, 3.517_311_3e-36],
+        ],
+        vec![[0, 1, 2]],
+    );
+    assert!(!within_float_range(&tiny_w_inside));
+    let min_w_clipped_away = Scene::new(
+        1,
+        2,
+        vec![
+            [-0.452_509_43, 0.240_404_3, -0.368_272_66, -0.698_964_54],
+            [3.160_516_5, 1.175_494_4e-38, 2.484_375, 3.040_919_3],
+            [-1.430_746_9, -6.426_126e-8, -1.122_525_9, -1.175_494_4e-38],
+        ],
+        vec![[0, 1, 2]],
+    );
+    assert!(within_float_range(&min_w_clipped_away));
+    let mut huge = min_w_clipped_away.clone();
+    huge.positions[0][0] = 5.0e9;
+    assert!(!within_float_range(&huge));
+}

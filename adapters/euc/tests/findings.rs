@@ -45,7 +45,7 @@ fn doubles(frags: &[Fragment]) -> Vec<(u32, u32)> {
 }
 
 /// Finding 1. Two triangles sharing the diagonal of the viewport both cover the 16 samples
-/// lying exactly on it (Vulkan §28.7.1: exactly one of them must).
+/// lying exactly on it (Vulkan, Basic Polygon Rasterization: exactly one of them must).
 #[test]
 fn a_shared_edge_is_covered_twice() {
     // The 16×16 viewport split on its diagonal from (0, 0) to (16, 16) in raster space, which
@@ -65,7 +65,7 @@ fn a_shared_edge_is_covered_twice() {
     assert_eq!(frags.len(), 256 + 16, "every sample once, the diagonal's twice");
 }
 
-/// Finding 2. A triangle wholly behind the eye (every w < 0) shows no sample (Vulkan §27.4:
+/// Finding 2. A triangle wholly behind the eye (every w < 0) shows no sample (Vulkan, Primitive Clipping:
 /// the view volume has −w ≤ x, y ≤ w, so w > 0); euc draws it, mirrored, with 32 fragments.
 #[test]
 fn a_triangle_behind_the_eye_is_drawn() {
@@ -112,7 +112,7 @@ fn a_triangle_before_the_near_plane_is_drawn() {
 }
 
 /// Finding 3. A zero-area triangle (a repeated vertex) covers a sample, with NaN depth and
-/// barycentrics (Vulkan §28.7.1: zero-area triangles are back-facing and cover nothing).
+/// barycentrics (Vulkan, Basic Polygon Rasterization: zero-area triangles are back-facing and cover nothing).
 /// Nearly edge-on triangles do the same (the suite's rotation and reversal counterexamples).
 #[test]
 fn a_zero_area_triangle_draws_nan_fragments() {
@@ -134,7 +134,7 @@ fn a_zero_area_triangle_draws_nan_fragments() {
 /// Finding 4. The visible part of a triangle with a vertex behind the eye turns
 /// counter-clockwise on screen (det[x y w] > 0), yet euc calls it back-facing: it decides on
 /// the vertices divided by w, and dividing by a negative w mirrors one of them (Vulkan
-/// §28.7.1: facing from the sign of the clipped polygon's area).
+/// Basic Polygon Rasterization: facing from the sign of the clipped polygon's area).
 #[test]
 fn facing_flips_when_a_vertex_is_behind_the_eye() {
     let positions = vec![
@@ -225,7 +225,7 @@ fn panics(d: &Draw) -> Option<String> {
 }
 
 /// Finding 6. A vertex at w = 0 (valid input: clipping at the near plane removes it, Vulkan
-/// §27.4) makes x/w infinite; euc casts it to i32, which saturates at `i32::MAX`, and the
+/// Primitive Clipping) makes x/w infinite; euc casts it to i32, which saturates at `i32::MAX`, and the
 /// bounding box's `e + 1` overflows (triangles.rs:129): a panic in debug builds, the same path
 /// as the vertex at x = 10¹⁰·w that crashes release builds. Found by `bary.range.unit` and
 /// `meta.cull.by-facing` once `crossing_scene` made vertices at w = 0.

@@ -51,11 +51,11 @@
 //! 7 bits of precision (measured 9.4); llvmpipe the same with 8 (10.1); softpipe no grid, no tie
 //! rule, 7 (9.3); SwiftShader 4 bits (reported and measured), top-left, within one step, ties
 //! to even, no guard band, 12 (14.9). What stays declared, not measured: depth is z/w
-//! interpolated linearly on screen (Vulkan §28.7.5), zero area is not decided before clipping
+//! interpolated linearly on screen (Vulkan, Basic Polygon Rasterization), zero area is not decided before clipping
 //! (Mesa and SwiftShader clip first), and the draw states WebGPU allows: it clips depth to
 //! `0 ≤ z ≤ w` always (far clipping cannot be switched off without a feature that also drops
 //! near clipping) and has no `−w ≤ z` range, so the suite sends no such draw. Vulkan asks only
-//! that a sample on an edge shared by two polygons be covered by exactly one of them (§28.7.1);
+//! that a sample on an edge shared by two polygons be covered by exactly one of them (Basic Polygon Rasterization);
 //! the `fill.*.exactly-once` rules judge that whatever the profile says.
 //!
 //! One device per process and driver is created, on first use ([`device::context`]). A driver
@@ -211,7 +211,7 @@ impl Rasterizer for Gpu {
             name: self.driver.name().into(),
             snapping: m.snapping,
             fill: m.fill,
-            // Window depth is z/w, interpolated linearly on screen (Vulkan §28.7.5).
+            // Window depth is z/w, interpolated linearly on screen (Vulkan, Basic Polygon Rasterization).
             depth: DepthConvention::ScreenLinearZOverW,
             tolerance_subpixels: m.tolerance_subpixels,
             precision_bits: m.precision_bits,

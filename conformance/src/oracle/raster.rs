@@ -95,7 +95,7 @@ pub fn unclipped(p: &[[f32; 4]; 3], range: DepthRange, far: bool) -> bool {
     })
 }
 
-/// Whether a fragment at depth `new` passes `op` against `stored` (Vulkan 1.4 §29.8).
+/// Whether a fragment at depth `new` passes `op` against `stored` (Vulkan 1.4, Depth Comparison).
 ///
 /// Written apart from the reference's `CompareOp::passes`, so that a wrong compare op cannot
 /// hide behind its own replay.

@@ -20,14 +20,14 @@ pub(super) fn rules() -> Vec<Rule> {
     vec![
         Rule::invariant(Family::Bary, "bary.sum.one")
             .sentence("Every fragment's barycentrics (perspective-correct and screen-space, whichever the profile declares) sum to 1 within three times the claimed precision (2^-18 for the reference).")
-            .source("Vulkan 1.4 §28.7.5 (a + b + c = 1)")
+            .source("Vulkan 1.4, Basic Polygon Rasterization (a + b + c = 1)")
             .cases(5000)
             .needs(ANY_BARYCENTRICS)
             .d3d11(Level::NotCovered(NO_BARYCENTRICS))
             .run(|r, cfg| property(r, cfg, strategy::float_scene(), check_sum_one)),
         Rule::invariant(Family::Bary, "bary.range.unit")
             .sentence("Barycentrics (of either declared kind) of samples outside the tolerance band lie in [0, 1] within the claimed precision.")
-            .source("Vulkan 1.4 §28.7.5 (clipped polygons: convex combinations)")
+            .source("Vulkan 1.4, Basic Polygon Rasterization (clipped polygons: convex combinations)")
             .cases(5000)
             .needs(ANY_BARYCENTRICS)
             .vulkan_and_opengl(Level::Partly {
@@ -38,7 +38,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property(r, cfg, strategy::crossing_scene(), check_in_range)),
         Rule::invariant(Family::Bary, "bary.vertex.one")
             .sentence("A covered sample exactly on a vertex has weight 1 for that vertex and 0 for the others (in either declared kind of barycentrics).")
-            .source("Vulkan 1.4 §28.7.5 (aᵢ = 1 at vertex i)")
+            .source("Vulkan 1.4, Basic Polygon Rasterization (aᵢ = 1 at vertex i)")
             .cases(10000)
             .needs(ANY_BARYCENTRICS)
             .needs(VERTEX_ON_SAMPLE)
@@ -46,7 +46,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property(r, cfg, strategy::perspective_inside_scene(), check_vertex_one)),
         Rule::invariant(Family::Bary, "bary.perspective.matches-raycast")
             .sentence("Perspective-correct barycentrics equal those of the ray-cast hit within the claimed precision (2^-18 for the reference); on a clipped triangle also within how far they move when the sample moves one grid step (its cut vertices are snapped).")
-            .source("seed 002 (q/z interpolation); Vulkan 1.4 §28.7.5")
+            .source("seed 002 (q/z interpolation); Vulkan 1.4, Basic Polygon Rasterization")
             .cases(5000)
             .needs(PERSPECTIVE_BARYCENTRICS)
             .vulkan_and_opengl(Level::Partly {

@@ -15,7 +15,7 @@ pub(super) fn rules() -> Vec<Rule> {
     vec![
         Rule::invariant(Family::Clip, "clip.behind-eye.empty")
             .sentence("A triangle wholly behind the eye (w < 0) or wholly before the near plane draws nothing.")
-            .source("MIT 6.837 seed 001 (why clip: w ≤ 0); Vulkan 1.4 §27.4")
+            .source("MIT 6.837 seed 001 (why clip: w ≤ 0); Vulkan 1.4, Primitive Clipping")
             .cases(10000)
             .run(|r, cfg| property(r, cfg, behind_scene(), check_draws_nothing)),
         Rule::invariant(Family::Clip, "clip.interior.matches-raycast")
@@ -43,7 +43,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property(r, cfg, crossing_quad_scene(), check_exactly_once)),
         Rule::invariant(Family::Clip, "clip.far.respected")
             .sentence("With far clipping on, samples whose hit lies beyond z = w are not covered, the rest as the ray cast says.")
-            .source("Vulkan 1.4 §27.4 (z ≤ w); seed 004 (six planes)")
+            .source("Vulkan 1.4, Primitive Clipping (z ≤ w); seed 004 (six planes)")
             .cases(3000)
             .needs(FAR_CLIPPING)
             .run(|r, cfg| property(r, cfg, far_scene(), check_exactly_once)),

@@ -17,7 +17,7 @@ pub(super) fn rules() -> Vec<Rule> {
     vec![
         Rule::invariant(Family::Depth, "depth.range.vertices")
             .sentence("The depth of an unclipped triangle's fragment lies between its vertices' smallest and largest z/w.")
-            .source("Vulkan 1.4 §28.7.5 (depth is linearly interpolated); seed 000")
+            .source("Vulkan 1.4, Basic Polygon Rasterization (depth is interpolated linearly); seed 000")
             .cases(5000)
             .needs(Z_OVER_W_DEPTH)
             .run(|r, cfg| {
@@ -30,7 +30,7 @@ pub(super) fn rules() -> Vec<Rule> {
             }),
         Rule::invariant(Family::Depth, "depth.screen-linear.matches-raycast")
             .sentence("Fragment depth equals z/w at the ray-cast hit within the claimed precision (2^-18 for the reference); on a clipped triangle also within how far it moves when the sample moves one grid step (its cut vertices are snapped).")
-            .source("Vulkan 1.4 §28.7.5; D3D11.3 §15.6")
+            .source("Vulkan 1.4, Basic Polygon Rasterization (z_f linear in framebuffer space); D3D11.3 §15.16.2, §16.3.1")
             .cases(5000)
             .needs(Z_OVER_W_DEPTH)
             .every_spec(Level::Partly {
@@ -73,7 +73,7 @@ pub(super) fn rules() -> Vec<Rule> {
             }),
         Rule::invariant(Family::Depth, "depth.resolve.matches-fragments")
             .sentence("The resolved depth and id buffers are the fragments replayed in primitive order through the draw's compare op and write mask.")
-            .source("Vulkan 1.4 §29.8 (depth test); seed 000")
+            .source("Vulkan 1.4, Depth Test; seed 000")
             .cases(3000)
             .needs(DEPTH_TEST)
             .run(|r, cfg| property(r, cfg, depth_state_scene(), check_resolve)),

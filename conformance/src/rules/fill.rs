@@ -18,7 +18,7 @@ pub(super) fn rules() -> Vec<Rule> {
     vec![
         Rule::invariant(Family::Fill, "fill.mesh.exactly-once")
             .sentence("A spade triangulation of grid points and the viewport corners covers every sample exactly once.")
-            .source("Vulkan 1.4 §28.7.1 (shared edges covered by exactly one polygon); design.md")
+            .source("Vulkan 1.4, Basic Polygon Rasterization (shared edges covered by exactly one polygon); design.md")
             .cases(2000)
             .vulkan_and_opengl(Level::Partly {
                 part: |r, cfg| property(r, cfg, strategy::mesh_scene(), check_exactly_once_between_two),
@@ -55,7 +55,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property(r, cfg, strategy::float_scene(), check_exactly_once)),
         Rule::exact(Family::Fill, "fill.top-left.exact")
             .sentence("Coverage of a triangle needing no clipping, in perspective and off the grid (on snap ties if it rounds them to even), equals the reference's under the same subpixel bits and fill convention.")
-            .source("D3D11.3 §3.4 (top-left rule), §3.2.4.1 (16.8 snapping, ties to even)")
+            .source("D3D11.3 §3.4.2.1 (top-left rule), §15.16 (16.8 snapping), §3.2.4.1 (ties to even)")
             .cases(20000)
             .needs(REFERENCE_PROFILE)
             .vulkan_and_opengl(Level::Partly {

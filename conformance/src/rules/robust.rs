@@ -63,7 +63,7 @@ pub(super) fn rules() -> Vec<Rule> {
     vec![
         Rule::invariant(Family::Robust, "robust.non-finite.discarded")
             .sentence("A NaN or infinite coordinate discards every triangle using its vertex and nothing else, without an error.")
-            .source("D3D11.3 §3.3.1 (NaN positions are discarded); design.md")
+            .source("D3D11.3 §15.4 and §15.16.1 (NaN positions are discarded); design.md")
             .cases(3000)
             .vulkan_and_opengl(Level::Undefined(NON_FINITE_UNSPECIFIED))
             .d3d11(Level::Partly {
@@ -73,7 +73,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property(r, cfg, poisoned(), check_poisoned)),
         Rule::invariant(Family::Robust, "robust.bit-patterns.sane-output")
             .sentence("Arbitrary f32 bit patterns (NaN, Inf, subnormal, huge, w = 0) give no panic, no error, and only well-formed fragments.")
-            .source("zeno #1, raqote #107, tiny-skia #112 (ecosystem.md); D3D11.3 §3.3.1")
+            .source("zeno #1, raqote #107, tiny-skia #112 (ecosystem.md); D3D11.3 §15.4, §15.16.1")
             .cases(20000)
             .vulkan_and_opengl(Level::Partly {
                 part: |r, cfg| property(r, cfg, bit_pattern_scene(), check_sane_where_defined),
@@ -256,20 +256,55 @@ pub fn check_well_formed_but_depth(r: &mut dyn Rasterizer, scene: &Scene) -> Res
 }
 
 /// What Vulkan and OpenGL define for any input: fragments inside the viewport, naming real
-/// primitives (the scissor sets coverage outside it to 0 whatever the input); for finite input
-/// within 2^32 (subnormals included: they "must yield deterministic results", flushed to zero
-/// or not), well-formed values too, the depth range aside.
+/// primitives (the scissor sets coverage outside it to 0 whatever the input); where the
+/// arithmetic stays within 2^32 ([`within_float_range`]), well-formed values too, the depth
+/// range aside.
 pub fn check_sane_where_defined(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let defined = scene
-        .positions
-        .iter()
-        .flatten()
-        .all(|c| c.is_finite() && c.abs() <= 4_294_967_296.0);
-    if defined {
+    if within_float_range(scene) {
         check_well_formed_but_depth(r, scene)
     } else {
         fragments(r, scene).map(drop)
     }
+}
+
+/// The magnitude Vulkan and OpenGL ask floats to represent at least (Floating-Point
+/// Computation; OpenGL 4.6 §2.3.4.1).
+const FLOAT_RANGE: f64 = 4_294_967_296.0;
+
+/// Whether drawing `scene` needs no value beyond 2^32: every coordinate finite and within it
+/// (subnormals included: they "must yield deterministic results"), and every vertex of each
+/// clipped polygon at w ≥ 2^-32, since perspective interpolation divides by w (Basic Polygon
+/// Rasterization). A vertex clipped away may have any w: nothing divides by it.
+#[must_use]
+pub fn within_float_range(scene: &Scene) -> bool {
+    use refrast::stage::{ClipOutcome, assemble, clip_planes, clip_triangle};
+    let finite = scene
+        .positions
+        .iter()
+        .flatten()
+        .all(|c| c.is_finite() && f64::from(c.abs()) <= FLOAT_RANGE);
+    let Some(viewport) = scene.viewport() else {
+        return false;
+    };
+    let planes = clip_planes(
+        refrast::ClipMode::Full,
+        viewport,
+        scene.state.clip_far,
+        scene.state.depth_range,
+    );
+    let (mut polygon, mut scratch) = (Vec::new(), Vec::new());
+    finite
+        && scene.triangles.iter().all(|&t| {
+            let Some(corners) = assemble(&scene.positions, t) else {
+                return true;
+            };
+            let kept = match clip_triangle(&corners, &planes, &mut polygon, &mut scratch) {
+                ClipOutcome::Outside => return true,
+                ClipOutcome::Inside => &corners[..],
+                ClipOutcome::Clipped => &polygon[..],
+            };
+            kept.iter().all(|v| v.position.w * FLOAT_RANGE >= 1.0)
+        })
 }
 
 /// Which values [`well_formed`] judges besides positions and uniqueness.

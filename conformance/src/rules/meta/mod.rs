@@ -30,7 +30,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property(r, cfg, strategy::perspective_grid_scene(), check_rotation)),
         Rule::invariant(Family::Meta, "meta.reversal.flips-facing")
             .sentence("Reversing a triangle's winding keeps its coverage, swaps two barycentrics and flips its facing.")
-            .source("conformance-anchors d3; Vulkan 1.4 §28.7.1")
+            .source("conformance-anchors d3; Vulkan 1.4, Basic Polygon Rasterization")
             .cases(10000)
             .vulkan_and_opengl(Level::Partly {
                 part: |r, cfg| property(r, cfg, strategy::perspective_grid_scene(), check_reversal_away_from_edges),
@@ -39,7 +39,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property(r, cfg, strategy::perspective_grid_scene(), check_reversal)),
         Rule::invariant(Family::Meta, "meta.translate.whole-pixels")
             .sentence("Moving a triangle by whole pixels moves its coverage by the same pixels (near an edge, clipping may differ by the band).")
-            .source("OpenGL 4.6 §14.5 (invariance under integer translation); conformance-anchors d3")
+            .source("OpenGL 4.6 §14.2 (invariance under integer translation); conformance-anchors d3")
             .cases(10000)
             .run(|r, cfg| property(r, cfg, translate::translated(), check_translation)),
         Rule::invariant(Family::Meta, "meta.translate.one-subpixel")
@@ -49,7 +49,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property(r, cfg, strategy::grid_scene(), check_subpixel_translation)),
         Rule::invariant(Family::Meta, "meta.viewport.neutral")
             .sentence("A triangle at the same raster position in a viewport twice as large covers the same samples (near an edge, clipping may differ by the band).")
-            .source("Vulkan 1.4 (invariance: scissor and viewport have no side effects); conformance-anchors d3")
+            .source("Vulkan 1.4, Basic Polygon Rasterization (coverage is decided at sample points in framebuffer space); conformance-anchors d3")
             .cases(5000)
             .run(|r, cfg| property(r, cfg, strategy::grid_scene(), check_viewport_neutral)),
         Rule::invariant(Family::Meta, "meta.batch.independent")
@@ -70,13 +70,13 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property_for(r, cfg, cull_scene, check_culling)),
         Rule::invariant(Family::Meta, "meta.facing.from-winding")
             .sentence("A fragment is front-facing exactly when its triangle turns on screen the way the front face says: by its snapped signed area (also for a sliver that snapping turns over), or by the sign of det[x y w] when it is clipped; a triangle its cull mode discards draws nothing.")
-            .source("Vulkan 1.4 §28.7.1 (polygon facing from the signed area); Olano and Greer 1997 (facing of clipped triangles); seed 003 (back-face culling)")
+            .source("Vulkan 1.4, Basic Polygon Rasterization (polygon facing from the signed area); Olano and Greer 1997 (facing of clipped triangles); seed 003 (back-face culling)")
             .cases(6000)
             .keeps_winding()
             .run(|r, cfg| property_for(r, cfg, facing_scene, check_facing)),
         Rule::invariant(Family::Meta, "meta.degenerate.empty")
             .sentence("Zero-area triangles (collinear or repeated vertices, on sample centres too) draw nothing; without a guard band, those needing no x/y clipping; one the near plane cuts, nothing where the profile decides zero area before clipping, else nothing away from its line.")
-            .source("Vulkan 1.4 §28.7.1 (zero area is back-facing); D3D11.3 §15.16")
+            .source("Vulkan 1.4, Basic Polygon Rasterization (zero area is back-facing); D3D11.3 §15.11.1")
             .cases(10000)
             .every_spec(Level::Partly {
                 part: |r, cfg| property(r, cfg, degenerate_scene(), check_degenerate_off_line),

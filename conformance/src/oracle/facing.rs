@@ -15,7 +15,7 @@ use refrast::{DrawState, Profile, SnapAccuracy};
 
 use super::brute_force::orient2d;
 use super::outline::visible_outline;
-use super::raster::{Point, near_distance, project, to_raster};
+use super::raster::{Point, near_distance, on_grid, project, to_raster};
 
 /// How a triangle turns on screen as an implementation with some profile may see it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -77,8 +77,8 @@ impl Turn {
 /// The grid points an implementation with `profile` may snap a clip-space position to, per its
 /// snapping claims: the nearest (both at an exact tie unless it rounds ties to even), or either
 /// neighbour on each axis ([`SnapAccuracy::WithinOneStep`]); refrast's choice (nearest, half
-/// to even) comes first. `None` when the position does not project to a finite point or the
-/// profile has no grid.
+/// to even) comes first. `None` when the position does not project to a point [`on_grid`] or
+/// the profile has no grid.
 #[must_use]
 pub fn snap_candidates(p: [f32; 4], width: u32, height: u32, profile: &Profile) -> Option<Vec<Point>> {
     let bits = profile.snapping.grid_bits()?.min(16);
@@ -88,7 +88,7 @@ pub fn snap_candidates(p: [f32; 4], width: u32, height: u32, profile: &Profile) 
     }
     let scale = f64::from(1u32 << bits);
     let [rx, ry] = to_raster(width, height, x / w, y / w).map(|c| c * scale);
-    if !(rx.is_finite() && ry.is_finite()) {
+    if !(on_grid(rx) && on_grid(ry)) {
         return None;
     }
     let f = &profile.features;
@@ -150,6 +150,9 @@ pub fn turn(tri: &[[f32; 4]; 3], width: u32, height: u32, state: &DrawState, pro
     }
     let raster = wide.map(|p| project(width, height, p));
     let unsnapped = area2(&raster);
+    if !unsnapped.is_finite() {
+        return Turn::Unsure;
+    }
     let reach = f64::from(profile.features.guard_band);
     let beyond = raster.iter().any(|&[x, y]| {
         !(-reach..=f64::from(width) + reach).contains(&x)
@@ -228,16 +231,19 @@ fn area2(points: &[[f64; 2]]) -> f64 {
 }
 
 /// How far a polygon's doubled area may move when each vertex moves by up to `band` pixels:
-/// twice the perimeter times the band, plus the band's square per vertex.
+/// twice the perimeter times the band, plus the band's square per vertex; plus what f64
+/// rounding of [`area2`]'s shoelace sum may lose (huge coordinates cancel).
 fn margin(points: &[[f64; 2]], band: f64) -> f64 {
     let n = points.len();
-    let perimeter: f64 = (0..n)
-        .map(|i| {
-            let (p, q) = (points[i], points[(i + 1) % n]);
-            (q[0] - p[0]).hypot(q[1] - p[1])
-        })
-        .sum();
-    2.0 * band * perimeter + 4.0 * band * band * n as f64
+    let (perimeter, size) = (0..n).fold((0.0, 0.0), |(perimeter, size), i| {
+        let (p, q) = (points[i], points[(i + 1) % n]);
+        (
+            perimeter + (q[0] - p[0]).hypot(q[1] - p[1]),
+            size + (p[0] * q[1]).abs() + (q[0] * p[1]).abs(),
+        )
+    });
+    let rounding = (n + 2) as f64 * f64::EPSILON * size;
+    2.0 * band * perimeter + 4.0 * band * band * n as f64 + rounding
 }
 
 #[cfg(test)]
@@ -273,6 +279,25 @@ mod tests {
             ..state
         };
         assert_eq!(turn.drawn(&cw), Some(true));
+    }
+
+    /// Found by the `robustness` fuzz target in CI: vertices near f32::MAX snapped to grid
+    /// points whose i128 products overflowed. Beyond 2^60 grid steps there is no grid point; a
+    /// huge triangle's turn comes from floats, sure only well clear of their rounding.
+    #[test]
+    fn huge_coordinates_turn_without_overflow() {
+        let state = DrawState::default();
+        let big = f32::MAX;
+        let wide = [
+            [-big, -big, 0.5, 1.0],
+            [big, -big, 0.5, 1.0],
+            [0.0, big, 0.5, 1.0],
+        ];
+        assert_eq!(snap_candidates(wide[0], 16, 16, &reference()), None);
+        assert_eq!(turn(&wide, 16, 16, &state, &reference()), Turn::CounterClockwise);
+        // Three nearly collinear huge points: f64 cannot tell their side.
+        let line = [[-big, -big, 0.5, 1.0], [big, big, 0.5, 1.0], [0.0, 1.0, 0.5, 1.0]];
+        assert_eq!(turn(&line, 16, 16, &state, &reference()), Turn::Unsure);
     }
 
     /// On a 4-bit grid, a vertex exactly on a snap tie has two places unless ties go to even;

@@ -55,7 +55,7 @@ pub fn sample_ndc(width: u32, height: u32, x: u32, y: u32) -> [f64; 2] {
 }
 
 /// Snaps a clip-space position (`w > 0`) to the grid of `2^-bits` pixel (bits up to 16),
-/// rounding half to even; `None` when it does not project to a finite point.
+/// rounding half to even; `None` when it does not project to a point [`on_grid`].
 #[must_use]
 pub fn snap(p: [f32; 4], width: u32, height: u32, bits: u8) -> Option<Point> {
     let [x, y, _, w] = p.map(f64::from);
@@ -64,7 +64,18 @@ pub fn snap(p: [f32; 4], width: u32, height: u32, bits: u8) -> Option<Point> {
     }
     let scale = f64::from(1u32 << bits.min(16));
     let [rx, ry] = to_raster(width, height, x / w, y / w).map(|c| c * scale);
-    (rx.is_finite() && ry.is_finite()).then(|| (rx.round_ties_even() as i128, ry.round_ties_even() as i128))
+    (on_grid(rx) && on_grid(ry)).then(|| (rx.round_ties_even() as i128, ry.round_ties_even() as i128))
+}
+
+/// The largest grid coordinate the oracles hold, 2^60 steps: `orient2d` of points within it
+/// (differences to 2^61, products to 2^122) cannot overflow i128.
+const GRID_LIMIT: f64 = 1_152_921_504_606_846_976.0;
+
+/// Whether raster coordinate `v`, in grid steps, is finite and within [`GRID_LIMIT`]; beyond
+/// it (huge coordinates, tiny w) the oracles fall back to floats or call the case unsure.
+#[must_use]
+pub fn on_grid(v: f64) -> bool {
+    v.is_finite() && v.abs() <= GRID_LIMIT
 }
 
 /// The signed distance to the near plane, inside when `≥ 0`: `z`, or `z + w` for the
@@ -172,6 +183,8 @@ mod tests {
         assert_eq!(snap([nx, 1.0, 0.0, 1.0], 8, 8, 8), Some((128, 0)));
         assert_eq!(snap([0.0, 0.0, 0.0, 0.0], 8, 8, 8), None);
         assert_eq!(snap([0.0, 0.0, 0.0, -1.0], 8, 8, 8), None);
+        // Beyond 2^60 grid steps i128 products could overflow: no grid point.
+        assert_eq!(snap([f32::MAX, 0.0, 0.0, 1.0], 8, 8, 8), None);
     }
 
     #[test]

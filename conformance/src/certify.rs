@@ -144,11 +144,20 @@ fn judge(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options) -> Rul
     // What the claimed specification requires runs first where it requires only part of the
     // rule: a failure there is a failure; one only the whole rule finds is beyond it.
     let level = rule.levels.of(profile.spec);
+    // What the required part ran, said with a failure beyond it (its cases are not the rule's).
+    let mut required_part = None;
     let (verdict, beyond) = match level {
         Level::Required => ((rule.run)(rasterizer, &cfg), false),
         Level::Partly { part, .. } => match part(rasterizer, &cfg) {
             failed @ Verdict::Fail { .. } => (failed, false),
-            Verdict::Pass { .. } => ((rule.run)(rasterizer, &cfg), true),
+            Verdict::Pass { cases, budget_spent } => {
+                required_part = Some(if budget_spent {
+                    format!("; the required part passed {cases} cases before the time budget ran out")
+                } else {
+                    format!("; the required part passed all {cases} cases")
+                });
+                ((rule.run)(rasterizer, &cfg), true)
+            }
         },
         Level::Undefined(_) | Level::NotCovered(_) => ((rule.run)(rasterizer, &cfg), true),
     };
@@ -167,7 +176,11 @@ fn judge(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options) -> Rul
             report.status = Status::Fail;
             if beyond && let Some(note) = level.note() {
                 report.status = Status::BeyondSpec;
-                report.spec_note = Some(format!("not required by {}: {note}", profile.spec.title()));
+                report.spec_note = Some(format!(
+                    "not required by {}: {note}{}",
+                    profile.spec.title(),
+                    required_part.unwrap_or_default()
+                ));
             }
             report.hint = scene.and_then(|s| guarded(|| hint::diagnose(rasterizer, rule, &s)).ok().flatten());
             report.message = Some(violation.to_string());

@@ -408,5 +408,33 @@ fn softpipe(run: &mut dyn FnMut(&Draw) -> Vec<Fragment>) {
         weights.len() == 1 && weights[0].barycentric.iter().all(|b| !b.is_finite()),
         "softpipe: non-finite weights at (2, 10): {weights:?}"
     );
+    // The same within 2³², every clipped vertex at w ≥ 2⁻³² (so required of OpenGL): two
+    // vertices behind the eye, vertex 1 a hair before the near plane; the sample on vertex 1.
+    let within = draw(
+        9,
+        1,
+        vec![
+            [-1.175_494_4e-38, -3.996_676, 1.175_494_4e-38, -3.999_976_4],
+            [-1.175_494_4e-38, 1.175_494_4e-38, -2.970_919e-7, 2.546_645_2],
+            [-1.515_625, 22_237_420.0, 2.484_375, -0.576_177_6],
+        ],
+        vec![[0, 1, 2]],
+    );
+    let scene = refrast_conformance::Scene {
+        width: 9,
+        height: 1,
+        positions: within.positions.clone(),
+        triangles: within.triangles.clone(),
+        state: within.state,
+    };
+    assert!(
+        refrast_conformance::rules::robust::within_float_range(&scene),
+        "the 9×1 draw stays within 2³²"
+    );
+    let weights = at(&run(&within), 4, 0);
+    assert!(
+        weights.len() == 1 && weights[0].barycentric.iter().all(|b| !b.is_finite()),
+        "softpipe: non-finite weights at (4, 0) within range: {weights:?}"
+    );
     println!("softpipe: every hand-checked finding holds");
 }

@@ -187,6 +187,8 @@ struct Expected {
     first_failure: &'static str,
     /// Rules it fails: the reasons are in each module's documentation.
     fail: &'static str,
+    /// Rules it fails only past the 200 cases of the table, checked alone at their default cases.
+    fail_later: &'static str,
     pass: &'static str,
     not_applicable: &'static str,
 }
@@ -202,6 +204,7 @@ const EXPECTED: [Expected; 3] = [
                clip.interior.matches-raycast clip.mesh.watertight \
                clip.crossing-quad.watertight meta.reversal.flips-facing meta.translate.one-subpixel \
                meta.facing.from-winding",
+        fail_later: "",
         // meta.facing.from-winding: dividing by a negative w mirrors a vertex (no clipping), so a
         // triangle reaching behind the eye gets the wrong facing; found at 300 cases once
         // crossing scenes changed (issue 12). The barycentric rules judge its screen-space
@@ -225,11 +228,16 @@ const EXPECTED: [Expected; 3] = [
         first_failure: "fill.mesh.exactly-once",
         // Both row ends drawn, vertices truncated toward the screen centre, no clipping, ties by edge order.
         fail: "fill.mesh.exactly-once fill.fan.exactly-once fill.rotated-quad.exactly-once \
-               fill.projected-mesh.exactly-once fill.interior.matches-raycast \
+               fill.projected-mesh.exactly-once \
                bary.range.unit \
                bary.perspective.matches-raycast clip.behind-eye.empty clip.interior.matches-raycast \
                clip.mesh.watertight clip.crossing-quad.watertight meta.rotation.same-coverage \
                meta.reversal.flips-facing meta.degenerate.empty",
+        // Row ends drawn whole put a sample 2.0 px outside an edge at case 203 of the default
+        // seed (`certify --impl lab002-scanline --rule fill.interior`): since a profile snapping
+        // within one step is judged outside two steps of an edge (issue 26), 200 cases no longer
+        // reach it.
+        fail_later: "fill.interior.matches-raycast",
         // Its sums drift by interpolating along edges: 1.6e-6 at 200 cases, inside three times
         // the 2^-18 it claims; 20 000 cases find 1.5e-5 (`certify --impl lab002-scanline
         // --rule bary.sum.one --cases 20000`).
@@ -260,6 +268,7 @@ const EXPECTED: [Expected; 3] = [
                clip.interior.matches-raycast clip.mesh.watertight clip.crossing-quad.watertight \
                clip.far.respected clip.gl-range.matches-raycast meta.reversal.flips-facing \
                meta.translate.whole-pixels meta.translate.one-subpixel meta.degenerate.empty",
+        fail_later: "",
         // meta.degenerate.empty: its zero-area triangles draw only once clipped; since issue 26
         // the rule draws some the near plane cuts, and on 64×64 the line y = 2 px through
         // (6.5, 2), (−0.5, 2), (13.5, 2), the middle vertex before the near plane, it draws
@@ -330,6 +339,21 @@ fn course_rasterizers_certified() {
                 if got != Some(status) {
                     wrong.push(format!("{id}: expected {}, got {got:?}", status.label()));
                 }
+            }
+        }
+        for id in want.fail_later.split_whitespace() {
+            let alone = Options {
+                rule: Some(id.to_owned()),
+                ..Options::default()
+            };
+            let later = certify(
+                &mut *b.build().expect("course labs build anywhere"),
+                &alone,
+                |_| {},
+            );
+            let got = later.rules.first().map(|r| r.status);
+            if got != Some(Status::Fail) {
+                wrong.push(format!("{id}: expected FAIL at its default cases, got {got:?}"));
             }
         }
         assert!(wrong.is_empty(), "{}: {wrong:#?}", b.name);

@@ -1,7 +1,6 @@
 //! `refrast certify`: run the catalogue against built-in implementations, print, write reports.
 
 mod child;
-mod html;
 mod progress;
 mod schedule;
 
@@ -10,12 +9,17 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::{Duration, Instant, SystemTime};
 
-use refrast_conformance::{BuiltIn, Options, Process, Report, Rule, RuleReport, Status, catalogue, matches};
-use serde::Serialize;
+use refrast_conformance::{
+    BuiltIn, Options, Process, Report, RuleReport, Shard, Status, catalogue, matches, selected,
+};
 
-pub use child::{RunRuleArgs, run_rule};
+pub use child::{RunRuleArgs, run_rule, this_program};
 use progress::Progress;
 
+use crate::results::outputs::{Outputs, write_outputs};
+use crate::results::{
+    DEFAULT_EXEC_BUDGET, Document, Entry, Host, Outcome, Run, RunOptions, SCHEMA_VERSION, Subject,
+};
 use crate::{all_builtins, find_builtin, say};
 
 /// The built-ins `pattern` names: one by its name, or every one a glob with `*` matches (in
@@ -60,17 +64,35 @@ pub struct Args {
     /// Seed of the case generator.
     #[arg(long, value_name = "S", default_value_t = refrast_conformance::DEFAULT_SEED)]
     seed: u64,
-    /// Only rules matching this glob (`fill.*`, `*.exact`); without `*`, a prefix.
+    /// Only rules matching this glob (`fill.*`, `*.exact`); without `*`, a prefix (repeatable:
+    /// rules matching any).
     #[arg(long, value_name = "PATTERN")]
-    rule: Option<String>,
+    rule: Vec<String>,
+    /// Only part I of N of the selected rules (every N-th in catalogue order, from the I-th),
+    /// for a run split across machines; `refrast merge` joins the parts' --json reports.
+    #[arg(long, value_name = "I/N", value_parser = |s: &str| s.parse::<Shard>())]
+    shard: Option<Shard>,
     /// Folder for the report: index.html (a self-contained page: summary, profiles, a table per
     /// implementation, each failure with its picture, counterexample and the command that
     /// reproduces it, a matrix when several are certified) and the counterexample pictures.
     #[arg(long, value_name = "DIR", default_value = "refrast-report")]
     report: PathBuf,
-    /// Also write the report as JSON (an array, one entry per implementation).
+    /// Also write the report as JSON: the run's metadata and one entry per implementation
+    /// (docs/json.md gives the schema).
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
+    /// Also write the report as JUnit XML, a testsuite per implementation and a testcase per
+    /// rule, for a CI's test tab (under --expect, expected verdicts are skipped testcases).
+    #[arg(long, value_name = "FILE")]
+    junit: Option<PathBuf>,
+    /// Judge the verdicts against an expectation file (docs/expectations.md; repeatable): exit
+    /// 0 when every verdict is as expected, 1 on an unexpected failure or an unexpected pass.
+    #[arg(long, value_name = "FILE")]
+    expect: Vec<PathBuf>,
+    /// Write the verdicts seen to FILE as expectations (keeping the comments and the may-fail
+    /// lines of FILE, or of --expect, that still hold).
+    #[arg(long, value_name = "FILE")]
+    update_expectations: Option<PathBuf>,
     /// Seconds one case may take before the rule fails as hung (for --exec: one draw).
     #[arg(long, value_name = "SECONDS", default_value_t = refrast_conformance::DEFAULT_CASE_TIMEOUT.as_secs_f64(),
           value_parser = positive_seconds)]
@@ -98,72 +120,37 @@ fn positive_seconds(text: &str) -> Result<f64, String> {
     }
 }
 
-/// The time budget per rule of an --exec rasterizer unless --budget says otherwise: a Python
-/// rasterizer gets through the catalogue in a few minutes.
-const DEFAULT_EXEC_BUDGET: Duration = Duration::from_secs(10);
-
-/// One implementation's entry in the JSON report.
-#[derive(Serialize)]
-#[serde(untagged)]
-enum Entry {
-    /// Certified: the report.
-    Certified(Box<Report>),
-    /// A child that could not be started or did not complete its handshake: a failure.
-    FailedToStart {
-        /// The command line.
-        implementation: String,
-        /// Why, with the end of its stderr.
-        failed_to_start: String,
-    },
-    /// Not available on this machine, and why.
-    Skipped {
-        /// Its name.
-        implementation: String,
-        /// Why it was skipped.
-        skipped: String,
-    },
-}
-
-/// Runs `refrast certify`: 0 when every applicable rule passes, 1 when one fails, 2 on a usage error.
+/// Runs `refrast certify`: 0 when every applicable rule passes (under --expect: when every
+/// verdict is as expected), 1 when one fails (or surprises), 2 on a usage error.
 pub fn run(args: &Args) -> ExitCode {
     let when = SystemTime::now();
-    let chosen: Vec<BuiltIn> = if args.impls.is_empty() && !args.execs.is_empty() {
-        Vec::new()
-    } else if args.impls.is_empty() {
-        all_builtins()
-            .into_iter()
-            .filter(|b| b.origin == refrast_conformance::Origin::Ours)
-            .collect()
-    } else {
-        let mut chosen = Vec::new();
-        for name in &args.impls {
-            match find_builtins(name) {
-                Ok(found) => chosen.extend(found),
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    return ExitCode::from(2);
-                }
-            }
-        }
-        chosen
-    };
-    for command in &args.execs {
-        if let Err(e) = refrast_conformance::process::split_command(command) {
-            eprintln!("error: --exec: {e}");
+    let clock = Instant::now();
+    let chosen = match choose(args) {
+        Ok(chosen) => chosen,
+        Err(e) => {
+            eprintln!("error: {e}");
             return ExitCode::from(2);
         }
-    }
-    if let Some(pattern) = &args.rule
-        && !catalogue().iter().any(|r| matches(pattern, r.id))
-    {
-        eprintln!("error: no rule matches '{pattern}'; `refrast rules` lists them");
-        return ExitCode::from(2);
-    }
+    };
+    let outputs = match Outputs::new(
+        args.report.clone(),
+        args.json.clone(),
+        args.junit.clone(),
+        &args.expect,
+        args.update_expectations.clone(),
+    ) {
+        Ok(outputs) => outputs,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
     let options = Options {
         cases: args.cases,
         scale: args.scale,
         seed: args.seed,
-        rule: args.rule.clone(),
+        rules: args.rule.clone(),
+        shard: args.shard,
         report_dir: Some(args.report.clone()),
         case_timeout: Duration::from_secs_f64(args.case_timeout),
         budget: args.budget.map(Duration::from_secs_f64),
@@ -178,21 +165,24 @@ pub fn run(args: &Args) -> ExitCode {
         || std::thread::available_parallelism().map_or(1, NonZeroUsize::get),
         usize::from,
     );
+    for warning in outputs.warnings(&options) {
+        eprintln!("{warning}");
+    }
     let out = Progress::detect();
-    let mut entries: Vec<(Subject, Entry)> = Vec::new();
+    let mut entries: Vec<Entry> = Vec::new();
     let mut left: Vec<String> = Vec::new();
-    let stop = |entries: &[(Subject, Entry)], left: &[String]| {
-        !left.is_empty() || entries.last().is_some_and(|(_, e)| args.fail_fast && !passed(e))
+    let stop = |entries: &[Entry], left: &[String]| {
+        !left.is_empty() || entries.last().is_some_and(|e| args.fail_fast && !e.passed())
     };
     if args.in_process {
         for b in &chosen {
             if stop(&entries, &left) {
                 left.push(b.name.clone());
             } else {
-                entries.push((
-                    Subject::BuiltIn(b.name.clone()),
-                    certify_in_process(b, &options, &out),
-                ));
+                entries.push(Entry {
+                    subject: Subject::BuiltIn(b.name.clone()),
+                    outcome: certify_in_process(b, &options, &out),
+                });
             }
         }
     } else {
@@ -202,96 +192,87 @@ pub fn run(args: &Args) -> ExitCode {
         if stop(&entries, &left) {
             left.push(command.clone());
         } else {
-            entries.push((
-                Subject::Exec(command.clone()),
-                certify_exec(command, &exec_options, &out),
-            ));
+            entries.push(Entry {
+                subject: Subject::Exec(command.clone()),
+                outcome: certify_exec(command, &exec_options, &out),
+            });
         }
     }
     out.clear();
     if !left.is_empty() {
         say(&format!("--fail-fast: not certified: {}", left.join(", ")));
     }
-    let mut status = if entries.iter().all(|(_, e)| passed(e)) {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::FAILURE
+    let doc = Document {
+        schema_version: SCHEMA_VERSION,
+        run: Run {
+            refrast_version: env!("CARGO_PKG_VERSION").to_owned(),
+            git_revision: crate::results::git_revision().to_owned(),
+            started: crate::results::rfc3339(when),
+            seconds: clock.elapsed().as_secs_f64(),
+            host: Host::this(),
+            command: std::env::args_os()
+                .map(|a| a.to_string_lossy().into_owned())
+                .collect(),
+            options: RunOptions {
+                cases: args.cases,
+                proptest_cases: std::env::var("PROPTEST_CASES")
+                    .ok()
+                    .filter(|_| args.cases.is_none()),
+                scale: args.scale,
+                seed: args.seed,
+                rules: args.rule.clone(),
+                shard: args.shard,
+                budget: args.budget,
+                case_timeout: args.case_timeout,
+                fail_fast: args.fail_fast,
+                jobs,
+                in_process: args.in_process,
+                expect: args.expect.clone(),
+            },
+        },
+        implementations: entries,
+        not_certified: left,
     };
-    let page = html::Page {
-        when,
-        args,
-        options: &options,
-        rules: &selected(&options),
-        entries: &entries,
-        left: &left,
-    };
-    match html::write(&args.report, &page) {
-        Ok(path) => say(&format!("wrote {}", path.display())),
-        Err(e) => {
-            eprintln!(
-                "error: could not write {}: {e}",
-                args.report.join("index.html").display()
-            );
-            status = ExitCode::from(2);
+    write_outputs(&doc, &selected(&options), &outputs)
+}
+
+/// The built-ins `--impl` names (every correct one when none is named and no `--exec` is
+/// given), after checking `--exec` command lines and `--rule` patterns.
+fn choose(args: &Args) -> Result<Vec<BuiltIn>, String> {
+    for command in &args.execs {
+        refrast_conformance::process::split_command(command).map_err(|e| format!("--exec: {e}"))?;
+    }
+    for pattern in &args.rule {
+        if !catalogue().iter().any(|r| matches(pattern, r.id)) {
+            return Err(format!("no rule matches '{pattern}'; `refrast rules` lists them"));
         }
     }
-    if let Some(path) = &args.json {
-        let reports: Vec<&Entry> = entries.iter().map(|(_, e)| e).collect();
-        let json = serde_json::to_string_pretty(&reports).expect("reports serialise");
-        if let Err(e) = std::fs::write(path, json) {
-            eprintln!("error: could not write {}: {e}", path.display());
-            return ExitCode::from(2);
-        }
-        say(&format!("wrote {}", path.display()));
+    if args.impls.is_empty() && !args.execs.is_empty() {
+        return Ok(Vec::new());
     }
-    status
-}
-
-/// What an entry certified, as a command line names it (for the commands that reproduce a failure).
-pub enum Subject {
-    /// A built-in: `--impl NAME`.
-    BuiltIn(String),
-    /// A child speaking the pipe protocol: `--exec CMD`.
-    Exec(String),
-}
-
-impl Subject {
-    /// The flag and its value.
-    fn flag(&self) -> [&str; 2] {
-        match self {
-            Self::BuiltIn(name) => ["--impl", name],
-            Self::Exec(command) => ["--exec", command],
-        }
+    if args.impls.is_empty() {
+        return Ok(all_builtins()
+            .into_iter()
+            .filter(|b| b.origin == refrast_conformance::Origin::Ours)
+            .collect());
     }
-}
-
-/// The rules `options` selects, in catalogue order.
-fn selected(options: &Options) -> Vec<Rule> {
-    catalogue()
-        .into_iter()
-        .filter(|rule| options.rule.as_deref().is_none_or(|p| matches(p, rule.id)))
-        .collect()
-}
-
-/// Whether an entry counts as passed: certified with no failing rule, or skipped.
-fn passed(entry: &Entry) -> bool {
-    match entry {
-        Entry::Certified(report) => report.passed(),
-        Entry::FailedToStart { .. } => false,
-        Entry::Skipped { .. } => true,
+    let mut chosen = Vec::new();
+    for name in &args.impls {
+        chosen.extend(find_builtins(name)?);
     }
+    Ok(chosen)
 }
 
 /// Certifies one built-in in this process, one rule after another; skips it, saying why, when
 /// it cannot be built here.
-fn certify_in_process(b: &BuiltIn, options: &Options, out: &Progress) -> Entry {
+fn certify_in_process(b: &BuiltIn, options: &Options, out: &Progress) -> Outcome {
     out.line(&format!("== {} (seed {})", b.name, options.seed));
     let start = Instant::now();
     let mut rasterizer = match b.build() {
         Ok(r) => r,
         Err(why) => {
             out.line(&format!("== {}: SKIPPED: {why}\n", b.name));
-            return Entry::Skipped {
+            return Outcome::Skipped {
                 implementation: b.name.clone(),
                 skipped: why.to_string(),
             };
@@ -301,19 +282,19 @@ fn certify_in_process(b: &BuiltIn, options: &Options, out: &Progress) -> Entry {
         refrast_conformance::certify(rasterizer.as_mut(), options, progress)
     });
     summarise(out, &report, start.elapsed().as_secs_f64());
-    Entry::Certified(Box::new(report))
+    Outcome::Certified(Box::new(report))
 }
 
 /// Certifies a rasterizer in a child process, started once and reused, in this process: the
 /// [`Process`] turns a crash, a hang or garbage into a failed draw, and restarts the child.
-fn certify_exec(command: &str, options: &Options, out: &Progress) -> Entry {
+fn certify_exec(command: &str, options: &Options, out: &Progress) -> Outcome {
     out.line(&format!("== {command} (seed {}, pipe protocol)", options.seed));
     let start = Instant::now();
     let mut process = match Process::try_spawn_with(command, options.case_timeout) {
         Ok(process) => process,
         Err(why) => {
             out.line(&format!("FAILED TO START: {why}\n"));
-            return Entry::FailedToStart {
+            return Outcome::FailedToStart {
                 implementation: command.to_owned(),
                 failed_to_start: why.to_string(),
             };
@@ -329,7 +310,7 @@ fn certify_exec(command: &str, options: &Options, out: &Progress) -> Entry {
             process.starts() - 1
         ));
     }
-    Entry::Certified(Box::new(report))
+    Outcome::Certified(Box::new(report))
 }
 
 /// Runs `certify` (which calls its argument after each rule) with a bar for `name` and a line
@@ -415,7 +396,7 @@ fn print_rule(out: &Progress, r: &RuleReport) {
             "      not applicable: {}",
             r.message.as_deref().unwrap_or("")
         )),
-        Status::Fail | Status::BeyondSpec => {
+        Status::Fail | Status::BeyondSpec | Status::Crash | Status::Timeout | Status::Flake => {
             if let Some(note) = &r.spec_note {
                 out.line(&format!("      beyond the specification: {note}"));
             }

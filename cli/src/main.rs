@@ -2,14 +2,16 @@
 //! them in a window.
 
 mod certify;
+mod listing;
 mod options;
 mod render;
+mod results;
 mod view;
 
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use refrast_conformance::{BuiltIn, catalogue};
+use refrast_conformance::BuiltIn;
 
 /// refrast: a reference triangle rasterizer and conformance suite.
 #[derive(Parser, Debug)]
@@ -29,11 +31,28 @@ enum Command {
         #[arg(long, conflicts_with = "levels")]
         markdown: bool,
         /// Print what Vulkan, OpenGL and D3D11.3 each require of every rule (docs/levels.md).
-        #[arg(long)]
+        #[arg(long, conflicts_with = "json")]
         levels: bool,
+        /// Print the rules as JSON: an array of {id, kind, family, source, sentence, default_cases}.
+        #[arg(long, conflicts_with = "markdown")]
+        json: bool,
     },
     /// List the built-in implementations and their profiles.
-    Impls,
+    Impls {
+        /// Print them as JSON: an array of {name, origin, description, available, unavailable,
+        /// profile}.
+        #[arg(long)]
+        json: bool,
+        /// Only this one, built in this process (what the listing runs for a third party).
+        #[arg(long, value_name = "NAME", hide = true)]
+        only: Option<String>,
+    },
+    /// Compare two `certify --json` reports: per implementation, the rules that regressed, got
+    /// fixed or changed status; exit 1 on a regression.
+    Compare(results::compare::Args),
+    /// Join the `certify --json` reports of a run's shards (`--shard I/N`) into one report:
+    /// text, JSON, HTML and JUnit, as the run would have made in one piece.
+    Merge(results::merge::Args),
     /// Render a built-in scene or a mesh file (PLY, OBJ) to a PNG, in any mode, through any rasterizer.
     #[command(allow_negative_numbers = true)]
     Render(render::Args),
@@ -61,42 +80,10 @@ fn main() -> ExitCode {
             say(refrast_conformance::levels_markdown().trim_end());
             ExitCode::SUCCESS
         }
-        Command::Rules { .. } => {
-            for rule in catalogue() {
-                say(&format!(
-                    "{:<38} {:<9} {:<6} [{}] {}",
-                    rule.id,
-                    rule.kind,
-                    rule.family.name(),
-                    rule.source,
-                    rule.sentence
-                ));
-            }
-            ExitCode::SUCCESS
-        }
-        Command::Impls => {
-            let all = all_builtins();
-            let width = all.iter().map(|b| b.name.chars().count()).max().unwrap_or(0);
-            for b in all {
-                let p = match b.build() {
-                    Ok(r) => r.profile(),
-                    Err(why) => {
-                        say(&format!("{:<width$} unavailable here: {why}", b.name));
-                        continue;
-                    }
-                };
-                let kind = b.origin.label();
-                say(&format!(
-                    "{:<width$} {}, {}, band {} px, {kind}: {}",
-                    b.name,
-                    p.snapping,
-                    refrast_conformance::fill_name(p.fill),
-                    p.band_px(),
-                    b.description
-                ));
-            }
-            ExitCode::SUCCESS
-        }
+        Command::Rules { json, .. } => listing::rules(json),
+        Command::Impls { json, only } => listing::impls(json, only.as_deref()),
+        Command::Compare(args) => results::compare::run(&args),
+        Command::Merge(args) => results::merge::run(&args),
         Command::Scenes => {
             for scene in refrast_render::scene::scenes() {
                 say(&format!("{:<14} {}", scene.name, scene.description));

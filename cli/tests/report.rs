@@ -21,7 +21,8 @@ fn scratch(name: &str) -> PathBuf {
     dir
 }
 
-/// Runs `refrast certify` with `args`, the report in `dir` and the JSON in `dir/r.json`.
+/// Runs `refrast certify` with `args`, the report in `dir` and the JSON in `dir/r.json`: the
+/// output, and the JSON's array of implementations.
 fn certify(dir: &Path, args: &[&str]) -> (Output, Value) {
     let json = dir.join("r.json");
     let out = Command::new(REFRAST)
@@ -40,7 +41,9 @@ fn certify(dir: &Path, args: &[&str]) -> (Output, Value) {
             String::from_utf8_lossy(&out.stderr)
         )
     });
-    (out, serde_json::from_str(&text).expect("the report is JSON"))
+    let doc: Value = serde_json::from_str(&text).expect("the report is JSON");
+    assert_eq!(doc["schema_version"], 1, "the schema version");
+    (out, doc["implementations"].clone())
 }
 
 /// The text between `start` (excluded) and the next `end` after it, from `from` on.

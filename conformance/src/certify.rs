@@ -26,8 +26,11 @@ pub struct Options {
     pub scale: u32,
     /// Seed of the case generator.
     pub seed: u64,
-    /// Only rules whose ID matches this glob (`*` matches anything; no `*` means a prefix).
-    pub rule: Option<String>,
+    /// Only rules whose ID matches one of these globs (`*` matches anything; no `*` means a
+    /// prefix); empty selects every rule.
+    pub rules: Vec<String>,
+    /// Only this part of the selected rules ([`Shard`]), for runs split across machines.
+    pub shard: Option<Shard>,
     /// Where to write counterexample pictures; `None` writes none.
     pub report_dir: Option<PathBuf>,
     /// Called with every input before it is checked ([`RunConfig::announce`]).
@@ -49,7 +52,8 @@ impl Default for Options {
             cases: None,
             scale: 1,
             seed: DEFAULT_SEED,
-            rule: None,
+            rules: Vec::new(),
+            shard: None,
             report_dir: None,
             announce: None,
             case_timeout: DEFAULT_CASE_TIMEOUT,
@@ -59,11 +63,22 @@ impl Default for Options {
     }
 }
 
-/// Whether a rule ID matches a pattern: a glob with `*`, or a prefix when there is none.
+/// Whether a rule ID matches a `--rule` pattern: a glob with `*`, or a prefix when there is none.
 #[must_use]
 pub fn matches(pattern: &str, id: &str) -> bool {
+    if pattern.contains('*') {
+        matches_glob(pattern, id)
+    } else {
+        id.starts_with(pattern)
+    }
+}
+
+/// Whether a rule ID matches a glob, where `*` matches any run of characters (without `*`,
+/// the ID itself).
+#[must_use]
+pub fn matches_glob(pattern: &str, id: &str) -> bool {
     if !pattern.contains('*') {
-        return id.starts_with(pattern);
+        return pattern == id;
     }
     let parts: Vec<&str> = pattern.split('*').collect();
     let (first, last) = (parts[0], parts[parts.len() - 1]);
@@ -123,7 +138,7 @@ fn judge(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options) -> Rul
     let profile = match profile {
         Ok(profile) => profile,
         Err(what) => {
-            report.status = Status::Fail;
+            report.status = Status::Crash;
             report.message = Some(format!("profile() panicked: {what}"));
             return report;
         }
@@ -173,8 +188,12 @@ fn judge(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options) -> Rul
             scene,
         } => {
             report.cases = cases;
-            report.status = Status::Fail;
-            if beyond && let Some(note) = level.note() {
+            // A crash, a hang or a flake is what it is under every specification.
+            report.status = violation.status;
+            if beyond
+                && violation.status == Status::Fail
+                && let Some(note) = level.note()
+            {
                 report.status = Status::BeyondSpec;
                 report.spec_note = Some(format!(
                     "not required by {}: {note}{}",
@@ -185,7 +204,7 @@ fn judge(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options) -> Rul
             report.hint = scene.and_then(|s| guarded(|| hint::diagnose(rasterizer, rule, &s)).ok().flatten());
             report.message = Some(violation.to_string());
             report.details = violation.details.clone();
-            report.counts = violation.counts;
+            report.counts = violation.counts.as_deref().copied();
             report.counterexample = Some(counterexample);
             if let (Some(dir), Some(pic)) = (&options.report_dir, &violation.picture) {
                 let mut caption = vec![format!("{} on {}: {violation}", rule.id, profile.name)];
@@ -257,20 +276,69 @@ pub fn refusal(rasterizer: &dyn Rasterizer) -> Option<String> {
         .map(|why| format!("{why}; nothing was run"))
 }
 
+/// Part `index` of `count` (1-based, as `--shard 2/3` says): every `count`-th of the selected
+/// rules in catalogue order, starting at the `index`-th, so that the parts are disjoint, cover
+/// every rule, and do not depend on anything but the selection.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct Shard {
+    /// Which part, from 1.
+    pub index: u32,
+    /// How many parts.
+    pub count: u32,
+}
+
+impl std::str::FromStr for Shard {
+    type Err = String;
+
+    /// `I/N` with 1 ≤ I ≤ N.
+    fn from_str(text: &str) -> Result<Self, String> {
+        let bad = || format!("'{text}' is not a shard; give I/N with 1 <= I <= N, e.g. 2/3");
+        let (i, n) = text.split_once('/').ok_or_else(bad)?;
+        let (index, count) = (
+            i.trim().parse().map_err(|_| bad())?,
+            n.trim().parse().map_err(|_| bad())?,
+        );
+        if index == 0 || index > count {
+            return Err(bad());
+        }
+        Ok(Self { index, count })
+    }
+}
+
+impl std::fmt::Display for Shard {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}/{}", self.index, self.count)
+    }
+}
+
+/// The rules `options` selects, in catalogue order: those matching any of its patterns (all
+/// when there are none), then its shard's part of them.
+#[must_use]
+pub fn selected(options: &Options) -> Vec<Rule> {
+    catalogue()
+        .into_iter()
+        .filter(|rule| options.rules.is_empty() || options.rules.iter().any(|p| matches(p, rule.id)))
+        .enumerate()
+        .filter(|(i, _)| {
+            options
+                .shard
+                .is_none_or(|s| u32::try_from(*i).is_ok_and(|i| i % s.count == s.index - 1))
+        })
+        .map(|(_, rule)| rule)
+        .collect()
+}
+
 /// Runs `run` on each rule `options` selects, in catalogue order, until one fails under
 /// [`Options::fail_fast`] or `run` gives an error: the reports, and the IDs of rules left unrun.
 pub fn run_selected<E>(
     options: &Options,
     mut run: impl FnMut(&Rule) -> Result<RuleReport, E>,
 ) -> Result<(Vec<RuleReport>, Vec<String>), E> {
-    let selected: Vec<Rule> = catalogue()
-        .into_iter()
-        .filter(|rule| options.rule.as_deref().is_none_or(|p| matches(p, rule.id)))
-        .collect();
+    let selected = selected(options);
     let mut reports = Vec::new();
     for (i, rule) in selected.iter().enumerate() {
         let report = run(rule)?;
-        let failed = report.status == Status::Fail;
+        let failed = report.status.is_failure();
         reports.push(report);
         if failed && options.fail_fast {
             let not_run = selected[i + 1..].iter().map(|r| r.id.to_owned()).collect();

@@ -135,7 +135,7 @@ where
                         report.spec_note.as_deref().unwrap_or(""),
                         failure_text(&report)
                     ))),
-                    Status::Fail => {
+                    Status::Fail | Status::Crash | Status::Timeout | Status::Flake => {
                         failed.store(true, Ordering::SeqCst);
                         Err(Failed::from(failure_text(&report)))
                     }
@@ -152,8 +152,9 @@ where
 #[must_use]
 pub fn failure_text(report: &RuleReport) -> String {
     let mut text = format!(
-        "rule {} failed (seed {}, {} cases, band {} subpixels): {}",
+        "rule {} failed ({}; seed {}, {} cases, band {} subpixels): {}",
         report.id,
+        report.status,
         report.seed,
         report.cases,
         report.tolerance_subpixels,

@@ -181,7 +181,8 @@ enum Line {
     Closed,
 }
 
-/// Runs one rule in a child started by `command`; a hang, crash or garbled answer is a failure.
+/// Runs one rule in a child started by `command`; a hang is a `timeout`, a child that dies
+/// without a report a `crash`.
 pub fn run_rule_isolated(rule: &Rule, command: Command, options: &Options) -> Outcome {
     run_rule_watched(rule, command, options, &mut |_| {})
 }
@@ -196,20 +197,23 @@ pub fn run_rule_watched(
 ) -> Outcome {
     let started = Instant::now();
     let mut profile: Option<Box<ProfileReport>> = None;
-    let failed =
-        |message: String, last_case: Option<String>, cases: usize, profile: &Option<Box<ProfileReport>>| {
-            let tolerance = profile.as_ref().map_or(1, |p| p.tolerance_subpixels.max(1));
-            let report = RuleReport {
-                status: Status::Fail,
-                // Announced inputs include shrinking's, so this may count more than were generated.
-                cases: u32::try_from(cases).unwrap_or(u32::MAX),
-                message: Some(message),
-                counterexample: last_case,
-                seconds: started.elapsed().as_secs_f64(),
-                ..blank(rule, options, tolerance)
-            };
-            Outcome::Ran(Box::new(report), profile.clone())
+    let failed = |status: Status,
+                  message: String,
+                  last_case: Option<String>,
+                  cases: usize,
+                  profile: &Option<Box<ProfileReport>>| {
+        let tolerance = profile.as_ref().map_or(1, |p| p.tolerance_subpixels.max(1));
+        let report = RuleReport {
+            status,
+            // Announced inputs include shrinking's, so this may count more than were generated.
+            cases: u32::try_from(cases).unwrap_or(u32::MAX),
+            message: Some(message),
+            counterexample: last_case,
+            seconds: started.elapsed().as_secs_f64(),
+            ..blank(rule, options, tolerance)
         };
+        Outcome::Ran(Box::new(report), profile.clone())
+    };
     let program = format!("{:?}", command.get_program());
     let mut child = match command
         .stdout(Stdio::piped())
@@ -220,6 +224,7 @@ pub fn run_rule_watched(
         Ok(child) => child,
         Err(e) => {
             return failed(
+                Status::Crash,
                 format!("could not start the rule's process {program}: {e}"),
                 None,
                 0,
@@ -282,6 +287,7 @@ pub fn run_rule_watched(
                 let status = wait(&mut child);
                 let output = join_output(stderr, &own_output);
                 return failed(
+                    Status::Crash,
                     format!(
                         "the rasterizer's process ended without a verdict ({}) during case {cases_seen}{}",
                         describe(status),
@@ -297,6 +303,7 @@ pub fn run_rule_watched(
                 let _ = child.wait();
                 let output = join_output(stderr, &own_output);
                 return failed(
+                    Status::Timeout,
                     format!(
                         "no answer within {} s on case {cases_seen}: the rasterizer hangs on it (or is far \
                          too slow; --case-timeout sets the limit){output}",

@@ -4,17 +4,18 @@
 //!
 //! | layer | module | what |
 //! |---|---|---|
-//! | 0 | [`oracle`] | the conventions' geometry ([`oracle::raster`]), brute force (i128 `orient2d`), ray casting (f64 with exact fallback, clip space), visible outlines; no code shared with the reference |
-//! | 1 | `scene` | [`Scene`]: a draw whose `Debug` is pasteable Rust; [`Case`]: what a rule's input is |
-//! | 2 | `violation` | [`Violation`], [`Counts`], [`Expect`], [`Picture`] |
-//! | 3 | [`picture`] | the zoomed sample grid: missing purple, unexpected red, double blue, don't-care yellow; outlines |
-//! | 4 | [`strategy`] | free functions that build valid scenes: grid triangles, spade meshes, fans, quads, clip crossings |
-//! | 5 | `runner` | [`property`]: one rule's property, seeded, shrunk, panics caught |
-//! | 6 | [`rules`] | [`catalogue`], [`Rule`], [`Family`], [`Kind`], [`Need`]: six families, each rule a proptest property |
-//! | 7 | `report` | [`Report`], [`RuleReport`], [`Status`], [`ProfileReport`] |
-//! | 8 | `certify` | [`certify`], [`Options`] |
-//! | 9 | [`isolate`] | rules in child processes: a hang, an abort or a crash fails the rule it was running |
-//! | 10 | `harness`, [`fuzz`] | [`run_as_tests`]: one test per rule in your own crate; the cargo-fuzz targets as functions on any rasterizer |
+//! | 0 | `status` | [`Status`]: pass, fail, crash, timeout, flake, beyond-spec, n/a |
+//! | 1 | [`oracle`] | the conventions' geometry ([`oracle::raster`]), brute force (i128 `orient2d`), ray casting (f64 with exact fallback, clip space), visible outlines; no code shared with the reference |
+//! | 2 | `scene` | [`Scene`]: a draw whose `Debug` is pasteable Rust; [`Case`]: what a rule's input is |
+//! | 3 | `violation` | [`Violation`], [`Counts`], [`Expect`], [`Picture`] |
+//! | 4 | [`picture`] | the zoomed sample grid: missing purple, unexpected red, double blue, don't-care yellow; outlines |
+//! | 5 | [`strategy`] | free functions that build valid scenes: grid triangles, spade meshes, fans, quads, clip crossings |
+//! | 6 | `runner` | [`property`]: one rule's property, seeded, shrunk, panics caught |
+//! | 7 | [`rules`] | [`catalogue`], [`Rule`], [`Family`], [`Kind`], [`Need`]: six families, each rule a proptest property |
+//! | 8 | `report` | [`Report`], [`RuleReport`], [`Status`], [`ProfileReport`] |
+//! | 9 | `certify` | [`certify`], [`Options`] |
+//! | 10 | [`isolate`], [`expect`] | rules in child processes: a hang is a `timeout`, an abort or a crash a `crash` of the rule it was running; expectation files |
+//! | 11 | `harness`, [`fuzz`] | [`run_as_tests`]: one test per rule in your own crate; the cargo-fuzz targets as functions on any rasterizer |
 //! | — | `impls` | [`builtins`]: the implementations `refrast certify --impl` knows (refrast only) |
 //! | — | [`restricted`] | the reference restricted to one setting or a few, declaring and using only those (refrast only) |
 //! | — | [`process`] | [`Process`]: a rasterizer in any language, in a child speaking `PROTOCOL.md` (refrast only) |
@@ -29,6 +30,7 @@
 #![forbid(unsafe_code)]
 
 mod certify;
+pub mod expect;
 pub mod fuzz;
 mod harness;
 mod impls;
@@ -41,10 +43,14 @@ pub mod restricted;
 pub mod rules;
 mod runner;
 mod scene;
+mod status;
 pub mod strategy;
 mod violation;
 
-pub use certify::{DEFAULT_CASE_TIMEOUT, Options, cases_for, certify, matches, refusal, run_rule};
+pub use certify::{
+    DEFAULT_CASE_TIMEOUT, Options, Shard, cases_for, certify, matches, matches_glob, refusal, run_rule,
+    selected,
+};
 pub use harness::{failure_text, run_as_tests};
 pub use impls::{BuiltIn, Maker, Named, Origin, Unavailable, builtins};
 pub use process::{Process, ProcessError};

@@ -3,43 +3,17 @@
 
 use std::path::PathBuf;
 
-use refrast::{Features, FillConvention, Profile, Rasterizer, SnapAccuracy};
+use refrast::{
+    CompareOp, CullMode, DepthRange, Features, FillConvention, FrontFace, Profile, Rasterizer, SnapAccuracy,
+    Supported,
+};
 use serde::{Deserialize, Serialize};
 
+use crate::process::wire::{FAR_CLIPPING, Word, depth_word};
 use crate::rules::{Family, Kind};
 use crate::runner::guarded;
+pub use crate::status::Status;
 use crate::violation::Counts;
-
-/// A rule's outcome.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
-pub enum Status {
-    /// Every case held.
-    #[serde(rename = "pass")]
-    Pass,
-    /// A case failed.
-    #[serde(rename = "fail")]
-    Fail,
-    /// The rule does not apply to the profile.
-    #[serde(rename = "n/a")]
-    NotApplicable,
-    /// A case failed, on something the specification the profile claims does not require
-    /// ([`RuleReport::spec_note`] says why): not a failure of conformance, and not a pass.
-    #[serde(rename = "beyond-spec")]
-    BeyondSpec,
-}
-
-impl Status {
-    /// As printed: `pass`, `FAIL`, `n/a`, `BEYOND` (beyond the claimed specification).
-    #[must_use]
-    pub fn label(self) -> &'static str {
-        match self {
-            Self::Pass => "pass",
-            Self::Fail => "FAIL",
-            Self::NotApplicable => "n/a",
-            Self::BeyondSpec => "BEYOND",
-        }
-    }
-}
 
 /// One rule's line in the report.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -101,13 +75,14 @@ pub struct ProfileReport {
     pub snapping: String,
     /// Tie rule on edges, or none.
     pub fill: String,
-    /// Depth convention.
+    /// Depth convention, in the pipe protocol's word (`z-over-w`, `other`).
     pub depth: String,
     /// Tolerance band in grid steps, as declared.
     pub tolerance_subpixels: u32,
     /// The band used, in pixels.
     pub band_px: f64,
-    /// Optional abilities declared, and the supported values of each draw-state setting.
+    /// Optional abilities declared, and the supported values of each draw-state setting in
+    /// the pipe protocol's words (`cull none|back|front`).
     pub features: Vec<String>,
     /// The specification it claims to follow ([`refrast::Spec::title`]).
     #[serde(default)]
@@ -139,7 +114,7 @@ impl From<&Profile> for ProfileReport {
             about: String::new(),
             snapping: p.snapping.to_string(),
             fill: fill_name(p.fill).to_owned(),
-            depth: format!("{:?}", p.depth),
+            depth: depth_word(p.depth).to_owned(),
             tolerance_subpixels: p.tolerance_subpixels,
             band_px: p.band_px(),
             features: feature_list(&p.features),
@@ -193,13 +168,23 @@ pub fn feature_list(f: &Features) -> Vec<String> {
         u32::MAX => list.push("guard-band unbounded".to_owned()),
         px => list.push(format!("guard-band {px} px")),
     }
-    list.push(format!("cull {:?}", f.cull_modes));
-    list.push(format!("front faces {:?}", f.front_faces));
-    list.push(format!("compare {:?}", f.compare_ops));
-    list.push(format!("depth writes {:?}", f.depth_writes));
-    list.push(format!("far clipping {:?}", f.far_clipping));
-    list.push(format!("depth ranges {:?}", f.depth_ranges));
+    list.push(setting(CullMode::KEY, f.cull_modes));
+    list.push(setting(FrontFace::KEY, f.front_faces));
+    list.push(setting(CompareOp::KEY, f.compare_ops));
+    list.push(setting(bool::KEY, f.depth_writes));
+    list.push(format!("{FAR_CLIPPING} {}", words(f.far_clipping)));
+    list.push(setting(DepthRange::KEY, f.depth_ranges));
     list
+}
+
+/// A setting's supported values as the pipe protocol words them: `cull none|back|front`.
+fn setting<T: Word>(key: &str, supported: Supported<T>) -> String {
+    format!("{key} {}", words(supported))
+}
+
+/// Supported values in the protocol's words, joined by `|`.
+fn words<T: Word>(supported: Supported<T>) -> String {
+    supported.values().map(Word::word).collect::<Vec<_>>().join("|")
 }
 
 /// The whole certification of one implementation.
@@ -221,10 +206,11 @@ pub struct Report {
 }
 
 impl Report {
-    /// Whether it was judged and every applicable rule passed.
+    /// Whether it was judged and no rule failed it ([`Status::is_failure`]: a crash, a
+    /// timeout or a flake is no pass).
     #[must_use]
     pub fn passed(&self) -> bool {
-        self.refused.is_none() && self.rules.iter().all(|r| r.status != Status::Fail)
+        self.refused.is_none() && self.rules.iter().all(|r| !r.status.is_failure())
     }
 
     /// How many rules failed only on what the claimed specification does not require.
@@ -236,10 +222,18 @@ impl Report {
             .count()
     }
 
-    /// How many rules passed, failed, and did not apply ([`Report::beyond_spec`] counts the rest).
+    /// How many rules passed, failed (crashes, timeouts and flakes included), and did not
+    /// apply ([`Report::beyond_spec`] counts the rest).
     #[must_use]
     pub fn tally(&self) -> (usize, usize, usize) {
         let n = |s| self.rules.iter().filter(|r| r.status == s).count();
-        (n(Status::Pass), n(Status::Fail), n(Status::NotApplicable))
+        let failed = self.rules.iter().filter(|r| r.status.is_failure()).count();
+        (n(Status::Pass), failed, n(Status::NotApplicable))
+    }
+
+    /// How many rules ended in `status`.
+    #[must_use]
+    pub fn count(&self, status: Status) -> usize {
+        self.rules.iter().filter(|r| r.status == status).count()
     }
 }

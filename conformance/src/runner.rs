@@ -12,6 +12,7 @@ use refrast::{Profile, Rasterizer};
 
 use crate::picture;
 use crate::scene::{Case, Scene};
+use crate::status::Status;
 use crate::violation::{Picture, Violation};
 
 /// The seed used when none is given, so that every run tries the same cases.
@@ -163,11 +164,14 @@ where
         Err(TestError::Fail(reason, input)) => {
             let mut r = cell.borrow_mut();
             let input = reduce(&mut **r, check, input, announce, &spent);
+            // The shrunk case is replayed once more: one that passes now was a flake.
             let mut violation = run_announced(&mut **r, check, &input, announce)
                 .err()
-                .unwrap_or_else(|| {
-                    Violation::new(format!(
-                        "{reason} (the shrunk case passed on a second run: is the rasterizer deterministic?)"
+                .unwrap_or_else(|| Violation {
+                    status: Status::Flake,
+                    ..Violation::new(format!(
+                        "{reason} (the shrunk case passed when replayed: the same draw gave \
+                         another answer; is the rasterizer deterministic?)"
                     ))
                 });
             if violation.picture.is_none() {
@@ -239,8 +243,7 @@ fn run_announced<T: Debug>(
 
 /// Runs one check, turning a panic of the rasterizer into a violation.
 fn run_check<T>(r: &mut dyn Rasterizer, check: Check<T>, input: &T) -> Result<(), Violation> {
-    guarded(|| check(r, input))
-        .unwrap_or_else(|what| Err(Violation::new(format!("the rasterizer panicked: {what}"))))
+    guarded(|| check(r, input)).unwrap_or_else(|what| Err(Violation::panicked(&what)))
 }
 
 thread_local! {

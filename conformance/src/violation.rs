@@ -2,7 +2,10 @@
 
 use std::fmt;
 
-use refrast::Fragment;
+use refrast::{DrawError, Fragment};
+
+use crate::process::Misbehaviour;
+use crate::status::Status;
 
 /// How one sample came out against what was expected.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -68,14 +71,18 @@ pub struct Picture {
 pub struct Violation {
     /// What went wrong, in one or a few sentences.
     pub message: String,
-    /// Sample tallies, for coverage checks.
-    pub counts: Option<Counts>,
+    /// Sample tallies, for coverage checks (boxed, as the picture: a violation travels in
+    /// every `Err`).
+    pub counts: Option<Box<Counts>>,
     /// The samples, for coverage checks (boxed: a violation travels in every `Err`).
     pub picture: Option<Box<Picture>>,
     /// Every sample the failure is about (drawn red when there is no picture).
     pub samples: Vec<(u32, u32)>,
     /// The numbers behind the failure, one line per wrong sample (the first few).
     pub details: Vec<String>,
+    /// What the failure makes of the rule: [`Status::Fail`] for a wrong answer,
+    /// [`Status::Crash`] or [`Status::Timeout`] when there was no answer to judge.
+    pub status: Status,
 }
 
 impl Violation {
@@ -88,6 +95,34 @@ impl Violation {
             picture: None,
             samples: Vec::new(),
             details: Vec::new(),
+            status: Status::Fail,
+        }
+    }
+
+    /// The violation of a draw that returned `error` (`what` names the call): a crash or a hang
+    /// of a child behind a pipe ([`Misbehaviour`]) is a `crash` or a `timeout`.
+    #[must_use]
+    pub fn of_draw_error(what: &str, error: &DrawError) -> Self {
+        let status = match error {
+            DrawError::Misbehaved(message) => match Misbehaviour::of(message) {
+                Misbehaviour::Hung => Status::Timeout,
+                Misbehaviour::Died => Status::Crash,
+                Misbehaviour::Garbled => Status::Fail,
+            },
+            _ => Status::Fail,
+        };
+        Self {
+            status,
+            ..Self::new(format!("{what} returned an error: {error}"))
+        }
+    }
+
+    /// The violation of a rasterizer that panicked with `what`.
+    #[must_use]
+    pub fn panicked(what: &str) -> Self {
+        Self {
+            status: Status::Crash,
+            ..Self::new(format!("the rasterizer panicked: {what}"))
         }
     }
 
@@ -226,9 +261,10 @@ pub fn compare_coverage(
     }
     Err(Violation {
         message: format!("coverage differs from {what}"),
-        counts: Some(tally),
+        counts: Some(Box::new(tally)),
         samples: Vec::new(),
         details: Vec::new(),
+        status: Status::Fail,
         picture: Some(Box::new(Picture {
             width,
             height,

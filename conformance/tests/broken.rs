@@ -75,7 +75,7 @@ impl Rasterizer for InclusiveEdges {
 fn inclusive_edges_fail_the_fill_rules_with_a_small_counterexample_and_a_picture() {
     let dir = std::env::temp_dir().join("refrast-broken-test");
     let options = Options {
-        rule: Some("fill.*".into()),
+        rules: vec!["fill.*".into()],
         report_dir: Some(dir),
         ..Options::default()
     };
@@ -115,7 +115,7 @@ fn inclusive_edges_fail_the_fill_rules_with_a_small_counterexample_and_a_picture
 #[test]
 fn the_reference_passes_what_the_broken_one_fails() {
     let options = Options {
-        rule: Some("fill.*".into()),
+        rules: vec!["fill.*".into()],
         cases: Some(64),
         ..Options::default()
     };

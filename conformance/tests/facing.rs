@@ -37,7 +37,7 @@ impl Rasterizer for FacingByDivision {
 #[test]
 fn facing_of_a_triangle_reaching_behind_the_eye_is_judged() {
     let options = Options {
-        rule: Some("meta.facing.from-winding".into()),
+        rules: vec!["meta.facing.from-winding".into()],
         ..Options::default()
     };
     let report = certify(&mut FacingByDivision, &options, |_| {});

@@ -74,7 +74,7 @@ fn main() {
     };
 
     let (hang, took) = run("hang");
-    assert_eq!(hang.status, Status::Fail, "{hang:#?}");
+    assert_eq!(hang.status, Status::Timeout, "{hang:#?}");
     let message = hang.message.clone().unwrap_or_default();
     assert!(message.contains("no answer within 3 s"), "{message}");
     let case = hang.counterexample.clone().unwrap_or_default();
@@ -85,7 +85,7 @@ fn main() {
     );
 
     let (abort, _) = run("abort");
-    assert_eq!(abort.status, Status::Fail, "{abort:#?}");
+    assert_eq!(abort.status, Status::Crash, "{abort:#?}");
     let message = abort.message.clone().unwrap_or_default();
     assert!(message.contains("SIGABRT"), "{message}");
     assert!(
@@ -120,7 +120,7 @@ fn main() {
     );
 
     println!(
-        "isolation: a hang and an abort each failed their rule with a message; noise did no harm; an \
+        "isolation: a hang timed out and an abort crashed its rule, each with a message; noise did no harm; an \
          unjudgeable profile was refused"
     );
 }

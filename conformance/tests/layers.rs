@@ -9,8 +9,9 @@ use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
 /// Top-level modules, lowest layer first; `process`, `restricted` and `impls` (which lists the
-/// restricted ones) stand apart: they use only refrast.
+/// restricted ones) stand apart: they use only refrast (and `status`, which uses nothing).
 const LAYERS: &[&[&str]] = &[
+    &["status"],
     &["oracle", "process", "restricted"],
     &["scene", "impls"],
     &["violation"],
@@ -20,7 +21,7 @@ const LAYERS: &[&[&str]] = &[
     &["rules"],
     &["report"],
     &["certify"],
-    &["isolate"],
+    &["isolate", "expect"],
     &["harness", "fuzz"],
 ];
 
@@ -69,13 +70,50 @@ fn module_of(rel: &Path) -> Vec<String> {
     parts
 }
 
-/// The code of a file without its test module and its comments.
+/// The code of a file without its test module, its comments and the contents of its string
+/// literals (a message saying "use …" is no `use`).
 fn code(text: &str) -> String {
     let text = text.split("#[cfg(test)]").next().unwrap_or("");
-    text.lines()
-        .map(|l| l.split("//").next().unwrap_or(""))
-        .collect::<Vec<_>>()
-        .join("\n")
+    let mut out = String::with_capacity(text.len());
+    let (mut in_string, mut escaped, mut chars) = (false, false, text.chars().peekable());
+    while let Some(c) = chars.next() {
+        if in_string {
+            match (escaped, c) {
+                (false, '\\') => escaped = true,
+                (false, '"') => {
+                    in_string = false;
+                    out.push('"');
+                }
+                (_, '\n') => {
+                    escaped = false;
+                    out.push('\n');
+                }
+                _ => escaped = false,
+            }
+            continue;
+        }
+        match c {
+            '"' => {
+                in_string = true;
+                out.push('"');
+            }
+            // A character literal holding a quote is no string.
+            '\'' if chars.peek() == Some(&'"') => {
+                out.push(c);
+                out.push(chars.next().unwrap_or('"'));
+            }
+            '/' if chars.peek() == Some(&'/') => {
+                for rest in chars.by_ref() {
+                    if rest == '\n' {
+                        out.push('\n');
+                        break;
+                    }
+                }
+            }
+            c => out.push(c),
+        }
+    }
+    out
 }
 
 /// Splits `s` at commas that are not inside braces.

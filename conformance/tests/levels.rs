@@ -50,7 +50,7 @@ impl Rasterizer for Claiming {
 fn run(r: &mut Claiming, rule: &str) -> RuleReport {
     let options = Options {
         cases: Some(300),
-        rule: Some(rule.to_owned()),
+        rules: vec![rule.to_owned()],
         ..Options::default()
     };
     let report = certify(r, &options, |_| {});
@@ -104,7 +104,7 @@ fn a_misdeclared_tie_rule_is_beyond_vulkan_and_fails_d3d11() {
 fn beyond_spec_does_not_fail_a_report() {
     let options = Options {
         cases: Some(100),
-        rule: Some("robust.non-finite.*".to_owned()),
+        rules: vec!["robust.non-finite.*".to_owned()],
         ..Options::default()
     };
     let report = certify(

@@ -1,5 +1,6 @@
-//! The suite used from another crate: panics in any method are findings, `fail_fast` stops at
-//! the first failing rule, and failure messages name the difference that happened.
+//! The suite used from another crate: panics in any method are findings (`crash`), a wrong
+//! answer that does not come again on replay is a `flake`, `fail_fast` stops at the first
+//! failing rule, and failure messages name the difference that happened.
 
 use refrast::{Draw, DrawError, Fragment, Profile, Rasterizer, Reference};
 use refrast_conformance::rules::common::compare_sets;
@@ -9,6 +10,8 @@ use refrast_conformance::{Options, Scene, Status, catalogue, certify, run_rule};
 struct Wrapped {
     inner: Reference,
     fault: Fault,
+    /// Draws so far.
+    calls: u32,
 }
 
 #[derive(Clone, Copy)]
@@ -21,6 +24,8 @@ enum Fault {
     ExtraOutside,
     /// Primitive ids 0 and 1 swapped.
     SwappedIds,
+    /// No fragments on the third draw only: a wrong answer the same draw does not give again.
+    WrongOnce,
 }
 
 impl Wrapped {
@@ -28,6 +33,7 @@ impl Wrapped {
         Self {
             inner: Reference::default(),
             fault,
+            calls: 0,
         }
     }
 }
@@ -43,7 +49,10 @@ impl Rasterizer for Wrapped {
 
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
         let mut fragments = self.inner.rasterize(draw)?;
+        self.calls += 1;
         match self.fault {
+            Fault::WrongOnce if self.calls == 3 => fragments.clear(),
+            Fault::WrongOnce => {}
             Fault::PanickingProfile => {}
             Fault::PanickingDraw => panic!("the rasteriser fell over"),
             Fault::ExtraOutside => {
@@ -66,6 +75,16 @@ impl Rasterizer for Wrapped {
     }
 }
 
+#[test]
+fn a_failure_that_does_not_replay_is_a_flake() {
+    let mut r = Wrapped::new(Fault::WrongOnce);
+    let report = run_rule(&rule("fill.top-left.exact"), &mut r, &options());
+    assert_eq!(report.status, Status::Flake, "{report:#?}");
+    assert!(report.status.is_failure(), "a flake is no pass");
+    let message = report.message.unwrap_or_default();
+    assert!(message.contains("passed when replayed"), "{message}");
+}
+
 fn rule(id: &str) -> refrast_conformance::Rule {
     catalogue()
         .into_iter()
@@ -84,7 +103,7 @@ fn options() -> Options {
 fn a_panicking_profile_fails_the_rule_instead_of_escaping() {
     let mut r = Wrapped::new(Fault::PanickingProfile);
     let report = run_rule(&rule("fill.top-left.exact"), &mut r, &options());
-    assert_eq!(report.status, Status::Fail);
+    assert_eq!(report.status, Status::Crash);
     let message = report.message.unwrap_or_default();
     assert!(
         message.starts_with("profile() panicked: this profile cannot be read at "),
@@ -94,19 +113,21 @@ fn a_panicking_profile_fails_the_rule_instead_of_escaping() {
     let all = certify(
         &mut r,
         &Options {
-            rule: Some("robust.*".into()),
+            rules: vec!["robust.*".into()],
             ..options()
         },
         |_| {},
     );
     assert!(all.implementation.contains("panicked"), "{}", all.implementation);
-    assert!(all.rules.iter().all(|r| r.status == Status::Fail));
+    assert!(all.rules.iter().all(|r| r.status == Status::Crash));
+    assert!(!all.passed(), "a crash is no pass");
 }
 
 #[test]
 fn a_panic_is_reported_with_its_place() {
     let mut r = Wrapped::new(Fault::PanickingDraw);
     let report = run_rule(&rule("fill.top-left.exact"), &mut r, &options());
+    assert_eq!(report.status, Status::Crash, "{report:#?}");
     let message = report.message.unwrap_or_default();
     assert!(
         message.starts_with("the rasterizer panicked: the rasteriser fell over at ")
@@ -124,7 +145,7 @@ fn fail_fast_stops_at_the_first_failing_rule() {
     };
     let report = certify(&mut r, &quick, |_| {});
     assert_eq!(report.rules.len(), 1, "only the first rule ran");
-    assert_eq!(report.rules[0].status, Status::Fail);
+    assert_eq!(report.rules[0].status, Status::Crash, "a crash stops it too");
     assert_eq!(report.rules.len() + report.not_run.len(), catalogue().len());
     assert_eq!(report.not_run[0], catalogue()[1].id);
     // Without it, every rule runs and nothing is left unrun.
@@ -132,7 +153,7 @@ fn fail_fast_stops_at_the_first_failing_rule() {
     let all = certify(
         &mut fine,
         &Options {
-            rule: Some("robust.*".into()),
+            rules: vec!["robust.*".into()],
             fail_fast: true,
             ..options()
         },

@@ -50,6 +50,7 @@ fn main() {
             "certify_fails_rules_of_a_crashing_child_and_goes_on",
             certify_crashing,
         ),
+        trial("a_hanging_child_is_a_timeout_of_its_rule", certify_hanging),
         trial(
             "the_budget_stops_a_slow_child_and_says_how_many_cases_ran",
             budget,
@@ -269,13 +270,32 @@ fn certify_crashing() -> Result<(), String> {
     let mut p = spawn("crash", 10.0);
     let options = Options {
         cases: Some(5),
-        rule: Some("fill.mesh".into()),
+        rules: vec!["fill.mesh".into()],
         ..Options::default()
     };
     let report = certify(&mut p, &options, |_| {});
     let rule = &report.rules[0];
     let message = rule.message.as_deref().unwrap_or("");
-    if rule.status == Status::Fail && message.contains("SIGABRT") && message.contains("about to crash") {
+    if rule.status == Status::Crash && message.contains("SIGABRT") && message.contains("about to crash") {
+        Ok(())
+    } else {
+        Err(format!("{:?}: {message}", rule.status))
+    }
+}
+
+/// A child that hangs on a draw makes its rule a `timeout`, not a `fail`.
+fn certify_hanging() -> Result<(), String> {
+    let mut p = spawn("hang", 1.0);
+    let options = Options {
+        cases: Some(5),
+        rules: vec!["fill.mesh".into()],
+        budget: Some(Duration::from_secs(4)),
+        ..Options::default()
+    };
+    let report = certify(&mut p, &options, |_| {});
+    let rule = &report.rules[0];
+    let message = rule.message.as_deref().unwrap_or("");
+    if rule.status == Status::Timeout && message.contains("hangs") {
         Ok(())
     } else {
         Err(format!("{:?}: {message}", rule.status))
@@ -285,7 +305,7 @@ fn certify_crashing() -> Result<(), String> {
 fn budget() -> Result<(), String> {
     let mut p = spawn("slow", 10.0);
     let options = Options {
-        rule: Some("fill.top-left.exact".into()),
+        rules: vec!["fill.top-left.exact".into()],
         budget: Some(Duration::from_millis(600)),
         ..Options::default()
     };

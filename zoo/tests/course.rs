@@ -343,7 +343,7 @@ fn course_rasterizers_certified() {
         }
         for id in want.fail_later.split_whitespace() {
             let alone = Options {
-                rule: Some(id.to_owned()),
+                rules: vec![id.to_owned()],
                 ..Options::default()
             };
             let later = certify(

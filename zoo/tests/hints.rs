@@ -62,7 +62,7 @@ impl Rasterizer for Misdeclared {
 fn hint(r: &mut dyn Rasterizer, rule: &str) -> String {
     let options = Options {
         cases: Some(500),
-        rule: Some(rule.to_owned()),
+        rules: vec![rule.to_owned()],
         ..Options::default()
     };
     let report = certify(r, &options, |_| {});
@@ -218,7 +218,7 @@ fn correct_profiles_pass_the_hinted_rules() {
     for rule in rules {
         let options = Options {
             cases: Some(300),
-            rule: Some(rule.to_owned()),
+            rules: vec![rule.to_owned()],
             ..Options::default()
         };
         let report = certify(&mut fixed, &options, |_| {});

@@ -12,8 +12,7 @@ use crate::all_builtins;
 
 /// This program again, running one rule of one built-in (`refrast run-rule`).
 pub(super) fn run_rule_command(implementation: &str, rule: &str, options: &Options) -> Command {
-    let exe = std::env::current_exe().unwrap_or_else(|_| PathBuf::from("refrast"));
-    let mut command = Command::new(exe);
+    let mut command = this_program();
     command.args(["run-rule", "--impl", implementation, "--rule", rule]);
     command.args(["--seed", &options.seed.to_string()]);
     if let Some(cases) = options.cases {
@@ -27,6 +26,43 @@ pub(super) fn run_rule_command(implementation: &str, rule: &str, options: &Optio
         command.arg("--report").arg(dir);
     }
     command
+}
+
+/// This program, for a child that builds a built-in: with a runtime folder for the drivers
+/// when this process has none, so that Mesa's EGL does not print `XDG_RUNTIME_DIR is invalid`
+/// into every failure message.
+pub fn this_program() -> Command {
+    let exe = std::env::current_exe().unwrap_or_else(|_| PathBuf::from("refrast"));
+    let mut command = Command::new(exe);
+    if let Some(dir) = runtime_dir() {
+        command.env("XDG_RUNTIME_DIR", dir);
+    }
+    command
+}
+
+/// A private runtime folder (mode 0700, in the temporary folder) when `XDG_RUNTIME_DIR` is
+/// unset or names no folder; `None` when it is fine or none can be made.
+fn runtime_dir() -> Option<PathBuf> {
+    if std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| std::path::Path::new(&d).is_dir()) {
+        return None;
+    }
+    let dir = std::env::temp_dir().join(format!("refrast-runtime-{}", user()));
+    let mut builder = std::fs::DirBuilder::new();
+    builder.recursive(true);
+    #[cfg(unix)]
+    std::os::unix::fs::DirBuilderExt::mode(&mut builder, 0o700);
+    builder.create(&dir).ok()?;
+    Some(dir)
+}
+
+/// Who runs this, for a per-user folder name.
+fn user() -> String {
+    std::env::var("USER")
+        .or_else(|_| std::env::var("LOGNAME"))
+        .unwrap_or_else(|_| "user".to_owned())
+        .chars()
+        .filter(char::is_ascii_alphanumeric)
+        .collect()
 }
 
 /// Arguments of the hidden `refrast run-rule`, the child `certify` starts for each rule.

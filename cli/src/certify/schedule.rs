@@ -14,11 +14,13 @@ use std::time::Instant;
 
 use indicatif::ProgressBar;
 use refrast_conformance::isolate::{Outcome, run_rule_watched};
-use refrast_conformance::{BuiltIn, Options, ProfileReport, Report, Rule, RuleReport, Status, cases_for};
+use refrast_conformance::{BuiltIn, Options, ProfileReport, Report, Rule, RuleReport, cases_for};
 
 use super::child::run_rule_command;
 use super::progress::Progress;
-use super::{Entry, Subject, print_rule, selected, summarise};
+use super::{print_rule, summarise};
+use crate::results::{Entry, Outcome as Certified, Subject};
+use refrast_conformance::selected;
 
 /// What became of one (implementation, rule) task.
 enum Done {
@@ -40,7 +42,7 @@ pub fn certify_builtins(
     options: &Options,
     jobs: usize,
     out: &Progress,
-) -> (Vec<(Subject, Entry)>, Vec<String>) {
+) -> (Vec<Entry>, Vec<String>) {
     let rules = selected(options);
     let total = builtins.len() * rules.len();
     if total == 0 {
@@ -140,7 +142,7 @@ impl Run<'_> {
                 Done::Refused(why, profile)
             }
             Outcome::Ran(report, profile) => {
-                if report.status == Status::Fail && self.options.fail_fast {
+                if report.status.is_failure() && self.options.fail_fast {
                     self.stop_at.fetch_min(task + 1, Ordering::SeqCst);
                 }
                 Done::Ran(report, profile, start, Instant::now())
@@ -167,7 +169,7 @@ struct Emitter {
     /// The first task not yet reported.
     next: usize,
     current: Building,
-    entries: Vec<(Subject, Entry)>,
+    entries: Vec<Entry>,
     /// Implementations not certified after a failure under `--fail-fast`.
     left: Vec<String>,
     /// A failure under `--fail-fast` has been reported: nothing after it is.
@@ -208,7 +210,7 @@ impl Emitter {
         match done {
             Done::Ran(report, profile, start, end) => {
                 print_rule(run.out, &report);
-                let failed = report.status == Status::Fail;
+                let failed = report.status.is_failure();
                 self.current.rules.push(*report);
                 self.current.profile = self.current.profile.take().or(profile);
                 let (first, last) = self.current.span.unwrap_or((start, end));
@@ -223,11 +225,13 @@ impl Emitter {
             Done::Unavailable(why) => {
                 run.out.line(&format!("== {}: SKIPPED: {why}\n", b.name));
                 run.bars[i].abandon_with_message("skipped");
-                let entry = Entry::Skipped {
-                    implementation: b.name.clone(),
-                    skipped: why,
-                };
-                self.entries.push((Subject::BuiltIn(b.name.clone()), entry));
+                self.entries.push(Entry {
+                    subject: Subject::BuiltIn(b.name.clone()),
+                    outcome: Certified::Skipped {
+                        implementation: b.name.clone(),
+                        skipped: why,
+                    },
+                });
                 self.current.skipped = true;
                 return;
             }
@@ -242,10 +246,10 @@ impl Emitter {
                     not_run: Vec::new(),
                     refused: Some(why),
                 };
-                self.entries.push((
-                    Subject::BuiltIn(b.name.clone()),
-                    Entry::Certified(Box::new(report)),
-                ));
+                self.entries.push(Entry {
+                    subject: Subject::BuiltIn(b.name.clone()),
+                    outcome: Certified::Certified(Box::new(report)),
+                });
                 self.current.skipped = true;
                 return;
             }
@@ -282,7 +286,9 @@ impl Emitter {
         });
         summarise(run.out, &report, seconds);
         let name = run.builtins[i].name.clone();
-        self.entries
-            .push((Subject::BuiltIn(name), Entry::Certified(Box::new(report))));
+        self.entries.push(Entry {
+            subject: Subject::BuiltIn(name),
+            outcome: Certified::Certified(Box::new(report)),
+        });
     }
 }

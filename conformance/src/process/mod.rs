@@ -30,6 +30,39 @@ pub const DEFAULT_DRAW_TIMEOUT: Duration = Duration::from_secs(10);
 /// How long an exited child's stderr may take to drain before a message is written without it.
 const DRAIN: Duration = Duration::from_millis(500);
 
+/// The words of a breach whose child did not answer in time.
+const HANGS: &str = "the child hangs on this draw";
+/// The words of a breach whose child closed its stdout before answering.
+const DIED: &str = "it crashed or exited";
+
+/// What went wrong with a child, read from a [`DrawError::Misbehaved`] message.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Misbehaviour {
+    /// It did not answer within the per-draw timeout.
+    Hung,
+    /// It died (closed its stdout, exited, was killed) or could not be restarted.
+    Died,
+    /// It answered, but not in the protocol.
+    Garbled,
+}
+
+impl Misbehaviour {
+    /// Which kind of misbehaviour a [`DrawError::Misbehaved`] message of this module reports.
+    #[must_use]
+    pub fn of(message: &str) -> Self {
+        if message.contains(HANGS) {
+            Self::Hung
+        } else if message.contains(DIED) || message.starts_with(RESTARTING) {
+            Self::Died
+        } else {
+            Self::Garbled
+        }
+    }
+}
+
+/// How a message about a child that could not be restarted begins.
+const RESTARTING: &str = "restarting after the last failure";
+
 /// Why a child could not be started or did not complete its handshake.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum ProcessError {
@@ -190,7 +223,7 @@ impl Process {
         }
         if self.running.is_none() {
             let (running, declared) = start(&self.launch, self.timeout)
-                .map_err(|e| DrawError::Misbehaved(format!("restarting after the last failure: {e}")))?;
+                .map_err(|e| DrawError::Misbehaved(format!("{RESTARTING}: {e}")))?;
             self.starts += 1;
             self.running = Some(running);
             if declared != self.declared {

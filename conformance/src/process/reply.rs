@@ -6,6 +6,7 @@ use refrast::{Draw, DrawError, Fragment, Profile, Resolved};
 
 use super::pipe::{Incoming, Stall};
 use super::wire::{self, FRAGMENT_BYTES, MAX_LINE, Op};
+use super::{DIED, HANGS};
 
 /// A breach of the protocol, before the exit status and stderr are added.
 pub struct Breach(pub String);
@@ -29,16 +30,14 @@ pub fn read_reply(
 ) -> Result<Reply, Breach> {
     let late = |what: &str| {
         Breach(format!(
-            "no {what} within {} s: the child hangs on this draw (or is far too slow; the per-draw \
-             timeout is --case-timeout)",
+            "no {what} within {} s: {HANGS} (or is far too slow; the per-draw timeout is \
+             --case-timeout)",
             timeout.as_secs_f64()
         ))
     };
     let stalled = |stall: Stall, what: &str| match stall {
         Stall::TimedOut => late(what),
-        Stall::Closed => Breach(format!(
-            "the child's stdout closed before its {what}: it crashed or exited"
-        )),
+        Stall::Closed => Breach(format!("the child's stdout closed before its {what}: {DIED}")),
         Stall::LineTooLong => Breach(format!(
             "a reply line longer than {MAX_LINE} bytes where {what} belongs"
         )),

@@ -111,6 +111,15 @@ impl Word for bool {
     }
 }
 
+/// The depth convention as the protocol's `depth` key spells it: `z-over-w` or `other`.
+#[must_use]
+pub fn depth_word(depth: DepthConvention) -> &'static str {
+    match depth {
+        DepthConvention::ScreenLinearZOverW => "z-over-w",
+        DepthConvention::Other => "other",
+    }
+}
+
 /// The key of far clipping, whose values are `on` and `off` like depth writes'.
 pub const FAR_CLIPPING: &str = "far-clipping";
 
@@ -293,11 +302,10 @@ pub fn parse_profile(lines: &[String], fallback_name: &str) -> Result<Declared, 
                 }
             }
             "depth" => {
-                profile.depth = match rest {
-                    "z-over-w" => DepthConvention::ScreenLinearZOverW,
-                    "other" => DepthConvention::Other,
-                    _ => return Err(bad("use z-over-w or other")),
-                }
+                profile.depth = [DepthConvention::ScreenLinearZOverW, DepthConvention::Other]
+                    .into_iter()
+                    .find(|d| depth_word(*d) == rest)
+                    .ok_or_else(|| bad("use z-over-w or other"))?;
             }
             "tolerance" => {
                 profile.tolerance_subpixels = rest

@@ -34,7 +34,7 @@ pub fn precision(profile: &Profile) -> f64 {
 pub fn fragments(r: &mut dyn Rasterizer, scene: &Scene) -> Result<Vec<Fragment>, Violation> {
     let frags = r
         .rasterize(&scene.draw())
-        .map_err(|e| Violation::new(format!("rasterize returned an error: {e}")))?;
+        .map_err(|e| Violation::of_draw_error("rasterize", &e))?;
     let (w, h) = (scene.width, scene.height);
     let outside: Vec<&Fragment> = frags.iter().filter(|f| f.x >= w || f.y >= h).collect();
     if let Some(f) = outside.first() {

@@ -210,7 +210,7 @@ fn reorder(scene: &Scene, order: &[usize]) -> Scene {
 fn resolve(r: &mut dyn Rasterizer, scene: &Scene) -> Result<Resolved, Violation> {
     let resolved = r
         .resolve(&scene.draw())
-        .map_err(|e| Violation::new(format!("resolve returned an error: {e}")))?;
+        .map_err(|e| Violation::of_draw_error("resolve", &e))?;
     let pixels = scene.width as usize * scene.height as usize;
     if resolved.depth.len() != pixels || resolved.primitive.len() != pixels {
         return Err(Violation::new(format!(

@@ -345,9 +345,10 @@ fn well_formed(r: &mut dyn Rasterizer, scene: &Scene, judged: Judged) -> Result<
 pub fn check_bad_index(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     match r.rasterize(&scene.draw()) {
         // A crash or a garbled answer is no error report: it fails here as everywhere.
-        Err(DrawError::Misbehaved(what)) => Err(Violation::new(format!(
-            "a draw with vertex index out of range made the rasterizer misbehave: {what}"
-        ))),
+        Err(e @ DrawError::Misbehaved(_)) => Err(Violation::of_draw_error(
+            "a draw with vertex index out of range",
+            &e,
+        )),
         Err(_) => Ok(()),
         Ok(frags) => Err(Violation::new(format!(
             "a draw with vertex index out of range succeeded with {} fragments",

@@ -415,10 +415,7 @@ pub fn builtins() -> Vec<BuiltIn> {
         .map(|&bug| {
             BuiltIn::new(
                 format!("mutant:{}", bug.name()),
-                format!(
-                    "broken on purpose ({} rules must catch it)",
-                    bug.caught_by().name()
-                ),
+                format!("the {} rules must catch it", bug.caught_by().name()),
                 Origin::Mutant,
                 move || Box::new(Mutant::new(bug)),
             )

@@ -6,12 +6,11 @@
 
 use std::io;
 use std::path::{Path, PathBuf};
-use std::time::{SystemTime, UNIX_EPOCH};
 
 use base64::Engine;
-use refrast_conformance::{DEFAULT_CASE_TIMEOUT, Options, ProfileReport, Report, Rule, RuleReport, Status};
+use refrast_conformance::{ProfileReport, Report, Rule, RuleReport, Status};
 
-use super::{Args, Entry, Subject};
+use super::{Document, Entry, Outcome, Subject, reproduce};
 
 /// The page's style: small, inline, no external fonts.
 const CSS: &str = include_str!("report.css");
@@ -24,18 +23,10 @@ const SCRIPT: &str = "addEventListener('load', () => { const all = Array.from(do
 
 /// What the page is made from.
 pub struct Page<'a> {
-    /// When the run started.
-    pub when: SystemTime,
-    /// The command's arguments.
-    pub args: &'a Args,
-    /// The options the rules ran with.
-    pub options: &'a Options,
+    /// The run and what it certified.
+    pub doc: &'a Document,
     /// The rules selected, in catalogue order.
     pub rules: &'a [Rule],
-    /// What was certified and how it went, in the order of the run.
-    pub entries: &'a [(Subject, Entry)],
-    /// Implementations not certified after a failure under `--fail-fast`.
-    pub left: &'a [String],
 }
 
 /// Writes `dir/index.html` through a temporary file renamed into place; returns its path.
@@ -49,14 +40,11 @@ pub fn write(dir: &Path, page: &Page<'_>) -> io::Result<PathBuf> {
 
 /// The whole page.
 fn render(page: &Page<'_>) -> String {
-    let failed = page.entries.iter().filter(|(_, e)| !super::passed(e)).count();
-    let beyond: usize = page
-        .entries
+    let entries = &page.doc.implementations;
+    let failed = entries.iter().filter(|e| !e.passed()).count();
+    let beyond: usize = entries
         .iter()
-        .map(|(_, e)| match e {
-            Entry::Certified(report) => report.beyond_spec(),
-            _ => 0,
-        })
+        .map(|e| e.report().map_or(0, Report::beyond_spec))
         .sum();
     let beyond = match beyond {
         0 => String::new(),
@@ -65,12 +53,12 @@ fn render(page: &Page<'_>) -> String {
     let verdict = if failed == 0 {
         format!(
             "<p class=\"verdict pass-text\">{} certified, every applicable rule passed{beyond}</p>",
-            page.entries.len()
+            entries.len()
         )
     } else {
         format!(
             "<p class=\"verdict fail-text\">{failed} of {} failed</p>",
-            page.entries.len()
+            entries.len()
         )
     };
     let title = if failed == 0 { "passed" } else { "FAILED" };
@@ -81,47 +69,66 @@ fn render(page: &Page<'_>) -> String {
          <h1>refrast certify</h1>\n{verdict}\n"
     );
     h.push_str(&summary(page));
-    if page.entries.len() > 1 {
+    if entries.len() > 1 {
         h.push_str(&matrix(page));
     }
-    for (column, (subject, entry)) in page.entries.iter().enumerate() {
-        h.push_str(&section(page, column, subject, entry));
+    for (column, entry) in entries.iter().enumerate() {
+        h.push_str(&section(page, column, &entry.subject, entry));
     }
     h.push_str(&format!("<script>{SCRIPT}</script>\n</body>\n</html>\n"));
     h
 }
 
-/// When, which refrast, seed, cases, and the command line.
+/// When, which refrast, where, seed, cases, and the command line.
 fn summary(page: &Page<'_>) -> String {
-    let args = page.args;
-    let cases = match (args.cases, std::env::var("PROPTEST_CASES").ok()) {
+    let run = &page.doc.run;
+    let o = &run.options;
+    let cases = match (o.cases, &o.proptest_cases) {
         (Some(n), _) => format!("{n} per rule"),
         (None, Some(env)) => format!("PROPTEST_CASES={env}"),
         (None, None) => "each rule's default".to_owned(),
     };
-    let scale = if args.scale > 1 {
-        format!(", ×{}", args.scale)
+    let scale = if o.scale > 1 {
+        format!(", ×{}", o.scale)
     } else {
         String::new()
     };
-    let command: Vec<String> = std::env::args_os()
-        .map(|a| a.to_string_lossy().into_owned())
-        .collect();
+    let (date, time) = run
+        .started
+        .trim_end_matches('Z')
+        .split_once('T')
+        .unwrap_or((&run.started, ""));
     let mut rows = vec![
-        ("When", utc(page.when)),
-        ("refrast", env!("CARGO_PKG_VERSION").to_owned()),
-        ("Seed", page.options.seed.to_string()),
+        ("When", esc(&format!("{date} {time} UTC"))),
+        (
+            "refrast",
+            esc(&format!("{} ({})", run.refrast_version, run.git_revision)),
+        ),
+        (
+            "Host",
+            esc(&format!(
+                "{} ({} {}, {} processors)",
+                run.host.name, run.host.os, run.host.arch, run.host.cpus
+            )),
+        ),
+        ("Seed", o.seed.to_string()),
         ("Cases", format!("{cases}{scale}")),
         ("Rules", format!("{} selected", page.rules.len())),
         (
             "Command",
-            format!("<code>{}</code>", esc(&shell_words::join(command))),
+            format!("<code>{}</code>", esc(&shell_words::join(&run.command))),
         ),
     ];
-    if !page.left.is_empty() {
+    if let Some(shard) = o.shard {
+        rows.push((
+            "Shard",
+            format!("{shard} (--shard: this run's part of the rules)"),
+        ));
+    }
+    if !page.doc.not_certified.is_empty() {
         rows.push((
             "Not certified",
-            format!("{} (--fail-fast)", esc(&page.left.join(", "))),
+            format!("{} (--fail-fast)", esc(&page.doc.not_certified.join(", "))),
         ));
     }
     let rows: String = rows
@@ -134,7 +141,7 @@ fn summary(page: &Page<'_>) -> String {
 /// Rules as rows, implementations as columns, each cell linking to its detail.
 fn matrix(page: &Page<'_>) -> String {
     let mut h = String::from("<h2>Matrix</h2>\n<table class=\"matrix\">\n<tr><th>rule</th>");
-    for (column, (subject, _)) in page.entries.iter().enumerate() {
+    for (column, Entry { subject, .. }) in page.doc.implementations.iter().enumerate() {
         h.push_str(&format!(
             "<th><a href=\"#impl-{column}\">{}</a></th>",
             esc(label(subject))
@@ -143,20 +150,18 @@ fn matrix(page: &Page<'_>) -> String {
     h.push_str("</tr>\n");
     for (row, rule) in page.rules.iter().enumerate() {
         h.push_str(&format!("<tr><th class=\"rule\">{}</th>", esc(rule.id)));
-        for (column, (_, entry)) in page.entries.iter().enumerate() {
-            let cell = match entry {
-                Entry::Certified(report) if report.refused.is_some() => {
+        for (column, entry) in page.doc.implementations.iter().enumerate() {
+            let cell = match &entry.outcome {
+                Outcome::Certified(report) if report.refused.is_some() => {
                     "<span class=\"status fail\">refused</span>".to_owned()
                 }
-                Entry::Certified(report) => match report.rules.iter().find(|r| r.id == rule.id) {
-                    Some(r) if matches!(r.status, Status::Fail | Status::BeyondSpec) => {
-                        status_link(r.status, &format!("f{column}-{row}"))
-                    }
+                Outcome::Certified(report) => match report.rules.iter().find(|r| r.id == rule.id) {
+                    Some(r) if explained(r.status) => status_link(r.status, &format!("f{column}-{row}")),
                     Some(r) => status_link(r.status, &format!("r{column}-{row}")),
                     None => "<span class=\"status other\">not run</span>".to_owned(),
                 },
-                Entry::Skipped { .. } => "<span class=\"status other\">skipped</span>".to_owned(),
-                Entry::FailedToStart { .. } => "<span class=\"status fail\">no start</span>".to_owned(),
+                Outcome::Skipped { .. } => "<span class=\"status other\">skipped</span>".to_owned(),
+                Outcome::FailedToStart { .. } => "<span class=\"status fail\">no start</span>".to_owned(),
             };
             h.push_str(&format!("<td>{cell}</td>"));
         }
@@ -175,21 +180,25 @@ fn status_link(status: Status, anchor: &str) -> String {
     )
 }
 
-/// The CSS class of a status.
+/// The CSS class of a status: a crash, a timeout and a flake are failures, red as a fail.
 fn class(status: Status) -> &'static str {
     match status {
         Status::Pass => "pass",
-        Status::Fail => "fail",
+        Status::Fail | Status::Crash | Status::Timeout | Status::Flake => "fail",
         Status::NotApplicable => "na",
         Status::BeyondSpec => "beyond",
     }
 }
 
+/// Whether a status gets a section of its own below the table: every failure, and a failure
+/// beyond the claimed specification.
+fn explained(status: Status) -> bool {
+    status.is_failure() || status == Status::BeyondSpec
+}
+
 /// How the command line named a subject.
 fn label(subject: &Subject) -> &str {
-    match subject {
-        Subject::BuiltIn(name) | Subject::Exec(name) => name,
-    }
+    subject.name()
 }
 
 /// One implementation: its profile, its rules' table and its failures.
@@ -202,27 +211,27 @@ fn section(page: &Page<'_>, column: usize, subject: &Subject, entry: &Entry) -> 
         "<section id=\"impl-{column}\">\n<h2>{} <span class=\"why\">{how}</span></h2>\n",
         esc(label(subject))
     );
-    match entry {
-        Entry::Skipped { skipped, .. } => {
+    match &entry.outcome {
+        Outcome::Skipped { skipped, .. } => {
             h.push_str(&format!(
                 "<p><span class=\"status other\">skipped</span> {}</p>\n",
                 esc(skipped)
             ));
         }
-        Entry::FailedToStart { failed_to_start, .. } => {
+        Outcome::FailedToStart { failed_to_start, .. } => {
             h.push_str(&format!(
                 "<p><span class=\"status fail\">failed to start</span></p>\n<pre>{}</pre>\n",
                 esc(failed_to_start)
             ));
         }
-        Entry::Certified(report) if report.refused.is_some() => {
+        Outcome::Certified(report) if report.refused.is_some() => {
             h.push_str(&format!(
                 "<p><span class=\"status fail\">refused</span> {}</p>\n",
                 esc(report.refused.as_deref().unwrap_or(""))
             ));
             h.push_str(&profile(&report.profile));
         }
-        Entry::Certified(report) => {
+        Outcome::Certified(report) => {
             let (pass, fail, na) = report.tally();
             let beyond = match report.beyond_spec() {
                 0 => String::new(),
@@ -241,7 +250,7 @@ fn section(page: &Page<'_>, column: usize, subject: &Subject, entry: &Entry) -> 
                 if let Some(r) = report
                     .rules
                     .iter()
-                    .find(|r| r.id == rule.id && matches!(r.status, Status::Fail | Status::BeyondSpec))
+                    .find(|r| r.id == rule.id && explained(r.status))
                 {
                     h.push_str(&failure(page, column, row, subject, report, r));
                 }
@@ -300,9 +309,9 @@ fn table(page: &Page<'_>, column: usize, report: &Report) -> String {
             continue;
         };
         let status = match r.status {
-            Status::Fail | Status::BeyondSpec => status_link(r.status, &format!("f{column}-{row}")),
+            status if explained(status) => status_link(status, &format!("f{column}-{row}")),
             Status::Pass => format!("<span class=\"status pass\">{}</span>", r.status.label()),
-            Status::NotApplicable => format!(
+            _ => format!(
                 "<span class=\"status na\">n/a</span><span class=\"why\">{}</span>",
                 esc(r.message.as_deref().unwrap_or(""))
             ),
@@ -390,31 +399,9 @@ fn failure(
     }
     h.push_str(&format!(
         "<h4>Reproduce</h4>\n<pre><code>{}</code></pre>\n</div>\n",
-        esc(&reproduce(page, subject, r))
+        esc(&reproduce(&page.doc.run.options, subject, r))
     ));
     h
-}
-
-/// The command that runs this rule again on the same cases, quoted for a POSIX shell.
-fn reproduce(page: &Page<'_>, subject: &Subject, r: &RuleReport) -> String {
-    let mut words: Vec<String> = ["refrast", "certify"].into_iter().map(str::to_owned).collect();
-    words.extend(subject.flag().map(str::to_owned));
-    words.extend([
-        "--rule".to_owned(),
-        r.id.clone(),
-        "--seed".to_owned(),
-        r.seed.to_string(),
-    ]);
-    if r.planned > 0 {
-        words.extend(["--cases".to_owned(), r.planned.to_string()]);
-    }
-    if let Some(budget) = page.args.budget {
-        words.extend(["--budget".to_owned(), budget.to_string()]);
-    }
-    if page.options.case_timeout != DEFAULT_CASE_TIMEOUT {
-        words.extend(["--case-timeout".to_owned(), page.args.case_timeout.to_string()]);
-    }
-    shell_words::join(words)
 }
 
 /// `text` safe inside HTML elements and double-quoted attributes.
@@ -433,46 +420,15 @@ fn esc(text: &str) -> String {
     out
 }
 
-/// `when` as `YYYY-MM-DD HH:MM:SS UTC` (days to a civil date: Howard Hinnant's algorithm).
-fn utc(when: SystemTime) -> String {
-    let secs = when.duration_since(UNIX_EPOCH).map_or(0, |d| d.as_secs());
-    let (days, rest) = (secs / 86_400, secs % 86_400);
-    let z = days + 719_468;
-    let era = z / 146_097;
-    let doe = z % 146_097;
-    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
-    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-    let mp = (5 * doy + 2) / 153;
-    let day = doy - (153 * mp + 2) / 5 + 1;
-    let month = if mp < 10 { mp + 3 } else { mp - 9 };
-    let year = yoe + era * 400 + u64::from(month <= 2);
-    let (hour, minute, second) = (rest / 3600, rest % 3600 / 60, rest % 60);
-    format!("{year:04}-{month:02}-{day:02} {hour:02}:{minute:02}:{second:02} UTC")
-}
-
 #[cfg(test)]
 mod tests {
-    use super::{esc, utc};
-    use std::time::{Duration, UNIX_EPOCH};
+    use super::esc;
 
     #[test]
     fn escapes_markup_and_quotes() {
         assert_eq!(
             esc("<a href=\"x\">&'</a>"),
             "&lt;a href=&quot;x&quot;&gt;&amp;&#39;&lt;/a&gt;"
-        );
-    }
-
-    #[test]
-    fn dates_are_civil_utc() {
-        assert_eq!(utc(UNIX_EPOCH), "1970-01-01 00:00:00 UTC");
-        assert_eq!(
-            utc(UNIX_EPOCH + Duration::from_secs(951_827_696)),
-            "2000-02-29 12:34:56 UTC"
-        );
-        assert_eq!(
-            utc(UNIX_EPOCH + Duration::from_secs(1_735_689_599)),
-            "2024-12-31 23:59:59 UTC"
         );
     }
 }

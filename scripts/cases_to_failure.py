@@ -21,13 +21,13 @@ import tempfile
 
 
 def mutants(refrast):
-    """(name, family) of every mutant built-in, as `refrast impls` lists them."""
-    out = subprocess.run([refrast, "impls"], capture_output=True, text=True, check=True).stdout
+    """(name, family) of every mutant built-in, from `refrast impls --json`."""
+    out = subprocess.run([refrast, "impls", "--json"], capture_output=True, text=True, check=True).stdout
     found = []
-    for line in out.splitlines():
-        m = re.match(r"^(mutant:\S+).*\((\w+) rules must catch it\)", line)
-        if m:
-            found.append((m.group(1), m.group(2)))
+    for impl in json.loads(out):
+        m = re.match(r"^the (\w+) rules must catch it", impl["description"])
+        if impl["origin"] == "broken on purpose" and m:
+            found.append((impl["name"], m.group(1)))
     return found
 
 
@@ -43,12 +43,13 @@ def first_failure(refrast, name, family):
         if not os.path.exists(path):
             return None
         with open(path) as f:
-            rules = json.load(f)[0]["rules"]
+            rules = json.load(f)["implementations"][0]["rules"]
     total = 0
     for r in rules:
         total += r["cases"]
-        if r["status"] == "fail":
-            return {"rule": r["id"], "cases": r["cases"], "family_cases": total}
+        # A crash or a timeout stops --fail-fast too, but it is no catch: it is reported as such.
+        if r["status"] in ("fail", "flake", "crash", "timeout"):
+            return {"rule": r["id"], "cases": r["cases"], "family_cases": total, "status": r["status"]}
     return {"rule": None, "cases": None, "family_cases": total}
 
 
@@ -76,9 +77,12 @@ def main():
     for name, family in chosen:
         r = first_failure(args.refrast, name, family)
         results[name] = r
-        if r is None or r["rule"] is None:
+        crashed = r is not None and r.get("status") in ("crash", "timeout")
+        if r is None or r["rule"] is None or crashed:
             ok = False
         rule = f"`{r['rule']}`" if r and r["rule"] else "**not caught**"
+        if crashed:
+            rule += f" (**{r['status']}**: not a catch)"
         cases = r["cases"] if r and r["rule"] else "–"
         total = r["family_cases"] if r else "–"
         row = f"| `{name}` | {family} | {rule} | {cases} | {total} |"

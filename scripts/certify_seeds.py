@@ -6,9 +6,10 @@ Usage: scripts/certify_seeds.py [--seeds N] [--scale K] [--impl NAME ...] [--ref
 
 Runs `refrast certify --seed S --scale K` for seeds 1..N (and the default seed) per built-in.
 Refrast's own implementations (`ours` in `refrast impls`) must pass every rule at every seed,
-except where a rule states a known limit for that implementation in its sentence (KNOWN_LIMITS
-below, printed as such). A mutant or a course lab must fail at least one rule at every seed: a
-seed at which one passes is a seed the suite is blind at. The reference restricted to one setting
+except where a rule states a known limit for that implementation in its sentence (a `may-fail`
+line of expectations/ours.txt, printed as such). A mutant or a course lab must fail at least one rule at every seed: a
+seed at which one passes is a seed the suite is blind at, and a crash or a timeout is no catch
+(it is reported as a problem: the mutant, not the suite, broke). The reference restricted to one setting
 (`reference, restricted`: 36 of them) must pass like refrast's own, but only when named with
 --impl (the nightly workflow certifies them all at the default seed instead, with
 `refrast certify --impl 'restricted:*'`). Exit 0 when all of that holds, 1 when not, 2 when
@@ -17,30 +18,34 @@ refrast cannot be run.
 import argparse
 import json
 import os
-import re
 import subprocess
 import sys
 import tempfile
 import time
 
-# (implementation, rule): failures the rule's sentence states as the implementation's known
-# limit (`refrast rules` prints it). Both are clip-then-snap: the vertices clipping makes are
-# snapped to the grid, which moves a cut by up to half a subpixel.
-KNOWN_LIMITS = {
-    ("reference-4bit", "clip.mesh.watertight"),
-    ("reference-full-clip", "clip.interior.matches-raycast"),
-}
+# Failures the rules' sentences state as known limits of refrast's own implementations (both
+# are clip-then-snap), as `may-fail` lines: expectations/ours.txt.
+OURS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "expectations", "ours.txt")
+
+
+def known_limits(path=OURS):
+    """(implementation, rule) of every may-fail line of the expectation file."""
+    limits, section = set(), None
+    for line in open(path, encoding="utf-8"):
+        body = line.split("#", 1)[0].strip()
+        if body.startswith("["):
+            section = body.strip("[]").strip()
+        elif body and section and not body.startswith("taken "):
+            rule, status = body.split()
+            if status == "may-fail":
+                limits.add((section, rule))
+    return limits
 
 
 def builtins(refrast):
-    """Name → kind, as `refrast impls` prints them (unavailable ones left out)."""
-    out = subprocess.run([refrast, "impls"], capture_output=True, text=True, check=True).stdout
-    kinds = {}
-    for line in out.splitlines():
-        m = re.match(r"^(\S+)\s+.*?, (ours|broken on purpose|course lab|third party|reference, restricted): ", line)
-        if m:
-            kinds[m.group(1)] = m.group(2)
-    return kinds
+    """Name → origin, from `refrast impls --json` (unavailable ones left out)."""
+    out = subprocess.run([refrast, "impls", "--json"], capture_output=True, text=True, check=True).stdout
+    return {i["name"]: i["origin"] for i in json.loads(out) if i["available"]}
 
 
 def certify(refrast, name, seed, scale, folder):
@@ -52,7 +57,7 @@ def certify(refrast, name, seed, scale, folder):
     run = subprocess.run(args, capture_output=True, text=True)
     if run.returncode not in (0, 1):
         sys.exit(f"certify_seeds: `{' '.join(args)}` exited {run.returncode}:\n{run.stderr}")
-    return json.load(open(path))[0], time.monotonic() - start
+    return json.load(open(path))["implementations"][0], time.monotonic() - start
 
 
 def main():
@@ -65,6 +70,7 @@ def main():
     if not os.access(args.refrast, os.X_OK):
         sys.exit(f"certify_seeds: no {args.refrast}; build it with `cargo build --release -p refrast-cli`")
     kinds = builtins(args.refrast)
+    KNOWN_LIMITS = known_limits()
     names = args.impls or sorted(n for n, k in kinds.items() if k != "reference, restricted")
     seeds = [0x5EED_2026_0001] + list(range(1, args.seeds + 1))
     problems, limits = [], []
@@ -76,10 +82,14 @@ def main():
             if "skipped" in entry:
                 print(f"{name:28} seed {seed:<16} SKIPPED: {entry['skipped']}")
                 break
-            failed = [r["id"] for r in entry["rules"] if r["status"] == "fail"]
+            failed = [r["id"] for r in entry["rules"] if r["status"] in ("fail", "flake")]
+            broke = [f"{r['id']} ({r['status']})" for r in entry["rules"]
+                     if r["status"] in ("crash", "timeout")]
             known = [r for r in failed if (name, r) in KNOWN_LIMITS]
             print(f"{name:28} seed {seed:<16} {len(failed):2} failed ({secs:6.1f} s)"
-                  + (f"  {', '.join(failed)}" if failed else ""))
+                  + (f"  {', '.join(failed)}" if failed else "")
+                  + (f"  CRASHED: {', '.join(broke)}" if broke else ""))
+            problems += [f"{name} {b} at seed {seed}: a crash is neither a pass nor a catch" for b in broke]
             if kind in ("ours", "reference, restricted"):
                 limits += [(name, seed, r) for r in known]
                 problems += [f"{name} fails {r} at seed {seed}" for r in failed if r not in known]

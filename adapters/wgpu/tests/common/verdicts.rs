@@ -1,53 +1,36 @@
-//! A driver's verdicts pinned rule by rule: which rules fail, which fail only beyond the
-//! specification the profile claims, which do not apply; every other rule passes.
+//! A driver's verdicts checked against its expectation file, `expectations/NAME.txt` (the file
+//! `.ci/run` gives `refrast certify --expect`): a rule that fails, passes or changes status
+//! against it is reported, with the line to change.
 
-use refrast_conformance::{Report, Status};
+use std::path::PathBuf;
 
-/// Space-separated rule IDs per status other than pass.
-pub struct Pinned {
-    /// Failures of conformance to the claimed specification.
-    pub fail: &'static str,
-    /// Failures on what the claimed specification leaves open (`beyond-spec`).
-    pub beyond: &'static str,
-    /// Rules that do not apply to the profile.
-    pub not_applicable: &'static str,
+use refrast_conformance::Report;
+use refrast_conformance::expect::Expectations;
+
+/// The expectation file of the implementation `name`.
+pub fn file(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../expectations")
+        .join(format!("{name}.txt"))
 }
 
-impl Pinned {
-    /// The status pinned for rule `id`.
-    pub fn status(&self, id: &str) -> Status {
-        let listed = |list: &str| list.split_whitespace().any(|r| r == id);
-        if listed(self.fail) {
-            Status::Fail
-        } else if listed(self.beyond) {
-            Status::BeyondSpec
-        } else if listed(self.not_applicable) {
-            Status::NotApplicable
-        } else {
-            Status::Pass
-        }
-    }
-
-    /// Every rule of `report` whose status is not the pinned one, with its message.
-    pub fn moved(&self, report: &Report) -> Vec<String> {
-        report
-            .rules
-            .iter()
-            .filter(|r| r.status != self.status(&r.id))
-            .map(|r| {
-                format!(
-                    "{}: expected {}, got {} ({:?})",
-                    r.id,
-                    self.status(&r.id).label(),
-                    r.status.label(),
-                    r.message
-                )
-            })
-            .collect()
-    }
+/// Every rule of `report` whose status `expectations/NAME.txt` does not accept for `name`.
+pub fn moved(name: &str, report: &Report) -> Vec<String> {
+    let path = file(name);
+    let expect = Expectations::load(std::slice::from_ref(&path)).unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        expect.section(name).is_some(),
+        "{} has no section [{name}]",
+        path.display()
+    );
+    expect
+        .check(name, report)
+        .iter()
+        .map(ToString::to_string)
+        .collect()
 }
 
-/// The closing line of a pinned certification.
+/// The closing line of a certification checked against its expectations.
 pub fn tally(name: &str, report: &Report, cases: u32) -> String {
     let (pass, fail, na) = report.tally();
     format!(

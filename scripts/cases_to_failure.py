@@ -62,6 +62,8 @@ def main():
     args = ap.parse_args()
     if not os.path.exists(args.refrast):
         sys.exit(f"cases_to_failure: no binary at {args.refrast}; build it with `cargo build --release -p refrast-cli`")
+    # certify runs in a scratch folder: a relative path must still name the binary.
+    args.refrast = os.path.abspath(args.refrast)
     before = {}
     if args.before:
         with open(args.before) as f:

@@ -162,7 +162,9 @@ fn a_child_declaring_no_cull_mode_is_refused_and_the_run_goes_on() {
         report["implementations"][0]["rules"][0]["status"], "pass",
         "the reference, before it, is certified"
     );
-    let why = report["implementations"][1]["failed_to_start"].as_str().unwrap_or_default();
+    let why = report["implementations"][1]["failed_to_start"]
+        .as_str()
+        .unwrap_or_default();
     assert!(why.contains("cull") && why.contains("one or more of"), "{why}");
 }
 

@@ -2,6 +2,19 @@
 
 use std::fmt;
 
+/// Why an implementation cannot be built on this machine (no driver, no such adapter): a
+/// runner reports it and skips the implementation instead of judging it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Unavailable(pub String);
+
+impl fmt::Display for Unavailable {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for Unavailable {}
+
 /// A configuration value out of its documented range.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ConfigError {

@@ -21,14 +21,14 @@
 //!
 //! | what | where | key items |
 //! |---|---|---|
-//! | the contract | `rasterizer.rs` | [`Rasterizer`], [`Draw`], [`DrawState`], [`Fragment`], [`Resolved`] |
+//! | the contract | `rasterizer.rs` | [`Rasterizer`], [`Draw`], [`Fragment`], [`Resolved`] |
 //! | what an implementation declares | `profile.rs`, `features.rs` | [`Profile`], [`Snapping`], [`Spec`], [`Features`], [`Supported`], [`SnapAccuracy`] |
-//! | state | `setup.rs`, `depth.rs` | [`CullMode`], [`FrontFace`], [`DepthState`], [`CompareOp`], [`DepthRange`] |
+//! | state | `state.rs`, `setup.rs`, `depth.rs` | [`DrawState`], [`CullMode`], [`FrontFace`], [`DepthState`], [`CompareOp`], [`DepthRange`] |
 //! | the reference | `reference.rs` | [`Reference`], [`ReferenceConfig`], [`Traversal`], [`ClipMode`], [`DrawStats`], [`Sample`] |
 //! | fixed point | `fixed.rs` | [`SubpixelBits`], [`FixedPoint`], [`snap`], [`SnapRounding`], [`COORD_LIMIT`] |
 //! | viewport | `viewport.rs` | [`Viewport`], [`MAX_VIEWPORT`] |
 //! | edge functions, fill rule | `edge.rs` | [`orient2d`], [`is_top_left`], [`FillConvention`] |
-//! | errors | `error.rs` | [`DrawError`], [`ConfigError`] |
+//! | errors | `error.rs` | [`DrawError`], [`ConfigError`], [`Unavailable`] |
 //! | clipping | `clip.rs` | [`stage::assemble`], [`stage::clip_triangle`], [`stage::clip_segment`], [`stage::clip_planes`] |
 //! | projection | `project.rs` | [`stage::ViewportTransform`], [`stage::RasterVertex`] |
 //! | setup, facing | `setup.rs` | [`stage::snap_before_clipping`], [`stage::drawn_winding`], [`stage::clipped_winding`], [`Winding`], [`stage::TriangleSetup`] |
@@ -104,17 +104,19 @@ mod reference;
 pub mod scenes;
 mod setup;
 pub mod stage;
+mod state;
 mod traverse;
 mod viewport;
 
 pub use clip::ClipMode;
 pub use depth::{CompareOp, DepthRange, DepthState};
 pub use edge::{FillConvention, is_top_left, orient2d};
-pub use error::{ConfigError, DrawError};
+pub use error::{ConfigError, DrawError, Unavailable};
 pub use features::{Features, Setting, SnapAccuracy, Supported};
 pub use fixed::{COORD_LIMIT, FixedPoint, SnapRounding, SubpixelBits, snap};
 pub use profile::{DepthConvention, Profile, Snapping, Spec};
-pub use rasterizer::{Draw, DrawState, Fragment, Rasterizer, Resolved};
+pub use rasterizer::{Draw, Fragment, Rasterizer, Resolved};
 pub use reference::{DrawStats, Reference, ReferenceConfig, Sample, Traversal};
 pub use setup::{CullMode, FrontFace, Winding};
+pub use state::DrawState;
 pub use viewport::{GUARD_BAND_REACH, MAX_VIEWPORT, Viewport};

@@ -8,8 +8,9 @@ use crate::depth::fragment_depth;
 use crate::error::{ConfigError, DrawError};
 use crate::interp::{Varyings, interpolate};
 use crate::line::{LineVertex, rasterize_line, rasterize_point};
-use crate::rasterizer::{Draw, DrawState};
+use crate::rasterizer::Draw;
 use crate::reference::{DrawStats, Reference};
+use crate::state::DrawState;
 use crate::viewport::Viewport;
 
 /// A vertex with the attributes the labs use.

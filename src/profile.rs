@@ -6,7 +6,7 @@ use std::fmt;
 
 use crate::edge::FillConvention;
 use crate::features::{Features, SnapAccuracy};
-use crate::rasterizer::DrawState;
+use crate::state::DrawState;
 
 /// How an implementation places vertices before it decides coverage.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -200,7 +200,7 @@ mod tests {
     use crate::features::Supported;
     use crate::setup::{CullMode, FrontFace};
 
-    /// The words `certify` prints for a profile's snapping (README, "Certified implementations").
+    /// The words `certify` prints for a profile's snapping (docs/certified.md).
     #[test]
     fn snapping_reads_as_certify_prints_it() {
         assert_eq!(Snapping::Grid(8).to_string(), "8 subpixel bits");

@@ -1,25 +1,9 @@
 //! The `Rasterizer` trait: the contract the conformance suite certifies, and its data types.
 
-use crate::depth::{DepthRange, DepthState};
 use crate::error::DrawError;
 use crate::profile::Profile;
-use crate::setup::{CullMode, FrontFace};
+use crate::state::DrawState;
 use crate::viewport::Viewport;
-
-/// Everything about a draw besides its geometry.
-#[derive(Clone, Copy, Debug, PartialEq, Default)]
-pub struct DrawState {
-    /// Facing to discard.
-    pub cull: CullMode,
-    /// Which winding is front-facing.
-    pub front_face: FrontFace,
-    /// Depth test and write.
-    pub depth: DepthState,
-    /// The clip volume's z range.
-    pub depth_range: DepthRange,
-    /// Whether triangles are clipped at the far plane `z = w` (near is always clipped).
-    pub clip_far: bool,
-}
 
 /// One draw call: clip-space vertices, triangles indexing them, and state.
 ///
@@ -79,7 +63,7 @@ pub struct Fragment {
     pub barycentric: [f32; 3],
     /// Screen-space (affine) barycentrics, where the implementation can give them.
     pub screen_barycentric: Option<[f32; 3]>,
-    /// Whether the triangle faces the viewer under the draw's [`FrontFace`].
+    /// Whether the triangle faces the viewer under the draw's [`FrontFace`](crate::FrontFace).
     pub front_facing: bool,
 }
 

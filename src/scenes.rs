@@ -15,9 +15,10 @@ use crate::rasterizer::Draw;
 use crate::reference::{Reference, ReferenceConfig, Traversal};
 use crate::viewport::Viewport;
 
-/// A built-in scene: its name (as `refrast render` takes it) and what it shows.
+/// A built-in scene's name (as `refrast render` takes it) and what it shows: the one type for
+/// it, which `refrast-render` lists its own scenes with too.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Scene {
+pub struct SceneInfo {
     /// The name.
     pub name: &'static str,
     /// One line on what it draws.
@@ -25,24 +26,24 @@ pub struct Scene {
 }
 
 /// Every built-in scene.
-pub const SCENES: [Scene; 5] = [
-    Scene {
+pub const SCENES: [SceneInfo; 5] = [
+    SceneInfo {
         name: "lab000-ndc",
         description: "lab 000 step 1: a white triangle given in NDC, every pixel tested",
     },
-    Scene {
+    SceneInfo {
         name: "lab000-world",
         description: "lab 000 step 2: a white world-space triangle seen from (0, 0, -10) with a 60° FOV",
     },
-    Scene {
+    SceneInfo {
         name: "lab000-rgb",
         description: "lab 000 step 3: a red-green-blue triangle, colours interpolated by barycentrics",
     },
-    Scene {
+    SceneInfo {
         name: "lab000-depth",
         description: "lab 000 step 4: a red triangle in front of the RGB one, depth-tested, every pixel tested",
     },
-    Scene {
+    SceneInfo {
         name: "lab000-bbox",
         description: "lab 000 step 5: step 4 with bounding-box traversal (identical image)",
     },
@@ -99,6 +100,9 @@ fn rgb_vertices() -> [Vertex; 3] {
 }
 
 /// A scene ready to draw: its mesh, camera and projection, and the renderer set up as the lab step does.
+///
+/// Fixed as the lab fixes it; `refrast-render`'s `Setup` builds on it with what a command line
+/// may change (camera framing, shading, light, background, size).
 #[derive(Clone, Debug)]
 pub struct SceneSetup {
     /// The triangles with their colours.

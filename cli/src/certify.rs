@@ -10,7 +10,7 @@ use std::process::ExitCode;
 use std::time::{Duration, Instant, SystemTime};
 
 use refrast_conformance::{
-    BuiltIn, Options, Process, Report, RuleReport, Shard, Status, catalogue, matches, selected,
+    Options, Process, Report, RuleReport, Shard, Status, catalogue, matches, selected,
 };
 
 pub use child::{RunRuleArgs, run_rule, this_program};
@@ -20,15 +20,17 @@ use crate::results::outputs::{Outputs, write_outputs};
 use crate::results::{
     DEFAULT_EXEC_BUDGET, Document, Entry, Host, Outcome, Run, RunOptions, SCHEMA_VERSION, Subject,
 };
-use crate::{all_builtins, find_builtin, say};
+use refrast_registry::{BuiltIn, Origin};
+
+use crate::say;
 
 /// The built-ins `pattern` names: one by its name, or every one a glob with `*` matches (in
 /// `refrast impls` order); an error that lists the names when none is found.
 fn find_builtins(pattern: &str) -> Result<Vec<BuiltIn>, String> {
     if !pattern.contains('*') {
-        return find_builtin(pattern).map(|b| vec![b]);
+        return refrast_registry::find(pattern).map(|b| vec![b]);
     }
-    let found: Vec<BuiltIn> = all_builtins()
+    let found: Vec<BuiltIn> = refrast_registry::all()
         .into_iter()
         .filter(|b| matches(pattern, &b.name))
         .collect();
@@ -48,7 +50,7 @@ pub struct Args {
     #[arg(long = "impl", value_name = "NAME")]
     impls: Vec<String>,
     /// A rasterizer in any language to certify: the command that starts it, speaking the pipe
-    /// protocol of PROTOCOL.md (repeatable; certified after the --impl ones).
+    /// protocol of docs/protocol.md (repeatable; certified after the --impl ones).
     #[arg(long = "exec", value_name = "CMD")]
     execs: Vec<String>,
     /// Seconds of wall time per rule after which no new case starts; the report says how many
@@ -251,9 +253,9 @@ fn choose(args: &Args) -> Result<Vec<BuiltIn>, String> {
         return Ok(Vec::new());
     }
     if args.impls.is_empty() {
-        return Ok(all_builtins()
+        return Ok(refrast_registry::all()
             .into_iter()
-            .filter(|b| b.origin == refrast_conformance::Origin::Ours)
+            .filter(|b| b.origin == Origin::Ours)
             .collect());
     }
     let mut chosen = Vec::new();

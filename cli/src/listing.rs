@@ -3,11 +3,12 @@
 
 use std::process::ExitCode;
 
-use refrast_conformance::{BuiltIn, Origin, ProfileReport, catalogue};
+use refrast_conformance::{ProfileReport, catalogue};
+use refrast_registry::{BuiltIn, Origin};
 use serde_json::json;
 
 use crate::certify::this_program;
-use crate::{all_builtins, say};
+use crate::say;
 
 /// Lists the rules: a line each, or a JSON array.
 pub fn rules(as_json: bool) -> ExitCode {
@@ -45,7 +46,7 @@ pub fn rules(as_json: bool) -> ExitCode {
 /// built here says why. `only` lists one, built in this process (what the listing's children
 /// run).
 pub fn impls(as_json: bool, only: Option<&str>) -> ExitCode {
-    let all: Vec<BuiltIn> = all_builtins()
+    let all: Vec<BuiltIn> = refrast_registry::all()
         .into_iter()
         .filter(|b| only.is_none_or(|name| b.name == name))
         .collect();

@@ -11,7 +11,6 @@ mod view;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use refrast_conformance::BuiltIn;
 
 /// refrast: a reference triangle rasterizer and conformance suite.
 #[derive(Parser, Debug)]
@@ -27,7 +26,7 @@ enum Command {
     Certify(certify::Args),
     /// List the rules: ID, kind, family, source, sentence.
     Rules {
-        /// Print the README's table instead: `| rule | kind | sentence |`.
+        /// Print the table of docs/rules.md instead: `| rule | kind | sentence |`.
         #[arg(long, conflicts_with = "levels")]
         markdown: bool,
         /// Print what Vulkan, OpenGL and D3D11.3 each require of every rule (docs/levels.md).
@@ -101,29 +100,4 @@ pub(crate) fn say(line: &str) {
     if writeln!(std::io::stdout().lock(), "{line}").is_err() {
         std::process::exit(0);
     }
-}
-
-/// The built-in called `name`, or a message listing every name.
-pub(crate) fn find_builtin(name: &str) -> Result<BuiltIn, String> {
-    let mut all = all_builtins();
-    match all.iter().position(|b| b.name == name) {
-        Some(i) => Ok(all.swap_remove(i)),
-        None => {
-            let names: Vec<_> = all.iter().map(|b| b.name.as_str()).collect();
-            Err(format!(
-                "no implementation named '{name}'; the built-ins are: {}",
-                names.join(", ")
-            ))
-        }
-    }
-}
-
-/// The reference's configurations, then the zoo: mutants and course rasterizers.
-pub(crate) fn all_builtins() -> Vec<BuiltIn> {
-    let mut all = refrast_conformance::builtins();
-    all.extend(refrast_zoo::builtins());
-    all.extend(refrast_euc::builtins());
-    all.extend(refrast_wgpu::builtins());
-    all.extend(refrast_fast::builtins());
-    all
 }

@@ -5,10 +5,8 @@ use std::path::Path;
 
 use glam::Vec3;
 use refrast::{CullMode, DrawState, FrontFace, MAX_VIEWPORT, Rasterizer, Reference, ReferenceConfig};
-use refrast_render::scene::{self, Camera, Setup};
+use refrast_render::scene::{self, Framed, Setup};
 use refrast_render::{Job, Light, Mode, Overrides, Sampling, Shading, Texture, load};
-
-use crate::find_builtin;
 
 /// The options of a scene and its draw, flattened into `render`'s and `view`'s arguments.
 #[derive(clap::Args, Debug)]
@@ -96,7 +94,7 @@ pub struct Prepared {
     /// The camera options given.
     pub overrides: Overrides,
     /// The camera for `size`.
-    pub camera: Camera,
+    pub camera: Framed,
     /// The light, with the options applied.
     pub light: Light,
     /// Whether the light is the headlight that follows the eye (no scene light, no `--light`).
@@ -114,7 +112,7 @@ pub struct Prepared {
 impl Prepared {
     /// The draw of this scene in `mode` as seen by `camera` under `light`.
     #[must_use]
-    pub fn job(&self, mode: Mode, camera: &Camera, light: Light, state: DrawState) -> Job<'_> {
+    pub fn job(&self, mode: Mode, camera: &Framed, light: Light, state: DrawState) -> Job<'_> {
         Job {
             mesh: &self.setup.mesh,
             view_projection: camera.view_projection,
@@ -216,7 +214,7 @@ pub fn rasterizer(name: &str, setup: &Setup) -> Result<Box<dyn Rasterizer>, Fail
             ..ReferenceConfig::default()
         })));
     }
-    let b = find_builtin(name).map_err(|e| Failure(e, 2))?;
+    let b = refrast_registry::find(name).map_err(|e| Failure(e, 2))?;
     b.build()
         .map_err(|why| Failure(format!("{name} is not available here: {why}"), 2))
 }

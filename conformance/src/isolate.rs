@@ -19,11 +19,10 @@ use std::sync::mpsc::{self, RecvTimeoutError};
 use std::thread;
 use std::time::Instant;
 
-use refrast::Rasterizer;
+use refrast::{Rasterizer, Unavailable};
 use serde::{Deserialize, Serialize};
 
 use crate::certify::{Options, cases_for, refusal, run_rule, run_selected};
-use crate::impls::Unavailable;
 use crate::process::{Tail, status_words};
 use crate::report::{ProfileReport, Report, RuleReport, Status};
 use crate::rules::{Rule, catalogue};

@@ -16,9 +16,9 @@
 //! | 9 | `certify` | [`certify`], [`Options`] |
 //! | 10 | [`isolate`], [`expect`] | rules in child processes: a hang is a `timeout`, an abort or a crash a `crash` of the rule it was running; expectation files |
 //! | 11 | `harness`, [`fuzz`] | [`run_as_tests`]: one test per rule in your own crate; the cargo-fuzz targets as functions on any rasterizer |
-//! | — | `impls` | [`builtins`]: the implementations `refrast certify --impl` knows (refrast only) |
+//! | — | `named` | [`Named`]: the reference under another name and configuration |
 //! | — | [`restricted`] | the reference restricted to one setting or a few, declaring and using only those (refrast only) |
-//! | — | [`process`] | [`Process`]: a rasterizer in any language, in a child speaking `PROTOCOL.md` (refrast only) |
+//! | — | [`process`] | [`Process`]: a rasterizer in any language, in a child speaking `docs/protocol.md` (refrast only) |
 //!
 //! # Kinds and tolerance
 //!
@@ -33,8 +33,8 @@ mod certify;
 pub mod expect;
 pub mod fuzz;
 mod harness;
-mod impls;
 pub mod isolate;
+mod named;
 pub mod oracle;
 pub mod picture;
 pub mod process;
@@ -52,7 +52,7 @@ pub use certify::{
     selected,
 };
 pub use harness::{failure_text, run_as_tests};
-pub use impls::{BuiltIn, Maker, Named, Origin, Unavailable, builtins};
+pub use named::Named;
 pub use process::{Process, ProcessError};
 pub use report::{ProfileReport, Report, RuleReport, Status, feature_list, fill_name};
 pub use rules::meta::Translated;

@@ -25,7 +25,10 @@ pub trait Case: Sized {
 
 /// One draw call as the rules generate it; `Debug` prints Rust that rebuilds it.
 ///
-/// Paste a counterexample after `use refrast::*; use refrast_conformance::*;`.
+/// Paste a counterexample after `use refrast::*; use refrast_conformance::*;`. Not a
+/// [`Draw`]: a scene keeps the viewport's sides as generated (they may be out of range, which a
+/// [`Viewport`] cannot be), shrinks triangle by triangle, and prints as code; [`Scene::draw`]
+/// makes the draw.
 #[derive(Clone, PartialEq)]
 pub struct Scene {
     /// Viewport width in pixels.

@@ -15,7 +15,7 @@ pub enum Status {
     #[serde(rename = "n/a")]
     NotApplicable,
     /// A case failed, on something the specification the profile claims does not require
-    /// ([`RuleReport::spec_note`] says why): not a failure of conformance, and not a pass.
+    /// ([`crate::RuleReport::spec_note`] says why): not a failure of conformance, and not a pass.
     #[serde(rename = "beyond-spec")]
     BeyondSpec,
     /// The rasterizer panicked, or its process died, on a case: no answer to judge.

@@ -40,7 +40,6 @@ use std::sync::Arc;
 
 use rayon::ThreadPool;
 use refrast::{Draw, DrawError, Fragment, Profile, Rasterizer, Reference, ReferenceConfig, Resolved};
-use refrast_conformance::{BuiltIn, Origin};
 
 use crate::drive::Buffers;
 use crate::sink::{BandRows, ResolveBand, ShadeBand};
@@ -226,15 +225,4 @@ impl Rasterizer for Fast {
             primitive,
         })
     }
-}
-
-/// `fast` for `refrast certify --impl` and `refrast impls`.
-#[must_use]
-pub fn builtins() -> Vec<BuiltIn> {
-    vec![BuiltIn::new(
-        "fast",
-        "the reference's output, fast: 64×64 tiles over threads, 8×8 blocks accepted or rejected whole",
-        Origin::Ours,
-        || Box::new(Fast::default()),
-    )]
 }

@@ -1,10 +1,12 @@
 //! Any built-in implementation (`refrast impls`: the reference variants, the mutants, the course
-//! rasterizers, `fast`) under any target's check but `pipeline`, chosen by the environment:
+//! rasterizers, `fast`; not the third parties, which `refrast-registry` leaves out here so that
+//! wgpu is not built under the sanitizers) under any target's check but `pipeline`, chosen by
+//! the environment:
 //! `REFRAST_FUZZ_IMPL` (default `reference`) and `REFRAST_FUZZ_TARGET` (default `watertight`).
 //! Bytes decode exactly as that target's own `fuzz_target!` decodes them, so corpora are shared.
 //!
 //! `REFRAST_FUZZ_EXEC="python3 my_raster.py"` fuzzes a rasterizer in any language instead,
-//! through the pipe protocol (PROTOCOL.md): one child, started once and restarted after it
+//! through the pipe protocol (docs/protocol.md): one child, started once and restarted after it
 //! misbehaves, whose crash, hang or garbled answer is a finding like any other.
 #![no_main]
 
@@ -12,7 +14,8 @@ use std::sync::{Mutex, OnceLock};
 
 use libfuzzer_sys::fuzz_target;
 use refrast_conformance::fuzz::{Outcome, Target};
-use refrast_conformance::{BuiltIn, Process};
+use refrast_conformance::Process;
+use refrast_registry::BuiltIn;
 
 /// The child named by `REFRAST_FUZZ_EXEC`, if any; exits 2 saying why when it cannot start.
 fn process() -> Option<&'static Mutex<Process>> {
@@ -40,9 +43,7 @@ fn chosen() -> &'static (Target, BuiltIn) {
             var("REFRAST_FUZZ_IMPL", "reference"),
             var("REFRAST_FUZZ_TARGET", "watertight"),
         );
-        let mut all = refrast_conformance::builtins();
-        all.extend(refrast_zoo::builtins());
-        all.extend(refrast_fast::builtins());
+        let all = refrast_registry::all();
         let names: Vec<String> = all.iter().map(|b| b.name.clone()).collect();
         let Some(built_in) = all.into_iter().find(|b| b.name == impl_name) else {
             eprintln!(

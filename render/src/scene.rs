@@ -3,6 +3,7 @@
 
 use glam::{Mat4, Vec3};
 use refrast::pipeline::Mesh;
+use refrast::scenes::SceneInfo;
 use refrast::{CullMode, DrawState, Traversal};
 
 use crate::geometry::{bounds, smooth_normals, to_left_handed};
@@ -24,6 +25,9 @@ pub enum Framing {
 }
 
 /// A scene ready to draw: the mesh and the defaults that the command line may override.
+///
+/// Not [`refrast::scenes::SceneSetup`], which fixes the camera and projection as lab 000 does:
+/// this one keeps how the scene is framed, so that `--eye`, `--fov` and the viewer can move it.
 #[derive(Clone, Debug)]
 pub struct Setup {
     /// The triangles, in world space (clip space under [`Framing::ClipSpace`]).
@@ -44,9 +48,12 @@ pub struct Setup {
     pub size: (u32, u32),
 }
 
-/// A camera and where its eye is.
+/// A scene's view resolved for one picture: world to clip space, and where the eye is.
+///
+/// No camera of its own: the camera is [`View`]'s (built on refrast's
+/// [`Camera`](refrast::camera::Camera)); this is what drawing needs once the aspect is known.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Camera {
+pub struct Framed {
     /// World to clip space.
     pub view_projection: Mat4,
     /// The eye, for lighting.
@@ -58,11 +65,11 @@ pub struct Camera {
 impl Setup {
     /// The scene's camera for a target of the given aspect ratio, with the command line's
     /// choices applied (a clip-space scene gets a framed camera once any is given).
-    pub fn camera(&self, aspect: f32, overrides: &Overrides) -> Result<Camera, ViewError> {
+    pub fn camera(&self, aspect: f32, overrides: &Overrides) -> Result<Framed, ViewError> {
         let bounds = bounds(&self.mesh).unwrap_or((Vec3::splat(-1.0), Vec3::ONE));
         let base = match self.framing {
             Framing::ClipSpace if !overrides.any() => {
-                return Ok(Camera {
+                return Ok(Framed {
                     view_projection: Mat4::IDENTITY,
                     eye: Vec3::new(0.0, 0.0, -1.0),
                     view: None,
@@ -73,7 +80,7 @@ impl Setup {
         };
         let view = base.with(overrides, bounds);
         view.validate()?;
-        Ok(Camera {
+        Ok(Framed {
             view_projection: view.view_projection(aspect),
             eye: view.eye,
             view: Some(view),
@@ -82,7 +89,7 @@ impl Setup {
 
     /// The light: the scene's, or a headlight a little above and to the left of the eye.
     #[must_use]
-    pub fn light(&self, camera: &Camera) -> Light {
+    pub fn light(&self, camera: &Framed) -> Light {
         self.light.unwrap_or_else(|| {
             let offset = camera.view.map_or(Vec3::ZERO, |v| {
                 let (right, up, _) = v.camera().basis();
@@ -121,15 +128,6 @@ impl Setup {
             size: refrast::scenes::DEFAULT_SIZE,
         }
     }
-}
-
-/// A built-in scene's name and what it shows.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct SceneInfo {
-    /// The name `refrast render` takes.
-    pub name: &'static str,
-    /// One line on what it draws.
-    pub description: &'static str,
 }
 
 /// The scenes besides lab 000's (which [`refrast::scenes::SCENES`] lists).
@@ -187,14 +185,7 @@ const MORE: [SceneInfo; 12] = [
 /// Every built-in scene: lab 000's steps first.
 #[must_use]
 pub fn scenes() -> Vec<SceneInfo> {
-    refrast::scenes::SCENES
-        .iter()
-        .map(|s| SceneInfo {
-            name: s.name,
-            description: s.description,
-        })
-        .chain(MORE)
-        .collect()
+    refrast::scenes::SCENES.into_iter().chain(MORE).collect()
 }
 
 /// The fixed camera of the clipped scenes: at (0, 0, −3) looking at the origin, 50°, near 0.5.

@@ -19,7 +19,10 @@ pub enum Lens {
     },
 }
 
-/// A camera and its lens.
+/// A camera and its lens, as the command line gives them.
+///
+/// Built on refrast's [`Camera`] ([`View::camera`]), and keeps the point looked at, which a
+/// camera does not: framing a mesh and placing the headlight measure the distance to it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct View {
     /// Where the eye is.

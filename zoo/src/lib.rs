@@ -8,13 +8,3 @@
 
 pub mod course;
 pub mod mutant;
-
-use refrast_conformance::BuiltIn;
-
-/// Every zoo implementation, mutants first, as `refrast certify --impl` names them.
-#[must_use]
-pub fn builtins() -> Vec<BuiltIn> {
-    let mut all = mutant::builtins();
-    all.extend(course::builtins());
-    all
-}

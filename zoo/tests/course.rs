@@ -138,7 +138,7 @@ fn course_rasterizers_survive_bad_numbers() {
         1e-40,
         3e4,
     ];
-    for b in course::builtins() {
+    for lab in course::labs() {
         for &v in &bad {
             let draw = Draw::new(
                 viewport,
@@ -150,34 +150,22 @@ fn course_rasterizers_survive_bad_numbers() {
                 ],
                 vec![[0, 1, 2], [0, 3, 1], [3, 3, 3], [2, 1, 0]],
             );
-            let fragments = b
-                .build()
-                .expect("course labs build anywhere")
-                .rasterize(&draw)
-                .expect("valid indices");
+            let fragments = (lab.make)().rasterize(&draw).expect("valid indices");
             assert!(
                 fragments.iter().all(|f| (0.0..=1.0).contains(&f.depth)),
                 "{}",
-                b.name
+                lab.name
             );
         }
         let empty = Draw::new(viewport, Vec::new(), Vec::new());
         assert!(
-            b.build()
-                .expect("course labs build anywhere")
+            (lab.make)()
                 .rasterize(&empty)
                 .expect("nothing to draw")
                 .is_empty()
         );
         let out_of_range = Draw::new(viewport, vec![[0.0; 4]], vec![[0, 0, 1]]);
-        assert!(
-            b.build()
-                .expect("course labs build anywhere")
-                .rasterize(&out_of_range)
-                .is_err(),
-            "{}",
-            b.name
-        );
+        assert!((lab.make)().rasterize(&out_of_range).is_err(), "{}", lab.name);
     }
 }
 
@@ -207,8 +195,8 @@ const EXPECTED: [Expected; 3] = [
         fail_later: "",
         // meta.facing.from-winding: dividing by a negative w mirrors a vertex (no clipping), so a
         // triangle reaching behind the eye gets the wrong facing; found at 300 cases once
-        // crossing scenes changed (issue 12). The barycentric rules judge its screen-space
-        // weights since they judge whichever kind a profile declares (issue 26): a vertex on a
+        // crossing scenes were widened (docs/reach.md). The barycentric rules judge its
+        // screen-space weights since they judge whichever kind a profile declares: a vertex on a
         // sample is weighed at the pixel's corner (bary.vertex.one, as
         // bary.screen.reconstructs-sample), and a vertex behind the eye, divided by its negative
         // w, gives weights outside [0, 1] (bary.range.unit). Its sums are off by 1.2e-5 at case
@@ -235,22 +223,22 @@ const EXPECTED: [Expected; 3] = [
                meta.reversal.flips-facing meta.degenerate.empty",
         // Row ends drawn whole put a sample 2.0 px outside an edge at case 203 of the default
         // seed (`certify --impl lab002-scanline --rule fill.interior`): since a profile snapping
-        // within one step is judged outside two steps of an edge (issue 26), 200 cases no longer
-        // reach it.
+        // within one step is judged outside two steps of an edge (docs/profiles.md), 200 cases
+        // no longer reach it.
         fail_later: "fill.interior.matches-raycast",
         // Its sums drift by interpolating along edges: 1.6e-6 at 200 cases, inside three times
         // the 2^-18 it claims; 20 000 cases find 1.5e-5 (`certify --impl lab002-scanline
         // --rule bary.sum.one --cases 20000`).
-        // Its profile says what truncation is since issue 26: snapping within one step of a
-        // vertex's position, not to the nearest grid point. Held to that, moving it by whole
-        // pixels, drawing it in a larger viewport and its facing (by its own truncated
+        // Its profile says what its truncation is (profiles declare it): snapping within one
+        // step of a vertex's position, not to the nearest grid point. Held to that, moving it
+        // by whole pixels, drawing it in a larger viewport and its facing (by its own truncated
         // vertices) pass 10 000, 5 000 and 6 000 cases; they failed when it was judged as if
         // it rounded to nearest.
         pass: "bary.sum.one meta.translate.whole-pixels meta.viewport.neutral meta.facing.from-winding \
                meta.translate.one-subpixel meta.batch.independent robust.non-finite.discarded \
                robust.bit-patterns.sane-output robust.output.well-formed robust.bad-index.error",
-        // bary.vertex.one: its whole-pixel grid puts no vertex on a sample centre (issue 26: the
-        // rule judges vertices where they are drawn; before, it judged a vertex on a sample by
+        // bary.vertex.one: its whole-pixel grid puts no vertex on a sample centre (the rule
+        // judges vertices where they are drawn; before, it judged a vertex on a sample by
         // its input position, which the lab truncates to a pixel corner).
         not_applicable: "fill.top-left.exact fill.guard-band.exact fill.brute-force.exact \
                bary.vertex.one bary.screen.reconstructs-sample bary.equal-w.affine \
@@ -269,14 +257,15 @@ const EXPECTED: [Expected; 3] = [
                clip.far.respected clip.gl-range.matches-raycast meta.reversal.flips-facing \
                meta.translate.whole-pixels meta.translate.one-subpixel meta.degenerate.empty",
         fail_later: "",
-        // meta.degenerate.empty: its zero-area triangles draw only once clipped; since issue 26
-        // the rule draws some the near plane cuts, and on 64×64 the line y = 2 px through
-        // (6.5, 2), (−0.5, 2), (13.5, 2), the middle vertex before the near plane, it draws
-        // pixels (7..=9, 2): their corners, where it samples, lie on the line, their centres
-        // 0.5 px off it (hand-checked; every zero-area triangle it draws unclipped it skips).
-        // The barycentric
-        // rules judge its screen-space weights since issue 26: weighed at pixel corners, a vertex
-        // on a sample does not get weight 1 (bary.vertex.one, as bary.screen.reconstructs-sample).
+        // meta.degenerate.empty: its zero-area triangles draw only once clipped; since the
+        // generators reach them (docs/reach.md) the rule draws some the near plane cuts, and on
+        // 64×64 the line y = 2 px through (6.5, 2), (−0.5, 2), (13.5, 2), the middle vertex
+        // before the near plane, it draws pixels (7..=9, 2): their corners, where it samples,
+        // lie on the line, their centres 0.5 px off it (hand-checked; every zero-area triangle
+        // it draws unclipped it skips).
+        // The barycentric rules judge its screen-space weights, the kind it declares: weighed at
+        // pixel corners, a vertex on a sample does not get weight 1 (bary.vertex.one, as
+        // bary.screen.reconstructs-sample).
         pass: "bary.sum.one bary.range.unit depth.range.vertices clip.behind-eye.empty meta.rotation.same-coverage meta.viewport.neutral \
                meta.batch.independent meta.facing.from-winding robust.non-finite.discarded \
                robust.bit-patterns.sane-output robust.output.well-formed robust.bad-index.error",
@@ -295,7 +284,7 @@ fn first_failure(report: &Report) -> Option<&str> {
         .map(|r| r.id.as_str())
 }
 
-/// Certifies each lab at 200 cases per rule, prints the README table, and checks every rule
+/// Certifies each lab at 200 cases per rule, prints the table of docs/zoo.md, and checks every rule
 /// listed in [`EXPECTED`] (rules added to the catalogue later are printed, not judged).
 #[test]
 fn course_rasterizers_certified() {
@@ -303,23 +292,13 @@ fn course_rasterizers_certified() {
         cases: Some(200),
         ..Options::default()
     };
-    let builtins = course::builtins();
-    assert_eq!(builtins.len(), EXPECTED.len());
+    let labs = course::labs();
+    assert_eq!(labs.len(), EXPECTED.len());
     println!("| lab | passed | failed | n/a | first failing rule |");
     println!("|---|---|---|---|---|");
-    for (b, want) in builtins.iter().zip(&EXPECTED) {
+    for (b, want) in labs.iter().zip(&EXPECTED) {
         assert_eq!(b.name, want.name);
-        assert_eq!(
-            b.origin,
-            refrast_conformance::Origin::Course,
-            "{} is course code",
-            b.name
-        );
-        let report = certify(
-            &mut *b.build().expect("course labs build anywhere"),
-            &options,
-            |_| {},
-        );
+        let report = certify(&mut *(b.make)(), &options, |_| {});
         let (pass, fail, na) = report.tally();
         let first = first_failure(&report);
         println!(
@@ -346,11 +325,7 @@ fn course_rasterizers_certified() {
                 rules: vec![id.to_owned()],
                 ..Options::default()
             };
-            let later = certify(
-                &mut *b.build().expect("course labs build anywhere"),
-                &alone,
-                |_| {},
-            );
+            let later = certify(&mut *(b.make)(), &alone, |_| {});
             let got = later.rules.first().map(|r| r.status);
             if got != Some(Status::Fail) {
                 wrong.push(format!("{id}: expected FAIL at its default cases, got {got:?}"));

@@ -19,8 +19,8 @@
 //! on f32 weights), no screen-space barycentrics, culling of back faces only, counter-clockwise
 //! front faces only, the `≤` and `≥` depth tests only, no far clipping, the `0 ≤ z` range only.
 //!
-//! euc's `Target::set` is unchecked: on some inputs it writes outside its buffers (see the
-//! README). refrast runs each rule in a child process, so that stays there.
+//! euc's `Target::set` is unchecked: on some inputs it writes outside its buffers (see
+//! docs/certified.md). refrast runs each rule in a child process, so that stays there.
 #![forbid(unsafe_code)]
 
 use euc::buffer::Buffer2d;
@@ -30,7 +30,6 @@ use refrast::{
     CompareOp, CullMode, DepthConvention, DepthRange, Draw, DrawError, Features, Fragment, FrontFace,
     Profile, Rasterizer, Resolved, SnapAccuracy, Snapping, Spec, Supported,
 };
-use refrast_conformance::{BuiltIn, Origin};
 
 /// euc's rasterizer, certified through refrast.
 #[derive(Clone, Copy, Debug, Default)]
@@ -233,15 +232,4 @@ impl Rasterizer for Euc {
             primitive: ids.as_ref().to_vec(),
         })
     }
-}
-
-/// euc as a built-in: `refrast certify --impl euc`.
-#[must_use]
-pub fn builtins() -> Vec<BuiltIn> {
-    vec![BuiltIn::new(
-        "euc",
-        "the euc crate 0.5.3: f32 homogeneous rasterization, no clipping, no tie rule",
-        Origin::ThirdParty,
-        || Box::new(Euc),
-    )]
 }

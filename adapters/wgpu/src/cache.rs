@@ -14,8 +14,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, OnceLock};
 
-use refrast::{FillConvention, SnapAccuracy, Snapping};
-use refrast_conformance::Unavailable;
+use refrast::{FillConvention, SnapAccuracy, Snapping, Unavailable};
 
 use crate::device::{Context, Driver};
 use crate::measured::Measured;

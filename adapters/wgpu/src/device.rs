@@ -4,7 +4,7 @@ use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
 use refrast::Spec;
-use refrast_conformance::Unavailable;
+use refrast::Unavailable;
 
 /// The driver a built-in asks for; never quietly another.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -44,6 +44,20 @@ impl Driver {
             Self::Softpipe => "softpipe",
             Self::Swiftshader => "swiftshader",
             Self::Vulkan => "vulkan",
+        }
+    }
+
+    /// One line on what it is, as `refrast impls` prints it.
+    #[must_use]
+    pub fn description(self) -> &'static str {
+        match self {
+            Self::Lavapipe => "Mesa's lavapipe (Vulkan on the CPU) through wgpu",
+            Self::Llvmpipe => "Mesa's llvmpipe through wgpu's OpenGL ES backend (EGL)",
+            Self::Softpipe => "Mesa's softpipe (GALLIUM_DRIVER=softpipe) through wgpu's OpenGL ES backend",
+            Self::Swiftshader => {
+                "Google's SwiftShader (Vulkan on the CPU, as Chromium ships it) through wgpu"
+            }
+            Self::Vulkan => "whatever Vulkan adapter this machine has (a GPU first) through wgpu",
         }
     }
 

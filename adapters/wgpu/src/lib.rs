@@ -70,15 +70,15 @@ pub mod measured;
 mod pipelines;
 pub mod probe;
 pub mod reported;
+mod resources;
 mod targets;
 
 use std::sync::{Arc, Mutex};
 
 use refrast::{
     CompareOp, DepthConvention, DepthRange, Draw, DrawError, Features, Fragment, Profile, Rasterizer,
-    Resolved, Supported,
+    Resolved, Supported, Unavailable,
 };
-use refrast_conformance::{BuiltIn, Origin, Unavailable};
 
 pub use device::Driver;
 use device::{Context, context, describe};
@@ -263,32 +263,4 @@ impl Rasterizer for Gpu {
     fn resolve(&mut self, draw: &Draw) -> Result<Resolved, DrawError> {
         self.resolve_timed(draw).map(|(resolved, _)| resolved)
     }
-}
-
-/// Every driver as a built-in: `refrast certify --impl lavapipe`, and so on.
-#[must_use]
-pub fn builtins() -> Vec<BuiltIn> {
-    Driver::ALL
-        .iter()
-        .map(|&driver| {
-            let description = match driver {
-                Driver::Lavapipe => "Mesa's lavapipe (Vulkan on the CPU) through wgpu",
-                Driver::Llvmpipe => "Mesa's llvmpipe through wgpu's OpenGL ES backend (EGL)",
-                Driver::Softpipe => {
-                    "Mesa's softpipe (GALLIUM_DRIVER=softpipe) through wgpu's OpenGL ES backend"
-                }
-                Driver::Swiftshader => {
-                    "Google's SwiftShader (Vulkan on the CPU, as Chromium ships it) through wgpu"
-                }
-                Driver::Vulkan => "whatever Vulkan adapter this machine has (a GPU first) through wgpu",
-            };
-            let mut b = BuiltIn::fallible(driver.name(), description, Origin::ThirdParty, move || {
-                Ok(Box::new(Gpu::new(driver)?) as Box<dyn Rasterizer>)
-            });
-            for (name, value) in driver.env() {
-                b = b.with_env(name, value);
-            }
-            b
-        })
-        .collect()
 }

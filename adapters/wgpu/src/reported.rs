@@ -3,7 +3,7 @@
 
 use std::process::{Command, Stdio};
 
-use refrast_conformance::Unavailable;
+use refrast::Unavailable;
 
 use crate::device::Driver;
 

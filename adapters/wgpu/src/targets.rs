@@ -6,8 +6,8 @@ use refrast::{Draw, DrawError, Fragment};
 use wgpu::util::DeviceExt;
 
 use crate::device::Context;
-use crate::draw::{Readback, depth_attachment, target, vertex_list};
 use crate::pipelines::{DEPTH, FLOATS, Key, Pass, Pipelines};
+use crate::resources::{Readback, depth_attachment, target, vertex_list};
 
 /// Every covered sample of every triangle of `draw`, one triangle per pass.
 pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {

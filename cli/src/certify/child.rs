@@ -8,7 +8,6 @@ use std::time::Duration;
 use refrast_conformance::Options;
 
 use super::positive_seconds;
-use crate::all_builtins;
 
 /// This program again, running one rule of one built-in (`refrast run-rule`).
 pub(super) fn run_rule_command(implementation: &str, rule: &str, options: &Options) -> Command {
@@ -93,7 +92,10 @@ pub struct RunRuleArgs {
 
 /// Runs `refrast run-rule`: one rule, spoken to the parent on stdout ([`refrast_conformance::isolate`]).
 pub fn run_rule(args: &RunRuleArgs) -> ExitCode {
-    let Some(b) = all_builtins().into_iter().find(|b| b.name == args.implementation) else {
+    let Some(b) = refrast_registry::all()
+        .into_iter()
+        .find(|b| b.name == args.implementation)
+    else {
         eprintln!("error: no implementation named '{}'", args.implementation);
         return ExitCode::from(2);
     };

@@ -14,7 +14,8 @@ use std::time::Instant;
 
 use indicatif::ProgressBar;
 use refrast_conformance::isolate::{Outcome, run_rule_watched};
-use refrast_conformance::{BuiltIn, Options, ProfileReport, Report, Rule, RuleReport, cases_for};
+use refrast_conformance::{Options, ProfileReport, Report, Rule, RuleReport, cases_for};
+use refrast_registry::BuiltIn;
 
 use super::child::run_rule_command;
 use super::progress::Progress;

@@ -6,7 +6,7 @@ use std::time::{Duration, Instant};
 
 use refrast::pipeline::Framebuffer;
 use refrast::{CullMode, DrawError, DrawState};
-use refrast_render::scene::{Camera, Framing};
+use refrast_render::scene::{Framed, Framing};
 use refrast_render::{Light, Mode, View, geometry};
 
 use super::camera::{FlyCamera, Motion};
@@ -191,7 +191,7 @@ impl<'a> Viewer<'a> {
     }
 
     /// The camera for the current picture size.
-    fn camera(&self) -> Camera {
+    fn camera(&self) -> Framed {
         let viewport = self.target.viewport();
         let aspect = viewport.width() as f32 / viewport.height() as f32;
         self.fly.map_or(self.scene.camera, |f| f.camera(aspect))

@@ -3,7 +3,8 @@
 //! update), kept apart from the window so that it is tested without one.
 
 use glam::Vec3;
-use refrast_render::scene::Camera;
+use refrast::camera::Camera;
+use refrast_render::scene::Framed;
 use refrast_render::{Lens, View};
 
 /// How far from straight up or down the camera may pitch, so that it never looks along the up axis.
@@ -34,6 +35,9 @@ impl Motion {
 }
 
 /// An eye with a yaw and a pitch, in refrast's left-handed world: y up, yaw 0 looks along +z.
+///
+/// Built on refrast's [`Camera`] ([`FlyCamera::pose`]); it keeps yaw and pitch instead of a
+/// direction so that turns add up and the pitch is held short of straight up or down.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FlyCamera {
     /// Where the eye is.
@@ -69,12 +73,16 @@ impl FlyCamera {
         }
     }
 
+    /// Where the eye is and which way it looks, as refrast's camera.
+    #[must_use]
+    pub fn pose(&self) -> Camera {
+        Camera::from_yaw_pitch(self.eye, self.yaw, self.pitch)
+    }
+
     /// The unit vector the eye looks along.
     #[must_use]
     pub fn forward(&self) -> Vec3 {
-        let (sy, cy) = self.yaw.sin_cos();
-        let (sp, cp) = self.pitch.sin_cos();
-        Vec3::new(sy * cp, sp, cy * cp)
+        self.pose().forward
     }
 
     /// The unit vector to the eye's right, level with the ground (left-handed: up × forward).
@@ -126,9 +134,9 @@ impl FlyCamera {
 
     /// The camera for a target of aspect ratio `aspect`.
     #[must_use]
-    pub fn camera(&self, aspect: f32) -> Camera {
+    pub fn camera(&self, aspect: f32) -> Framed {
         let view = self.view();
-        Camera {
+        Framed {
             view_projection: view.view_projection(aspect),
             eye: view.eye,
             view: Some(view),

@@ -54,7 +54,7 @@ impl RawDraw {
         Some(scene)
     }
 
-    /// The draw state these bytes ask for ([`draw_state`]).
+    /// The draw state these bytes ask for (`draw_state`).
     #[must_use]
     pub fn state(&self) -> DrawState {
         draw_state(self.state)

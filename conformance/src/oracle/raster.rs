@@ -71,7 +71,7 @@ pub fn snap(p: [f32; 4], width: u32, height: u32, bits: u8) -> Option<Point> {
 /// (differences to 2^61, products to 2^122) cannot overflow i128.
 const GRID_LIMIT: f64 = 1_152_921_504_606_846_976.0;
 
-/// Whether raster coordinate `v`, in grid steps, is finite and within [`GRID_LIMIT`]; beyond
+/// Whether raster coordinate `v`, in grid steps, is finite and within `GRID_LIMIT`; beyond
 /// it (huge coordinates, tiny w) the oracles fall back to floats or call the case unsure.
 #[must_use]
 pub fn on_grid(v: f64) -> bool {

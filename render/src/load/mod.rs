@@ -1,7 +1,7 @@
 //! Mesh files: PLY and OBJ, read with well-kept crates and validated.
 //!
 //! [`parse_ply`] reads PLY (ASCII, binary little and big endian) with `ply-rs-bw`, [`parse_obj`]
-//! reads Wavefront OBJ with `tobj`; both end in [`finish`], the one place where a mesh is
+//! reads Wavefront OBJ with `tobj`; both end in `finish`, the one place where a mesh is
 //! checked (vertices present, finite attributes, indices in range) before it is handed out.
 //! Winding is kept as the file has it.
 

@@ -18,29 +18,38 @@ pub use lab000::Lab000;
 pub use lab002::Lab002;
 pub use lab004::Lab004;
 
-use refrast_conformance::{BuiltIn, Origin};
+use refrast::Rasterizer;
 
-/// The course rasterizers as built-ins, in seed order.
+/// A course lab as `refrast impls` lists it: the name `--impl` takes, one line on what the lab
+/// does, and how to build one.
+#[derive(Clone, Copy, Debug)]
+pub struct CourseLab {
+    /// The name `--impl` takes.
+    pub name: &'static str,
+    /// The seed it comes from and what it does differently from the reference.
+    pub description: &'static str,
+    /// Builds a fresh one.
+    pub make: fn() -> Box<dyn Rasterizer>,
+}
+
+/// The course rasterizers, in seed order.
 #[must_use]
-pub fn builtins() -> Vec<BuiltIn> {
-    vec![
-        BuiltIn::new(
-            "lab000",
-            "seed 000: f32 cross-product inside test at pixel corners, view-depth buffer, no clipping",
-            Origin::Course,
-            || Box::new(Lab000),
-        ),
-        BuiltIn::new(
-            "lab002-scanline",
-            "seed 002: scanline fill of left/right rows from interpolated edges, 1/z depth",
-            Origin::Course,
-            || Box::new(Lab002),
-        ),
-        BuiltIn::new(
-            "lab004-lineeq",
-            "seed 004: Sutherland–Hodgman with a 1e-6 nudge, then line equations O_i <= 0",
-            Origin::Course,
-            || Box::new(Lab004),
-        ),
+pub fn labs() -> [CourseLab; 3] {
+    [
+        CourseLab {
+            name: "lab000",
+            description: "seed 000: f32 cross-product inside test at pixel corners, view-depth buffer, no clipping",
+            make: || Box::new(Lab000),
+        },
+        CourseLab {
+            name: "lab002-scanline",
+            description: "seed 002: scanline fill of left/right rows from interpolated edges, 1/z depth",
+            make: || Box::new(Lab002),
+        },
+        CourseLab {
+            name: "lab004-lineeq",
+            description: "seed 004: Sutherland–Hodgman with a 1e-6 nudge, then line equations O_i <= 0",
+            make: || Box::new(Lab004),
+        },
     ]
 }

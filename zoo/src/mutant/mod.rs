@@ -10,7 +10,6 @@ use refrast::{
     ClipMode, CompareOp, Draw, DrawError, FillConvention, FixedPoint, Fragment, FrontFace, Profile,
     Rasterizer, Reference, Resolved, Viewport, is_top_left,
 };
-use refrast_conformance::{BuiltIn, Origin};
 
 mod bug;
 
@@ -405,20 +404,4 @@ fn clip_walking(input: &[ClipVertex; 3], planes: &[ClipPlane]) -> Vec<ClipVertex
         }
     }
     poly
-}
-
-/// Every mutant as a built-in, named `mutant:NAME`.
-#[must_use]
-pub fn builtins() -> Vec<BuiltIn> {
-    Bug::ALL
-        .iter()
-        .map(|&bug| {
-            BuiltIn::new(
-                format!("mutant:{}", bug.name()),
-                format!("the {} rules must catch it", bug.caught_by().name()),
-                Origin::Mutant,
-                move || Box::new(Mutant::new(bug)),
-            )
-        })
-        .collect()
 }

@@ -1,0 +1,147 @@
+//! What every pass needs: the draw as a vertex list, render targets, the depth attachment, and
+//! reading textures and buffers back to the CPU.
+
+use bytemuck::Pod;
+use refrast::{Draw, DrawError};
+
+use crate::device::Context;
+
+/// The draw's triangles as a plain vertex list (three per triangle, in order): vertex `i` of
+/// the list is corner `i % 3` of primitive `i / 3`.
+pub fn vertex_list(draw: &Draw) -> Vec<[f32; 4]> {
+    draw.triangles
+        .iter()
+        .flat_map(|t| t.map(|i| draw.positions[i as usize]))
+        .collect()
+}
+
+/// A texture of the viewport's size.
+pub fn target(ctx: &Context, draw: &Draw, format: wgpu::TextureFormat) -> wgpu::Texture {
+    ctx.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("target"),
+        size: wgpu::Extent3d {
+            width: draw.viewport.width(),
+            height: draw.viewport.height(),
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    })
+}
+
+/// A depth attachment cleared to `clear`, kept when `store`.
+pub fn depth_attachment(
+    view: &wgpu::TextureView,
+    clear: f32,
+    store: bool,
+) -> wgpu::RenderPassDepthStencilAttachment<'_> {
+    wgpu::RenderPassDepthStencilAttachment {
+        view,
+        depth_ops: Some(wgpu::Operations {
+            load: wgpu::LoadOp::Clear(clear),
+            store: if store {
+                wgpu::StoreOp::Store
+            } else {
+                wgpu::StoreOp::Discard
+            },
+        }),
+        stencil_ops: None,
+    }
+}
+
+/// Maps a staging buffer after the queue has finished, and copies it out.
+pub fn map(ctx: &Context, staging: &wgpu::Buffer) -> Result<Vec<u8>, DrawError> {
+    let slice = staging.slice(..);
+    let (tx, rx) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    ctx.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| DrawError::Backend(format!("the device did not finish: {e}")))?;
+    rx.recv()
+        .map_err(|_| DrawError::Backend("the buffer was never mapped".into()))?
+        .map_err(|e| DrawError::Backend(format!("the buffer could not be mapped: {e}")))?;
+    let bytes = slice
+        .get_mapped_range()
+        .map_err(|e| DrawError::Backend(format!("the mapped buffer could not be read: {e}")))?
+        .to_vec();
+    staging.unmap();
+    Ok(bytes)
+}
+
+/// A staging buffer a texture is copied into, and read back from row by row.
+pub struct Readback {
+    buffer: wgpu::Buffer,
+    /// Bytes per row in the buffer: a copy pads rows to 256 bytes.
+    row: u32,
+    pixel: u32,
+    width: u32,
+    height: u32,
+}
+
+impl Readback {
+    /// Room for a `width`×`height` texture of `pixel` bytes a texel.
+    pub fn new(ctx: &Context, width: u32, height: u32, pixel: u32) -> Self {
+        let row = (pixel * width).div_ceil(256) * 256;
+        let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size: u64::from(row) * u64::from(height),
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        Self {
+            buffer,
+            row,
+            pixel,
+            width,
+            height,
+        }
+    }
+
+    /// Records a copy of `texture` (its `aspect`) into the buffer.
+    pub fn copy(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        texture: &wgpu::Texture,
+        aspect: wgpu::TextureAspect,
+    ) {
+        encoder.copy_texture_to_buffer(
+            wgpu::TexelCopyTextureInfo {
+                texture,
+                mip_level: 0,
+                origin: wgpu::Origin3d::ZERO,
+                aspect,
+            },
+            wgpu::TexelCopyBufferInfo {
+                buffer: &self.buffer,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(self.row),
+                    rows_per_image: Some(self.height),
+                },
+            },
+            wgpu::Extent3d {
+                width: self.width,
+                height: self.height,
+                depth_or_array_layers: 1,
+            },
+        );
+    }
+
+    /// The texels, row after row, once the copy's submission has finished.
+    pub fn read<T: Pod>(&self, ctx: &Context) -> Result<Vec<T>, DrawError> {
+        let bytes = map(ctx, &self.buffer)?;
+        let used = (self.pixel * self.width) as usize;
+        Ok((0..self.height as usize)
+            .flat_map(|y| {
+                let start = y * self.row as usize;
+                bytemuck::pod_collect_to_vec::<u8, T>(&bytes[start..start + used])
+            })
+            .collect())
+    }
+}

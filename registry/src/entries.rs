@@ -1,0 +1,126 @@
+//! The entries, in the order `refrast impls` lists them: the reference's configurations, the
+//! zoo, the third parties, `fast`.
+
+use refrast::{ClipMode, Rasterizer, Reference, ReferenceConfig, SubpixelBits};
+use refrast_conformance::Named;
+use refrast_conformance::restricted::restrictions;
+use refrast_zoo::course;
+use refrast_zoo::mutant::{Bug, Mutant};
+
+use crate::{BuiltIn, Origin};
+
+/// Every built-in (without the third parties when the `third-party` feature is off).
+#[must_use]
+pub fn all() -> Vec<BuiltIn> {
+    let mut all = reference();
+    all.extend(restricted());
+    all.extend(mutants());
+    all.extend(course_labs());
+    #[cfg(feature = "third-party")]
+    all.extend(third_party());
+    all.push(BuiltIn::new(
+        "fast",
+        "the reference's output, fast: 64×64 tiles over threads, 8×8 blocks accepted or rejected whole",
+        Origin::Ours,
+        || Box::new(refrast_fast::Fast::default()),
+    ));
+    all
+}
+
+/// The reference and its other configurations.
+fn reference() -> Vec<BuiltIn> {
+    let named = |name: &'static str, config: ReferenceConfig| {
+        move || Box::new(Named::new(name, config)) as Box<dyn Rasterizer>
+    };
+    let four_bits = ReferenceConfig {
+        subpixel_bits: SubpixelBits::new(4).expect("4 is in range"),
+        ..ReferenceConfig::default()
+    };
+    let full_clip = ReferenceConfig {
+        clip: ClipMode::Full,
+        ..ReferenceConfig::default()
+    };
+    vec![
+        BuiltIn::new(
+            "reference",
+            "the reference: 8 subpixel bits, top-left, guard-band clipping",
+            Origin::Ours,
+            || Box::new(Reference::default()),
+        ),
+        BuiltIn::new(
+            "reference-full-clip",
+            "the reference clipping all six planes (Sutherland–Hodgman, seed 004)",
+            Origin::Ours,
+            named("reference-full-clip", full_clip),
+        ),
+        BuiltIn::new(
+            "reference-4bit",
+            "the reference snapping to 4 subpixel bits (Vulkan's minimum)",
+            Origin::Ours,
+            named("reference-4bit", four_bits),
+        ),
+    ]
+}
+
+/// The reference restricted to each setting ([`refrast_conformance::restricted`]).
+fn restricted() -> Vec<BuiltIn> {
+    restrictions()
+        .into_iter()
+        .map(|r| {
+            let make = r.make;
+            BuiltIn::new(
+                format!("restricted:{}", r.name),
+                format!("the reference restricted: {}", r.description),
+                Origin::Restricted,
+                move || Box::new(make()),
+            )
+        })
+        .collect()
+}
+
+/// Every mutant, named `mutant:NAME`.
+fn mutants() -> Vec<BuiltIn> {
+    Bug::ALL
+        .iter()
+        .map(|&bug| {
+            BuiltIn::new(
+                format!("mutant:{}", bug.name()),
+                format!("the {} rules must catch it", bug.caught_by().name()),
+                Origin::Mutant,
+                move || Box::new(Mutant::new(bug)),
+            )
+        })
+        .collect()
+}
+
+/// The course rasterizers, in seed order.
+fn course_labs() -> Vec<BuiltIn> {
+    course::labs()
+        .into_iter()
+        .map(|lab| BuiltIn::new(lab.name, lab.description, Origin::Course, lab.make))
+        .collect()
+}
+
+/// euc, then every driver through wgpu.
+#[cfg(feature = "third-party")]
+fn third_party() -> Vec<BuiltIn> {
+    let mut all = vec![BuiltIn::new(
+        "euc",
+        "the euc crate 0.5.3: f32 homogeneous rasterization, no clipping, no tie rule",
+        Origin::ThirdParty,
+        || Box::new(refrast_euc::Euc),
+    )];
+    all.extend(refrast_wgpu::Driver::ALL.iter().map(|&driver| {
+        let mut b = BuiltIn::fallible(
+            driver.name(),
+            driver.description(),
+            Origin::ThirdParty,
+            move || Ok(Box::new(refrast_wgpu::Gpu::new(driver)?) as Box<dyn Rasterizer>),
+        );
+        for (name, value) in driver.env() {
+            b = b.with_env(name, value);
+        }
+        b
+    }));
+    all
+}

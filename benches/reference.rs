@@ -1,8 +1,8 @@
 //! The reference at 1920×1080 with depth and colour, against a plain scalar rasterizer.
 //!
 //! Two workloads: 100 000 triangles of about 10 px and 1 000 of about 50 000 px (≈24× overdraw),
-//! equilateral, randomly rotated and placed, random depth. `baseline` is the plain scalar loop
-//! the performance anchors describe (16.8 fixed point, incremental i64 edges, top-left bias, f32
+//! equilateral, randomly rotated and placed, random depth. `baseline` is the plain scalar loop of
+//! a textbook CPU rasterizer (16.8 fixed point, incremental i64 edges, top-left bias, f32
 //! depth LESS, one colour per triangle), run in the same process so the ratio survives a noisy
 //! machine. `scripts/bench_ratio.py` prints medians, Mtri/s, Mpix/s and the ratio.
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the README's pictures in docs/pictures/ with `refrast render` and, under Xvfb,
+# Regenerates the pictures of docs/render.md, in docs/pictures/, with `refrast render` and, under Xvfb,
 # `refrast view` (release build).
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -1,4 +1,4 @@
-//! The plain scalar rasterizer the benchmarks measure against (the performance anchors'
+//! The plain scalar rasterizer the benchmarks measure against (a textbook
 //! baseline), shared by `benches/reference.rs` and `fast/benches/fast.rs`.
 
 use glam::{Vec3, Vec4};

@@ -103,7 +103,8 @@ fn python_topleft_passes_every_rule() {
 
 /// The Python client as a fixed-function rasterizer: one cull mode declared and used whatever a
 /// draw asks. It must still pass every rule, none of them n/a but the one that needs no culling
-/// (issue 26: it failed a dozen when the rules expected the coverage of no culling).
+/// (it failed a dozen when the rules expected the coverage of no culling, before every rule asked
+/// its question under what the profile supports: docs/profiles.md).
 #[test]
 fn python_topleft_with_one_cull_mode_passes_every_rule() {
     if !have("python3") {
@@ -207,12 +208,12 @@ fn cpp_lab000_gets_the_verdicts_of_seed_000() {
     assert!(status.success(), "clients/cpp/lab000.cpp does not compile");
     let command = binary.display().to_string();
     let (code, rules) = certify("lab000", &["--exec", &command, "--cases", "200"]);
-    // meta.facing.from-winding since issue 12's crossing scenes: dividing by a negative w
-    // mirrors a vertex, as in the Rust port.
+    // meta.facing.from-winding since the crossing scenes were widened (docs/reach.md): dividing
+    // by a negative w mirrors a vertex, as in the Rust port.
     assert_eq!(code, 1);
     // `≥ 0` on every edge, samples at pixel corners, clockwise only, no clipping
     // (zoo/src/course/lab000.rs says why each fails; the barycentric rules judge its
-    // screen-space weights since issue 26, as zoo/tests/course.rs says).
+    // screen-space weights, the kind it declares, as zoo/tests/course.rs says).
     assert_eq!(
         with_status(&rules, "fail"),
         "fill.mesh.exactly-once fill.fan.exactly-once fill.rotated-quad.exactly-once \

@@ -332,15 +332,20 @@ fn malformed_meshes_are_refused_with_one_line() {
 }
 
 #[test]
-fn the_readmes_render_commands_run() {
-    let readme = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../README.md")).unwrap();
-    let commands: Vec<_> = readme
-        .lines()
+fn the_documented_render_commands_run() {
+    // The `render` commands of the README and of docs/render.md, whose paths are relative to
+    // the repository root, where the pages say to run them.
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let pages = ["README.md", "docs/render.md"].map(|page| std::fs::read_to_string(root.join(page)).unwrap());
+    let commands: Vec<_> = pages
+        .iter()
+        .flat_map(|page| page.lines())
         .filter_map(|l| l.strip_prefix("cargo run --release -- render "))
         .map(|l| l.split('#').next().unwrap().trim())
         .collect();
     assert!(commands.len() >= 5, "{commands:?}");
-    // Run where the README's relative paths resolve, writing into a folder of the test's own.
+    // Run where the pages' root-relative paths resolve (a copy of what they name, under a
+    // folder of the test's own, as the repository root), writing into that folder.
     let dir = scratch("readme");
     let data = dir.join("render/tests/data");
     std::fs::create_dir_all(&data).unwrap();
@@ -404,12 +409,13 @@ fn mesa_draws_the_scenes_coverage_as_the_reference_does() {
 }
 
 #[test]
-fn the_readmes_pictures_are_committed() {
-    // Every picture the README shows is in docs/pictures/ (`*.png` is ignored by git elsewhere).
+fn the_documented_pictures_are_committed() {
+    // Every picture docs/render.md shows (`pictures/…`, relative to docs/) is in docs/pictures/
+    // (`*.png` is ignored by git elsewhere).
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
-    let pictures: Vec<_> = readme
-        .split("(docs/pictures/")
+    let page = std::fs::read_to_string(root.join("docs/render.md")).unwrap();
+    let pictures: Vec<_> = page
+        .split("](pictures/")
         .skip(1)
         .filter_map(|rest| rest.split_once(')').map(|(name, _)| name))
         .collect();

@@ -1,4 +1,4 @@
-// The smallest client of refrast's pipe protocol (PROTOCOL.md): it answers every draw at once,
+// The smallest client of refrast's pipe protocol (docs/protocol.md): it answers every draw at once,
 // with one fragment per triangle at pixel (0, 0), and rasterizes nothing. It measures what the
 // pipe itself costs (conformance/benches/pipe.rs); it is no rasterizer, and certifying it fails.
 //   g++ -O2 -std=c++17 -o echo echo.cpp

@@ -1,5 +1,5 @@
 // Seed 000's software rasterizer (Graphics Programming I, "Software Rasterization Part I"), as
-// its five lab steps describe it, certified by refrast over a pipe (PROTOCOL.md). One file, no
+// its five lab steps describe it, certified by refrast over a pipe (docs/protocol.md). One file, no
 // dependencies:  g++ -O2 -std=c++17 -o lab000 lab000.cpp
 //                refrast certify --exec ./lab000
 //
@@ -26,7 +26,7 @@
 
 namespace {
 
-// ---- the pipe protocol, version 1 (PROTOCOL.md) --------------------------------------------
+// ---- the pipe protocol, version 1 (docs/protocol.md) ---------------------------------------
 
 struct Draw {
     uint32_t width = 0, height = 0, vertices = 0, triangles = 0;

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Seed 004's fill rasterizer (TU Wien EVC, "Beispiel 5 – Rasterisierung"), as the lab describes
-it, certified by refrast over a pipe (PROTOCOL.md).
+it, certified by refrast over a pipe (docs/protocol.md).
 
 - Clipping: Sutherland–Hodgman in clip space against six planes in Hesse normal form; a vertex
   is inside a plane p when v · p <= 0. Each edge is cut at t = l_a / (l_a - l_b), nudged by 1e-6

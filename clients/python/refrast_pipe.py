@@ -1,4 +1,4 @@
-"""The child side of refrast's pipe protocol, version 1 (PROTOCOL.md), standard library only.
+"""The child side of refrast's pipe protocol, version 1 (docs/protocol.md), standard library only.
 
 Copy this file beside your rasterizer and call `serve(profile, rasterize)`: refrast starts your
 program, reads the profile, then sends draws on stdin and reads fragments from stdout. Print
@@ -82,7 +82,7 @@ def _one_line(message):
 
 
 def serve(profile, rasterize, resolve=None):
-    """Declares `profile` (a dict of PROTOCOL.md's profile keys to their values) and answers
+    """Declares `profile` (a dict of docs/protocol.md's profile keys to their values) and answers
     draws until stdin ends.
 
     `rasterize(draw)` returns an iterable of Fragment. `resolve(draw)`, needed only when the

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A correct rasterizer in plain Python, certified by refrast over a pipe (PROTOCOL.md).
+"""A correct rasterizer in plain Python, certified by refrast over a pipe (docs/protocol.md).
 
 Coverage is exact: vertices snap to 1/256 pixel (round half to even), edge functions are
 Python integers, and a sample exactly on an edge belongs to the triangle only if the edge is a

@@ -2,7 +2,7 @@
 //! message that says which, never a panic or a hang, and the child is restarted for the next.
 //!
 //! The children are this test binary again: with `REFRAST_FAKE_CHILD=MODE` it speaks the
-//! protocol (PROTOCOL.md) over the reference, misbehaving as MODE says. With
+//! protocol (docs/protocol.md) over the reference, misbehaving as MODE says. With
 //! `REFRAST_AS_TESTS=1` it is an outside crate's `run_as_tests` over such a child.
 
 use std::io::{BufRead, Read, Write};
@@ -341,7 +341,7 @@ fn run_as_tests_child() -> Result<(), String> {
 }
 
 fn protocol_md_example() -> Result<(), String> {
-    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../PROTOCOL.md"))
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/protocol.md"))
         .map_err(|e| e.to_string())?;
     let viewport = Viewport::new(2, 2).expect("valid");
     let positions = vec![
@@ -354,7 +354,7 @@ fn protocol_md_example() -> Result<(), String> {
     let header =
         String::from_utf8_lossy(&bytes[..bytes.iter().position(|&b| b == b'\n').unwrap_or(0)]).into_owned();
     if !doc.contains(&format!("→ {header}\n")) {
-        return Err(format!("PROTOCOL.md lacks the request line `{header}`"));
+        return Err(format!("docs/protocol.md lacks the request line `{header}`"));
     }
     if bytes.len() != header.len() + 1 + 48 + 12 {
         return Err(format!("{} bytes", bytes.len()));
@@ -367,7 +367,7 @@ fn protocol_md_example() -> Result<(), String> {
             Ok(())
         }
         other => Err(format!(
-            "the example's fragment is not what PROTOCOL.md shows: {other:?}"
+            "the example's fragment is not what docs/protocol.md shows: {other:?}"
         )),
     }
 }

@@ -1,10 +1,11 @@
 //! `fast` at 1920×1080 with depth and colour, against the reference and the scalar baseline in
 //! the same run, with 1 and 2 threads.
 //!
-//! Scenes (issue 14): 100 000 triangles of about 10 px, 10 000 of about 500 px, 1 000 of about
-//! 50 000 px (the shared workload of `benches/reference.rs`), and a torus of 1 M triangles seen
-//! in perspective. Every implementation clears, depth-tests LESS and writes one colour per
-//! pixel; the reference and `fast` interpolate the vertex colour perspective-correctly.
+//! Scenes (docs/performance.md gives their timings, against `fast`'s targets): 100 000
+//! triangles of about 10 px, 10 000 of about 500 px, 1 000 of about 50 000 px (the shared
+//! workload of `benches/reference.rs`), and a torus of 1 M triangles seen in perspective.
+//! Every implementation clears, depth-tests LESS and writes one colour per pixel; the reference
+//! and `fast` interpolate the vertex colour perspective-correctly.
 //! `scripts/bench_fast.py` prints medians, Mtri/s, Mpix/s and ratios.
 //!
 //! Where Mesa's lavapipe opens (`mesa-vulkan-drivers`), the same draws go through it in the

@@ -1,6 +1,6 @@
 //! Certifies euc with every rule in a child process (this binary again), as `refrast certify`
 //! does, and checks each rule's verdict against `expectations/euc.txt`, what the hand checks
-//! found (README, "Certified implementations"). Also checks the crash on its own: a vertex at
+//! found (docs/certified.md, "Certified implementations"). Also checks the crash on its own: a vertex at
 //! x = 10¹⁰·w makes euc panic (debug builds: its own assertion or an overflow) or write out of
 //! bounds and die (release builds).
 

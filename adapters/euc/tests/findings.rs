@@ -1,6 +1,6 @@
 //! What certifying euc 0.5.3 found, each on its smallest input, checked against what the input
 //! should give, worked out independently of euc (exact orientation, the ray cast). These are
-//! the hand checks behind the README's findings, kept so that a change in euc or in the suite
+//! the hand checks behind the findings of docs/certified.md, kept so that a change in euc or in the suite
 //! shows. The crash is in `tests/crash.rs` (it needs a process of its own).
 
 use refrast::{Draw, Fragment, FrontFace, Rasterizer, Viewport};

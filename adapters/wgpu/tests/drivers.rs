@@ -1,6 +1,6 @@
 //! Mesa's lavapipe, llvmpipe and softpipe, each in a process of its own (softpipe is chosen by an
-//! environment variable read when Mesa loads): the findings checked by hand (README, "Certified
-//! implementations"), then every rule, its verdict checked against `expectations/NAME.txt`.
+//! environment variable read when Mesa loads): the findings checked by hand (docs/certified.md,
+//! "Findings"), then every rule, its verdict checked against `expectations/NAME.txt`.
 //!
 //! A driver that is not installed is skipped with its reason printed; with
 //! `REFRAST_REQUIRE_DRIVERS=1` (set by `.ci/run`, which installs Mesa) it fails instead.

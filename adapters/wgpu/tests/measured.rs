@@ -19,7 +19,7 @@ const UNAVAILABLE: i32 = 3;
 
 /// What each driver must declare on this project's machine (Debian 12: Mesa 22.3.6, Chromium
 /// 148's SwiftShader 5.0.0); the fewest bits of precision its probe may measure; whether a
-/// shared edge was covered twice (softpipe's bug, README "Findings").
+/// shared edge was covered twice (softpipe's bug, docs/certified.md, "Findings").
 struct Pinned {
     declared: Measured,
     fewest_bits: f64,

@@ -1,4 +1,4 @@
-//! SwiftShader by hand (README, "Certified implementations"): every failure class of `refrast
+//! SwiftShader by hand (docs/certified.md, "Findings"): every failure class of `refrast
 //! certify --impl swiftshader` reduced to a minimal draw and pinned (`findings`), then every rule,
 //! its verdict checked against `expectations/swiftshader.txt` under the measured profile. The
 //! probes that measured that profile are library code now (`refrast_wgpu::probe`), their

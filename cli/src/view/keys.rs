@@ -1,5 +1,5 @@
 //! The viewer's key bindings: which held keys move the camera and which presses act, one table
-//! that the loop, the help text and the README share.
+//! that the loop, the help text and docs/render.md share.
 
 use minifb::Key;
 use refrast_render::Mode;
@@ -60,7 +60,7 @@ pub fn motion(held: impl Fn(Key) -> bool) -> Motion {
     }
 }
 
-/// The bindings as `(keys, what they do)`: printed when the window opens, and the README's table.
+/// The bindings as `(keys, what they do)`: printed when the window opens, and docs/render.md's table.
 pub const HELP: [(&str, &str); 11] = [
     ("W A S D", "move forward, left, back, right"),
     ("Q E", "move down, up"),
@@ -116,11 +116,11 @@ mod tests {
     }
 
     #[test]
-    fn the_readme_shows_every_binding() {
-        let readme = include_str!("../../../README.md");
+    fn the_render_page_shows_every_binding() {
+        let page = include_str!("../../../docs/render.md");
         for (keys, what) in HELP {
             let row = format!("| {keys} | {what} |");
-            assert!(readme.contains(&row), "README.md lacks the row {row}");
+            assert!(page.contains(&row), "docs/render.md lacks the row {row}");
         }
     }
 

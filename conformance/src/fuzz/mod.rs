@@ -3,7 +3,7 @@
 //! `fuzz/` at the repository root holds one thin `fuzz_target!` per [`Target`]; `cargo test`
 //! replays the committed corpus through [`Target::run`], which decodes bytes exactly as
 //! `fuzz_target!` does ([`decode`]). A third-party rasterizer is fuzzed by calling the same
-//! functions with its own [`Rasterizer`] (see the README).
+//! functions with its own [`Rasterizer`] (see docs/fuzzing.md).
 
 mod input;
 

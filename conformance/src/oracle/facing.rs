@@ -256,8 +256,9 @@ mod tests {
         Reference::default().profile()
     }
 
-    /// The shrunk case of issue 26: clockwise on screen, culled under back-face culling with
-    /// counter-clockwise front faces, drawn once reversed.
+    /// A shrunk case from judging restricted profiles on every rule (docs/profiles.md):
+    /// clockwise on screen, culled under back-face culling with counter-clockwise front faces,
+    /// drawn once reversed.
     #[test]
     fn a_clockwise_triangle_is_culled_as_a_back_face() {
         let tri = [

@@ -1,5 +1,5 @@
 //! A rasterizer in another process, in any language, spoken to over its stdin and stdout with
-//! the protocol of `PROTOCOL.md`: [`Process`] implements [`Rasterizer`], so everything the
+//! the protocol of `docs/protocol.md`: [`Process`] implements [`Rasterizer`], so everything the
 //! suite does to a Rust implementation (`certify`, `run_as_tests`, the fuzz targets) it does to
 //! a Python or C++ program.
 //!
@@ -135,7 +135,7 @@ struct Running {
     errors: Errors,
 }
 
-/// A rasterizer in a child process speaking `PROTOCOL.md` on its stdin and stdout.
+/// A rasterizer in a child process speaking `docs/protocol.md` on its stdin and stdout.
 #[derive(Debug)]
 pub struct Process {
     launch: Launch,
@@ -376,8 +376,8 @@ fn handshake(incoming: &mut Incoming, launch: &Launch, timeout: Duration) -> Res
     if version != VERSION {
         return Err(format!(
             "the child speaks refrast protocol version {version}, but this refrast speaks version {VERSION} \
-             (PROTOCOL.md): write `refrast-protocol {VERSION}` and the version {VERSION} messages, or use a \
-             refrast that speaks version {version}"
+             (docs/protocol.md): write `refrast-protocol {VERSION}` and the version {VERSION} messages, or \
+             use a refrast that speaks version {version}"
         ));
     }
     let mut lines = Vec::new();

@@ -1,5 +1,5 @@
 //! The protocol's words and bytes: the child's profile lines, the request header and payload,
-//! and the reply headers. `PROTOCOL.md` at the repository root is the specification.
+//! and the reply headers. `docs/protocol.md` is the specification.
 
 use refrast::{
     CompareOp, CullMode, DepthConvention, DepthRange, Draw, FillConvention, Fragment, FrontFace, Profile,
@@ -215,7 +215,7 @@ pub struct Declared {
     pub about: String,
 }
 
-/// The profile of a child that declares nothing but its name: the defaults of `PROTOCOL.md`.
+/// The profile of a child that declares nothing but its name: the defaults of `docs/protocol.md`.
 #[must_use]
 pub fn default_profile(name: &str) -> Profile {
     Profile {
@@ -380,7 +380,8 @@ pub fn parse_profile(lines: &[String], fallback_name: &str) -> Result<Declared, 
             "name" => return Err(bad("the name is empty")),
             _ => {
                 return Err(format!(
-                    "the profile has an unknown key `{key}`; PROTOCOL.md lists the keys of version {VERSION}"
+                    "the profile has an unknown key `{key}`; docs/protocol.md lists the keys of version \
+                     {VERSION}"
                 ));
             }
         }

@@ -77,7 +77,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property(r, cfg, strategy::inside_or_crossing_scene(), check_reconstructs)),
         Rule::invariant(Family::Bary, "bary.equal-w.affine")
             .sentence("With equal w at every vertex, perspective-correct and screen-space barycentrics agree within the claimed precision, on clipped triangles (half the cases) too.")
-            .source("conformance-anchors (d5: perspective equals linear when all w are equal); Vulkan 1.4, Clipping Shader Outputs")
+            .source("refrast's own property (perspective equals linear when all w are equal); Vulkan 1.4, Clipping Shader Outputs")
             .cases(5000)
             .needs(SCREEN_BARYCENTRICS)
             .needs(PERSPECTIVE_BARYCENTRICS)

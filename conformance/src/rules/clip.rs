@@ -20,7 +20,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property(r, cfg, behind_scene(), check_draws_nothing)),
         Rule::invariant(Family::Clip, "clip.interior.matches-raycast")
             .sentence("A triangle crossing clip planes, w = 0, or reaching ±30000·w covers exactly the samples its ray cast hits, outside the tolerance band (widened along cuts by what an f32 clipper's rounding may move them: 2^-19 of the coordinates they come from). Known limit: clipping x and y at the viewport and snapping the vertices that makes (reference-full-clip) can miss samples along such a cut (seen at seed 8 before the generator reached w = 0 and any viewport side; not at seeds 1–20 since).")
-            .source("dEQP-GLES3.functional.clipping.*; conformance-anchors d4")
+            .source("dEQP-GLES3.functional.clipping.*; refrast's own property (clipping keeps the interior)")
             .cases(5000)
             .run(|r, cfg| property(r, cfg, strategy::crossing_scene(), check_exactly_once)),
         Rule::invariant(Family::Clip, "clip.mesh.watertight")
@@ -34,7 +34,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property(r, cfg, strategy::clipped_mesh_scene(), check_exactly_once)),
         Rule::invariant(Family::Clip, "clip.crossing-quad.watertight")
             .sentence("A quad with corners at ±30000·w whose shared diagonal crosses the near plane inside the viewport leaves no hole there.")
-            .source("dEQP-GLES3.functional.clipping (±30000·w); design.md (canonical clip intersections)")
+            .source("dEQP-GLES3.functional.clipping (±30000·w); refrast convention (ARCHITECTURE.md, Conventions: clipping)")
             .cases(3000)
             .every_spec(Level::Partly {
                 part: |r, cfg| property(r, cfg, crossing_quad_scene(), check_exactly_once_cuts_apart),

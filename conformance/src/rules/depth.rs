@@ -54,7 +54,7 @@ pub(super) fn rules() -> Vec<Rule> {
             }),
         Rule::invariant(Family::Depth, "depth.order.independent")
             .sentence("After a depth test keeping the nearest fragment (Less, else LessOrEqual; or the farthest, Greater, else GreaterOrEqual, against a clear depth of 0) the depth buffer is identical under every submission order, and the primitive ids too where depths differ.")
-            .source("seed 000 (depth buffer); conformance-anchors d5")
+            .source("seed 000 (depth buffer); refrast's own property: a LESS test is order-independent for distinct depths")
             .cases(3000)
             .needs(EXTREME_WINS)
             .run(|r, cfg| {

@@ -18,7 +18,7 @@ pub(super) fn rules() -> Vec<Rule> {
     vec![
         Rule::invariant(Family::Fill, "fill.mesh.exactly-once")
             .sentence("A spade triangulation of grid points and the viewport corners covers every sample exactly once.")
-            .source("Vulkan 1.4, Basic Polygon Rasterization (shared edges covered by exactly one polygon); design.md")
+            .source("Vulkan 1.4, Basic Polygon Rasterization (shared edges covered by exactly one polygon); OpenGL 4.6 §14.6.1")
             .cases(2000)
             .vulkan_and_opengl(Level::Partly {
                 part: |r, cfg| property(r, cfg, strategy::mesh_scene(), check_exactly_once_between_two),
@@ -27,7 +27,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property(r, cfg, strategy::mesh_scene(), check_exactly_once)),
         Rule::invariant(Family::Fill, "fill.fan.exactly-once")
             .sentence("A fan around an interior vertex on a sample centre covers its interior samples exactly once.")
-            .source("piglit triangle-rasterization-overdraw; design.md")
+            .source("piglit triangle-rasterization-overdraw; Vulkan 1.4, Basic Polygon Rasterization (shared edges covered by exactly one polygon)")
             .cases(3000)
             .vulkan_and_opengl(Level::Partly {
                 part: |r, cfg| property(r, cfg, strategy::fan_scene(), check_exactly_once_between_two),
@@ -65,7 +65,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property_for(r, cfg, strategy::exact_scene, check_matches_reference)),
         Rule::exact(Family::Fill, "fill.guard-band.exact")
             .sentence("Coverage of a triangle reaching outside the viewport as far as the declared guard band (up to 8192 px) equals the brute-force oracle, as a guard band promises.")
-            .source("D3D11.3 §15.4 (guard band); ecosystem.md (32-bit edge overflow, float edges)")
+            .source("D3D11.3 §15.4 (guard band); raqote #107 (overflow at large coordinates)")
             .cases(5000)
             .needs(EXACT_COVERAGE)
             .needs(GUARD_BAND)

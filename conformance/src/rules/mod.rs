@@ -367,7 +367,7 @@ pub fn catalogue() -> Vec<Rule> {
     rules
 }
 
-/// The catalogue as the README's Markdown table: `| rule | kind | sentence |`, one row per rule.
+/// The catalogue as the Markdown table of docs/rules.md: `| rule | kind | sentence |`, one row per rule.
 #[must_use]
 pub fn markdown_table() -> String {
     let mut table = String::from("| rule | kind | sentence |\n|---|---|---|");

@@ -63,7 +63,7 @@ pub(super) fn rules() -> Vec<Rule> {
     vec![
         Rule::invariant(Family::Robust, "robust.non-finite.discarded")
             .sentence("A NaN or infinite coordinate discards every triangle using its vertex and nothing else, without an error.")
-            .source("D3D11.3 §15.4 and §15.16.1 (NaN positions are discarded); design.md")
+            .source("D3D11.3 §15.4 and §15.16.1 (NaN positions are discarded); refrast convention (ARCHITECTURE.md, Conventions: bad numbers)")
             .cases(3000)
             .vulkan_and_opengl(Level::Undefined(NON_FINITE_UNSPECIFIED))
             .d3d11(Level::Partly {
@@ -73,7 +73,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property(r, cfg, poisoned(), check_poisoned)),
         Rule::invariant(Family::Robust, "robust.bit-patterns.sane-output")
             .sentence("Arbitrary f32 bit patterns (NaN, Inf, subnormal, huge, w = 0) give no panic, no error, and only well-formed fragments.")
-            .source("zeno #1, raqote #107, tiny-skia #112 (ecosystem.md); D3D11.3 §15.4, §15.16.1")
+            .source("zeno #1, raqote #107, tiny-skia #112 (panics and hangs on extreme input); D3D11.3 §15.4, §15.16.1")
             .cases(20000)
             .vulkan_and_opengl(Level::Partly {
                 part: |r, cfg| property(r, cfg, bit_pattern_scene(), check_sane_where_defined),
@@ -86,7 +86,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property(r, cfg, bit_pattern_scene(), check_well_formed)),
         Rule::invariant(Family::Robust, "robust.output.well-formed")
             .sentence("Fragments lie in the viewport, name a real primitive, cover a pixel at most once per primitive, and have depth in [0, 1] within the claimed precision.")
-            .source("design.md (what must be observable)")
+            .source("the Rasterizer contract (src/rasterizer.rs: Fragment); Vulkan 1.4, Scissor Test")
             .cases(5000)
             .vulkan_and_opengl(Level::Partly {
                 part: |r, cfg| property(r, cfg, strategy::crossing_scene(), check_well_formed_but_depth),
@@ -99,7 +99,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property(r, cfg, strategy::crossing_scene(), check_well_formed)),
         Rule::invariant(Family::Robust, "robust.bad-index.error")
             .sentence("A triangle naming a vertex that does not exist makes the draw fail with an error, not a panic.")
-            .source("design.md (bad input gets a clear error)")
+            .source("refrast convention (ARCHITECTURE.md, Conventions: bad numbers)")
             .cases(1000)
             .vulkan_and_opengl(Level::Undefined(BAD_INDEX_UNDEFINED))
             .d3d11(Level::NotCovered(BAD_INDEX_D3D))

@@ -1,4 +1,4 @@
-//! The hand-checked findings of the README's write-up (lavapipe, llvmpipe, softpipe), each as the
+//! The hand-checked findings of docs/certified.md (lavapipe, llvmpipe, softpipe), each as the
 //! driver does it today.
 
 use refrast::{Draw, Fragment, FrontFace, Rasterizer, Reference, Viewport};
@@ -26,7 +26,7 @@ pub fn at(frags: &[Fragment], x: u32, y: u32) -> Vec<Fragment> {
     frags.iter().filter(|f| (f.x, f.y) == (x, y)).copied().collect()
 }
 
-/// Each finding of the README's write-up for driver `d`, as the driver does it today.
+/// Each finding of docs/certified.md for driver `d`, as the driver does it today.
 pub fn findings(d: Driver, gpu: &mut Gpu) {
     let mut run = |draw: &Draw| gpu.rasterize(draw).expect("the driver draws");
 

@@ -1,6 +1,6 @@
 //! SwiftShader's failures under `refrast certify`, each reduced to a minimal draw and checked
-//! against the reference on SwiftShader's own 4-bit grid and against exact arithmetic (README,
-//! "Certified implementations"). The numbers are SwiftShader's as Chromium 148 ships it; every
+//! against the reference on SwiftShader's own 4-bit grid and against exact arithmetic
+//! (docs/certified.md, "Findings"). The numbers are SwiftShader's as Chromium 148 ships it; every
 //! one was also reproduced bit for bit by an f32 trace of SwiftShader's source (`VertexRoutine`,
 //! `Clipper`, `SetupRoutine`, `QuadRasterizer`, `PixelRoutine`).
 

@@ -343,10 +343,11 @@ fn turn_word(turn: Turn) -> &'static str {
 mod tests {
     use super::*;
 
-    /// Regression (softpipe, issue 12): with w from a continuous range, a vertex of a
-    /// "zero-area" triangle projected to 383.9995 of 1/256 px in f32, which truncating snaps to
-    /// 383 and rounding to 384, so the triangle had area for some drivers. Every vertex must
-    /// project, in f32 as in f64, exactly onto the half-pixel lattice it was built on.
+    /// Regression (softpipe, once the generators were widened: docs/reach.md): with w from a
+    /// continuous range, a vertex of a "zero-area" triangle projected to 383.9995 of 1/256 px in
+    /// f32, which truncating snaps to 383 and rounding to 384, so the triangle had area for some
+    /// drivers. Every vertex must project, in f32 as in f64, exactly onto the half-pixel lattice
+    /// it was built on.
     #[test]
     fn degenerate_scenes_project_exactly() {
         for scene in strategy::samples(collinear_scene(), 2000) {

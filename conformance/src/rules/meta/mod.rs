@@ -21,7 +21,7 @@ pub(super) fn rules() -> Vec<Rule> {
     vec![
         Rule::invariant(Family::Meta, "meta.rotation.same-coverage")
             .sentence("Rotating a triangle's vertex order leaves its coverage unchanged and rotates its barycentrics.")
-            .source("conformance-anchors d3 (llvmpipe attributes change under rotation); DRTK #9")
+            .source("refrast's own metamorphic property (an llvmpipe comment admits attributes change under rotation); DRTK #9")
             .cases(10000)
             .vulkan_and_opengl(Level::Partly {
                 part: |r, cfg| property(r, cfg, strategy::perspective_grid_scene(), check_rotation_away_from_edges),
@@ -30,7 +30,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property(r, cfg, strategy::perspective_grid_scene(), check_rotation)),
         Rule::invariant(Family::Meta, "meta.reversal.flips-facing")
             .sentence("Reversing a triangle's winding keeps its coverage, swaps two barycentrics and flips its facing.")
-            .source("conformance-anchors d3; Vulkan 1.4, Basic Polygon Rasterization")
+            .source("refrast's own metamorphic property; Vulkan 1.4, Basic Polygon Rasterization")
             .cases(10000)
             .vulkan_and_opengl(Level::Partly {
                 part: |r, cfg| property(r, cfg, strategy::perspective_grid_scene(), check_reversal_away_from_edges),
@@ -39,22 +39,22 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property(r, cfg, strategy::perspective_grid_scene(), check_reversal)),
         Rule::invariant(Family::Meta, "meta.translate.whole-pixels")
             .sentence("Moving a triangle by whole pixels moves its coverage by the same pixels (near an edge, clipping may differ by the band).")
-            .source("OpenGL 4.6 §14.2 (invariance under integer translation); conformance-anchors d3")
+            .source("OpenGL 4.6 §14.2 (invariance under integer translation); refrast's own metamorphic property")
             .cases(10000)
             .run(|r, cfg| property(r, cfg, translate::translated(), check_translation)),
         Rule::invariant(Family::Meta, "meta.translate.one-subpixel")
             .sentence("Moving a triangle by one subpixel unit changes only samples within one unit (plus the band) of an edge.")
-            .source("conformance-anchors d3 (translation by 2^-bits)")
+            .source("refrast's own metamorphic property (translation by 2^-bits)")
             .cases(10000)
             .run(|r, cfg| property(r, cfg, strategy::grid_scene(), check_subpixel_translation)),
         Rule::invariant(Family::Meta, "meta.viewport.neutral")
             .sentence("A triangle at the same raster position in a viewport twice as large covers the same samples (near an edge, clipping may differ by the band).")
-            .source("Vulkan 1.4, Basic Polygon Rasterization (coverage is decided at sample points in framebuffer space); conformance-anchors d3")
+            .source("Vulkan 1.4, Basic Polygon Rasterization (coverage is decided at sample points in framebuffer space); refrast's own metamorphic property")
             .cases(5000)
             .run(|r, cfg| property(r, cfg, strategy::grid_scene(), check_viewport_neutral)),
         Rule::invariant(Family::Meta, "meta.batch.independent")
             .sentence("Each triangle of a draw covers the same samples as when drawn alone, in any submission order.")
-            .source("conformance-anchors d3 (tile, thread and traversal-order independence); piglit quad-invariance")
+            .source("refrast's own metamorphic property (tile, thread and traversal-order independence); piglit quad-invariance")
             .cases(3000)
             .vulkan_and_opengl(Level::Partly {
                 part: |r, cfg| property(r, cfg, strategy::overlapping_scene(), check_batch_away_from_edges),

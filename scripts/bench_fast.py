@@ -1,49 +1,166 @@
 #!/usr/bin/env python3
-"""Runs fast's benchmark and prints medians, Mtri/s, Mpix/s and ratios to the reference and baseline.
+"""Runs fast's benchmark and prints medians, Mtri/s, Mpix/s and ratios, side by side.
 
-Usage: python3 scripts/bench_fast.py [extra criterion args, e.g. a filter like 'fast/small']
-Every implementation runs in the same process, so the ratios hold on a noisy machine;
-`fast_1t` and `fast_2t` are fast on 1 and 2 threads, and the last column is 2t over 1t.
-Where Mesa's lavapipe opens, `lavapipe` is its drawing time for a depth test and a primitive-id
-target, and `fast_resolve_2t` is fast doing that same job on 2 threads; the last column of
-those rows is lavapipe's time over the row's (above 1: faster than lavapipe). lavapipe needs
-`XDG_RUNTIME_DIR` set (any private folder) and `apt-get install mesa-vulkan-drivers libvulkan1`.
+Usage: python3 scripts/bench_fast.py [--quick] [--json FILE] [--no-swiftshader] [criterion args]
+
+Every implementation of a table runs in the same process, so the ratios hold on a noisy
+machine: `baseline` (the plain scalar loop), `reference`, `fast_1t` and `fast_2t` (fast on 1
+and 2 threads; the `2t/1t` column is the second core's gain). Where Mesa's lavapipe opens,
+`lavapipe` is its drawing time for a depth test and a primitive-id target, and
+`fast_resolve_2t` is fast doing that same job on 2 threads. SwiftShader doing lavapipe's job
+runs in a second process of the same bench (its Vulkan ICD is chosen by `VK_ICD_FILENAMES`
+before the loader starts), as `swiftshader`. The `vs lvp` column is lavapipe's median over the
+row's: above 1, faster than lavapipe (only the resolve rows and `swiftshader` do its job).
+
+--quick        one second of warm-up and three of measurement per row (a few minutes in all)
+--json FILE    writes {"meta": {...}, "scenes": {scene: {implementation: median seconds}}}
+--no-swiftshader   skips the second process
+Other arguments go to criterion (a filter such as 'fast/small' picks scenes).
+
+lavapipe needs `XDG_RUNTIME_DIR` set (any private folder) and `apt-get install
+mesa-vulkan-drivers libvulkan1 vulkan-tools`; SwiftShader is in Debian's `chromium` package.
 """
 import json
+import os
 import pathlib
+import platform
 import re
 import subprocess
 import sys
 
-root = pathlib.Path(__file__).resolve().parent.parent
-cmd = ["cargo", "bench", "-p", "refrast-fast", "--bench", "fast", "--", *sys.argv[1:]]
-print("$", " ".join(cmd), file=sys.stderr)
-out = subprocess.run(cmd, cwd=root, check=True, capture_output=True, text=True).stdout
-meta = subprocess.run(["cargo", "metadata", "--format-version", "1", "--no-deps"], cwd=root, check=True, capture_output=True, text=True)
-target = pathlib.Path(json.loads(meta.stdout)["target_directory"])
-counts = {}
-for m in re.finditer(r"fragments (\S+) reference (\d+) baseline (\d+) triangles (\d+)", out):
-    counts[m[1]] = (int(m[2]), int(m[3]), int(m[4]))
-impls = ("reference", "baseline", "fast_1t", "fast_2t", "fast_resolve_2t", "lavapipe")
-print(f"{'scene':<13} {'impl':<16} {'median':>10} {'Mtri/s':>8} {'Mpix/s':>8} {'vs ref':>8} {'vs base':>8} {'2t/1t':>6}")
-for name, (ref_frags, base_frags, tris) in counts.items():
-    medians = {}
-    for impl in impls:
-        est = target / "criterion" / "fast_" / name / impl / "new/estimates.json"
-        if not est.exists():
-            est = target / "criterion" / f"fast_{name}" / impl / "new/estimates.json"
-        if est.exists():
-            medians[impl] = json.loads(est.read_text())["median"]["point_estimate"] / 1e9
-    for impl in impls:
-        if impl not in medians:
-            continue
-        s = medians[impl]
-        frags = base_frags if impl == "baseline" else ref_frags
-        vs_ref = medians["reference"] / s if "reference" in medians else float("nan")
-        vs_base = medians["baseline"] / s if "baseline" in medians else float("nan")
-        scale = ""
-        if impl == "fast_2t" and "fast_1t" in medians:
-            scale = f"{medians['fast_1t'] / s:>5.2f}x"
-        elif impl.startswith("fast_resolve") and "lavapipe" in medians:
-            scale = f"{medians['lavapipe'] / s:>5.2f}x"
-        print(f"{name:<13} {impl:<16} {s * 1e3:>8.1f}ms {tris / s / 1e6:>8.2f} {frags / s / 1e6:>8.1f} {vs_ref:>7.2f}x {vs_base:>7.2f}x {scale:>6}")
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+SWIFTSHADER_ICD = "/usr/lib/chromium/vk_swiftshader_icd.json"
+IMPLS = ("baseline", "reference", "fast_1t", "fast_2t", "fast_resolve_2t", "lavapipe", "swiftshader")
+QUICK = ["--warm-up-time", "1", "--measurement-time", "3"]
+
+
+def usage(message):
+    print(f"bench_fast.py: {message}\n{__doc__}", file=sys.stderr)
+    sys.exit(2)
+
+
+def parse(argv):
+    """The script's own options, and the arguments left for criterion."""
+    quick, json_path, swiftshader, rest = False, None, True, []
+    args = iter(argv)
+    for a in args:
+        if a == "--quick":
+            quick = True
+        elif a == "--json":
+            json_path = next(args, None)
+            if json_path is None:
+                usage("--json needs a file name")
+        elif a.startswith("--json="):
+            json_path = a.split("=", 1)[1]
+        elif a == "--no-swiftshader":
+            swiftshader = False
+        elif a in ("-h", "--help"):
+            print(__doc__)
+            sys.exit(0)
+        else:
+            rest.append(a)
+    return quick, json_path, swiftshader, rest
+
+
+def run_bench(args, env=None):
+    """Runs the bench with criterion arguments `args`; returns its stdout."""
+    cmd = ["cargo", "bench", "-p", "refrast-fast", "--bench", "fast", "--", *args]
+    print("$", " ".join(cmd), file=sys.stderr)
+    done = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, env=env)
+    if done.returncode != 0:
+        sys.stderr.write(done.stderr[-4000:])
+        sys.exit(f"bench_fast.py: the bench failed (exit {done.returncode})")
+    for line in done.stderr.splitlines():
+        if "SKIPPED" in line:
+            print(line, file=sys.stderr)
+    return done.stdout
+
+
+def medians(target, scene):
+    """Median seconds per implementation of `scene`, from criterion's estimates."""
+    found = {}
+    for impl in IMPLS:
+        for est in (target / "criterion" / "fast_" / scene / impl / "new/estimates.json",
+                    target / "criterion" / f"fast_{scene}" / impl / "new/estimates.json"):
+            if est.exists():
+                found[impl] = json.loads(est.read_text())["median"]["point_estimate"] / 1e9
+                break
+    return found
+
+
+def git(*args):
+    done = subprocess.run(["git", *args], cwd=ROOT, capture_output=True, text=True)
+    return done.stdout.strip() if done.returncode == 0 else "unknown"
+
+
+def cpu_model():
+    try:
+        for line in open("/proc/cpuinfo"):
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "unknown"
+
+
+def main():
+    quick, json_path, swiftshader, rest = parse(sys.argv[1:])
+    timing = QUICK if quick else []
+    # Old rows would pass for this run's: criterion keeps the last estimates of every row.
+    meta = subprocess.run(["cargo", "metadata", "--format-version", "1", "--no-deps"], cwd=ROOT,
+                          check=True, capture_output=True, text=True)
+    target = pathlib.Path(json.loads(meta.stdout)["target_directory"])
+    for group in (target / "criterion").glob("fast_*"):
+        for impl in IMPLS:
+            for old in group.rglob(f"{impl}/new/estimates.json"):
+                old.unlink()
+    out = run_bench([*timing, *rest])
+    if swiftshader and pathlib.Path(SWIFTSHADER_ICD).is_file():
+        env = dict(os.environ, VK_ICD_FILENAMES=SWIFTSHADER_ICD, REFRAST_BENCH_DRIVER="swiftshader")
+        # Only the driver's rows: everything else ran in the first process.
+        pattern = "|".join(re.escape(r) for r in rest if not r.startswith("-")) or "fast/"
+        run_bench([*timing, f"({pattern}).*/swiftshader"], env)
+    elif swiftshader:
+        print(f"swiftshader: SKIPPED: {SWIFTSHADER_ICD} is absent (apt-get install chromium)", file=sys.stderr)
+
+    counts = {m[1]: (int(m[2]), int(m[3]), int(m[4]))
+              for m in re.finditer(r"fragments (\S+) reference (\d+) baseline (\d+) triangles (\d+)", out)}
+    simd = re.search(r"^simd (\S+)", out, re.M)
+    print(f"{'scene':<13} {'impl':<16} {'median':>10} {'Mtri/s':>8} {'Mpix/s':>8} "
+          f"{'vs ref':>8} {'vs base':>8} {'vs lvp':>7} {'2t/1t':>6}")
+    table = {}
+    for name, (ref_frags, base_frags, tris) in counts.items():
+        found = medians(target, name)
+        table[name] = found
+        for impl in IMPLS:
+            if impl not in found:
+                continue
+            s = found[impl]
+            frags = base_frags if impl == "baseline" else ref_frags
+            ratio = lambda other: f"{found[other] / s:>7.2f}x" if other in found else f"{'—':>8}"
+            scale = f"{found['fast_1t'] / s:>5.2f}x" if impl == "fast_2t" and "fast_1t" in found else ""
+            print(f"{name:<13} {impl:<16} {s * 1e3:>8.1f}ms {tris / s / 1e6:>8.2f} {frags / s / 1e6:>8.1f} "
+                  f"{ratio('reference')} {ratio('baseline')} {ratio('lavapipe'):>7} {scale:>6}")
+    if json_path:
+        document = {
+            "meta": {
+                "commit": git("rev-parse", "HEAD"),
+                "dirty": bool(git("status", "--porcelain", "--untracked-files=no")),
+                "cpu": cpu_model(),
+                "cores": os.cpu_count(),
+                # fast prints the SIMD level it chose; today's fast has none.
+                "simd": simd[1] if simd else "none",
+                # fast's rows; the drivers use as many threads as the machine has cores.
+                "threads": [1, 2],
+                "samples": 10,
+                "quick": quick,
+                "criterion_args": [*timing, *rest],
+            },
+            "scenes": table,
+        }
+        pathlib.Path(json_path).write_text(json.dumps(document, indent=2) + "\n")
+        print(f"wrote {json_path}", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()

@@ -12,6 +12,8 @@
 //! same run: `lavapipe` is its drawing time (`Gpu::resolve_timed`, reading back excluded) of a
 //! depth test and a primitive-id target, which `fast_resolve_2t` also times for `fast`
 //! (`Rasterizer::resolve`, 2 threads; lavapipe runs as many as the machine has cores).
+//! `REFRAST_BENCH_DRIVER=swiftshader` (with `VK_ICD_FILENAMES` on Chromium's ICD) times
+//! SwiftShader instead, as `swiftshader`.
 
 use std::f32::consts::TAU;
 use std::hint::black_box;
@@ -163,16 +165,43 @@ fn fitted_draw(r: &dyn Rasterizer, scene: &Scene) -> Draw {
     draw
 }
 
+/// The driver drawing beside `fast`: `REFRAST_BENCH_DRIVER` (lavapipe unless it names another;
+/// SwiftShader also needs `VK_ICD_FILENAMES`, which `scripts/bench_fast.py` sets in a second
+/// process, since the Vulkan loader reads it once).
+fn gpu_driver() -> Driver {
+    let name = std::env::var("REFRAST_BENCH_DRIVER").unwrap_or_else(|_| "lavapipe".into());
+    Driver::ALL
+        .into_iter()
+        .find(|d| d.name() == name)
+        .unwrap_or_else(|| {
+            let names: Vec<_> = Driver::ALL.iter().map(|d| d.name()).collect();
+            eprintln!(
+                "REFRAST_BENCH_DRIVER={name} is not a driver; choose one of {}",
+                names.join(", ")
+            );
+            std::process::exit(2)
+        })
+}
+
 fn bench(c: &mut Criterion) {
+    // A hundredth of each scene under REFRAST_BENCH_SMALL, so that CI runs every row once
+    // (`cargo test --benches` runs criterion's test mode) and the bench cannot rot.
+    // (A tenth of the torus's segments and rings is a hundredth of its triangles.)
+    let (k, t) = if std::env::var_os("REFRAST_BENCH_SMALL").is_some() {
+        (100, 10)
+    } else {
+        (1, 1)
+    };
     let scenes = [
-        ("small_10px", flat(scene(100_000, 10.0))),
-        ("medium_500px", flat(scene(10_000, 500.0))),
-        ("large_50kpx", flat(scene(1_000, 50_000.0))),
-        ("torus_1m", torus(1000, 500)),
+        ("small_10px", flat(scene(100_000 / k, 10.0))),
+        ("medium_500px", flat(scene(10_000 / k, 500.0))),
+        ("large_50kpx", flat(scene(1_000 / k, 50_000.0))),
+        ("torus_1m", torus(1000 / t, 500 / t)),
     ];
     let (mut one, mut two) = (Fast::with_threads(1), Fast::with_threads(2));
-    let mut lavapipe = Gpu::new(Driver::Lavapipe)
-        .inspect_err(|why| eprintln!("lavapipe: SKIPPED: {why}"))
+    let driver = gpu_driver();
+    let mut gpu = Gpu::new(driver)
+        .inspect_err(|why| eprintln!("{}: SKIPPED: {why}", driver.name()))
         .ok();
     for (name, scene) in &scenes {
         let count = scene.mesh.triangles.len();
@@ -202,17 +231,17 @@ fn bench(c: &mut Criterion) {
                 b.iter(|| fast(r, &mut depth, &mut color, scene));
             });
         }
-        if let Some(gpu) = lavapipe.as_mut() {
+        if let Some(gpu) = gpu.as_mut() {
             let draw = fitted_draw(&two, scene);
             group.bench_function("fast_resolve_2t", |b| {
                 b.iter(|| black_box(two.resolve(&draw).expect("draws")))
             });
             let draw = fitted_draw(gpu, scene);
             // Each iteration draws and reads back; only the drawing is counted.
-            group.bench_function("lavapipe", |b| {
+            group.bench_function(driver.name(), |b| {
                 b.iter_custom(|n| {
                     (0..n)
-                        .map(|_| gpu.resolve_timed(&draw).expect("lavapipe draws").1.drawing)
+                        .map(|_| gpu.resolve_timed(&draw).expect("the driver draws").1.drawing)
                         .sum()
                 })
             });

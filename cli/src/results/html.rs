@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use base64::Engine;
 use refrast_conformance::{ProfileReport, Report, Rule, RuleReport, Status};
 
-use super::{Document, Entry, Outcome, Subject, reproduce};
+use super::{Document, Entry, Outcome, Subject, markup_entity, reproduce};
 
 /// The page's style: small, inline, no external fonts.
 const CSS: &str = include_str!("report.css");
@@ -408,13 +408,9 @@ fn failure(
 fn esc(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
     for c in text.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&#39;"),
-            c => out.push(c),
+        match markup_entity(c) {
+            Some(entity) => out.push_str(entity),
+            None => out.push(c),
         }
     }
     out

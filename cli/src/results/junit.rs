@@ -12,7 +12,7 @@ use std::fmt::Write as _;
 use refrast_conformance::expect::Expectations;
 use refrast_conformance::{RuleReport, Status};
 
-use super::{Document, Entry, Outcome, reproduce};
+use super::{Document, Entry, Outcome, markup_entity, reproduce};
 
 /// The document as JUnit XML; `expect` decides which verdicts are expected.
 #[must_use]
@@ -252,12 +252,11 @@ fn esc_text(text: &str) -> String {
 fn esc(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
     for c in text.chars() {
+        if let Some(entity) = markup_entity(c) {
+            out.push_str(entity);
+            continue;
+        }
         match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&apos;"),
             '\n' => out.push_str("&#10;"),
             '\t' => out.push_str("&#9;"),
             c if (c as u32) < 0x20 || c == '\u{FFFE}' || c == '\u{FFFF}' => {
@@ -275,7 +274,7 @@ mod tests {
 
     #[test]
     fn escapes_markup_and_characters_xml_cannot_hold() {
-        assert_eq!(esc("<a b=\"c\">&'"), "&lt;a b=&quot;c&quot;&gt;&amp;&apos;");
+        assert_eq!(esc("<a b=\"c\">&'"), "&lt;a b=&quot;c&quot;&gt;&amp;&#39;");
         assert_eq!(esc("a\u{0}b\u{1b}"), "a\\u{0}b\\u{1b}");
         assert_eq!(esc("line\nnext"), "line&#10;next");
     }

@@ -287,6 +287,20 @@ pub fn civil(when: SystemTime) -> (String, String) {
     )
 }
 
+/// The entity for a character that is markup in HTML and in XML alike (`&`, `<`, `>` and both
+/// quotes), or `None`: the escaping the page and the JUnit file share (`&#39;`, not `&apos;`,
+/// which HTML 4 lacks).
+pub(crate) fn markup_entity(c: char) -> Option<&'static str> {
+    match c {
+        '&' => Some("&amp;"),
+        '<' => Some("&lt;"),
+        '>' => Some("&gt;"),
+        '"' => Some("&quot;"),
+        '\'' => Some("&#39;"),
+        _ => None,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::{civil, rfc3339};

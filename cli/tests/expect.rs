@@ -3,23 +3,17 @@
 //! writes what was seen; the checked-in files (`expectations/*.txt`) all read, and a flipped
 //! line of a driver's file makes the run fail.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
 
 use refrast_conformance::expect::Expectations;
 
-const REFRAST: &str = env!("CARGO_BIN_EXE_refrast");
+mod support;
+
+use support::{REFRAST, scratch};
 
 /// Fails the fill rules (`fill.mesh.exactly-once`, `fill.top-left.exact`), passes the rest.
 const MUTANT: &str = "mutant:inclusive-edges";
-
-/// A fresh folder for one test's outputs.
-fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("scratch folder");
-    dir
-}
 
 /// `refrast certify` of the mutant and the reference on two rules, with `extra` arguments.
 fn certify(dir: &Path, extra: &[&str]) -> Output {

@@ -2,24 +2,18 @@
 //! pictures and reproduce commands, every report string escaped), and `--jobs` changes nothing
 //! but the times.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
 
 use base64::Engine;
 use serde_json::Value;
 
-const REFRAST: &str = env!("CARGO_BIN_EXE_refrast");
+mod support;
+
+use support::{REFRAST, scratch};
 
 /// The mutant that draws shared edges twice: fails fill rules with a picture.
 const MUTANT: &str = "mutant:inclusive-edges";
-
-/// A fresh folder for one test's outputs.
-fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("scratch folder");
-    dir
-}
 
 /// Runs `refrast certify` with `args`, the report in `dir` and the JSON in `dir/r.json`: the
 /// output, and the JSON's array of implementations.

@@ -2,26 +2,20 @@
 //! schema, `--shard` and `merge` (the parts joined equal the whole but for times), `compare`
 //! (exit 1 on a regression), `rules --json` and `impls --json`.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
 
 use serde_json::Value;
 
-const REFRAST: &str = env!("CARGO_BIN_EXE_refrast");
+mod support;
+
+use support::{REFRAST, scratch};
 
 /// Fails the fill rules that look at shared edges; passes the rest.
 const MUTANT: &str = "mutant:inclusive-edges";
 
 /// The published JUnit schema (Jenkins xunit-plugin's junit-10.xsd; tests/data/README.md).
 const XSD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/junit-10.xsd");
-
-/// A fresh folder for one test's outputs.
-fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("scratch folder");
-    dir
-}
 
 fn refrast(args: &[&str]) -> Output {
     Command::new(REFRAST).args(args).output().expect("refrast runs")

@@ -1,15 +1,50 @@
-//! The back end's coverage: exact integer edge functions stepped per pixel, 8×8 blocks
-//! accepted or rejected whole against the three edges (Abrash, *Rasterization on Larrabee*),
-//! partial blocks tested eight samples a row at a time.
+//! The back end's coverage: exact integer edge functions, 8×8 blocks rejected whole against
+//! the three edges (Abrash, *Rasterization on Larrabee*), each row of a block tested eight
+//! samples at a time in lanes the compiler vectorises at the dispatched SIMD level.
 //!
 //! Every value is the exact `orient2d` of its sample, as the reference's `traverse` computes
-//! it, only reached by other sums of the same integers; so are the coverage decisions.
+//! it, reached by other sums of the same integers; so are the coverage decisions. The lanes
+//! hold them in the narrowest type that holds them exactly ([`Width`]): `i32` when the
+//! triangle's box is small (llvmpipe's 32-bit path), `f64` (integers below 2^53 are exact)
+//! otherwise, and `i128` one lane at a time beyond that. What interpolation reads is the same
+//! exact values in `f64` lanes, whatever the width.
 
 use refrast::stage::TriangleSetup;
 use refrast::{FixedPoint, SubpixelBits};
 
 /// The side of a block, in pixels: one row of a block is one vector of eight lanes.
 pub(crate) const BLOCK: u32 = 8;
+
+/// Lanes in a row of a block.
+pub(crate) const LANES: usize = BLOCK as usize;
+
+/// Lanes as a float array, lane `i` being `i`.
+const IOTA: [f64; LANES] = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0];
+
+/// The type a triangle's edge values are held in, lane by lane: the narrowest that is exact
+/// over every sample its traversal evaluates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Width {
+    /// Below 2^30: eight `i32` lanes (a lane's offset from lane 0, up to twice that, fits too).
+    Narrow,
+    /// Below 2^53: eight `f64` lanes, exact on integers.
+    Wide,
+    /// Larger (only far outside the guard band): `i128`, lane by lane.
+    Exact,
+}
+
+impl Width {
+    /// The narrowest width holding every value of magnitude up to `max`.
+    fn holding(max: i128) -> Self {
+        if max < 1 << 30 {
+            Self::Narrow
+        } else if max < 1 << 53 {
+            Self::Wide
+        } else {
+            Self::Exact
+        }
+    }
+}
 
 /// A triangle's three edge functions as values at pixel (0, 0) and steps per pixel.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -22,19 +57,22 @@ pub(crate) struct EdgeSteps {
     dy: [i64; 3],
     /// 0 where the edge owns the samples on it, −1 otherwise: inside is `value + bias ≥ 0`.
     bias: [i64; 3],
+    /// What its lanes hold values in.
+    pub width: Width,
 }
 
 impl EdgeSteps {
-    /// Reads the steps and fill-rule biases off the reference's own setup, by evaluating it.
+    /// Reads the steps and fill-rule biases off the reference's own setup, by evaluating it,
+    /// for traversals inside `rect` (`[x0, x1, y0, y1]`, half-open).
     ///
     /// Edge functions are linear, so the step is the difference of two exact values; the bias
     /// of edge k is whether `setup.is_inside` keeps a sample lying exactly on k alone.
-    pub fn new(setup: &TriangleSetup, bits: SubpixelBits) -> Self {
+    pub fn new(setup: &TriangleSetup, bits: SubpixelBits, rect: [u32; 4]) -> Self {
         let sample = |x, y| FixedPoint::sample(x, y, bits).expect("pixels 0 and 1 have samples");
         let origin = setup.edge_values(sample(0, 0));
         let (right, down) = (setup.edge_values(sample(1, 0)), setup.edge_values(sample(0, 1)));
         let far = 1 << 60;
-        Self {
+        let mut steps = Self {
             origin,
             dx: [0, 1, 2].map(|k| right[k] - origin[k]),
             dy: [0, 1, 2].map(|k| down[k] - origin[k]),
@@ -43,7 +81,20 @@ impl EdgeSteps {
                 on_edge[k] = 0;
                 if setup.is_inside(on_edge) { 0 } else { -1 }
             }),
-        }
+            width: Width::Exact,
+        };
+        // A linear function takes its extremes over a rectangle at its corners; lanes reach up
+        // to a block's width past the last column.
+        let [x0, x1, y0, y1] = rect.map(i128::from);
+        let corners = [(x0, y0), (x1 + 8, y0), (x0, y1), (x1 + 8, y1)];
+        let max = corners
+            .iter()
+            .flat_map(|&(x, y)| steps.at_wide(x, y))
+            .map(i128::abs)
+            .max()
+            .unwrap_or(0);
+        steps.width = Width::holding(max + 1);
+        steps
     }
 
     /// The exact edge values at the sample of pixel `(x, y)`.
@@ -53,9 +104,17 @@ impl EdgeSteps {
         [0, 1, 2].map(|k| self.origin[k] + x * self.dx[k] + y * self.dy[k])
     }
 
+    /// The same at any `(x, y)`, in a type that cannot overflow.
+    fn at_wide(&self, x: i128, y: i128) -> [i128; 3] {
+        [0, 1, 2]
+            .map(|k| i128::from(self.origin[k]) + x * i128::from(self.dx[k]) + y * i128::from(self.dy[k]))
+    }
+
     /// Visits every row of up to eight samples of `rect` (`[x0, x1, y0, y1]`, half-open,
     /// non-empty) that has a covered one: blocks row by row, rows top to bottom within a block.
-    pub fn traverse(&self, rect: [u32; 4], mut visit: impl FnMut(&Row)) {
+    #[inline(always)]
+    pub fn traverse(&self, rect: [u32; 4], mut visit: impl FnMut(&Lanes)) {
+        let lanes = LaneSteps::new(self);
         let [x0, x1, y0, y1] = rect;
         let mut by = y0 - y0 % BLOCK;
         while by < y1 {
@@ -63,97 +122,159 @@ impl EdgeSteps {
             let mut bx = x0 - x0 % BLOCK;
             while bx < x1 {
                 let (cx0, cx1) = (bx.max(x0), (bx + BLOCK).min(x1));
-                self.block([cx0, cx1, cy0, cy1], &mut visit);
+                if !self.rejects([cx0, cx1, cy0, cy1]) {
+                    let mut values = self.at(cx0, cy0);
+                    for y in cy0..cy1 {
+                        if let Some(row) = lanes.row(values, cx0, y, cx1 - cx0) {
+                            visit(&row);
+                        }
+                        for (value, dy) in values.iter_mut().zip(self.dy) {
+                            *value += dy;
+                        }
+                    }
+                }
                 bx += BLOCK;
             }
             by += BLOCK;
         }
     }
 
-    /// One block (at most 8×8): rejected or accepted whole from its corners, else row by row.
-    #[inline]
-    fn block(&self, rect: [u32; 4], visit: &mut impl FnMut(&Row)) {
+    /// Whether one edge leaves every sample of the block `rect` outside.
+    #[inline(always)]
+    fn rejects(&self, rect: [u32; 4]) -> bool {
         let [x0, x1, y0, y1] = rect;
         let start = self.at(x0, y0);
         let (w, h) = (i64::from(x1 - x0 - 1), i64::from(y1 - y0 - 1));
-        let mut accept = true;
-        for (k, value) in start.iter().enumerate() {
+        (0..3).any(|k| {
             // A linear function takes its extremes over a rectangle at its corners.
             let (ex, ey) = (self.dx[k] * w, self.dy[k] * h);
-            let lowest = value + ex.min(0) + ey.min(0) + self.bias[k];
-            let highest = value + ex.max(0) + ey.max(0) + self.bias[k];
-            if highest < 0 {
-                return;
-            }
-            accept &= lowest >= 0;
-        }
-        let mut values = start;
-        for y in y0..y1 {
-            let mask = if accept {
-                (1u32 << (x1 - x0)) - 1
-            } else {
-                self.row_mask(values, x1 - x0)
-            };
-            if mask != 0 {
-                visit(&Row {
-                    x0,
-                    y,
-                    mask,
-                    values,
-                    dx: self.dx,
-                });
-            }
-            for (value, dy) in values.iter_mut().zip(self.dy) {
-                *value += dy;
-            }
-        }
-    }
-
-    /// Bit i set when sample i of a row of `n` starting with edge values `row` is inside.
-    #[inline]
-    fn row_mask(&self, row: [i64; 3], n: u32) -> u32 {
-        let biased = [0, 1, 2].map(|k| row[k] + self.bias[k]);
-        let mut mask = 0;
-        for lane in 0..BLOCK as usize {
-            let i = lane as i64;
-            let any_negative =
-                (biased[0] + i * self.dx[0]) | (biased[1] + i * self.dx[1]) | (biased[2] + i * self.dx[2]);
-            mask |= u32::from(any_negative >= 0) << lane;
-        }
-        mask & ((1u32 << n) - 1)
+            start[k] + ex.max(0) + ey.max(0) + self.bias[k] < 0
+        })
     }
 }
 
-/// Up to eight samples of one pixel row of a block, and which of them a triangle covers.
+/// Up to eight samples of one pixel row of a block, which of them a triangle covers, and their
+/// exact edge values.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Row {
+pub(crate) struct Lanes {
     /// The column of lane 0.
     pub x0: u32,
     /// The pixel row.
     pub y: u32,
+    /// How many lanes lie in the row (the rest are past its end).
+    pub n: u32,
     /// Bit `i` set when lane `i` (column `x0 + i`) is covered.
     pub mask: u32,
-    /// The exact edge values at lane 0.
-    pub values: [i64; 3],
-    /// Their change per lane.
-    pub dx: [i64; 3],
+    /// Each edge's value per lane, exact (integers below 2^53; beyond, rounded once).
+    pub e: [[f64; LANES]; 3],
 }
 
-impl Row {
-    /// The exact edge values at lane `lane`.
-    #[inline]
-    pub fn values_at(&self, lane: u32) -> [i64; 3] {
-        let i = i64::from(lane);
-        [0, 1, 2].map(|k| self.values[k] + i * self.dx[k])
+impl Lanes {
+    /// One covered sample at `(x, y)` with exact edge values `values`, in lane 0.
+    #[inline(always)]
+    pub fn one(x: u32, y: u32, values: [i64; 3]) -> Self {
+        Self {
+            x0: x,
+            y,
+            n: 1,
+            mask: 1,
+            e: values.map(|v| [v as f64; LANES]),
+        }
     }
 
-    /// Visits the lanes whose bits are set in `mask`, in order.
-    #[inline]
-    pub fn for_each_lane(mut mask: u32, mut visit: impl FnMut(u32)) {
-        while mask != 0 {
-            visit(mask.trailing_zeros());
-            mask &= mask - 1;
+    /// Lane `lane`'s three edge values.
+    #[inline(always)]
+    pub fn values(&self, lane: usize) -> [f64; 3] {
+        self.e.map(|e| e[lane])
+    }
+}
+
+/// Visits the lanes whose bits are set in `mask`, in order.
+#[inline(always)]
+pub(crate) fn for_each_lane(mut mask: u32, mut visit: impl FnMut(usize)) {
+    while mask != 0 {
+        visit(mask.trailing_zeros() as usize);
+        mask &= mask - 1;
+    }
+}
+
+/// A triangle's edge steps as the lanes of a row use them: the change per lane and the least
+/// value inside (`−bias`), for its [`Width`].
+///
+/// Plain arrays and loops: inside [`Simd::vectorize`](fearless_simd::Simd::vectorize) the
+/// compiler turns each loop over the eight lanes into vector instructions of that level, with
+/// the same IEEE results as scalar code (no fast-math, no contraction into fused multiply-adds).
+struct LaneSteps<'a> {
+    steps: &'a EdgeSteps,
+    dx: [f64; 3],
+    least: [f64; 3],
+}
+
+impl<'a> LaneSteps<'a> {
+    #[inline(always)]
+    fn new(steps: &'a EdgeSteps) -> Self {
+        Self {
+            steps,
+            dx: steps.dx.map(|d| d as f64),
+            least: steps.bias.map(|b| -b as f64),
         }
+    }
+
+    /// The `n` samples of row `y` from column `x0`, whose lane 0 has edge values `values`, or
+    /// `None` when none is covered.
+    #[inline(always)]
+    fn row(&self, values: [i64; 3], x0: u32, y: u32, n: u32) -> Option<Lanes> {
+        let valid = (1u32 << n) - 1;
+        let mut inside = [true; LANES];
+        match self.steps.width {
+            Width::Narrow => {
+                for (k, &value) in values.iter().enumerate() {
+                    let (start, dx) = (value as i32, self.steps.dx[k] as i32);
+                    let least = -self.steps.bias[k] as i32;
+                    for (i, inside) in inside.iter_mut().enumerate() {
+                        *inside &= start + i as i32 * dx >= least;
+                    }
+                }
+            }
+            Width::Wide => {
+                for (k, &value) in values.iter().enumerate() {
+                    let start = value as f64;
+                    for (i, inside) in inside.iter_mut().enumerate() {
+                        *inside &= start + IOTA[i] * self.dx[k] >= self.least[k];
+                    }
+                }
+            }
+            Width::Exact => {
+                let dx = self.steps.dx;
+                for k in 0..3 {
+                    let bias = i128::from(self.steps.bias[k]);
+                    for (i, inside) in inside.iter_mut().enumerate() {
+                        *inside &= i128::from(values[k]) + i as i128 * i128::from(dx[k]) + bias >= 0;
+                    }
+                }
+            }
+        }
+        let mut mask = 0;
+        for (i, &inside) in inside.iter().enumerate() {
+            mask |= u32::from(inside) << i;
+        }
+        let mask = mask & valid;
+        if mask == 0 {
+            return None;
+        }
+        let mut e = [[0.0; LANES]; 3];
+        for k in 0..3 {
+            if self.steps.width == Width::Exact {
+                let lane = |i: usize| i128::from(values[k]) + i as i128 * i128::from(self.steps.dx[k]);
+                e[k] = std::array::from_fn(|i| lane(i) as f64);
+            } else {
+                let start = values[k] as f64;
+                for i in 0..LANES {
+                    e[k][i] = start + IOTA[i] * self.dx[k];
+                }
+            }
+        }
+        Some(Lanes { x0, y, n, mask, e })
     }
 }
 
@@ -168,9 +289,10 @@ mod tests {
         TriangleSetup::new(points, FillConvention::TopLeft).expect("nonzero area")
     }
 
-    /// Block traversal visits exactly the samples the reference's setup calls inside, with the
-    /// same exact edge values, on triangles with edges through samples (ties), slivers and a
-    /// counter-clockwise input, over rectangles that start and end off the block grid.
+    /// Block traversal visits exactly the samples the reference's setup calls inside, with
+    /// their exact edge values, on triangles with edges through samples
+    /// (ties), slivers and a counter-clockwise input, over rectangles that start and end off
+    /// the block grid, at every width.
     #[test]
     fn blocks_cover_what_the_setup_calls_inside() {
         let bits = SubpixelBits::DEFAULT;
@@ -179,30 +301,44 @@ mod tests {
             [(0, 0), (6000, 256 * 3 + 128), (300, 5000)],
             [(7000, 200), (100, 150), (3000, 6000)],
             [(-900, 4000), (9000, 4100), (9100, 4300)],
+            // Large enough for `f64` lanes.
+            [(0, 0), (900_000, 1000), (2000, 800_000)],
         ];
+        let mut widths = Vec::new();
         for v in triangles {
             let s = setup(v);
-            let steps = EdgeSteps::new(&s, bits);
             for rect in [[0, 30, 0, 30], [3, 21, 5, 19], [7, 9, 15, 16]] {
-                let mut got = Vec::new();
-                steps.traverse(rect, |row| {
-                    Row::for_each_lane(row.mask, |lane| {
-                        got.push((row.y, row.x0 + lane, row.values_at(lane)))
-                    });
-                });
-                got.sort_unstable();
-                let mut want = Vec::new();
-                for y in rect[2]..rect[3] {
-                    for x in rect[0]..rect[1] {
-                        let p = FixedPoint::sample(i64::from(x), i64::from(y), bits).unwrap();
-                        let values = s.edge_values(p);
-                        if s.is_inside(values) {
-                            want.push((y, x, values));
+                let mut steps = EdgeSteps::new(&s, bits, rect);
+                widths.push(steps.width);
+                for width in [steps.width, Width::Exact] {
+                    steps.width = width;
+                    let got = covered(&steps, rect);
+                    let mut want = Vec::new();
+                    for y in rect[2]..rect[3] {
+                        for x in rect[0]..rect[1] {
+                            let p = FixedPoint::sample(i64::from(x), i64::from(y), bits).unwrap();
+                            let values = s.edge_values(p);
+                            if s.is_inside(values) {
+                                want.push((y, x, values.map(|v| (v as f64).to_bits())));
+                            }
                         }
                     }
+                    assert_eq!(got, want, "{v:?} in {rect:?} at {width:?}");
                 }
-                assert_eq!(got, want, "{v:?} in {rect:?}");
             }
         }
+        assert!(widths.contains(&Width::Narrow) && widths.contains(&Width::Wide));
+    }
+
+    /// The covered samples of `rect`, sorted, with the bits of their edge values.
+    fn covered(steps: &EdgeSteps, rect: [u32; 4]) -> Vec<(u32, u32, [u64; 3])> {
+        let mut got = Vec::new();
+        steps.traverse(rect, |row| {
+            for_each_lane(row.mask, |lane| {
+                got.push((row.y, row.x0 + lane as u32, row.values(lane).map(f64::to_bits)))
+            });
+        });
+        got.sort_unstable();
+        got
     }
 }

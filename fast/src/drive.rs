@@ -6,13 +6,16 @@
 //! row by row, samples row-major within a block. Each pixel sees its primitives in draw order,
 //! so a depth test in the bands gives the reference's result.
 
+use fearless_simd::{Level, Simd, dispatch};
 use rayon::ThreadPool;
 use rayon::prelude::*;
 use refrast::stage::{PixelRect, ViewportTransform, clip_planes, traverse};
 use refrast::{Draw, DrawError, FixedPoint, ReferenceConfig};
 
+use crate::back::Lanes;
 use crate::front::{Chunk, DrawSetup, Prepared, VertexSetup};
-use crate::sink::{Corners, Sink};
+use crate::plane::Planes;
+use crate::sink::Sink;
 use crate::tiles::{TileGrid, intersect};
 
 /// Primitives set up and binned before their tiles are drawn: enough to share the work among
@@ -40,13 +43,14 @@ pub(crate) struct Buffers {
 const VERTEX_RUN: usize = 1 << 12;
 
 /// Draws `draw` into `sinks`, one per band of the viewport's tile grid, setting its positions
-/// up once and its triangles in `buffers`' chunks.
-pub(crate) fn run<S: Sink>(
+/// up once and its triangles in `buffers`' chunks, the back end at SIMD level `level`.
+pub(crate) fn run<K: Sink>(
     config: ReferenceConfig,
+    level: Level,
     pool: Option<&ThreadPool>,
     buffers: &mut Buffers,
     draw: &Draw,
-    sinks: &mut [S],
+    sinks: &mut [K],
 ) -> Result<(), DrawError> {
     draw.validate()?;
     let planes = clip_planes(
@@ -93,41 +97,76 @@ pub(crate) fn run<S: Sink>(
             chunk.prepare(&setup, &grid, first..(first + per_chunk).min(end));
         });
         for_each(pool, sinks, |band, sink| {
-            for tile in grid.band_tiles(band) {
-                let rect = grid.tile_rect(tile);
-                for chunk in chunks.iter() {
-                    for &t in &chunk.bins[tile] {
-                        draw_in_tile(&setup.transform, chunk, &chunk.triangles[t as usize], rect, sink);
-                    }
-                }
-            }
+            dispatch!(level, simd => draw_band(simd, &setup.transform, &grid, chunks, band, sink));
         });
     }
     Ok(())
 }
 
+/// Draws band `band`'s tiles into `sink`: tile by tile, each tile's triangles in order.
+#[inline(always)]
+fn draw_band<S: Simd, K: Sink>(
+    simd: S,
+    transform: &ViewportTransform,
+    grid: &TileGrid,
+    chunks: &[Chunk],
+    band: usize,
+    sink: &mut K,
+) {
+    simd.vectorize(
+        #[inline(always)]
+        || {
+            for tile in grid.band_tiles(band) {
+                let rect = grid.tile_rect(tile);
+                for chunk in chunks {
+                    for &t in &chunk.bins[tile] {
+                        draw_in_tile(transform, chunk, &chunk.triangles[t as usize], rect, sink);
+                    }
+                }
+            }
+        },
+    );
+}
+
 /// Draws the part of triangle `t` inside `tile` into `sink`.
-#[inline]
-fn draw_in_tile<S: Sink>(
+#[inline(always)]
+fn draw_in_tile<K: Sink>(
     transform: &ViewportTransform,
     chunk: &Chunk,
     t: &Prepared,
     tile: [u32; 4],
-    sink: &mut S,
+    sink: &mut K,
 ) {
     let Some(rect) = intersect(t.rect, tile) else {
         return;
     };
     if let Some(single) = &t.single {
-        let varyings = single.varyings();
-        let corners = Corners::whole(t.primitive, t.front_facing, single.area2, &varyings);
-        single.steps.traverse(rect, |row| sink.take_row(&corners, row));
+        single.steps.traverse(rect, |row| sink.take(&single.planes, row));
         return;
     }
+    draw_fan(transform, chunk, t, rect, sink);
+}
+
+/// Draws the part of a clipped polygon's fan (or of a lone triangle turned over by snapping)
+/// inside `rect` into `sink`: the reference's own traversal, on this part of the box, with
+/// `fast`'s interpolation.
+#[inline(never)]
+fn draw_fan<K: Sink>(
+    transform: &ViewportTransform,
+    chunk: &Chunk,
+    t: &Prepared,
+    rect: [u32; 4],
+    sink: &mut K,
+) {
     let fans = &chunk.fans[t.fans.start as usize..t.fans.end as usize];
     let raster = &chunk.raster[t.raster.start as usize..t.raster.end as usize];
-    // A clipped polygon's fan (or a lone triangle turned over by snapping): the reference's
-    // own traversal, on this tile's part of the box.
+    let planes: Vec<Planes> = fans
+        .iter()
+        .map(|f| {
+            let corners = f.setup.order().map(|k| &raster[f.corners[k]].varyings);
+            Planes::new(t.primitive, t.front_facing, corners, f.setup.area2())
+        })
+        .collect();
     let bits = transform.bits;
     let [x0, x1, y0, y1] = rect.map(i64::from);
     let corners = [(x0, y0), (x1 - 1, y1 - 1)]
@@ -135,7 +174,6 @@ fn draw_in_tile<S: Sink>(
     let rect = PixelRect::bounding(corners, bits, transform.viewport).expect("a non-empty box");
     let mut row = Vec::new();
     traverse(fans, t.winding, rect, bits, &mut row, |hit| {
-        let corners = Corners::new(t.primitive, t.front_facing, &fans[hit.triangle], raster);
-        sink.covered(&corners.sample(hit.x, hit.y, hit.values));
+        sink.take(&planes[hit.triangle], &Lanes::one(hit.x, hit.y, hit.values));
     });
 }

@@ -12,12 +12,12 @@ use std::ops::Range;
 
 use refrast::stage::{
     ClipOutcome, ClipPlane, ClipVertex, FanTriangle, PixelRect, ProjectedPoint, RasterVertex, TriangleSetup,
-    Varyings, ViewportTransform, assemble, build_fan, classify, clip_triangle, drawn_winding, input_w,
-    outcode,
+    ViewportTransform, assemble, build_fan, classify, clip_triangle, drawn_winding, input_w, outcode,
 };
 use refrast::{Draw, FillConvention, Winding};
 
 use crate::back::EdgeSteps;
+use crate::plane::Planes;
 use crate::tiles::TileGrid;
 
 /// What every triangle of one draw shares: its clip planes, viewport transform and fill rule.
@@ -79,26 +79,14 @@ pub(crate) struct Prepared {
     pub single: Option<Single>,
 }
 
-/// A triangle drawn as one fan triangle that agrees with its winding, with everything the
-/// back end reads kept together: stepping, area and the corners' varyings in setup order.
+/// A triangle drawn as one fan triangle that agrees with its winding: its coverage and its
+/// interpolation, set up once.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Single {
     /// Its edge functions, stepped per pixel.
     pub steps: EdgeSteps,
-    /// Twice its area, the sum of its edge values.
-    pub area2: i64,
-    /// Its corners' projections, in the setup's clockwise order (the order of the edge values).
-    pub corners: [ProjectedPoint; 3],
-    /// `order[k]` is which input corner `corners[k]` is.
-    pub order: [u8; 3],
-}
-
-impl Single {
-    /// What its corners carry, in the setup's order, as `SnappedTriangle::new` makes them.
-    #[inline]
-    pub fn varyings(&self) -> [Varyings; 3] {
-        [0, 1, 2].map(|k| self.corners[k].corner(usize::from(self.order[k])).varyings)
-    }
+    /// Its depth and barycentrics.
+    pub planes: Planes,
 }
 
 /// The triangles of one run of primitives, set up and binned by one thread; its buffers are
@@ -166,13 +154,12 @@ impl Chunk {
                 let (front_facing, rect) = kept(setup, winding, points.iter().map(|p| p.position))?;
                 let (fans, raster) = (self.fans.len(), self.raster.len());
                 self.push(primitive, front_facing, winding, rect, fans, raster);
-                let order = t.order();
+                // The corners in the setup's clockwise order, the order of its edge values.
+                let varyings = t.order().map(|k| points[k].corner(k).varyings);
                 let last = self.triangles.last_mut().expect("pushed above");
                 last.single = Some(Single {
-                    steps: EdgeSteps::new(&t, setup.transform.bits),
-                    area2: t.area2(),
-                    corners: order.map(|k| points[k]),
-                    order: order.map(|k| k as u8),
+                    steps: EdgeSteps::new(&t, setup.transform.bits, rect),
+                    planes: Planes::new(primitive as u32, front_facing, varyings.each_ref(), t.area2()),
                 });
                 Some(rect)
             }

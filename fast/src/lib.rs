@@ -1,27 +1,31 @@
-//! refrast-fast: a rasterizer bit-identical to the reference, binned, tiled, blocked and threaded.
+//! refrast-fast: a rasterizer with the reference's exact coverage and its own f32
+//! interpolation, binned, tiled, blocked, in SIMD lanes chosen at run time, and threaded.
 //!
-//! [`Fast`] gives the same fragments as [`Reference::default`] (the same set of
-//! `(x, y, primitive, depth, barycentrics, front_facing)`, bit for bit) and the same
-//! [`Resolved`] buffers, and declares the reference's profile under the name `fast`.
+//! [`Fast`] covers exactly the samples [`Reference::default`] covers, with the same primitive
+//! ids and facing (the same snapped integer edge functions, fill rule and clipping decisions);
+//! its depth and barycentrics are its own, within 2^-[`PRECISION_BITS`] of the exact values,
+//! the precision its profile declares. Its resolved buffers differ from the reference's only
+//! where two primitives' depths tie within that precision.
 //!
 //! # How
 //!
 //! - **Front end**: each triangle goes through the reference's own stages ([`refrast::stage`]:
 //!   assemble, snap before clipping, clip, project, fan, facing, cull, bounding box); nothing
-//!   that decides a bit is copied. What depends on one vertex alone (finiteness, clip outcode,
-//!   projection and snapping: `outcode`, `project_point`) is computed once per mesh vertex, so
-//!   a vertex shared by six triangles is projected once, not six times. Triangles are set up
+//!   that decides coverage is copied. What depends on one vertex alone (finiteness, clip
+//!   outcode, projection and snapping) is computed once per mesh vertex. Triangles are set up
 //!   in batches, split among threads.
 //! - **Binning**: each triangle's box is binned into 64×64 tiles; a row of tiles is a band, a
 //!   contiguous run of rows of every buffer, so threads own bands and need no locks.
-//! - **Back end**: per tile, triangles in primitive order; per triangle, 8×8 blocks accepted
-//!   or rejected whole from their corners (Abrash, *Rasterization on Larrabee*), partial
-//!   blocks tested eight samples a row; exact `i64` edge values stepped per pixel. A clipped
-//!   polygon's fan goes through the reference's own `traverse` on the tile's part of its box.
-//! - **Interpolation**: per covered sample, the reference's calls (`interpolate_depth`,
-//!   `fragment_depth`, `screen_weights`, `interpolate`) on the same exact edge values. Rows
-//!   with several covered samples get all eight depths in one loop and are depth-tested
-//!   before any is shaded.
+//! - **Back end**: per tile, triangles in primitive order; per triangle, 8×8 blocks rejected
+//!   whole from their corners (Abrash, *Rasterization on Larrabee*), each block row tested as
+//!   eight SIMD lanes of exact edge values: `i32` when the triangle's box is small, `f64`
+//!   (exact below 2^53) otherwise. A clipped polygon's fan goes through the reference's own
+//!   `traverse` on the tile's part of its box.
+//! - **Interpolation**: depth and barycentrics as f32 planes over the exact edge values, set up
+//!   once per triangle; depth for eight lanes at once, no division per sample; a fragment's
+//!   perspective correction takes one reciprocal.
+//! - **SIMD**: [`fearless_simd`], its level ([`SimdLevel`]) detected at run time; every level
+//!   and the scalar fallback give the same bits (no fused multiply-add).
 //!
 //! # Order of fragments
 //!
@@ -31,8 +35,11 @@
 #![forbid(unsafe_code)]
 
 mod back;
+pub mod contract;
 mod drive;
 mod front;
+mod plane;
+mod simd;
 mod sink;
 mod tiles;
 
@@ -40,6 +47,9 @@ use std::sync::Arc;
 
 use rayon::ThreadPool;
 use refrast::{Draw, DrawError, Fragment, Profile, Rasterizer, Reference, ReferenceConfig, Resolved};
+
+pub use crate::plane::PRECISION_BITS;
+pub use crate::simd::SimdLevel;
 
 use crate::drive::Buffers;
 use crate::sink::{BandRows, ResolveBand, ShadeBand};
@@ -52,6 +62,9 @@ pub struct FastConfig {
     pub reference: ReferenceConfig,
     /// Threads to draw with; 1 draws on the calling thread without rayon.
     pub threads: usize,
+    /// The SIMD level of the back end; [`SimdLevel::Best`] detects it. The output is the same
+    /// at every level.
+    pub simd: SimdLevel,
 }
 
 impl Default for FastConfig {
@@ -60,6 +73,7 @@ impl Default for FastConfig {
         Self {
             reference: ReferenceConfig::default(),
             threads: std::thread::available_parallelism().map_or(1, usize::from),
+            simd: SimdLevel::Best,
         }
     }
 }
@@ -82,6 +96,7 @@ impl Fast {
     /// A fast rasterizer with `config`; with `threads > 1` it starts its own thread pool.
     ///
     /// Should the pool fail to start, it draws on the calling thread: same output, slower.
+    /// Should the CPU lack `config.simd`, it draws at the best level it has: same output.
     #[must_use]
     pub fn new(config: FastConfig) -> Self {
         let pool = (config.threads > 1)
@@ -113,6 +128,17 @@ impl Fast {
     #[must_use]
     pub fn config(&self) -> FastConfig {
         self.config
+    }
+
+    /// The SIMD level it draws at: the configured one, or the best the CPU has when it lacks it.
+    #[must_use]
+    pub fn simd(&self) -> SimdLevel {
+        SimdLevel::of(self.level())
+    }
+
+    /// The level handed to the back end.
+    fn level(&self) -> fearless_simd::Level {
+        self.config.simd.level().unwrap_or_else(fearless_simd::Level::new)
     }
 
     /// Draws `draw` into row-major `depth` and `color` buffers of its viewport's size, in the
@@ -156,6 +182,7 @@ impl Fast {
             .collect();
         drive::run(
             self.config.reference,
+            self.level(),
             self.pool.as_deref(),
             &mut self.buffers,
             draw,
@@ -168,15 +195,17 @@ impl Rasterizer for Fast {
     fn profile(&self) -> Profile {
         Profile {
             name: "fast".into(),
+            precision_bits: PRECISION_BITS,
             ..Reference::new(self.config.reference).profile()
         }
     }
 
     fn about(&self) -> String {
         format!(
-            "refrast-fast {}, {} thread(s)",
+            "refrast-fast {}, {} thread(s), SIMD {}",
             env!("CARGO_PKG_VERSION"),
-            self.config.threads
+            self.config.threads,
+            self.simd().name()
         )
     }
 
@@ -185,6 +214,7 @@ impl Rasterizer for Fast {
         let mut sinks: Vec<Vec<Fragment>> = vec![Vec::new(); bands];
         drive::run(
             self.config.reference,
+            self.level(),
             self.pool.as_deref(),
             &mut self.buffers,
             draw,
@@ -214,6 +244,7 @@ impl Rasterizer for Fast {
             .collect();
         drive::run(
             self.config.reference,
+            self.level(),
             self.pool.as_deref(),
             &mut self.buffers,
             draw,

@@ -7,6 +7,7 @@ use refrast::{
     CompareOp, CullMode, Draw, DrawError, DrawState, Fragment, Profile, Rasterizer, Reference,
     ReferenceConfig,
 };
+use refrast_fast::contract::{Recording, check_pictures, ties, tolerance};
 use refrast_render::scene::{self, Setup};
 use refrast_render::{
     Job, Mode, Overrides, Sampling, Shading, ShadingRasterizer, Texture, mode::overdraw_color,
@@ -65,7 +66,7 @@ impl ShadingRasterizer for FastShading<'_> {
 }
 
 #[test]
-fn render_shaded_through_fast_is_render_through_the_reference_pixel_for_pixel() {
+fn render_shaded_through_fast_is_render_through_the_reference_within_fasts_precision() {
     let mut fast = refrast_fast::Fast::with_threads(1);
     let checker = Texture::checker(8, 8, Vec4::ONE, Vec4::new(0.2, 0.2, 0.25, 1.0));
     for name in [
@@ -107,26 +108,24 @@ fn render_shaded_through_fast_is_render_through_the_reference_pixel_for_pixel() 
                 clear: setup.clear,
             };
             let mut expected = Framebuffer::new(w, h).unwrap();
-            refrast_render::render(&mut Reference::default(), &job, &mut expected).unwrap();
+            let mut reference = Reference::default();
+            let mut recording = Recording {
+                inner: &mut reference,
+                fragments: Vec::new(),
+            };
+            refrast_render::render(&mut recording, &job, &mut expected).unwrap();
             let mut shaded = Framebuffer::new(w, h).unwrap();
             refrast_render::render_shaded(&mut FastShading(&mut fast), &job, &mut shaded).unwrap();
-            let differ = expected
-                .color()
-                .iter()
-                .zip(shaded.color())
-                .filter(|(a, b)| a != b)
-                .count();
-            assert_eq!(
-                differ, 0,
-                "{name}, {mode}, {:?}: {differ} pixels differ",
-                state.cull
-            );
-            assert_eq!(
-                expected.depth(),
-                shaded.depth(),
-                "{name}, {mode}, {:?}: depth",
-                state.cull
-            );
+            // `fast` covers the same samples with its own interpolation: within its precision,
+            // except where two depths tie within it.
+            let tied = ties(&recording.fragments, w, h, tolerance());
+            check_pictures(
+                (expected.color(), expected.depth()),
+                (shaded.color(), shaded.depth()),
+                &tied,
+                tolerance(),
+            )
+            .unwrap_or_else(|e| panic!("{name}, {mode}, {:?}: {e}", state.cull));
         }
     }
 }

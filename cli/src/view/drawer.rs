@@ -54,6 +54,7 @@ pub fn build(name: &str, scene: &Prepared, threads: usize) -> Result<Drawer, Fai
         return Ok(Drawer::Fast(Fast::new(FastConfig {
             reference: ReferenceConfig::default(),
             threads,
+            ..FastConfig::default()
         })));
     }
     rasterizer(name, &scene.setup).map(Drawer::Fragments)

@@ -89,11 +89,13 @@
 
 pub mod camera;
 mod clip;
+mod config;
 mod depth;
 mod edge;
 mod error;
 mod features;
 mod fixed;
+mod front;
 mod interp;
 mod line;
 pub mod pipeline;
@@ -109,6 +111,7 @@ mod traverse;
 mod viewport;
 
 pub use clip::ClipMode;
+pub use config::{ReferenceConfig, Traversal};
 pub use depth::{CompareOp, DepthRange, DepthState};
 pub use edge::{FillConvention, is_top_left, orient2d};
 pub use error::{ConfigError, DrawError, Unavailable};
@@ -116,7 +119,7 @@ pub use features::{Features, Setting, SnapAccuracy, Supported};
 pub use fixed::{COORD_LIMIT, FixedPoint, SnapRounding, SubpixelBits, snap};
 pub use profile::{DepthConvention, Profile, Snapping, Spec};
 pub use rasterizer::{Draw, Fragment, Rasterizer, Resolved};
-pub use reference::{DrawStats, Reference, ReferenceConfig, Sample, Traversal};
+pub use reference::{DrawStats, Reference, Sample};
 pub use setup::{CullMode, FrontFace, Winding};
 pub use state::DrawState;
 pub use viewport::{GUARD_BAND_REACH, MAX_VIEWPORT, Viewport};

@@ -1,42 +1,16 @@
 //! The reference rasterizer: clip, project, snap, set up, traverse, interpolate — nothing clever.
 
-use crate::clip::{ClipMode, ClipOutcome, ClipPlane, ClipVertex, assemble, clip_planes, clip_triangle};
+use crate::config::ReferenceConfig;
 use crate::depth::fragment_depth;
-use crate::edge::FillConvention;
 use crate::error::DrawError;
 use crate::features::{Features, SnapAccuracy};
-use crate::fixed::{SnapRounding, SubpixelBits};
+use crate::fixed::SnapRounding;
+use crate::front::{Discard, FrontScratch, FrontSetup, front_end};
 use crate::interp::{Varyings, interpolate, interpolate_depth, screen_weights};
 use crate::profile::{DepthConvention, Profile, Snapping, Spec};
-use crate::project::{RasterVertex, ViewportTransform, input_w};
+use crate::project::RasterVertex;
 use crate::rasterizer::{Draw, Fragment, Rasterizer};
-use crate::setup::{SnappedTriangle, ZeroArea, drawn_winding, snap_before_clipping};
-use crate::traverse::{FanTriangle, Hit, PixelRect, build_fan, traverse};
-
-/// Which pixels are tested against a triangle; both give identical output.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
-pub enum Traversal {
-    /// Only the pixels of the triangle's bounding box, clamped to the viewport.
-    #[default]
-    BoundingBox,
-    /// Every pixel of the viewport, as the first lab step does.
-    Viewport,
-}
-
-/// The reference's knobs; the defaults are the conventions stated in the crate docs.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
-pub struct ReferenceConfig {
-    /// Subpixel precision of snapping.
-    pub subpixel_bits: SubpixelBits,
-    /// How a coordinate becomes a grid point (half to even, refrast's convention, by default).
-    pub snap_rounding: SnapRounding,
-    /// Which edges own the samples on them.
-    pub fill: FillConvention,
-    /// Guard band (default), a band of another reach, or full six-plane clipping for x and y.
-    pub clip: ClipMode,
-    /// Bounding-box (default) or whole-viewport traversal.
-    pub traversal: Traversal,
-}
+use crate::traverse::{FanTriangle, Hit, traverse};
 
 /// What happened to the triangles of a draw.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -59,21 +33,6 @@ pub struct DrawStats {
     pub fragments: usize,
 }
 
-/// Why a triangle drew nothing; each reason has its counter in [`DrawStats`].
-enum Discard {
-    NonFinite,
-    ClippedAway,
-    Degenerate,
-    Culled,
-    OffScreen,
-}
-
-impl From<ZeroArea> for Discard {
-    fn from(_: ZeroArea) -> Self {
-        Self::Degenerate
-    }
-}
-
 impl DrawStats {
     fn count(&mut self, discard: Discard) {
         *match discard {
@@ -92,20 +51,10 @@ pub struct Reference {
     config: ReferenceConfig,
 }
 
-/// What every triangle of one draw shares: its clip planes and its viewport transform.
-struct DrawSetup<'d> {
-    draw: &'d Draw,
-    planes: Vec<ClipPlane>,
-    transform: ViewportTransform,
-}
-
 /// Buffers reused across the triangles of one draw.
 #[derive(Default)]
 struct Scratch {
-    polygon: Vec<ClipVertex>,
-    clip: Vec<ClipVertex>,
-    raster: Vec<RasterVertex>,
-    fan: Vec<FanTriangle>,
+    front: FrontScratch,
     row: Vec<[i64; 3]>,
 }
 
@@ -137,21 +86,7 @@ impl Reference {
         mut visit: impl FnMut(&Sample<'_>),
     ) -> Result<DrawStats, DrawError> {
         draw.validate()?;
-        let setup = DrawSetup {
-            draw,
-            planes: clip_planes(
-                self.config.clip,
-                draw.viewport,
-                draw.state.clip_far,
-                draw.state.depth_range,
-            ),
-            transform: ViewportTransform {
-                viewport: draw.viewport,
-                bits: self.config.subpixel_bits,
-                rounding: self.config.snap_rounding,
-                depth_range: draw.state.depth_range,
-            },
-        };
+        let setup = FrontSetup::new(draw, self.config);
         let mut scratch = Scratch::default();
         let mut stats = DrawStats {
             triangles: draw.triangles.len(),
@@ -172,86 +107,38 @@ impl Reference {
     /// One triangle through the stages; the number of samples it covered, or why it drew nothing.
     fn draw_triangle(
         &self,
-        setup: &DrawSetup<'_>,
+        setup: &FrontSetup<'_>,
         primitive: usize,
         scratch: &mut Scratch,
         visit: &mut impl FnMut(&Sample<'_>),
     ) -> Result<usize, Discard> {
-        let state = &setup.draw.state;
-        let input =
-            assemble(&setup.draw.positions, setup.draw.triangles[primitive]).ok_or(Discard::NonFinite)?;
-        let snapped = snap_before_clipping(&input, &setup.transform, self.config.fill)?;
-        let clipped = self.clip_and_fan(&input, snapped, setup, scratch)?;
-        let winding = drawn_winding(&input, clipped, scratch.fan.iter().map(|t| &t.setup));
-        let front_facing = state.front_face.is_front(winding).ok_or(Discard::Degenerate)?;
-        if state.cull.culls(front_facing) {
-            return Err(Discard::Culled);
-        }
-        let rect = self
-            .pixel_rect(&scratch.raster, setup.transform)
-            .ok_or(Discard::OffScreen)?;
-        let (raster, fan) = (&scratch.raster, &scratch.fan);
+        let kept = front_end(setup, primitive, setup.corners(primitive), &mut scratch.front)?;
+        // Drawn whole, a triangle is its own fan; clipped, its polygon's fan is in the scratch.
+        let whole = kept.whole.map(|t| (t.vertices, [FanTriangle::whole(t.setup)]));
+        let (raster, fan): (&[RasterVertex], &[FanTriangle]) = match &whole {
+            Some((vertices, fan)) => (vertices, fan),
+            None => (&scratch.front.raster, &scratch.front.fan),
+        };
         let mut covered = 0;
         traverse(
             fan,
-            winding,
-            rect,
+            kept.winding,
+            kept.rect,
             self.config.subpixel_bits,
             &mut scratch.row,
             |hit| {
                 covered += 1;
-                visit(&Sample::new(primitive as u32, front_facing, hit, fan, raster));
+                visit(&Sample::new(
+                    primitive as u32,
+                    kept.front_facing,
+                    hit,
+                    fan,
+                    raster,
+                ));
             },
         );
         Ok(covered)
     }
-
-    /// Clips the input and leaves what is drawn in `scratch`: the snapped polygon and its fan.
-    /// Returns whether clipping cut it.
-    fn clip_and_fan(
-        &self,
-        input: &[ClipVertex; 3],
-        snapped: Option<SnappedTriangle>,
-        setup: &DrawSetup<'_>,
-        scratch: &mut Scratch,
-    ) -> Result<bool, Discard> {
-        match clip_triangle(input, &setup.planes, &mut scratch.polygon, &mut scratch.clip) {
-            ClipOutcome::Outside => Err(Discard::ClippedAway),
-            // Drawn as it is: snapped and set up once, before clipping.
-            ClipOutcome::Inside => {
-                let triangle = snapped.ok_or(Discard::Degenerate)?;
-                set(&mut scratch.raster, &triangle.vertices);
-                set(&mut scratch.fan, &[FanTriangle::whole(triangle.setup)]);
-                Ok(false)
-            }
-            ClipOutcome::Clipped => {
-                let (transform, raster) = (&setup.transform, &mut scratch.raster);
-                if !transform.project_polygon(&scratch.polygon, input_w(input), raster) {
-                    return Err(Discard::Degenerate);
-                }
-                build_fan(raster, self.config.fill, &mut scratch.fan);
-                Ok(true)
-            }
-        }
-    }
-
-    /// The pixels traversal visits: the polygon's bounding box, or the whole viewport.
-    fn pixel_rect(&self, raster: &[RasterVertex], transform: ViewportTransform) -> Option<PixelRect> {
-        match self.config.traversal {
-            Traversal::BoundingBox => PixelRect::bounding(
-                raster.iter().map(|v| v.position),
-                transform.bits,
-                transform.viewport,
-            ),
-            Traversal::Viewport => Some(PixelRect::of_viewport(transform.viewport)),
-        }
-    }
-}
-
-/// Replaces a scratch buffer's contents.
-fn set<T: Copy>(buffer: &mut Vec<T>, items: &[T]) {
-    buffer.clear();
-    buffer.extend_from_slice(items);
 }
 
 /// A covered sample with its depth; [`fragment`](Sample::fragment) adds the barycentrics.

@@ -8,11 +8,12 @@ use std::fmt;
 use glam::{Mat4, Vec3};
 
 use crate::camera::{Camera, Projection};
+use crate::config::{ReferenceConfig, Traversal};
 use crate::depth::{CompareOp, DepthState};
 use crate::error::{ConfigError, DrawError};
 use crate::pipeline::{Framebuffer, Mesh, Renderer, Vertex};
 use crate::rasterizer::Draw;
-use crate::reference::{Reference, ReferenceConfig, Traversal};
+use crate::reference::Reference;
 use crate::viewport::Viewport;
 
 /// A built-in scene's name (as `refrast render` takes it) and what it shows: the one type for

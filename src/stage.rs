@@ -1,7 +1,9 @@
 //! The reference's stages, for code that must reproduce it bit for bit.
 //!
 //! A fast implementation, a mutant in the zoo or a test of an oracle needs the same pieces the
-//! reference uses, in the order it uses them ([`Reference::draw_samples`](crate::Reference::draw_samples)):
+//! reference uses, in the order it uses them ([`Reference::draw_samples`](crate::Reference::draw_samples)).
+//! Steps 1–5 and the bounding box are one call, [`front_end`], which the reference and `fast`
+//! both make (`fast` with [`Corner`]s set up once per mesh vertex), so the order is written once:
 //!
 //! 1. **assemble** the triangle's clip vertices, discarding non-finite ones ([`assemble`]);
 //! 2. **snap before clipping**: project and snap the input as it is and set it up; zero area
@@ -29,6 +31,7 @@ pub use crate::clip::{
 };
 pub use crate::depth::fragment_depth;
 pub use crate::edge::EdgeFunction;
+pub use crate::front::{Corner, Discard, FrontScratch, FrontSetup, Kept, front_end};
 pub use crate::interp::{Barycentrics, Varyings, interpolate, interpolate_depth, screen_weights};
 pub use crate::line::{LineFragment, LineVertex, rasterize_line, rasterize_point};
 pub use crate::project::{ProjectedPoint, RasterVertex, ViewportTransform, input_w};

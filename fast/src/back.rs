@@ -101,7 +101,8 @@ impl EdgeSteps {
     #[inline]
     pub fn at(&self, x: u32, y: u32) -> [i64; 3] {
         let (x, y) = (i64::from(x), i64::from(y));
-        [0, 1, 2].map(|k| self.origin[k] + x * self.dx[k] + y * self.dy[k])
+        let at = |k: usize| self.origin[k] + x * self.dx[k] + y * self.dy[k];
+        [at(0), at(1), at(2)]
     }
 
     /// The same at any `(x, y)`, in a type that cannot overflow.
@@ -185,7 +186,7 @@ impl Lanes {
     /// Lane `lane`'s three edge values.
     #[inline(always)]
     pub fn values(&self, lane: usize) -> [f64; 3] {
-        self.e.map(|e| e[lane])
+        [self.e[0][lane], self.e[1][lane], self.e[2][lane]]
     }
 }
 
@@ -215,8 +216,12 @@ impl<'a> LaneSteps<'a> {
     fn new(steps: &'a EdgeSteps) -> Self {
         Self {
             steps,
-            dx: steps.dx.map(|d| d as f64),
-            least: steps.bias.map(|b| -b as f64),
+            dx: [steps.dx[0] as f64, steps.dx[1] as f64, steps.dx[2] as f64],
+            least: [
+                -steps.bias[0] as f64,
+                -steps.bias[1] as f64,
+                -steps.bias[2] as f64,
+            ],
         }
     }
 

@@ -9,11 +9,11 @@
 use fearless_simd::{Level, Simd, dispatch};
 use rayon::ThreadPool;
 use rayon::prelude::*;
-use refrast::stage::{PixelRect, ViewportTransform, clip_planes, traverse};
-use refrast::{Draw, DrawError, FixedPoint, ReferenceConfig};
+use refrast::stage::{Corner, FrontSetup, PixelRect, ViewportTransform, traverse};
+use refrast::{Draw, DrawError, FixedPoint, ReferenceConfig, Traversal};
 
 use crate::back::Lanes;
-use crate::front::{Chunk, DrawSetup, Prepared, VertexSetup};
+use crate::front::{Chunk, DrawSetup, Prepared};
 use crate::plane::Planes;
 use crate::sink::Sink;
 use crate::tiles::{TileGrid, intersect};
@@ -33,8 +33,8 @@ fn for_each<T: Send>(pool: Option<&ThreadPool>, items: &mut [T], f: impl Fn(usiz
 /// What a draw keeps between draws: its positions' setups and one chunk per thread.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Buffers {
-    /// Every position of the draw, set up once.
-    pub vertices: Vec<VertexSetup>,
+    /// Every position of the draw as a triangle's corner, set up once.
+    pub vertices: Vec<Corner>,
     /// One per thread.
     pub chunks: Vec<Chunk>,
 }
@@ -53,37 +53,27 @@ pub(crate) fn run<K: Sink>(
     sinks: &mut [K],
 ) -> Result<(), DrawError> {
     draw.validate()?;
-    let planes = clip_planes(
-        config.clip,
-        draw.viewport,
-        draw.state.clip_far,
-        draw.state.depth_range,
+    // Both traversals give the same samples; the box is the one worth drawing.
+    let front = FrontSetup::new(
+        draw,
+        ReferenceConfig {
+            traversal: Traversal::BoundingBox,
+            ..config
+        },
     );
-    let transform = ViewportTransform {
-        viewport: draw.viewport,
-        bits: config.subpixel_bits,
-        rounding: config.snap_rounding,
-        depth_range: draw.state.depth_range,
-    };
     let Buffers { vertices, chunks } = buffers;
     vertices.clear();
-    vertices.resize(draw.positions.len(), VertexSetup::default());
+    vertices.resize(draw.positions.len(), Corner::default());
     let mut runs: Vec<_> = vertices
         .chunks_mut(VERTEX_RUN)
         .zip(draw.positions.chunks(VERTEX_RUN))
         .collect();
     for_each(pool, &mut runs, |_, (out, positions)| {
         for (v, p) in out.iter_mut().zip(positions.iter()) {
-            *v = VertexSetup::new(*p, &planes, &transform);
+            *v = Corner::new(*p, &front.planes, &front.transform);
         }
     });
-    let setup = DrawSetup {
-        draw,
-        planes,
-        transform,
-        fill: config.fill,
-        vertices,
-    };
+    let setup = DrawSetup { front, vertices };
     let grid = TileGrid::new(draw.viewport);
     debug_assert_eq!(sinks.len(), grid.bands());
     let threads = pool.map_or(1, ThreadPool::current_num_threads);
@@ -97,7 +87,7 @@ pub(crate) fn run<K: Sink>(
             chunk.prepare(&setup, &grid, first..(first + per_chunk).min(end));
         });
         for_each(pool, sinks, |band, sink| {
-            dispatch!(level, simd => draw_band(simd, &setup.transform, &grid, chunks, band, sink));
+            dispatch!(level, simd => draw_band(simd, &setup.front.transform, &grid, chunks, band, sink));
         });
     }
     Ok(())
@@ -141,7 +131,11 @@ fn draw_in_tile<K: Sink>(
         return;
     };
     if let Some(single) = &t.single {
-        single.steps.traverse(rect, |row| sink.take(&single.planes, row));
+        single.steps.traverse(
+            rect,
+            #[inline(always)]
+            |row| sink.take(&single.planes, row),
+        );
         return;
     }
     draw_fan(transform, chunk, t, rect, sink);

@@ -93,14 +93,20 @@ impl Planes {
     /// [`depth`](Self::depth)).
     #[inline]
     pub fn fragment(&self, x: u32, y: u32, e: [f64; 3], depth: f32) -> Fragment {
-        let screen = e.map(|v| v * self.inv_area);
-        let q = [0, 1, 2].map(|k| screen[k] * self.inv_w[k]);
+        let screen = [e[0] * self.inv_area, e[1] * self.inv_area, e[2] * self.inv_area];
+        let q = [
+            screen[0] * self.inv_w[0],
+            screen[1] * self.inv_w[1],
+            screen[2] * self.inv_w[2],
+        ];
         let r = 1.0 / ((q[0] + q[1]) + q[2]);
-        let p = q.map(|qk| (qk * r) as f32);
-        let s = screen.map(|v| v as f32);
-        let mix = |corners: &[[f32; 3]; 3], w: [f32; 3]| {
-            [0, 1, 2].map(|c| (corners[0][c] * w[0] + corners[1][c] * w[1]) + corners[2][c] * w[2])
-        };
+        let p = [(q[0] * r) as f32, (q[1] * r) as f32, (q[2] * r) as f32];
+        let s = [screen[0] as f32, screen[1] as f32, screen[2] as f32];
+        #[inline(always)]
+        fn mix(corners: &[[f32; 3]; 3], w: [f32; 3]) -> [f32; 3] {
+            let c = |i: usize| (corners[0][i] * w[0] + corners[1][i] * w[1]) + corners[2][i] * w[2];
+            [c(0), c(1), c(2)]
+        }
         Fragment {
             x,
             y,

@@ -19,9 +19,13 @@ impl Sink for Vec<Fragment> {
     #[inline(always)]
     fn take(&mut self, t: &Planes, row: &Lanes) {
         let depth = t.depth(&row.e);
-        for_each_lane(row.mask, |lane| {
-            self.push(t.fragment(row.x0 + lane as u32, row.y, row.values(lane), depth[lane]));
-        });
+        for_each_lane(
+            row.mask,
+            #[inline(always)]
+            |lane| {
+                self.push(t.fragment(row.x0 + lane as u32, row.y, row.values(lane), depth[lane]));
+            },
+        );
     }
 }
 
@@ -74,12 +78,16 @@ impl Sink for ResolveBand<'_> {
         let depth = &mut self.depth[span.clone()];
         let pass = passes(self.state.compare, &new, depth) & row.mask;
         let primitive = &mut self.primitive[span];
-        for_each_lane(pass, |lane| {
-            if self.state.write {
-                depth[lane] = new[lane];
-            }
-            primitive[lane] = Some(t.primitive);
-        });
+        for_each_lane(
+            pass,
+            #[inline(always)]
+            |lane| {
+                if self.state.write {
+                    depth[lane] = new[lane];
+                }
+                primitive[lane] = Some(t.primitive);
+            },
+        );
     }
 }
 
@@ -111,14 +119,18 @@ impl<C: Send, F: Fn(&Fragment) -> Option<C> + Sync> Sink for ShadeBand<'_, C, F>
         let depth = &mut self.depth[span.clone()];
         let pass = passes(self.compare, &new, depth) & row.mask;
         let color = &mut self.color[span];
-        for_each_lane(pass, |lane| {
-            let fragment = t.fragment(row.x0 + lane as u32, row.y, row.values(lane), new[lane]);
-            if let Some(c) = (self.shade)(&fragment) {
-                if self.write {
-                    depth[lane] = new[lane];
+        for_each_lane(
+            pass,
+            #[inline(always)]
+            |lane| {
+                let fragment = t.fragment(row.x0 + lane as u32, row.y, row.values(lane), new[lane]);
+                if let Some(c) = (self.shade)(&fragment) {
+                    if self.write {
+                        depth[lane] = new[lane];
+                    }
+                    color[lane] = c;
                 }
-                color[lane] = c;
-            }
-        });
+            },
+        );
     }
 }

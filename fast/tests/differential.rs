@@ -13,7 +13,7 @@ use refrast::{
 };
 use refrast_fast::Fast;
 use refrast_fast::contract::{check_fragments, check_resolved, tolerance};
-use support::{mesh, onto_samples, state, triangle, viewport};
+use support::{mesh_draw, soup};
 
 /// Depth and primitive buffers as bits.
 fn resolved_bits(r: &Resolved) -> (Vec<u32>, &[Option<u32>]) {
@@ -44,30 +44,14 @@ proptest! {
 
     /// Soups of random clip-space triangles.
     #[test]
-    fn random_triangles_keep_the_contract(
-        viewport in viewport(),
-        triangles in prop::collection::vec(triangle(), 1..24),
-        state in state(),
-        threads in 1usize..3,
-    ) {
-        let positions: Vec<[f32; 4]> = triangles.iter().flatten().copied().collect();
-        let indices = (0..triangles.len() as u32).map(|i| [3 * i, 3 * i + 1, 3 * i + 2]).collect();
-        let draw = Draw { viewport, positions, triangles: indices, state };
+    fn random_triangles_keep_the_contract(draw in soup(), threads in 1usize..3) {
         agree(&draw, threads)?;
     }
 
     /// Meshes with shared edges, some reaching through the near plane; some with every vertex
     /// on a pixel's sample, so that edges pass through samples and the fill rule decides.
     #[test]
-    fn meshes_keep_the_contract(
-        viewport in viewport(),
-        (positions, triangles) in mesh(),
-        state in state(),
-        on_samples in any::<bool>(),
-        threads in 1usize..3,
-    ) {
-        let positions = if on_samples { onto_samples(&positions, viewport) } else { positions };
-        let draw = Draw { viewport, positions, triangles, state };
+    fn meshes_keep_the_contract(draw in mesh_draw(), threads in 1usize..3) {
         agree(&draw, threads)?;
     }
 }

@@ -8,7 +8,7 @@ mod support;
 use proptest::prelude::*;
 use refrast::{Draw, Fragment, Rasterizer, Resolved};
 use refrast_fast::{Fast, FastConfig, SimdLevel};
-use support::{mesh, onto_samples, state, triangle, viewport};
+use support::{mesh_draw, soup};
 
 /// A fragment as bits, in the order `fast` returns them.
 type Bits = (u32, u32, u32, u32, [u32; 3], Option<[u32; 3]>, bool);
@@ -90,27 +90,14 @@ proptest! {
 
     /// Soups of random clip-space triangles.
     #[test]
-    fn random_triangles_draw_the_same_bits_at_every_level(
-        viewport in viewport(),
-        triangles in prop::collection::vec(triangle(), 1..24),
-        state in state(),
-        threads in 1usize..3,
-    ) {
-        let positions: Vec<[f32; 4]> = triangles.iter().flatten().copied().collect();
-        let indices = (0..triangles.len() as u32).map(|i| [3 * i, 3 * i + 1, 3 * i + 2]).collect();
-        same_bits(&Draw { viewport, positions, triangles: indices, state }, threads)?;
+    fn random_triangles_draw_the_same_bits_at_every_level(draw in soup(), threads in 1usize..3) {
+        same_bits(&draw, threads)?;
     }
 
     /// Meshes with shared edges, some through the near plane, some with every vertex on a
     /// sample (edges through samples, where the fill rule decides).
     #[test]
-    fn meshes_draw_the_same_bits_at_every_level(
-        viewport in viewport(),
-        (positions, triangles) in mesh(),
-        state in state(),
-        on_samples in any::<bool>(),
-    ) {
-        let positions = if on_samples { onto_samples(&positions, viewport) } else { positions };
-        same_bits(&Draw { viewport, positions, triangles, state }, 1)?;
+    fn meshes_draw_the_same_bits_at_every_level(draw in mesh_draw()) {
+        same_bits(&draw, 1)?;
     }
 }

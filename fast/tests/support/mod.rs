@@ -3,7 +3,7 @@
 //! state.
 
 use proptest::prelude::*;
-use refrast::{CompareOp, CullMode, DepthRange, DepthState, DrawState, FrontFace, Viewport};
+use refrast::{CompareOp, CullMode, DepthRange, DepthState, Draw, DrawState, FrontFace, Viewport};
 
 /// A coordinate: mostly on screen, sometimes far off it or huge.
 pub fn coordinate() -> impl Strategy<Value = f32> {
@@ -126,4 +126,42 @@ pub fn onto_samples(positions: &[[f32; 4]], viewport: Viewport) -> Vec<[f32; 4]>
             [px / w * 2.0 - 1.0, 1.0 - py / h * 2.0, p[2] / p[3], 1.0]
         })
         .collect()
+}
+
+/// A draw of up to 23 random clip-space triangles (a soup: no shared vertices).
+pub fn soup() -> impl Strategy<Value = Draw> {
+    (viewport(), prop::collection::vec(triangle(), 1..24), state()).prop_map(
+        |(viewport, triangles, state)| {
+            let positions: Vec<[f32; 4]> = triangles.iter().flatten().copied().collect();
+            let indices = (0..triangles.len() as u32)
+                .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
+                .collect();
+            Draw {
+                viewport,
+                positions,
+                triangles: indices,
+                state,
+            }
+        },
+    )
+}
+
+/// A draw of a [`mesh`], half the time with every vertex moved onto a sample
+/// ([`onto_samples`]), so that edges pass through samples and the fill rule decides.
+pub fn mesh_draw() -> impl Strategy<Value = Draw> {
+    (viewport(), mesh(), state(), any::<bool>()).prop_map(
+        |(viewport, (positions, triangles), state, on_samples)| {
+            let positions = if on_samples {
+                onto_samples(&positions, viewport)
+            } else {
+                positions
+            };
+            Draw {
+                viewport,
+                positions,
+                triangles,
+                state,
+            }
+        },
+    )
 }

@@ -14,7 +14,6 @@ use refrast::{Draw, DrawError, FixedPoint, ReferenceConfig, Traversal};
 
 use crate::back::Lanes;
 use crate::front::{Chunk, DrawSetup, Prepared};
-use crate::plane::Planes;
 use crate::sink::Sink;
 use crate::tiles::{TileGrid, intersect};
 
@@ -153,14 +152,7 @@ fn draw_fan<K: Sink>(
     sink: &mut K,
 ) {
     let fans = &chunk.fans[t.fans.start as usize..t.fans.end as usize];
-    let raster = &chunk.raster[t.raster.start as usize..t.raster.end as usize];
-    let planes: Vec<Planes> = fans
-        .iter()
-        .map(|f| {
-            let corners = f.setup.order().map(|k| &raster[f.corners[k]].varyings);
-            Planes::new(t.primitive, t.front_facing, corners, f.setup.area2())
-        })
-        .collect();
+    let planes = &chunk.fan_planes[t.fans.start as usize..t.fans.end as usize];
     let bits = transform.bits;
     let [x0, x1, y0, y1] = rect.map(i64::from);
     let corners = [(x0, y0), (x1 - 1, y1 - 1)]

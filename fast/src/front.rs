@@ -9,7 +9,7 @@
 use std::ops::Range;
 
 use refrast::Winding;
-use refrast::stage::{Corner, FanTriangle, FrontScratch, FrontSetup, RasterVertex, front_end};
+use refrast::stage::{Corner, FanTriangle, FrontScratch, FrontSetup, front_end};
 
 use crate::back::EdgeSteps;
 use crate::plane::Planes;
@@ -26,18 +26,12 @@ pub(crate) struct DrawSetup<'d> {
 /// A triangle that reached traversal: what the back end needs to draw it in any tile.
 #[derive(Clone, Debug)]
 pub(crate) struct Prepared {
-    /// Its index in the draw.
-    pub primitive: u32,
-    /// Whether it faces the viewer.
-    pub front_facing: bool,
     /// The winding it is drawn with.
     pub winding: Winding,
     /// Its bounding box of samples, clamped to the viewport: columns then rows, half-open.
     pub rect: [u32; 4],
-    /// Its fan triangles in [`Chunk::fans`].
+    /// Its fan triangles in [`Chunk::fans`] and their interpolation in [`Chunk::fan_planes`].
     pub fans: Range<u32>,
-    /// Its snapped polygon's vertices in [`Chunk::raster`].
-    pub raster: Range<u32>,
     /// The single agreeing fan triangle, when that is all it is (the fast path).
     pub single: Option<Single>,
 }
@@ -60,8 +54,8 @@ pub(crate) struct Chunk {
     pub triangles: Vec<Prepared>,
     /// Their fan triangles.
     pub fans: Vec<FanTriangle>,
-    /// Their polygons' vertices.
-    pub raster: Vec<RasterVertex>,
+    /// Each fan triangle's interpolation, set up once (parallel to `fans`).
+    pub fan_planes: Vec<Planes>,
     /// Per tile, the indices into `triangles` of those whose box touches it, in order.
     pub bins: Vec<Vec<u32>>,
     scratch: FrontScratch,
@@ -72,7 +66,7 @@ impl Chunk {
     pub fn prepare(&mut self, setup: &DrawSetup<'_>, grid: &TileGrid, primitives: Range<usize>) {
         self.triangles.clear();
         self.fans.clear();
-        self.raster.clear();
+        self.fan_planes.clear();
         self.bins.resize_with(grid.tiles(), Vec::new);
         self.bins.iter_mut().for_each(Vec::clear);
         for primitive in primitives {
@@ -90,7 +84,7 @@ impl Chunk {
         let kept = front_end(&setup.front, primitive, corners, &mut self.scratch).ok()?;
         let (x0, x1, y0, y1) = kept.rect.bounds();
         let rect = [x0, x1, y0, y1];
-        let (fans, raster) = (self.fans.len(), self.raster.len());
+        let fans = self.fans.len();
         let single = match kept.whole {
             Some(t) => {
                 // The corners in the setup's clockwise order, the order of its edge values.
@@ -101,18 +95,19 @@ impl Chunk {
                 })
             }
             None => {
-                self.fans.extend_from_slice(&self.scratch.fan);
-                self.raster.extend_from_slice(&self.scratch.raster);
+                let (fan, polygon) = (&self.scratch.fan, &self.scratch.raster);
+                self.fan_planes.extend(fan.iter().map(|f| {
+                    let corners = f.setup.order().map(|k| &polygon[f.corners[k]].varyings);
+                    Planes::new(primitive as u32, kept.front_facing, corners, f.setup.area2())
+                }));
+                self.fans.extend_from_slice(fan);
                 None
             }
         };
         self.triangles.push(Prepared {
-            primitive: primitive as u32,
-            front_facing: kept.front_facing,
             winding: kept.winding,
             rect,
             fans: fans as u32..self.fans.len() as u32,
-            raster: raster as u32..self.raster.len() as u32,
             single,
         });
         Some(rect)

@@ -184,7 +184,7 @@ impl Lanes {
     }
 
     /// Lane `lane`'s three edge values.
-    #[inline(always)]
+    #[cfg(test)]
     pub fn values(&self, lane: usize) -> [f64; 3] {
         [self.e[0][lane], self.e[1][lane], self.e[2][lane]]
     }

@@ -8,9 +8,10 @@
 //!   values, then rounded to f32: a corner's depth can lie far outside `[0, 1]` (a clipped
 //!   polygon's corner on the guard band, far clipping off), and in f32 the error would scale
 //!   with that range instead of with the result. In f64 it stays within an f32 ulp.
-//! - **Perspective weights** `(λₖ/wₖ) / Σ λⱼ/wⱼ` are one scalar f64 reciprocal per fragment
-//!   (scalar f64 costs what scalar f32 does): corners' `1/w` can differ by 10^80 for f32
-//!   inputs, which f32 cannot hold (`robust.bit-patterns.sane-output` found NaNs).
+//! - **Perspective weights** `(λₖ/wₖ) / Σ λⱼ/wⱼ` are one f64 reciprocal per fragment, eight
+//!   lanes at once in rows with more than four kept samples, one lane at a time otherwise (the
+//!   same operations, so the same bits): corners' `1/w` can differ by 10^80 for f32 inputs,
+//!   which f32 cannot hold (`robust.bit-patterns.sane-output` found NaNs).
 //! - **Barycentrics** mix the corners' own barycentrics with those weights in f32. Inside the
 //!   triangle every weight is in `[0, 1]` and every term positive, so nothing cancels: a
 //!   barycentric is within a few ulps of 1 (≈ 2^-21) of its exact value, under the bound `fast`
@@ -22,7 +23,7 @@
 use refrast::Fragment;
 use refrast::stage::Varyings;
 
-use crate::back::LANES;
+use crate::back::{LANES, Lanes, for_each_lane};
 
 /// The precision `fast` claims: depth and barycentrics within 2^-18 of their exact values.
 ///
@@ -89,32 +90,133 @@ impl Planes {
         depth
     }
 
-    /// The fragment at pixel `(x, y)` with exact edge values `e` and depth `depth` (from
-    /// [`depth`](Self::depth)).
-    #[inline]
-    pub fn fragment(&self, x: u32, y: u32, e: [f64; 3], depth: f32) -> Fragment {
-        let screen = [e[0] * self.inv_area, e[1] * self.inv_area, e[2] * self.inv_area];
-        let q = [
-            screen[0] * self.inv_w[0],
-            screen[1] * self.inv_w[1],
-            screen[2] * self.inv_w[2],
-        ];
-        let r = 1.0 / ((q[0] + q[1]) + q[2]);
-        let p = [(q[0] * r) as f32, (q[1] * r) as f32, (q[2] * r) as f32];
-        let s = [screen[0] as f32, screen[1] as f32, screen[2] as f32];
+    /// The perspective-correct and screen barycentrics of `N` samples with exact edge values
+    /// `e` (edge by edge, then lane by lane), each as three arrays of `N` lanes: the one
+    /// formula, run on eight lanes at once (vectorised) or on one.
+    #[inline(always)]
+    fn barycentrics<const N: usize>(&self, e: [[f64; N]; 3]) -> [[[f32; N]; 3]; 2] {
+        let mut screen = [[0.0f64; N]; 3];
+        let mut q = [[0.0f64; N]; 3];
+        for k in 0..3 {
+            for i in 0..N {
+                screen[k][i] = e[k][i] * self.inv_area;
+                q[k][i] = screen[k][i] * self.inv_w[k];
+            }
+        }
+        let (mut p, mut s) = ([[0.0f32; N]; 3], [[0.0f32; N]; 3]);
+        for i in 0..N {
+            let r = 1.0 / ((q[0][i] + q[1][i]) + q[2][i]);
+            for k in 0..3 {
+                p[k][i] = (q[k][i] * r) as f32;
+                s[k][i] = screen[k][i] as f32;
+            }
+        }
+        /// Each corner's barycentrics mixed with the lanes' weights `w`.
         #[inline(always)]
-        fn mix(corners: &[[f32; 3]; 3], w: [f32; 3]) -> [f32; 3] {
-            let c = |i: usize| (corners[0][i] * w[0] + corners[1][i] * w[1]) + corners[2][i] * w[2];
-            [c(0), c(1), c(2)]
+        fn mix<const N: usize>(corners: &[[f32; 3]; 3], w: &[[f32; N]; 3]) -> [[f32; N]; 3] {
+            let mut out = [[0.0; N]; 3];
+            for (c, out) in out.iter_mut().enumerate() {
+                for (i, out) in out.iter_mut().enumerate() {
+                    *out = (corners[0][c] * w[0][i] + corners[1][c] * w[1][i]) + corners[2][c] * w[2][i];
+                }
+            }
+            out
         }
-        Fragment {
-            x,
-            y,
+        let screen = self.screen.as_ref().map_or([[0.0; N]; 3], |b| mix(b, &s));
+        [mix(&self.barycentric, &p), screen]
+    }
+
+    /// Visits the fragments of the lanes of `row` in `mask`, in lane order, with their depths
+    /// `depth` (from [`depth`](Self::depth)).
+    ///
+    /// With more than four such lanes, the barycentrics of all eight are computed first, in a
+    /// loop the compiler vectorises (an uncovered lane may hold anything and is never read);
+    /// with fewer, lane by lane. Both run [`barycentrics`](Self::barycentrics), so the bits
+    /// are the same.
+    #[inline(always)]
+    pub fn fragments(
+        &self,
+        row: &Lanes,
+        mask: u32,
+        depth: &[f32; LANES],
+        mut visit: impl FnMut(usize, Fragment),
+    ) {
+        let fragment = |lane: usize, (barycentric, screen): ([f32; 3], [f32; 3])| Fragment {
+            x: row.x0 + lane as u32,
+            y: row.y,
             primitive: self.primitive,
-            depth,
-            barycentric: mix(&self.barycentric, p),
-            screen_barycentric: self.screen.map(|b| mix(&b, s)),
+            depth: depth[lane],
+            barycentric,
+            screen_barycentric: self.screen.map(|_| screen),
             front_facing: self.front_facing,
+        };
+        let e = &row.e;
+        if mask.count_ones() > 4 {
+            let [b, s] = self.barycentrics(*e);
+            let at = |w: &[[f32; LANES]; 3], i: usize| [w[0][i], w[1][i], w[2][i]];
+            for_each_lane(mask, |lane| {
+                visit(lane, fragment(lane, (at(&b, lane), at(&s, lane))))
+            });
+        } else {
+            for_each_lane(mask, |lane| {
+                let [b, s] = self.barycentrics([[e[0][lane]], [e[1][lane]], [e[2][lane]]]);
+                let at = |w: [[f32; 1]; 3]| [w[0][0], w[1][0], w[2][0]];
+                visit(lane, fragment(lane, (at(b), at(s))));
+            });
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::*;
+
+    /// A row's fragments are the same bits whether its barycentrics come eight lanes at once
+    /// (more than four kept) or lane by lane (four or fewer).
+    #[test]
+    fn dense_and_sparse_rows_give_the_same_bits() {
+        let corner = |depth, inv_w, b: [f64; 3]| Varyings {
+            depth,
+            inv_w,
+            barycentric: DVec3::from(b),
+            screen: Some(DVec3::from(b)),
+        };
+        let corners = [
+            corner(0.25, 1.0, [1.0, 0.0, 0.0]),
+            corner(0.5, 0.37, [0.0, 1.0, 0.0]),
+            corner(0.9, 0.011, [0.0, 0.0, 1.0]),
+        ];
+        let area2 = 1_000_003;
+        let planes = Planes::new(7, true, [&corners[0], &corners[1], &corners[2]], area2);
+        let e1: [f64; LANES] = std::array::from_fn(|i| 1237.0 * i as f64 + 3.0);
+        let e2: [f64; LANES] = std::array::from_fn(|i| 98_765.0 - 4099.0 * i as f64);
+        let e0 = std::array::from_fn(|i| area2 as f64 - e1[i] - e2[i]);
+        let row = Lanes {
+            x0: 16,
+            y: 3,
+            n: 8,
+            mask: 0xff,
+            e: [e0, e1, e2],
+        };
+        let depth = planes.depth(&row.e);
+        let bits = |f: Fragment| {
+            let b = f.barycentric.map(f32::to_bits);
+            (
+                f.x,
+                f.depth.to_bits(),
+                b,
+                f.screen_barycentric.map(|s| s.map(f32::to_bits)),
+            )
+        };
+        let mut dense = Vec::new();
+        planes.fragments(&row, 0xff, &depth, |_, f| dense.push(bits(f)));
+        let mut sparse = Vec::new();
+        for lane in 0..LANES {
+            planes.fragments(&row, 1 << lane, &depth, |_, f| sparse.push(bits(f)));
+        }
+        assert_eq!(dense.len(), LANES);
+        assert_eq!(dense, sparse);
     }
 }

@@ -19,13 +19,7 @@ impl Sink for Vec<Fragment> {
     #[inline(always)]
     fn take(&mut self, t: &Planes, row: &Lanes) {
         let depth = t.depth(&row.e);
-        for_each_lane(
-            row.mask,
-            #[inline(always)]
-            |lane| {
-                self.push(t.fragment(row.x0 + lane as u32, row.y, row.values(lane), depth[lane]));
-            },
-        );
+        t.fragments(row, row.mask, &depth, |_, fragment| self.push(fragment));
     }
 }
 
@@ -119,11 +113,12 @@ impl<C: Send, F: Fn(&Fragment) -> Option<C> + Sync> Sink for ShadeBand<'_, C, F>
         let depth = &mut self.depth[span.clone()];
         let pass = passes(self.compare, &new, depth) & row.mask;
         let color = &mut self.color[span];
-        for_each_lane(
+        t.fragments(
+            row,
             pass,
+            &new,
             #[inline(always)]
-            |lane| {
-                let fragment = t.fragment(row.x0 + lane as u32, row.y, row.values(lane), new[lane]);
+            |lane, fragment| {
                 if let Some(c) = (self.shade)(&fragment) {
                     if self.write {
                         depth[lane] = new[lane];

@@ -99,6 +99,11 @@ pub struct Args {
     #[arg(long, value_name = "SECONDS", default_value_t = refrast_conformance::DEFAULT_CASE_TIMEOUT.as_secs_f64(),
           value_parser = positive_seconds)]
     case_timeout: f64,
+    /// The most memory, in MiB, each rule's child process and each --exec child may allocate
+    /// (its data: heap and private mappings; 0 sets no limit). A child over it fails its rule
+    /// as a crash that says so.
+    #[arg(long, value_name = "MIB", default_value_t = refrast_conformance::contain::DEFAULT_MEMORY_LIMIT >> 20)]
+    memory_limit: u64,
     /// Stop at the first failing rule: no rule starts after it, and the rules and implementations
     /// after it are listed as not run (results of later rules already running are dropped).
     #[arg(long)]
@@ -157,6 +162,7 @@ pub fn run(args: &Args) -> ExitCode {
         case_timeout: Duration::from_secs_f64(args.case_timeout),
         budget: args.budget.map(Duration::from_secs_f64),
         fail_fast: args.fail_fast,
+        memory_limit: (args.memory_limit > 0).then(|| args.memory_limit.saturating_mul(1 << 20)),
         ..Options::default()
     };
     let exec_options = Options {
@@ -292,7 +298,7 @@ fn certify_in_process(b: &BuiltIn, options: &Options, out: &Progress) -> Outcome
 fn certify_exec(command: &str, options: &Options, out: &Progress) -> Outcome {
     out.line(&format!("== {command} (seed {}, pipe protocol)", options.seed));
     let start = Instant::now();
-    let mut process = match Process::try_spawn_with(command, options.case_timeout) {
+    let mut process = match Process::try_spawn_limited(command, options.case_timeout, options.memory_limit) {
         Ok(process) => process,
         Err(why) => {
             out.line(&format!("FAILED TO START: {why}\n"));

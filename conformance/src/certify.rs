@@ -44,6 +44,9 @@ pub struct Options {
     /// Stop at the first rule that fails: the rules after it are not run and are listed in
     /// [`Report::not_run`] (for a quick answer, and for mutation testing).
     pub fail_fast: bool,
+    /// The most data, in bytes, each rule's child process (and a `--exec` child) may allocate
+    /// ([`crate::contain`]); `None` sets no limit.
+    pub memory_limit: Option<u64>,
 }
 
 impl Default for Options {
@@ -59,6 +62,7 @@ impl Default for Options {
             case_timeout: DEFAULT_CASE_TIMEOUT,
             budget: None,
             fail_fast: false,
+            memory_limit: Some(crate::contain::DEFAULT_MEMORY_LIMIT),
         }
     }
 }

@@ -13,22 +13,31 @@
 //! the rule fails as hung, on the last case it announced. A child that exits without a report
 //! failed the same way, with its exit status or signal and the end of its stderr.
 
-use std::io::{BufRead, BufReader, Read, Write};
-use std::process::{Child, Command, ExitStatus, Stdio};
+use std::io::{Read, Write};
+use std::process::{Command, ExitStatus, Stdio};
 use std::sync::mpsc::{self, RecvTimeoutError};
 use std::thread;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use refrast::{Rasterizer, Unavailable};
 use serde::{Deserialize, Serialize};
 
 use crate::certify::{Options, cases_for, refusal, run_rule, run_selected};
-use crate::process::{Tail, status_words};
+use crate::contain::{Contained, memory_note};
+use crate::process::{Tail, for_each_line, status_words};
 use crate::report::{ProfileReport, Report, RuleReport, Status};
 use crate::rules::{Rule, catalogue};
 
 /// The prefix of every protocol line on the child's stdout.
 pub const MARK: &str = "@refrast-rule ";
+
+/// The longest line read from a child: a report with its details fits many times over; a
+/// longer line is cut, so a child printing without newlines cannot fill refrast's memory.
+const MAX_LINE: usize = 16 << 20;
+
+/// How long a child that has sent its report, or closed its stdout, may take to exit before it
+/// is killed (with its process group).
+const EXIT_GRACE: Duration = Duration::from_secs(5);
 
 /// One line from a child.
 #[derive(Debug, Serialize, Deserialize)]
@@ -214,12 +223,11 @@ pub fn run_rule_watched(
         Outcome::Ran(Box::new(report), profile.clone())
     };
     let program = format!("{:?}", command.get_program());
-    let mut child = match command
+    command
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
-        .stdin(Stdio::null())
-        .spawn()
-    {
+        .stdin(Stdio::null());
+    let mut child = match Contained::spawn(&mut command, options.memory_limit) {
         Ok(child) => child,
         Err(e) => {
             return failed(
@@ -231,23 +239,25 @@ pub fn run_rule_watched(
             );
         }
     };
-    let stderr = child.stderr.take().map(collect_tail);
-    let (tx, rx) = mpsc::channel();
-    if let Some(stdout) = child.stdout.take() {
+    let stderr = child.child.stderr.take().map(collect_tail);
+    // Bounded: the parent takes lines as they come; a flood waits for it.
+    let (tx, rx) = mpsc::sync_channel(64);
+    if let Some(stdout) = child.child.stdout.take() {
         thread::spawn(move || {
-            for line in BufReader::new(stdout).lines() {
-                let Ok(line) = line else { break };
+            for_each_line(stdout, MAX_LINE, |line, cut| {
+                let line = String::from_utf8_lossy(line);
                 let parsed = match line.strip_prefix(MARK) {
+                    Some(_) if cut => {
+                        Line::Other(format!("(a protocol line longer than {MAX_LINE} bytes, cut)"))
+                    }
                     Some(json) => match serde_json::from_str(json) {
                         Ok(message) => Line::Message(message),
                         Err(e) => Line::Other(format!("(a garbled protocol line: {e})")),
                     },
-                    None => Line::Other(line),
+                    None => Line::Other(line.into_owned()),
                 };
-                if tx.send(parsed).is_err() {
-                    return;
-                }
-            }
+                tx.send(parsed).is_ok()
+            });
             let _ = tx.send(Line::Closed);
         });
     }
@@ -270,21 +280,21 @@ pub fn run_rule_watched(
                 last_word = Instant::now();
             }
             Ok(Line::Message(Message::Unavailable(why))) => {
-                let _ = child.wait();
+                finish(&mut child);
                 return Outcome::Unavailable(Unavailable(why));
             }
             Ok(Line::Message(Message::Refused(why))) => {
-                let _ = child.wait();
+                finish(&mut child);
                 return Outcome::Refused(why, profile);
             }
             Ok(Line::Message(Message::Report(report))) => {
-                let _ = child.wait();
+                finish(&mut child);
                 return Outcome::Ran(report, profile);
             }
             Ok(Line::Other(line)) => own_output.push(&line),
             Ok(Line::Closed) | Err(RecvTimeoutError::Disconnected) => {
-                let status = wait(&mut child);
-                let output = join_output(stderr, &own_output);
+                let status = finish(&mut child);
+                let output = join_output(stderr, &own_output, options.memory_limit);
                 return failed(
                     Status::Crash,
                     format!(
@@ -298,9 +308,8 @@ pub fn run_rule_watched(
                 );
             }
             Err(RecvTimeoutError::Timeout) => {
-                let _ = child.kill();
-                let _ = child.wait();
-                let output = join_output(stderr, &own_output);
+                child.end();
+                let output = join_output(stderr, &own_output, options.memory_limit);
                 return failed(
                     Status::Timeout,
                     format!(
@@ -317,9 +326,11 @@ pub fn run_rule_watched(
     }
 }
 
-/// The exit status, once the child is gone.
-fn wait(child: &mut Child) -> Option<ExitStatus> {
-    child.wait().ok()
+/// Lets a child that is done exit, within [`EXIT_GRACE`], then ends it and its group; its exit
+/// status when it exited on its own.
+fn finish(child: &mut Contained) -> Option<ExitStatus> {
+    child.wait_for(EXIT_GRACE);
+    child.end()
 }
 
 /// An exit status in words: a code, or the signal that ended the process.
@@ -328,21 +339,29 @@ fn describe(status: Option<ExitStatus>) -> String {
 }
 
 /// Reads a stream to its end on a thread of its own, keeping its tail.
-fn collect_tail(stream: impl Read + Send + 'static) -> thread::JoinHandle<String> {
+fn collect_tail(stream: impl Read + Send + 'static) -> mpsc::Receiver<String> {
+    let (tx, rx) = mpsc::channel();
     thread::spawn(move || {
         let mut tail = Tail::default();
-        for line in BufReader::new(stream).lines() {
-            let Ok(line) = line else { break };
-            tail.push(&line);
-        }
-        tail.0
-    })
+        for_each_line(stream, 2 * crate::process::KEPT_OUTPUT, |line, _| {
+            tail.push(&String::from_utf8_lossy(line));
+            true
+        });
+        let _ = tx.send(tail.0);
+    });
+    rx
 }
 
-/// The child's stderr and stray stdout, ready to append to a message.
-fn join_output(stderr: Option<thread::JoinHandle<String>>, stdout: &Tail) -> String {
-    let stderr = Tail(stderr.and_then(|h| h.join().ok()).unwrap_or_default());
-    let mut text = String::new();
+/// The child's stderr and stray stdout, ready to append to a message, with a note when the
+/// stderr says it ran out of memory under `limit`. The child's group is gone, so stderr
+/// closes; should something still hold it, what came within a second is not waited for.
+fn join_output(stderr: Option<mpsc::Receiver<String>>, stdout: &Tail, limit: Option<u64>) -> String {
+    let stderr = Tail(
+        stderr
+            .and_then(|rx| rx.recv_timeout(Duration::from_secs(1)).ok())
+            .unwrap_or_default(),
+    );
+    let mut text = memory_note(stderr.end(), limit);
     for (name, tail) in [("stderr", &stderr), ("stdout", stdout)] {
         if !tail.end().is_empty() {
             text.push_str(&format!("; its {name} ends:\n{}", tail.end()));

@@ -4,7 +4,7 @@
 //!
 //! | layer | module | what |
 //! |---|---|---|
-//! | 0 | `status` | [`Status`]: pass, fail, crash, timeout, flake, beyond-spec, n/a |
+//! | 0 | `status`, [`contain`] | [`Status`]: pass, fail, crash, timeout, flake, beyond-spec, n/a; child processes in a process group of their own, under a memory limit |
 //! | 1 | [`oracle`] | the conventions' geometry ([`oracle::raster`]), brute force (i128 `orient2d`), ray casting (f64 with exact fallback, clip space), visible outlines; no code shared with the reference |
 //! | 2 | `scene` | [`Scene`]: a draw whose `Debug` is pasteable Rust; [`Case`]: what a rule's input is |
 //! | 3 | `violation` | [`Violation`], [`Counts`], [`Expect`], [`Picture`] |
@@ -30,6 +30,7 @@
 #![forbid(unsafe_code)]
 
 mod certify;
+pub mod contain;
 pub mod expect;
 pub mod fuzz;
 mod harness;

@@ -1,8 +1,11 @@
-//! A rasterizer that hangs, aborts or prints to stdout, run as `certify` runs rules: in a child
+//! A rasterizer that hangs, aborts, prints to stdout, allocates without bound, floods stdout
+//! without a newline or leaves a grandchild behind, run as `certify` runs rules: in a child
 //! process. The hang and the abort fail the rule with a message naming what happened and the
-//! case it happened on; the noise does no harm; a profile the suite cannot judge is refused by
-//! the child before the rule runs, in a child as in this process. (This file is its own
-//! harness: started with `ISOLATION_CHILD` set, it is the child.)
+//! case it happened on; the noise does no harm; the allocation meets the memory limit and
+//! fails its rule saying so; the flood costs refrast no memory; the grandchild does not outlive
+//! the rule; a profile the suite cannot judge is refused by the child before the rule runs, in
+//! a child as in this process. (This file is its own harness: started with `ISOLATION_CHILD`
+//! set, it is the child; with `ISOLATION_GRANDCHILD` set, the grandchild.)
 
 use std::process::Command;
 use std::time::{Duration, Instant};
@@ -37,9 +40,71 @@ impl Rasterizer for Misbehaving {
                 std::process::abort();
             }
             "noise" => println!("a line the rasterizer prints on its own"),
+            "hog" if far => hog(),
+            "flood" if far => flood(),
+            "fork" if far => {
+                // A grandchild that sleeps for an hour, then this child hangs.
+                let _ = Command::new(std::env::current_exe().expect("this test binary"))
+                    .env(
+                        "ISOLATION_GRANDCHILD",
+                        std::env::var_os("ISOLATION_PID_FILE").unwrap_or_default(),
+                    )
+                    .spawn();
+                loop {
+                    std::thread::sleep(Duration::from_secs(1));
+                }
+            }
             _ => {}
         }
         Reference::default().rasterize(draw)
+    }
+}
+
+/// Allocates and touches 16 MiB at a time, up to 2 GiB: far past the limit the test sets.
+fn hog() {
+    let mut kept: Vec<Vec<u8>> = Vec::new();
+    for _ in 0..128 {
+        kept.push(vec![1; 16 << 20]);
+    }
+    eprintln!("allocated {} MiB without meeting a limit", kept.len() * 16);
+}
+
+/// Writes 4 GiB to stdout without a newline, then hangs.
+fn flood() {
+    use std::io::Write;
+    let chunk = vec![b'x'; 1 << 20];
+    let mut out = std::io::stdout().lock();
+    for _ in 0..4096 {
+        if out.write_all(&chunk).is_err() {
+            break;
+        }
+    }
+    loop {
+        std::thread::sleep(Duration::from_secs(1));
+    }
+}
+
+/// Where the grandchild writes its process ID (named by the test's process, passed down).
+fn grandchild_file() -> std::path::PathBuf {
+    std::env::temp_dir().join(format!("refrast-isolation-grandchild-{}", std::process::id()))
+}
+
+/// This process's resident memory, in bytes, as Linux reports it.
+fn resident() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmRSS:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib << 10)
+}
+
+/// Whether process `pid` is gone (or a zombie, dead but not yet reaped by its new parent).
+fn gone(pid: u32) -> bool {
+    match std::fs::read_to_string(format!("/proc/{pid}/stat")) {
+        Err(_) => true,
+        Ok(stat) => stat
+            .rsplit(')')
+            .next()
+            .is_some_and(|rest| rest.trim_start().starts_with('Z')),
     }
 }
 
@@ -54,6 +119,11 @@ fn options() -> Options {
 }
 
 fn main() {
+    if let Some(file) = std::env::var_os("ISOLATION_GRANDCHILD") {
+        let _ = std::fs::write(file, std::process::id().to_string());
+        std::thread::sleep(Duration::from_secs(3600));
+        return;
+    }
     if let Ok(kind) = std::env::var("ISOLATION_CHILD") {
         let kind: &'static str = Box::leak(kind.into_boxed_str());
         let served = serve_rule(RULE, || Ok(Box::new(Misbehaving(kind))), &options());
@@ -63,15 +133,18 @@ fn main() {
         .into_iter()
         .find(|r| r.id == RULE)
         .expect("the rule exists");
-    let run = |kind: &'static str| {
+    let run_with = |kind: &'static str, options: &Options| {
         let mut child = Command::new(std::env::current_exe().expect("this test binary"));
-        child.env("ISOLATION_CHILD", kind);
+        child
+            .env("ISOLATION_CHILD", kind)
+            .env("ISOLATION_PID_FILE", grandchild_file());
         let start = Instant::now();
-        let Outcome::Ran(report, _) = run_rule_isolated(&rule, child, &options()) else {
+        let Outcome::Ran(report, _) = run_rule_isolated(&rule, child, options) else {
             panic!("the misbehaving rasterizer builds anywhere");
         };
         (*report, start.elapsed())
     };
+    let run = |kind: &'static str| run_with(kind, &options());
 
     let (hang, took) = run("hang");
     assert_eq!(hang.status, Status::Timeout, "{hang:#?}");
@@ -97,6 +170,48 @@ fn main() {
     let (noise, _) = run("noise");
     assert_eq!(noise.status, Status::Pass, "{noise:#?}");
 
+    // 256 MiB for the rule's process: the allocation fails there, and the rule says why.
+    let limited = Options {
+        memory_limit: Some(256 << 20),
+        ..options()
+    };
+    let (hog, took) = run_with("hog", &limited);
+    assert_eq!(hog.status, Status::Crash, "{hog:#?}");
+    let message = hog.message.clone().unwrap_or_default();
+    assert!(message.contains("limited to 256 MiB"), "{message}");
+    assert!(message.contains("memory allocation of"), "{message}");
+    assert!(took < Duration::from_secs(60), "after {took:?}");
+
+    // 4 GiB of stdout without a newline: refrast reads it all (else the child blocks and
+    // times out, as it does after) and keeps at most one cut line of it.
+    let before = resident();
+    let (flood, _) = run("flood");
+    assert_eq!(flood.status, Status::Timeout, "{flood:#?}");
+    if let (Some(before), Some(after)) = (before, resident()) {
+        let grew = after.saturating_sub(before);
+        assert!(
+            grew < 128 << 20,
+            "refrast grew by {} MiB reading the flood",
+            grew >> 20
+        );
+    }
+
+    // A grandchild left asleep: gone once the rule is over (its process group is killed).
+    let _ = std::fs::remove_file(grandchild_file());
+    let (fork, _) = run("fork");
+    assert_eq!(fork.status, Status::Timeout, "{fork:#?}");
+    let pid: u32 = std::fs::read_to_string(grandchild_file())
+        .expect("the grandchild wrote its process ID")
+        .trim()
+        .parse()
+        .expect("a process ID");
+    let _ = std::fs::remove_file(grandchild_file());
+    let deadline = Instant::now() + Duration::from_secs(5);
+    while !gone(pid) && Instant::now() < deadline {
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    assert!(gone(pid), "the grandchild {pid} outlived its rule");
+
     // No cull mode at all: refused in the child, before the rule, and in this process alike.
     let mut child = Command::new(std::env::current_exe().expect("this test binary"));
     child.env("ISOLATION_CHILD", "unjudgeable");
@@ -121,6 +236,7 @@ fn main() {
 
     println!(
         "isolation: a hang timed out and an abort crashed its rule, each with a message; noise did no harm; an \
-         unjudgeable profile was refused"
+         allocation without bound met the memory limit; a flood cost no memory; a grandchild did not outlive its \
+         rule; an unjudgeable profile was refused"
     );
 }

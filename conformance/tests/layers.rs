@@ -16,7 +16,7 @@ use modules::{code, module_of, resolve, rust_files, segments, use_paths, written
 /// Top-level modules, lowest layer first; `process`, `restricted` and `named` stand apart: they
 /// use only refrast (and `status`, which uses nothing).
 const LAYERS: &[&[&str]] = &[
-    &["status"],
+    &["status", "contain"],
     &["oracle", "process", "restricted"],
     &["scene", "named"],
     &["violation"],

@@ -57,6 +57,19 @@ fn main() {
         ),
         trial("run_as_tests_certifies_a_child", run_as_tests_child),
         trial(
+            "a_child_flooding_stdout_costs_refrast_no_memory_and_is_named",
+            flood,
+        ),
+        trial(
+            "a_child_that_closes_stdin_and_runs_on_fails_at_the_timeout",
+            closes_stdin,
+        ),
+        trial("a_grandchild_does_not_outlive_the_child_that_exited", grandchild),
+        trial(
+            "a_child_over_its_memory_limit_fails_the_draw_saying_so",
+            memory_limit,
+        ),
+        trial(
             "the_exchange_in_protocol_md_is_what_refrast_sends_and_the_reference_draws",
             protocol_md_example,
         ),
@@ -150,6 +163,100 @@ fn hang() -> Result<(), String> {
     p.rasterize(&draw(1))
         .map_err(|e| format!("the restarted child should draw: {e}"))?;
     Ok(())
+}
+
+/// This process's resident memory, in bytes, as Linux reports it.
+fn resident() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmRSS:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib << 10)
+}
+
+/// Whether process `pid` is gone (or a zombie: dead, not yet reaped by its new parent).
+fn gone(pid: u32) -> bool {
+    match std::fs::read_to_string(format!("/proc/{pid}/stat")) {
+        Err(_) => true,
+        Ok(stat) => stat
+            .rsplit(')')
+            .next()
+            .is_some_and(|rest| rest.trim_start().starts_with('Z')),
+    }
+}
+
+/// After a good reply, the child writes well-formed replies (`fragments 0`, `end`) without
+/// end, up to 4 GiB: refrast reads ahead at most 1 MiB of it, and the next draw names it.
+fn flood() -> Result<(), String> {
+    let mut p = spawn("flood", 2.0);
+    let before = resident();
+    p.rasterize(&draw(2)).map_err(|e| e.to_string())?;
+    std::thread::sleep(Duration::from_millis(500));
+    if let (Some(before), Some(after)) = (before, resident()) {
+        // Other trials run in this process at the same time; they use a few MB.
+        if after.saturating_sub(before) > 64 << 20 {
+            return Err(format!("refrast grew by {} MiB", (after - before) >> 20));
+        }
+    }
+    misbehaved(p.rasterize(&draw(2)), &["after its last reply's `end`"])
+}
+
+/// The child closes its stdin (a shell does it before starting it) and sleeps: its draw
+/// times out and it is killed, not left running.
+fn closes_stdin() -> Result<(), String> {
+    let exe = std::env::current_exe().expect("the test binary has a path");
+    let line = format!("sh -c 'exec 0<&- env {MODE}=sleeper \"$0\"' '{}'", exe.display());
+    let mut p = Process::try_spawn_with(&line, Duration::from_secs(1)).map_err(|e| e.to_string())?;
+    let start = Instant::now();
+    misbehaved(p.rasterize(&draw(2)), &["hangs"])?;
+    if start.elapsed() > Duration::from_secs(5) {
+        return Err(format!("took {:?}", start.elapsed()));
+    }
+    Ok(())
+}
+
+/// The child starts a grandchild that keeps its stdout open and sleeps for an hour, then
+/// exits without replying: the draw fails at the timeout and the grandchild is gone with it.
+fn grandchild() -> Result<(), String> {
+    let file = std::env::temp_dir().join(format!("refrast-process-grandchild-{}", std::process::id()));
+    let _ = std::fs::remove_file(&file);
+    let exe = std::env::current_exe().expect("the test binary has a path");
+    let line = format!(
+        "env {MODE}=fork-exit REFRAST_PID_FILE='{}' '{}'",
+        file.display(),
+        exe.display()
+    );
+    let mut p = Process::try_spawn_with(&line, Duration::from_secs(1)).map_err(|e| e.to_string())?;
+    let start = Instant::now();
+    misbehaved(p.rasterize(&draw(2)), &["hangs"])?;
+    if start.elapsed() > Duration::from_secs(5) {
+        return Err(format!("took {:?}", start.elapsed()));
+    }
+    let pid: u32 = std::fs::read_to_string(&file)
+        .map_err(|e| format!("the grandchild wrote no process ID: {e}"))?
+        .trim()
+        .parse()
+        .map_err(|e| format!("{e}"))?;
+    let _ = std::fs::remove_file(&file);
+    let deadline = Instant::now() + Duration::from_secs(5);
+    while !gone(pid) && Instant::now() < deadline {
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    if gone(pid) {
+        Ok(())
+    } else {
+        Err(format!("the grandchild {pid} outlived the draw"))
+    }
+}
+
+/// A child limited to 128 MiB that allocates 2 GiB on a draw: the draw fails as a death whose
+/// message names the limit.
+fn memory_limit() -> Result<(), String> {
+    let mut p = Process::try_spawn_limited(&child("hog"), Duration::from_secs(10), Some(128 << 20))
+        .map_err(|e| e.to_string())?;
+    misbehaved(
+        p.rasterize(&draw(2)),
+        &["limited to 128 MiB", "memory allocation of"],
+    )
 }
 
 fn malformed() -> Result<(), String> {
@@ -386,6 +493,13 @@ fn fake_child(mode: &str) {
             eprintln!("Traceback: no module named numpy");
             std::process::exit(3);
         }
+        "grandchild" => {
+            if let Some(file) = std::env::var_os("REFRAST_PID_FILE") {
+                let _ = std::fs::write(file, std::process::id().to_string());
+            }
+            std::thread::sleep(Duration::from_secs(3600));
+            return;
+        }
         _ => {}
     }
     let colour = if mode == "bad-profile" {
@@ -399,6 +513,10 @@ fn fake_child(mode: &str) {
          features perspective-barycentrics screen-barycentrics depth-test guard-band\n{colour}ready\n"
     );
     let _ = out.flush();
+    if mode == "sleeper" {
+        std::thread::sleep(Duration::from_secs(3600));
+        return;
+    }
     let mut input = std::io::stdin().lock();
     let mut reference = Reference::default();
     loop {
@@ -439,6 +557,15 @@ fn fake_child(mode: &str) {
                     std::thread::sleep(Duration::from_secs(3600));
                 }
                 ("slow", _) => std::thread::sleep(Duration::from_millis(20)),
+                ("fork-exit", _) => {
+                    let exe = std::env::current_exe().expect("the test binary has a path");
+                    let _ = std::process::Command::new(exe).env(MODE, "grandchild").spawn();
+                    std::process::exit(0);
+                }
+                ("hog", _) => {
+                    let kept: Vec<Vec<u8>> = (0..128).map(|_| vec![1; 16 << 20]).collect();
+                    eprintln!("allocated {} MiB", kept.len() * 16);
+                }
                 ("malformed", _) => {
                     eprintln!("debugging output went to stdout");
                     let _ = writeln!(out, "hello there");
@@ -470,6 +597,14 @@ fn fake_child(mode: &str) {
         }
         let _ = out.write_all(&reply);
         let _ = out.flush();
+        if mode == "flood" {
+            let lines = b"fragments 0\nend\n".repeat(1 << 16);
+            for _ in 0..(4 << 30) / lines.len() {
+                if out.write_all(&lines).is_err() {
+                    return;
+                }
+            }
+        }
     }
 }
 

@@ -13,13 +13,15 @@ mod reply;
 pub mod wire;
 
 use std::fmt;
-use std::process::{Child, Command, ExitStatus, Stdio};
+use std::process::{Command, ExitStatus, Stdio};
 use std::time::{Duration, Instant};
 
 use refrast::{Draw, DrawError, Fragment, Profile, Rasterizer, Resolved};
 
+use crate::contain::{Contained, DEFAULT_MEMORY_LIMIT, memory_note};
+
 use pipe::{Errors, Incoming, Outgoing, Stall};
-pub use pipe::{KEPT_OUTPUT, Tail};
+pub use pipe::{KEPT_OUTPUT, Tail, for_each_line};
 use reply::{Breach, Reply, read_reply};
 use wire::{Declared, MAX_LINE, Op, VERSION};
 
@@ -129,7 +131,7 @@ impl Launch {
 /// A started child with its pipes.
 #[derive(Debug)]
 struct Running {
-    child: Child,
+    child: Contained,
     outgoing: Outgoing,
     incoming: Incoming,
     errors: Errors,
@@ -140,6 +142,7 @@ struct Running {
 pub struct Process {
     launch: Launch,
     timeout: Duration,
+    memory: Option<u64>,
     declared: Declared,
     running: Option<Running>,
     starts: u32,
@@ -155,11 +158,22 @@ impl Process {
 
     /// [`Process::try_spawn`] with `timeout` for the handshake and for each draw.
     pub fn try_spawn_with(command: &str, timeout: Duration) -> Result<Self, ProcessError> {
+        Self::try_spawn_limited(command, timeout, Some(DEFAULT_MEMORY_LIMIT))
+    }
+
+    /// [`Process::try_spawn_with`], the child limited to `memory` bytes of data (`None`: no
+    /// limit; [`crate::contain`] says how).
+    pub fn try_spawn_limited(
+        command: &str,
+        timeout: Duration,
+        memory: Option<u64>,
+    ) -> Result<Self, ProcessError> {
         let launch = Launch::parse(command)?;
-        let (running, declared) = start(&launch, timeout)?;
+        let (running, declared) = start(&launch, timeout, memory)?;
         Ok(Self {
             launch,
             timeout,
+            memory,
             declared,
             running: Some(running),
             starts: 1,
@@ -191,6 +205,7 @@ impl Process {
                 },
                 launch,
                 timeout,
+                memory: Some(DEFAULT_MEMORY_LIMIT),
                 running: None,
                 starts: 0,
                 start_error: Some(e.to_string()),
@@ -222,7 +237,7 @@ impl Process {
             return Err(DrawError::Misbehaved(why.clone()));
         }
         if self.running.is_none() {
-            let (running, declared) = start(&self.launch, self.timeout)
+            let (running, declared) = start(&self.launch, self.timeout, self.memory)
                 .map_err(|e| DrawError::Misbehaved(format!("{RESTARTING}: {e}")))?;
             self.starts += 1;
             self.running = Some(running);
@@ -261,21 +276,25 @@ impl Process {
         let Some(running) = self.running.take() else {
             return DrawError::Misbehaved(what);
         };
-        DrawError::Misbehaved(running.end(&what, &self.launch))
+        DrawError::Misbehaved(running.end(&what, &self.launch, self.memory))
     }
 }
 
 impl Running {
-    /// Ends the child after `what` went wrong and says so, with how it ended and its stderr.
-    fn end(mut self, what: &str, launch: &Launch) -> String {
+    /// Ends the child after `what` went wrong and says so, with how it ended and its stderr;
+    /// whatever it started goes with it.
+    fn end(mut self, what: &str, launch: &Launch, memory: Option<u64>) -> String {
         // A child that closed its stdout is exiting: give it a moment before killing it.
-        let status = wait_for(&mut self.child, DRAIN).or_else(|| {
-            let _ = self.child.kill();
-            self.child.wait().ok().map(|_| Ended::Killed)
-        });
+        let status = match self.child.wait_for(DRAIN) {
+            Some(status) => Some(Ended::Exited(status)),
+            None => Some(self.child.end().map_or(Ended::Killed, Ended::Exited)),
+        };
+        // Its group too, so that a grandchild holding stderr open lets it close.
+        self.child.end();
         let stderr = self.errors.end(Instant::now() + DRAIN);
         let mut message = format!("{what} [{}; `{}`]", describe(status), launch.line);
         if !stderr.is_empty() {
+            message.push_str(&memory_note(&stderr, memory));
             message.push_str(&format!("; its stderr ends:\n{stderr}"));
         }
         message
@@ -285,12 +304,10 @@ impl Running {
 impl Drop for Process {
     fn drop(&mut self) {
         if let Some(mut running) = self.running.take() {
-            // Closing stdin asks the child to exit; one that does not is killed.
+            // Closing stdin asks the child to exit; one that does not is killed, with its group.
             drop(running.outgoing);
-            if wait_for(&mut running.child, Duration::from_millis(200)).is_none() {
-                let _ = running.child.kill();
-                let _ = running.child.wait();
-            }
+            running.child.wait_for(Duration::from_millis(200));
+            running.child.end();
         }
     }
 }
@@ -330,20 +347,26 @@ impl Rasterizer for Process {
     }
 }
 
-/// Starts the child and reads its handshake up to `ready`.
-fn start(launch: &Launch, timeout: Duration) -> Result<(Running, Declared), ProcessError> {
-    let mut child = Command::new(&launch.program)
+/// Starts the child, limited to `memory` bytes, and reads its handshake up to `ready`.
+fn start(
+    launch: &Launch,
+    timeout: Duration,
+    memory: Option<u64>,
+) -> Result<(Running, Declared), ProcessError> {
+    let mut command = Command::new(&launch.program);
+    command
         .args(&launch.args)
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
+        .stderr(Stdio::piped());
+    let mut child = Contained::spawn(&mut command, memory)
         .map_err(|e| ProcessError::Start(format!("`{}`: {e}", launch.line)))?;
-    let (Some(stdin), Some(stdout), Some(stderr)) =
-        (child.stdin.take(), child.stdout.take(), child.stderr.take())
-    else {
-        let _ = child.kill();
-        let _ = child.wait();
+    let (Some(stdin), Some(stdout), Some(stderr)) = (
+        child.child.stdin.take(),
+        child.child.stdout.take(),
+        child.child.stderr.take(),
+    ) else {
+        child.end();
         return Err(ProcessError::Start("its pipes could not be opened".into()));
     };
     let mut running = Running {
@@ -354,7 +377,7 @@ fn start(launch: &Launch, timeout: Duration) -> Result<(Running, Declared), Proc
     };
     match handshake(&mut running.incoming, launch, timeout) {
         Ok(declared) => Ok((running, declared)),
-        Err(why) => Err(ProcessError::Handshake(running.end(&why, launch))),
+        Err(why) => Err(ProcessError::Handshake(running.end(&why, launch, memory))),
     }
 }
 
@@ -401,18 +424,6 @@ enum Ended {
     Exited(ExitStatus),
     /// Killed by refrast after a breach.
     Killed,
-}
-
-/// The child's exit within `within`, if it exits.
-fn wait_for(child: &mut Child, within: Duration) -> Option<Ended> {
-    let deadline = Instant::now() + within;
-    loop {
-        match child.try_wait() {
-            Ok(Some(status)) => return Some(Ended::Exited(status)),
-            Ok(None) if Instant::now() < deadline => std::thread::sleep(Duration::from_millis(5)),
-            _ => return None,
-        }
-    }
 }
 
 /// How the child ended, in words.

@@ -2,9 +2,9 @@
 //! reading or writing can never block the parent: requests go out through a writer thread,
 //! replies come in through a reader thread and wait with a deadline, stderr is kept as a tail.
 
-use std::io::{BufRead, BufReader, Read, Write};
+use std::io::{BufRead, BufReader, ErrorKind, Read, Write};
 use std::process::{ChildStderr, ChildStdin, ChildStdout};
-use std::sync::mpsc::{self, Receiver, RecvTimeoutError, Sender};
+use std::sync::mpsc::{self, Receiver, RecvTimeoutError, Sender, SyncSender};
 use std::sync::{Arc, Mutex};
 use std::thread;
 use std::time::Instant;
@@ -79,6 +79,9 @@ pub enum Stall {
     LineTooLong,
 }
 
+/// Chunks of a child's stdout read ahead of refrast, at most: 1 MiB.
+const QUEUED: usize = 16;
+
 /// The child's stdout, read on a thread of its own and handed over with deadlines.
 #[derive(Debug)]
 pub struct Incoming {
@@ -90,7 +93,9 @@ pub struct Incoming {
 impl Incoming {
     /// Starts the reader thread.
     pub fn new(mut stdout: ChildStdout) -> Self {
-        let (tx, rx) = mpsc::channel();
+        // Bounded: a child that floods its stdout waits for refrast to read, instead of
+        // filling refrast's memory (at most QUEUED chunks of 64 KiB wait here).
+        let (tx, rx): (SyncSender<Vec<u8>>, _) = mpsc::sync_channel(QUEUED);
         thread::spawn(move || {
             let mut chunk = vec![0u8; 1 << 16];
             loop {
@@ -111,9 +116,12 @@ impl Incoming {
         }
     }
 
-    /// Bytes received and not yet taken.
-    #[must_use]
-    pub fn pending(&self) -> &[u8] {
+    /// Bytes received and not yet taken, with whatever the reader thread holds ready (at most
+    /// [`QUEUED`] chunks): what a child wrote after its last reply.
+    pub fn pending(&mut self) -> &[u8] {
+        while let Ok(bytes) = self.rx.try_recv() {
+            self.buffer.extend_from_slice(&bytes);
+        }
         &self.buffer
     }
 
@@ -177,12 +185,12 @@ impl Errors {
         let (tx, done) = mpsc::channel();
         let kept = Arc::clone(&tail);
         thread::spawn(move || {
-            for line in BufReader::new(stderr).split(b'\n') {
-                let Ok(line) = line else { break };
+            for_each_line(stderr, 2 * KEPT_OUTPUT, |line, _| {
                 if let Ok(mut tail) = kept.lock() {
-                    tail.push(String::from_utf8_lossy(&line).trim_end_matches('\r'));
+                    tail.push(String::from_utf8_lossy(line).trim_end_matches('\r'));
                 }
-            }
+                true
+            });
             let _ = tx.send(());
         });
         Self { tail, done }
@@ -196,5 +204,41 @@ impl Errors {
             .done
             .recv_timeout(deadline.saturating_duration_since(Instant::now()));
         self.tail.lock().map(|t| t.end().to_owned()).unwrap_or_default()
+    }
+}
+
+/// Reads `stream` to its end line by line, handing each line (without its `\n` or a `\r`
+/// before it) to `f`, with whether it was cut, until `f` returns `false`. A line longer than
+/// `max` bytes is cut to its first `max` and the rest skipped, so the memory this takes is
+/// bounded whatever the stream holds.
+pub fn for_each_line(stream: impl Read, max: usize, mut f: impl FnMut(&[u8], bool) -> bool) {
+    let mut reader = BufReader::new(stream);
+    let (mut line, mut cut) = (Vec::new(), false);
+    loop {
+        let buffer = match reader.fill_buf() {
+            Ok([]) => break,
+            Ok(buffer) => buffer,
+            Err(e) if e.kind() == ErrorKind::Interrupted => continue,
+            Err(_) => break,
+        };
+        let newline = buffer.iter().position(|&b| b == b'\n');
+        let part = &buffer[..newline.unwrap_or(buffer.len())];
+        let room = max.saturating_sub(line.len());
+        cut |= part.len() > room;
+        line.extend_from_slice(&part[..part.len().min(room)]);
+        let used = newline.map_or(buffer.len(), |i| i + 1);
+        reader.consume(used);
+        if newline.is_some() {
+            if line.last() == Some(&b'\r') {
+                line.pop();
+            }
+            if !f(&line, cut) {
+                return;
+            }
+            (cut, line) = (false, Vec::new());
+        }
+    }
+    if !line.is_empty() {
+        f(&line, cut);
     }
 }

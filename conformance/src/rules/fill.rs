@@ -2,7 +2,7 @@
 
 use refrast::{CullMode, Fragment, Profile, Rasterizer};
 
-use super::common::{compare_sets, coverage_set, fragments, reference_for};
+use super::common::{compare_sets, fragments, reference_for, same_coverage};
 use super::level::{Level, NO_TIE_RULE, SHARED_EDGE_ONLY};
 use super::mesh::{Relax, check_mesh_coverage};
 use super::{EXACT_COVERAGE, Family, GUARD_BAND, REFERENCE_PROFILE, Rule};
@@ -145,13 +145,12 @@ pub fn check_matches_reference(r: &mut dyn Rasterizer, scene: &Scene) -> Result<
         let bits = profile.snapping.grid_bits().unwrap_or(8);
         for variant in exact_variants(scene, &profile) {
             let mut placed = on_grid(scene, variant, bits);
-            if coverage_set(&fragments(&mut reference, &placed)?) == coverage_set(&got) {
+            if same_coverage(&fragments(&mut reference, &placed)?, &got) {
                 return Ok(());
             }
             if unsure_under_culling(scene, &profile) {
                 placed.state.cull = CullMode::None;
-                if got.is_empty() || coverage_set(&fragments(&mut reference, &placed)?) == coverage_set(&got)
-                {
+                if got.is_empty() || same_coverage(&fragments(&mut reference, &placed)?, &got) {
                     return Ok(());
                 }
             }
@@ -232,10 +231,9 @@ fn compare_brute_force(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Viol
     let first = coverage(variants[0], culled(&variants[0]));
     let verdict = compare_sets(scene, &got, &first, "the brute-force oracle");
     if verdict.is_err() {
-        let mine = coverage_set(&got);
         let explained = variants.iter().any(|t| {
-            coverage_set(&coverage(*t, culled(t))) == mine
-                || (unsure && (mine.is_empty() || coverage_set(&coverage(*t, false)) == mine))
+            same_coverage(&coverage(*t, culled(t)), &got)
+                || (unsure && (got.is_empty() || same_coverage(&coverage(*t, false), &got)))
         });
         if explained {
             return Ok(());

@@ -30,13 +30,16 @@ pub const CLIP_ROUNDING: f64 = 1.0 / 524_288.0;
 #[must_use]
 pub fn cut_rounding_px(tri: &[[f64; 4]; 3], width: u32, height: u32, s: [f64; 2], state: &DrawState) -> f64 {
     let range = state.depth_range;
-    let mut planes: Vec<fn(&[f64; 4], refrast::DepthRange) -> f64> =
-        vec![|p, _| p[3], |p, range| near_distance(range, p[2], p[3])];
-    if state.clip_far {
-        planes.push(|p, _| p[3] - p[2]);
-    }
-    planes.retain(|d| tri.iter().any(|v| d(v, range) < 0.0));
-    if planes.is_empty() {
+    // The signed distances to the planes that clip: w = 0, near, and far when enabled (a match,
+    // not a table of function pointers: it runs for every sample of a clipped triangle).
+    let distance = |plane: usize, p: &[f64; 4]| match plane {
+        0 => p[3],
+        1 => near_distance(range, p[2], p[3]),
+        _ => p[3] - p[2],
+    };
+    let cuts = |plane: usize| (plane < 2 || state.clip_far) && tri.iter().any(|v| distance(plane, v) < 0.0);
+    let planes = [cuts(0), cuts(1), cuts(2)];
+    if planes == [false; 3] {
         return 0.0;
     }
     let at = |x: f64, y: f64| {
@@ -63,10 +66,10 @@ pub fn cut_rounding_px(tri: &[[f64; 4]; 3], width: u32, height: u32, s: [f64; 2]
     let [nx, ny] = to_ndc(width, height, s[0], s[1]);
     let half = f64::from(width.max(height)) * 0.5;
     let moved = e * (1.0 + nx.abs() + ny.abs()) / w * half;
-    let across = planes
-        .iter()
-        .map(|d| {
-            let value = |b: [f64; 3]| (0..3).map(|i| b[i] * d(&tri[i], range)).sum::<f64>();
+    let across = (0..3)
+        .filter(|&plane| planes[plane])
+        .map(|plane| {
+            let value = |b: [f64; 3]| (0..3).map(|i| b[i] * distance(plane, &tri[i])).sum::<f64>();
             let gradient =
                 ((value(right) - value(left)) / (2.0 * h)).hypot((value(down) - value(up)) / (2.0 * h));
             2.0 * e / gradient

@@ -14,6 +14,10 @@ use refrast::{Draw, DrawError, Fragment, Profile, Rasterizer, Reference, Support
 use refrast_conformance::isolate::{Outcome, run_rule_isolated, serve_rule};
 use refrast_conformance::{Options, Status, catalogue, certify};
 
+mod support;
+
+use support::{gone, resident};
+
 /// The reference, misbehaving on any draw with a vertex far outside the view (|x| > 1000·|w|).
 struct Misbehaving(&'static str);
 
@@ -87,25 +91,6 @@ fn flood() {
 /// Where the grandchild writes its process ID (named by the test's process, passed down).
 fn grandchild_file() -> std::path::PathBuf {
     std::env::temp_dir().join(format!("refrast-isolation-grandchild-{}", std::process::id()))
-}
-
-/// This process's resident memory, in bytes, as Linux reports it.
-fn resident() -> Option<u64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmRSS:"))?;
-    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib << 10)
-}
-
-/// Whether process `pid` is gone (or a zombie, dead but not yet reaped by its new parent).
-fn gone(pid: u32) -> bool {
-    match std::fs::read_to_string(format!("/proc/{pid}/stat")) {
-        Err(_) => true,
-        Ok(stat) => stat
-            .rsplit(')')
-            .next()
-            .is_some_and(|rest| rest.trim_start().starts_with('Z')),
-    }
 }
 
 const RULE: &str = "clip.interior.matches-raycast";

@@ -13,6 +13,10 @@ use refrast::{CompareOp, CullMode, DepthRange, Draw, DrawError, FrontFace, Raste
 use refrast_conformance::process::wire::{self, Word};
 use refrast_conformance::{Options, Process, ProcessError, Status, certify};
 
+mod support;
+
+use support::{gone, resident};
+
 const MODE: &str = "REFRAST_FAKE_CHILD";
 
 fn main() {
@@ -163,25 +167,6 @@ fn hang() -> Result<(), String> {
     p.rasterize(&draw(1))
         .map_err(|e| format!("the restarted child should draw: {e}"))?;
     Ok(())
-}
-
-/// This process's resident memory, in bytes, as Linux reports it.
-fn resident() -> Option<u64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmRSS:"))?;
-    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib << 10)
-}
-
-/// Whether process `pid` is gone (or a zombie: dead, not yet reaped by its new parent).
-fn gone(pid: u32) -> bool {
-    match std::fs::read_to_string(format!("/proc/{pid}/stat")) {
-        Err(_) => true,
-        Ok(stat) => stat
-            .rsplit(')')
-            .next()
-            .is_some_and(|rest| rest.trim_start().starts_with('Z')),
-    }
 }
 
 /// After a good reply, the child writes well-formed replies (`fragments 0`, `end`) without

@@ -52,33 +52,13 @@ impl Relax {
 /// [`mesh_expectation`], leaving to the implementation what `relax` says.
 #[must_use]
 pub fn mesh_expectation_with(scene: &Scene, band: f64, relax: Relax) -> (Vec<Expect>, Vec<Vec<[f64; 2]>>) {
-    // Shared means identical endpoints (Vulkan's wording), whatever the vertex indices.
-    let key = |i: u32| scene.positions[i as usize].map(f32::to_bits);
-    let edge = |t: &[u32; 3], k: usize| {
-        let (a, b) = (key(t[k]), key(t[(k + 1) % 3]));
-        if a <= b { (a, b) } else { (b, a) }
-    };
-    let mut edge_use: HashMap<([u32; 4], [u32; 4]), u32> = HashMap::new();
-    for t in &scene.triangles {
-        for k in 0..3 {
-            *edge_use.entry(edge(t, k)).or_default() += 1;
-        }
-    }
+    let shared = shared_edges(scene);
     let tris: Vec<[[f64; 4]; 3]> = (0..scene.triangles.len())
         .map(|t| scene.positions_of(t))
         .collect();
     let outlines: Vec<Vec<OutlinePoint>> = tris
         .iter()
         .map(|t| visible_outline(t, scene.width, scene.height, &scene.state))
-        .collect();
-    let shared: Vec<u8> = scene
-        .triangles
-        .iter()
-        .map(|t| {
-            (0..3)
-                .filter(|&k| edge_use[&edge(t, k)] > 1)
-                .fold(0u8, |mask, k| mask | (1 << k))
-        })
         .collect();
     let (width, height) = (scene.width, scene.height);
     let at = |x: u32, y: u32| (y * width + x) as usize;
@@ -153,6 +133,31 @@ pub fn mesh_expectation_with(scene: &Scene, band: f64, relax: Relax) -> (Vec<Exp
         }
     }
     (expected, finite_outlines(&outlines))
+}
+
+/// Per triangle, bit k set when its edge k (from corner k to k+1) is shared with another
+/// triangle. Shared means identical endpoints (Vulkan's wording), whatever the vertex indices.
+fn shared_edges(scene: &Scene) -> Vec<u8> {
+    let key = |i: u32| scene.positions[i as usize].map(f32::to_bits);
+    let edge = |t: &[u32; 3], k: usize| {
+        let (a, b) = (key(t[k]), key(t[(k + 1) % 3]));
+        if a <= b { (a, b) } else { (b, a) }
+    };
+    let mut edge_use: HashMap<([u32; 4], [u32; 4]), u32> = HashMap::new();
+    for t in &scene.triangles {
+        for k in 0..3 {
+            *edge_use.entry(edge(t, k)).or_default() += 1;
+        }
+    }
+    scene
+        .triangles
+        .iter()
+        .map(|t| {
+            (0..3)
+                .filter(|&k| edge_use[&edge(t, k)] > 1)
+                .fold(0u8, |mask, k| mask | (1 << k))
+        })
+        .collect()
 }
 
 /// The box holding an outline whose points are all finite, widened by their rounding: a sample
@@ -349,17 +354,6 @@ mod tests {
     /// The expectation sample by sample over every triangle, without boxes: what
     /// [`mesh_expectation_with`] computed before it skipped the samples a triangle cannot reach.
     fn direct(scene: &Scene, band: f64, relax: Relax) -> Vec<Expect> {
-        let key = |i: u32| scene.positions[i as usize].map(f32::to_bits);
-        let edge = |t: &[u32; 3], k: usize| {
-            let (a, b) = (key(t[k]), key(t[(k + 1) % 3]));
-            if a <= b { (a, b) } else { (b, a) }
-        };
-        let mut edge_use: HashMap<([u32; 4], [u32; 4]), u32> = HashMap::new();
-        for t in &scene.triangles {
-            for k in 0..3 {
-                *edge_use.entry(edge(t, k)).or_default() += 1;
-            }
-        }
         let tris: Vec<_> = (0..scene.triangles.len())
             .map(|t| scene.positions_of(t))
             .collect();
@@ -367,15 +361,7 @@ mod tests {
             .iter()
             .map(|t| visible_outline(t, scene.width, scene.height, &scene.state))
             .collect();
-        let shared: Vec<u8> = scene
-            .triangles
-            .iter()
-            .map(|t| {
-                (0..3)
-                    .filter(|&k| edge_use[&edge(t, k)] > 1)
-                    .fold(0u8, |m, k| m | (1 << k))
-            })
-            .collect();
+        let shared = shared_edges(scene);
         let mut expected = Vec::new();
         for y in 0..scene.height {
             for x in 0..scene.width {

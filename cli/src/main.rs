@@ -67,6 +67,15 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    // The children refrast starts lead process groups of their own, which a terminal's Ctrl-C
+    // does not reach: on an interrupt (or SIGTERM), end them, and whatever they started, first.
+    // Exit status 130, a shell's for an interrupted command.
+    if let Err(e) = ctrlc::set_handler(|| {
+        refrast_conformance::contain::end_all();
+        std::process::exit(130);
+    }) {
+        eprintln!("warning: no interrupt handler ({e}): an interrupted run may leave its children running");
+    }
     let cli = Cli::parse();
     match cli.command {
         Command::Certify(args) => certify::run(&args),

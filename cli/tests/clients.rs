@@ -255,3 +255,64 @@ fn a_child_that_cannot_start_fails_and_a_bad_command_is_a_usage_error() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--exec: bad command line"));
 }
+
+/// Whether some process's command line contains `marker` (from `/proc/*/cmdline`), not
+/// counting zombies.
+fn running(marker: &str) -> bool {
+    std::fs::read_dir("/proc")
+        .into_iter()
+        .flatten()
+        .flatten()
+        .any(|entry| {
+            let dir = entry.path();
+            let cmdline = std::fs::read(dir.join("cmdline")).unwrap_or_default();
+            let zombie = std::fs::read_to_string(dir.join("stat"))
+                .ok()
+                .and_then(|s| s.rsplit(')').next().map(|r| r.trim_start().starts_with('Z')))
+                .unwrap_or(true);
+            !zombie
+                && String::from_utf8_lossy(&cmdline)
+                    .replace('\0', " ")
+                    .contains(marker)
+        })
+}
+
+/// Interrupting `refrast certify --exec` (SIGINT, as Ctrl-C sends it, or SIGTERM) ends the
+/// child, which leads a process group of its own that the terminal's signal would not reach:
+/// here a child that answers its handshake and then sleeps, and would outlive refrast.
+#[test]
+fn an_interrupted_certify_leaves_no_child_behind() {
+    for signal in ["INT", "TERM"] {
+        // The child's command line holds the marker; refrast's (`36$((0))0.…`, which the
+        // shell expands) does not.
+        let tail = format!("{}{}", std::process::id(), signal.len());
+        let marker = format!("3600.{tail}");
+        let child = format!(
+            "sh -c 'printf \"refrast-protocol 1\\nname sleeper\\nready\\n\"; exec sleep 36$((0))0.{tail}'"
+        );
+        let mut refrast = Command::new(REFRAST)
+            .args(["certify", "--exec", &child, "--case-timeout", "60"])
+            .args(["--report", env!("CARGO_TARGET_TMPDIR")])
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .expect("refrast starts");
+        let deadline = std::time::Instant::now() + std::time::Duration::from_secs(20);
+        while !running(&marker) {
+            assert!(std::time::Instant::now() < deadline, "the child never started");
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+        let killed = Command::new("kill")
+            .args([&format!("-{signal}"), &refrast.id().to_string()])
+            .status()
+            .expect("kill runs");
+        assert!(killed.success());
+        let status = refrast.wait().expect("refrast exits");
+        assert_eq!(status.code(), Some(130), "SIG{signal}: {status}");
+        let deadline = std::time::Instant::now() + std::time::Duration::from_secs(5);
+        while running(&marker) && std::time::Instant::now() < deadline {
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+        assert!(!running(&marker), "SIG{signal}: the child outlived refrast");
+    }
+}

@@ -17,8 +17,10 @@
 //! allocations fail: a Rust program aborts with "memory allocation of N bytes failed", Python
 //! raises `MemoryError`; [`out_of_memory`] recognises both in its stderr.
 
+use std::collections::BTreeSet;
 use std::io;
 use std::process::{Child, Command, ExitStatus};
+use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 /// The memory limit of every child refrast starts, unless told otherwise: 4 GiB, far above
@@ -28,6 +30,30 @@ pub const DEFAULT_MEMORY_LIMIT: u64 = 4 << 30;
 
 /// Set in the environment of every child: it runs inside a group that its parent leads.
 const IN_GROUP: &str = "REFRAST_IN_PROCESS_GROUP";
+
+/// The process groups this process's children lead and that have not been ended yet, for
+/// [`end_all`].
+static LEADERS: Mutex<BTreeSet<u32>> = Mutex::new(BTreeSet::new());
+
+/// Kills every process group a child of this process leads: for an interrupt (Ctrl-C, `SIGTERM`)
+/// of refrast, which the terminal delivers to refrast's own group only, so that no child, nor
+/// anything it started, outlives refrast.
+pub fn end_all() {
+    let leaders = LEADERS.lock().map(|l| l.clone()).unwrap_or_default();
+    for pid in leaders {
+        kill_group(pid);
+    }
+}
+
+/// `SIGKILL` to process group `pid` (harmless when the group is empty).
+fn kill_group(pid: u32) {
+    #[cfg(unix)]
+    if let Some(pid) = rustix::process::Pid::from_raw(pid as i32) {
+        let _ = rustix::process::kill_process_group(pid, rustix::process::Signal::KILL);
+    }
+    #[cfg(not(unix))]
+    let _ = pid;
+}
 
 /// A started child, its group and its limit.
 #[derive(Debug)]
@@ -52,6 +78,9 @@ impl Contained {
             command.process_group(0);
         }
         let child = command.spawn()?;
+        if leads && let Ok(mut leaders) = LEADERS.lock() {
+            leaders.insert(child.id());
+        }
         if let Some(bytes) = memory {
             limit_memory(&child, bytes);
         }
@@ -96,13 +125,13 @@ impl Contained {
         exited
     }
 
-    /// `SIGKILL` to the child's group, when it leads one (harmless when the group is empty).
+    /// `SIGKILL` to the child's group, when it leads one; the group is then no longer tracked.
     fn kill_group(&self) {
-        #[cfg(unix)]
-        if let Some(pid) = rustix::process::Pid::from_raw(self.child.id() as i32)
-            && self.leads
-        {
-            let _ = rustix::process::kill_process_group(pid, rustix::process::Signal::KILL);
+        if self.leads {
+            kill_group(self.child.id());
+            if let Ok(mut leaders) = LEADERS.lock() {
+                leaders.remove(&self.child.id());
+            }
         }
     }
 }

@@ -20,21 +20,9 @@
 set -uo pipefail
 cd "$(dirname "$0")"
 
-all_targets=(robustness differential fast watertight clipping depth_order interpolation pipeline mesh_load)
-seconds=${1:-600}
-if ! [[ $seconds =~ ^[0-9]+$ ]] || ((seconds == 0)); then
-  echo "usage: fuzz/nightly.sh [SECONDS_PER_TARGET] [TARGET...]; SECONDS must be a positive integer, got '$seconds'" >&2
-  exit 2
-fi
-shift $(($# > 0 ? 1 : 0))
-targets=("$@")
-((${#targets[@]})) || targets=("${all_targets[@]}")
-for t in "${targets[@]}"; do
-  if [[ " ${all_targets[*]} " != *" $t "* ]]; then
-    echo "fuzz/nightly.sh: unknown target '$t'; the targets are: ${all_targets[*]}" >&2
-    exit 2
-  fi
-done
+# shellcheck source=fuzz/args.sh
+source ./args.sh
+parse_fuzz_args fuzz/nightly.sh 600 "$@"
 
 if ! cargo fuzz --version >/dev/null 2>&1; then
   echo "== installing cargo-fuzz (cargo install cargo-fuzz --locked)"

@@ -12,21 +12,9 @@
 set -uo pipefail
 cd "$(dirname "$0")"
 
-all_targets=(robustness differential fast watertight clipping depth_order interpolation pipeline mesh_load)
-seconds=${1:-10}
-if ! [[ $seconds =~ ^[0-9]+$ ]] || ((seconds == 0)); then
-  echo "usage: fuzz/rate.sh [SECONDS] [TARGET...]; SECONDS must be a positive integer, got '$seconds'" >&2
-  exit 2
-fi
-shift $(($# > 0 ? 1 : 0))
-targets=("$@")
-((${#targets[@]})) || targets=("${all_targets[@]}")
-for t in "${targets[@]}"; do
-  if [[ " ${all_targets[*]} " != *" $t "* ]]; then
-    echo "fuzz/rate.sh: unknown target '$t'; the targets are: ${all_targets[*]}" >&2
-    exit 2
-  fi
-done
+# shellcheck source=fuzz/args.sh
+source ./args.sh
+parse_fuzz_args fuzz/rate.sh 10 "$@"
 if ! cargo fuzz --version >/dev/null 2>&1; then
   echo "fuzz/rate.sh: cargo-fuzz is missing (cargo install cargo-fuzz --locked)" >&2
   exit 2

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Every long job refrast has, one after another, each with its log, then one summary: the runs
-# too long for each commit's CI (.ci/run keeps a short form of each). Runnable by hand on this
-# project's machines; the GitHub workflows (.github/workflows/*-nightly.yml) call it per job.
+# too long for each commit's CI (cargo test keeps a short form of each, docs/testing.md).
+# Runnable by hand on this project's machines; the GitHub workflows
+# (.github/workflows/*-nightly.yml) call it per job.
 #
 # Usage: scripts/nightly.sh [--out DIR] [--only JOB[,JOB...]] [--list]
 #   --out DIR   where the logs and summary.txt go (default: nightly-out/, not committed)
@@ -11,7 +12,7 @@
 # Jobs (about 12 hours in all on 2 cores; each has its own time limit, below):
 #   fuzz        every cargo-fuzz target for FUZZ_SECONDS (default 600) each (fuzz/nightly.sh)
 #   drivers     lavapipe, llvmpipe, softpipe and SwiftShader at every rule's full cases, no time
-#               budget, judged against expectations/*.txt (CI: 2 minutes a rule at most)
+#               budget, judged against expectations/*.txt (cargo test: 300 cases a rule)
 #   seeds       every built-in at 20 seeds (scripts/certify_seeds.py --seeds 20)
 #   scale       every built-in at the default seed with 10x the cases
 #   restricted  the reference restricted to each setting's values, at full cases

@@ -1,6 +1,9 @@
 //! Certification: every applicable rule against one rasterizer, summed up as a report.
 
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Mutex, PoisonError};
+use std::thread;
 use std::time::{Duration, Instant};
 
 use refrast::Rasterizer;
@@ -341,15 +344,73 @@ pub fn run_selected<E>(
     let selected = selected(options);
     let mut reports = Vec::new();
     for (i, rule) in selected.iter().enumerate() {
-        let report = run(rule)?;
-        let failed = report.status.is_failure();
-        reports.push(report);
-        if failed && options.fail_fast {
-            let not_run = selected[i + 1..].iter().map(|r| r.id.to_owned()).collect();
-            return Ok((reports, not_run));
+        let result = run(rule);
+        let halts = halts(&result, options);
+        reports.push(result?);
+        if halts {
+            return Ok((reports, not_run_after(&selected, i)));
         }
     }
     Ok((reports, Vec::new()))
+}
+
+/// [`run_selected`] with up to `jobs` rules running at once, on threads of this process: the
+/// same reports in the same order, and the same rules left unrun, as one at a time (a rule
+/// already running when an earlier one stops the run is dropped).
+pub fn run_selected_jobs<E: Send>(
+    options: &Options,
+    jobs: usize,
+    run: impl Fn(&Rule) -> Result<RuleReport, E> + Sync,
+) -> Result<(Vec<RuleReport>, Vec<String>), E> {
+    let selected = selected(options);
+    let next = AtomicUsize::new(0);
+    // The earliest rule, in catalogue order, after which no rule may start or be kept.
+    let stop = AtomicUsize::new(usize::MAX);
+    let slots: Vec<Mutex<Option<Result<RuleReport, E>>>> =
+        selected.iter().map(|_| Mutex::new(None)).collect();
+    thread::scope(|scope| {
+        for _ in 0..jobs.clamp(1, selected.len().max(1)) {
+            scope.spawn(|| {
+                loop {
+                    // Rules are handed out in order, so every rule before `stop` has started.
+                    let i = next.fetch_add(1, Ordering::SeqCst);
+                    if i >= selected.len() || i > stop.load(Ordering::SeqCst) {
+                        break;
+                    }
+                    let result = run(&selected[i]);
+                    if halts(&result, options) {
+                        stop.fetch_min(i, Ordering::SeqCst);
+                    }
+                    *slots[i].lock().unwrap_or_else(PoisonError::into_inner) = Some(result);
+                }
+            });
+        }
+    });
+    let stop = stop.into_inner();
+    let mut reports = Vec::new();
+    for slot in slots.into_iter().take(stop.saturating_add(1)) {
+        if let Some(result) = slot.into_inner().unwrap_or_else(PoisonError::into_inner) {
+            reports.push(result?);
+        }
+    }
+    let not_run = if stop < selected.len() {
+        not_run_after(&selected, stop)
+    } else {
+        Vec::new()
+    };
+    Ok((reports, not_run))
+}
+
+/// Whether a rule's outcome ends the run: an error, or a failure under [`Options::fail_fast`].
+fn halts<E>(result: &Result<RuleReport, E>, options: &Options) -> bool {
+    result
+        .as_ref()
+        .map_or(true, |r| r.status.is_failure() && options.fail_fast)
+}
+
+/// The IDs of the selected rules after the `i`-th, which a stop at it leaves unrun.
+fn not_run_after(selected: &[Rule], i: usize) -> Vec<String> {
+    selected[i + 1..].iter().map(|r| r.id.to_owned()).collect()
 }
 
 #[cfg(test)]

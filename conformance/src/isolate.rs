@@ -16,13 +16,14 @@
 use std::io::{Read, Write};
 use std::process::{Command, ExitStatus, Stdio};
 use std::sync::mpsc::{self, RecvTimeoutError};
+use std::sync::{Mutex, MutexGuard, PoisonError};
 use std::thread;
 use std::time::{Duration, Instant};
 
 use refrast::{Rasterizer, Unavailable};
 use serde::{Deserialize, Serialize};
 
-use crate::certify::{Options, cases_for, refusal, run_rule, run_selected};
+use crate::certify::{Options, cases_for, refusal, run_rule, run_selected_jobs};
 use crate::contain::{Contained, memory_note};
 use crate::process::{Tail, for_each_line, status_words};
 use crate::report::{ProfileReport, Report, RuleReport, Status};
@@ -117,23 +118,37 @@ pub enum Outcome {
 /// by `command(rule)`, calling `progress` after each rule. `Err` when the first child says it
 /// cannot build the implementation here.
 pub fn certify_isolated(
-    command: &dyn Fn(&Rule) -> Command,
+    command: &(dyn Fn(&Rule) -> Command + Sync),
     options: &Options,
-    mut progress: impl FnMut(&RuleReport),
+    progress: impl FnMut(&RuleReport) + Send,
 ) -> Result<Report, Unavailable> {
-    let mut profile = None;
-    let mut refused = None;
-    let ran = run_selected(options, |rule| {
+    certify_isolated_jobs(command, options, 1, progress)
+}
+
+/// [`certify_isolated`] with up to `jobs` rules' children running at once: the same report
+/// but for times (a rasterizer whose children share a device may want 1).
+pub fn certify_isolated_jobs(
+    command: &(dyn Fn(&Rule) -> Command + Sync),
+    options: &Options,
+    jobs: usize,
+    progress: impl FnMut(&RuleReport) + Send,
+) -> Result<Report, Unavailable> {
+    let profile = Mutex::new(None);
+    let refused = Mutex::new(None);
+    let progress = Mutex::new(progress);
+    let ran = run_selected_jobs(options, jobs, |rule| {
         match run_rule_isolated(rule, command(rule), options) {
             Outcome::Unavailable(why) => Err(Stop::Unavailable(why)),
             Outcome::Refused(why, reported) => {
-                profile = reported;
-                refused = Some(why);
+                *lock(&profile) = reported;
+                *lock(&refused) = Some(why);
                 Err(Stop::Refused)
             }
             Outcome::Ran(report, reported) => {
-                profile = profile.take().or(reported);
-                progress(&report);
+                let mut profile = lock(&profile);
+                *profile = profile.take().or(reported);
+                drop(profile);
+                (lock(&progress))(&report);
                 Ok(*report)
             }
         }
@@ -143,14 +158,19 @@ pub fn certify_isolated(
         Err(Stop::Unavailable(why)) => return Err(why),
         Err(Stop::Refused) => (Vec::new(), Vec::new()),
     };
-    let profile = profile.map_or_else(ProfileReport::unknown, |p| *p);
+    let profile = lock(&profile).take().map_or_else(ProfileReport::unknown, |p| *p);
     Ok(Report {
         implementation: profile.name.clone(),
         profile,
         rules,
         not_run,
-        refused,
+        refused: lock(&refused).take(),
     })
+}
+
+/// `m`'s value, even after a thread panicked holding it (each holder leaves it whole).
+fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
 /// Why [`certify_isolated`] stops before the last rule.
@@ -368,4 +388,57 @@ fn join_output(stderr: Option<mpsc::Receiver<String>>, stdout: &Tail, limit: Opt
         }
     }
     text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::certify::{run_selected, selected};
+
+    /// Rule `i`'s outcome in a scripted run: every fifth fails, and the 23rd is an error.
+    fn scripted(rule: &Rule, options: &Options) -> Result<RuleReport, String> {
+        let i = selected(options)
+            .iter()
+            .position(|r| r.id == rule.id)
+            .unwrap_or(0);
+        if i == 23 {
+            return Err(format!("error at {}", rule.id));
+        }
+        let mut report = blank(rule, options, 1);
+        if i % 5 == 4 {
+            report.status = Status::Fail;
+        }
+        Ok(report)
+    }
+
+    /// Reports, order, unrun rules and errors are those of one rule at a time, whatever the
+    /// number of jobs: with and without fail-fast, with and without an error in the run.
+    #[test]
+    fn jobs_change_nothing_but_times() {
+        let summary = |r: Result<(Vec<RuleReport>, Vec<String>), String>| {
+            r.map(|(reports, left)| {
+                (
+                    reports
+                        .iter()
+                        .map(|r| (r.id.clone(), r.status))
+                        .collect::<Vec<_>>(),
+                    left,
+                )
+            })
+        };
+        for fail_fast in [false, true] {
+            for rules in [vec![], vec!["fill.*".to_owned(), "depth.*".to_owned()]] {
+                let options = Options {
+                    fail_fast,
+                    rules,
+                    ..Options::default()
+                };
+                let one = summary(run_selected(&options, |rule| scripted(rule, &options)));
+                for jobs in [1, 2, 3, 8, 100] {
+                    let many = summary(run_selected_jobs(&options, jobs, |rule| scripted(rule, &options)));
+                    assert_eq!(many, one, "jobs {jobs}, fail-fast {fail_fast}");
+                }
+            }
+        }
+    }
 }

@@ -15,10 +15,10 @@ mod findings;
 
 use refrast::Rasterizer;
 use refrast_conformance::Options;
-use refrast_conformance::isolate::{certify_isolated, serve_rule};
+use refrast_conformance::isolate::{certify_isolated_jobs, serve_rule};
 use refrast_wgpu::{Driver, Gpu};
 
-use common::{moved, tally};
+use common::{jobs, moved, tally};
 use findings::findings;
 
 const RULE_ENV: &str = "WGPU_TEST_RULE";
@@ -111,8 +111,9 @@ fn main() {
 }
 
 /// Certifies `d` rule by rule in child processes; the rules whose verdict is not as expected.
-fn verdicts(d: Driver, command: &dyn Fn(&refrast_conformance::Rule) -> Command) -> Vec<String> {
-    let report = certify_isolated(command, &options(), |_| {}).expect("the driver was there a moment ago");
+fn verdicts(d: Driver, command: &(dyn Fn(&refrast_conformance::Rule) -> Command + Sync)) -> Vec<String> {
+    let report = certify_isolated_jobs(command, &options(), jobs(), |_| {})
+        .expect("the driver was there a moment ago");
     println!("{}", tally(d.name(), &report, CASES));
     moved(d.name(), &report)
 }

@@ -18,10 +18,10 @@ use std::time::Duration;
 
 use refrast::{ClipMode, Draw, Fragment, Rasterizer, Reference, ReferenceConfig, SubpixelBits, Viewport};
 use refrast_conformance::Options;
-use refrast_conformance::isolate::{certify_isolated, serve_rule};
+use refrast_conformance::isolate::{certify_isolated_jobs, serve_rule};
 use refrast_wgpu::{Driver, Gpu};
 
-use common::{moved, tally};
+use common::{jobs, moved, tally};
 
 const CHILD_ENV: &str = "SWIFTSHADER_TEST_DRIVER";
 const RULE_ENV: &str = "SWIFTSHADER_TEST_RULE";
@@ -93,8 +93,9 @@ fn main() {
 }
 
 /// Certifies SwiftShader rule by rule in child processes; each verdict must be as expected.
-fn verdicts(command: &dyn Fn(&refrast_conformance::Rule) -> Command) {
-    let report = certify_isolated(command, &options(), |_| {}).expect("SwiftShader was there a moment ago");
+fn verdicts(command: &(dyn Fn(&refrast_conformance::Rule) -> Command + Sync)) {
+    let report = certify_isolated_jobs(command, &options(), jobs(), |_| {})
+        .expect("SwiftShader was there a moment ago");
     println!("{}", tally("swiftshader", &report, CASES));
     let moved = moved("swiftshader", &report);
     assert!(

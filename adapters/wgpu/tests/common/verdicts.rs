@@ -7,6 +7,12 @@ use std::path::PathBuf;
 use refrast_conformance::Report;
 use refrast_conformance::expect::Expectations;
 
+/// Rules certified at once, each in its child: one per core (each child's driver may use
+/// threads of its own, but the oracles checking its output are single-threaded).
+pub fn jobs() -> usize {
+    std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get)
+}
+
 /// The expectation file of the implementation `name`.
 pub fn file(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

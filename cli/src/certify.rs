@@ -9,6 +9,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::{Duration, Instant, SystemTime};
 
+use refrast::Rasterizer;
+
 use refrast_conformance::{
     Options, Process, Report, RuleReport, Shard, Status, catalogue, matches, selected,
 };
@@ -108,9 +110,11 @@ pub struct Args {
     /// after it are listed as not run (results of later rules already running are dropped).
     #[arg(long)]
     fail_fast: bool,
-    /// Rules of built-ins run at once, each in its child process, across implementations too;
-    /// verdicts, order and output are those of --jobs 1 but for times. --in-process and --exec
-    /// run one rule at a time whatever this says [default: the available parallelism].
+    /// Rules run at once: each built-in's rule in its child process, across implementations
+    /// too, and for --exec one rule at a time in each of N children started from CMD (a child
+    /// that cannot run beside a copy of itself wants 1); verdicts, order and output are those
+    /// of --jobs 1 but for times. --in-process runs one rule at a time whatever this says
+    /// [default: the available parallelism].
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
     jobs: Option<u16>,
     /// Run the rules in this process, one at a time, instead of one child process each (for a
@@ -202,7 +206,7 @@ pub fn run(args: &Args) -> ExitCode {
         } else {
             entries.push(Entry {
                 subject: Subject::Exec(command.clone()),
-                outcome: certify_exec(command, &exec_options, &out),
+                outcome: certify_exec(command, &exec_options, jobs, &out),
             });
         }
     }
@@ -293,13 +297,15 @@ fn certify_in_process(b: &BuiltIn, options: &Options, out: &Progress) -> Outcome
     Outcome::Certified(Box::new(report))
 }
 
-/// Certifies a rasterizer in a child process, started once and reused, in this process: the
-/// [`Process`] turns a crash, a hang or garbage into a failed draw, and restarts the child.
-fn certify_exec(command: &str, options: &Options, out: &Progress) -> Outcome {
+/// Certifies a rasterizer in child processes, `jobs` of them (one rule at a time each), each
+/// started once and reused: the [`Process`] turns a crash, a hang or garbage into a failed
+/// draw, and restarts its child.
+fn certify_exec(command: &str, options: &Options, jobs: usize, out: &Progress) -> Outcome {
     out.line(&format!("== {command} (seed {}, pipe protocol)", options.seed));
     let start = Instant::now();
-    let mut process = match Process::try_spawn_limited(command, options.case_timeout, options.memory_limit) {
-        Ok(process) => process,
+    let spawn = || Process::try_spawn_limited(command, options.case_timeout, options.memory_limit);
+    let mut children = match spawn() {
+        Ok(process) => vec![process],
         Err(why) => {
             out.line(&format!("FAILED TO START: {why}\n"));
             return Outcome::FailedToStart {
@@ -308,14 +314,33 @@ fn certify_exec(command: &str, options: &Options, out: &Progress) -> Outcome {
             };
         }
     };
+    // More children for the other jobs, each with the same handshake; one that does not start,
+    // or declares another profile than the first, leaves the run with the children it has.
+    while children.len() < jobs.min(selected(options).len()) {
+        match spawn() {
+            Ok(process) if process.profile() == children[0].profile() => children.push(process),
+            Ok(_) => {
+                out.line("  a second child declared another profile: one rule at a time");
+                break;
+            }
+            Err(why) => {
+                out.line(&format!(
+                    "  child {} did not start ({why}): {} at a time",
+                    children.len() + 1,
+                    children.len()
+                ));
+                break;
+            }
+        }
+    }
     let report = one_at_a_time(command, options, out, |progress| {
-        refrast_conformance::certify(&mut process, options, progress)
+        refrast_conformance::certify_with(&mut children, options, progress)
     });
     summarise(out, &report, start.elapsed().as_secs_f64());
-    if process.starts() > 1 {
+    let restarts: u32 = children.iter().map(|p| p.starts() - 1).sum();
+    if restarts > 0 {
         out.line(&format!(
-            "  the child was restarted {} times after misbehaving\n",
-            process.starts() - 1
+            "  the children were restarted {restarts} times after misbehaving\n"
         ));
     }
     Outcome::Certified(Box::new(report))
@@ -327,7 +352,7 @@ fn one_at_a_time(
     name: &str,
     options: &Options,
     out: &Progress,
-    certify: impl FnOnce(&mut dyn FnMut(&RuleReport)) -> Report,
+    certify: impl FnOnce(&mut (dyn FnMut(&RuleReport) + Send)) -> Report,
 ) -> Report {
     let rules = selected(options);
     let bar = out.implementation(name, rules.len());

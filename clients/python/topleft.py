@@ -185,9 +185,16 @@ def triangle_fragments(draw, t, tri):
     return fan_fragments(draw, t, raster, front)
 
 
+def edge_function(p, q):
+    """orient2d(p, q, s) as A·s.x + B·s.y + C: integers, so stepping it one pixel is exact."""
+    return p[1] - q[1], q[0] - p[0], (q[1] - p[1]) * p[0] - (q[0] - p[0]) * p[1]
+
+
 def fan_fragments(draw, t, raster, front):
     """Samples the snapped fan winds around, each with its interpolated values."""
-    covered = {}
+    # A lone triangle covers each of its samples once; a fan's windings are summed per sample.
+    lone = len(raster) == 3
+    hits, covered = [], {}
     for k in range(1, len(raster) - 1):
         corners = [raster[0], raster[k], raster[k + 1]]
         area = orient2d(*(c[0] for c in corners))
@@ -198,35 +205,63 @@ def fan_fragments(draw, t, raster, front):
             corners = [corners[0], corners[2], corners[1]]
             area = -area
         a, b, c = (v[0] for v in corners)
-        edges = [(b, c), (c, a), (a, b)]  # edge k is opposite corner k
-        bias = [0 if owns_edge(p, q) else -1 for p, q in edges]
+        # Edge k is opposite corner k; a sample exactly on an edge it does not own is outside,
+        # so that edge's value must reach 1 rather than 0 (the bias).
+        (a0, b0, c0), (a1, b1, c1), (a2, b2, c2) = (edge_function(p, q) for p, q in [(b, c), (c, a), (a, b)])
+        bias0, bias1, bias2 = (0 if owns_edge(p, q) else -1 for p, q in [(b, c), (c, a), (a, b)])
         x0 = max(0, (min(a[0], b[0], c[0]) - ONE // 2) // ONE)
         x1 = min(draw.width - 1, (max(a[0], b[0], c[0]) - ONE // 2) // ONE + 1)
         y0 = max(0, (min(a[1], b[1], c[1]) - ONE // 2) // ONE)
         y1 = min(draw.height - 1, (max(a[1], b[1], c[1]) - ONE // 2) // ONE + 1)
+        sx0 = x0 * ONE + ONE // 2
+        steps = (a0 * ONE, a1 * ONE, a2 * ONE)
         for py in range(y0, y1 + 1):
             sy = py * ONE + ONE // 2
-            for px in range(x0, x1 + 1):
-                s = (px * ONE + ONE // 2, sy)
-                values = [orient2d(p, q, s) for p, q in edges]
-                if all(v + b >= 0 for v, b in zip(values, bias)):
-                    entry = covered.setdefault((px, py), [0, None])
-                    entry[0] += sign
-                    if entry[1] is None:
-                        entry[1] = (corners, values, area)
+            # The edge values at the row's first sample; along the row each grows by its step.
+            starts = (a0 * sx0 + b0 * sy + c0, a1 * sx0 + b1 * sy + c1, a2 * sx0 + b2 * sy + c2)
+            lo, hi = x0, x1
+            for e, step, bias in zip(starts, steps, (bias0, bias1, bias2)):
+                # Inside this edge where e + step·(px − x0) + bias >= 0: solved for px exactly.
+                need = -(e + bias)
+                if step > 0:
+                    lo = max(lo, x0 - (-need // step))
+                elif step < 0:
+                    hi = min(hi, x0 + need // step)
+                elif need > 0:
+                    hi = lo - 1
+            e0, e1, e2 = starts
+            for px in range(lo, hi + 1):
+                d = px - x0
+                values = (e0 + steps[0] * d, e1 + steps[1] * d, e2 + steps[2] * d)
+                if lone:
+                    hits.append((px, py, corners, values, area))
+                    continue
+                entry = covered.setdefault((px, py), [0, None])
+                entry[0] += sign
+                if entry[1] is None:
+                    entry[1] = (corners, values, area)
+    if not lone:
+        hits = [(px, py, *found) for (px, py), (winding, found) in covered.items() if winding != 0]
     out = []
-    for (px, py), (winding, found) in covered.items():
-        if winding == 0:
-            continue
-        corners, values, area = found
-        s = [v / area for v in values]
-        depth = sum(c[1] * v for c, v in zip(corners, values)) / area
-        q = [si * c[2] for si, c in zip(s, corners)]
-        total = sum(q)
-        bary = tuple(sum(c[3][j] * qi for c, qi in zip(corners, q)) / total for j in range(3))
+    for px, py, (ca, cb, cc), (v0, v1, v2), area in hits:
+        s0, s1, s2 = v0 / area, v1 / area, v2 / area
+        depth = (ca[1] * v0 + cb[1] * v1 + cc[1] * v2) / area
+        q0, q1, q2 = s0 * ca[2], s1 * cb[2], s2 * cc[2]
+        total = q0 + q1 + q2
+        ba, bb, bc = ca[3], cb[3], cc[3]
+        bary = (
+            (ba[0] * q0 + bb[0] * q1 + bc[0] * q2) / total,
+            (ba[1] * q0 + bb[1] * q1 + bc[1] * q2) / total,
+            (ba[2] * q0 + bb[2] * q1 + bc[2] * q2) / total,
+        )
         screen = (0.0, 0.0, 0.0)
-        if corners[0][4] is not None:
-            screen = tuple(sum(c[4][j] * si for c, si in zip(corners, s)) for j in range(3))
+        if ca[4] is not None:
+            sa, sb, sc = ca[4], cb[4], cc[4]
+            screen = (
+                sa[0] * s0 + sb[0] * s1 + sc[0] * s2,
+                sa[1] * s0 + sb[1] * s1 + sc[1] * s2,
+                sa[2] * s0 + sb[2] * s1 + sc[2] * s2,
+            )
         out.append(Fragment(px, py, t, front, f32(min(max(depth, 0.0), 1.0)), bary, screen))
     return out
 

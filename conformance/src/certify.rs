@@ -271,6 +271,59 @@ pub fn certify(
     }
 }
 
+/// [`certify`] with one rule at a time on each of `rasterizers`, copies of one implementation
+/// (say one `--exec` child each): the same report as [`certify`] on the first but for times,
+/// the profile being the first's.
+pub fn certify_with<R: Rasterizer + Send>(
+    rasterizers: &mut [R],
+    options: &Options,
+    progress: impl FnMut(&RuleReport) + Send,
+) -> Report {
+    match rasterizers {
+        [] => {
+            return Report {
+                implementation: String::new(),
+                profile: ProfileReport::unknown(),
+                rules: Vec::new(),
+                not_run: Vec::new(),
+                refused: Some("no rasterizer was given to certify".to_owned()),
+            };
+        }
+        [only] => return certify(only, options, progress),
+        [first, ..] => {
+            if let Some(refused) = refusal(first) {
+                let profile = ProfileReport::of(first);
+                return Report {
+                    implementation: profile.name.clone(),
+                    profile,
+                    rules: Vec::new(),
+                    not_run: Vec::new(),
+                    refused: Some(refused),
+                };
+            }
+        }
+    }
+    let profile = ProfileReport::of(&rasterizers[0]);
+    let workers: Vec<Mutex<&mut R>> = rasterizers.iter_mut().map(Mutex::new).collect();
+    let progress = Mutex::new(progress);
+    let run = |worker: usize, rule: &Rule| {
+        // Each worker locks only its own rasterizer: never contended.
+        let mut rasterizer = workers[worker].lock().unwrap_or_else(PoisonError::into_inner);
+        let report = run_rule(rule, *rasterizer, options);
+        drop(rasterizer);
+        (progress.lock().unwrap_or_else(PoisonError::into_inner))(&report);
+        Ok::<_, std::convert::Infallible>(report)
+    };
+    let Ok((rules, not_run)) = run_selected_jobs(options, workers.len(), run);
+    Report {
+        implementation: profile.name.clone(),
+        profile,
+        rules,
+        not_run,
+        refused: None,
+    }
+}
+
 /// Why the suite refuses to judge `rasterizer` before any rule runs: a profile it cannot judge
 /// ([`refrast::Profile::judgeable`]); `None` when it can. A panicking `profile()` is left to the rules,
 /// which each report it.
@@ -356,11 +409,12 @@ pub fn run_selected<E>(
 
 /// [`run_selected`] with up to `jobs` rules running at once, on threads of this process: the
 /// same reports in the same order, and the same rules left unrun, as one at a time (a rule
-/// already running when an earlier one stops the run is dropped).
+/// already running when an earlier one stops the run is dropped). `run` is told which of the
+/// `jobs` workers (`0..jobs`) runs the rule, so each can own what it draws with.
 pub fn run_selected_jobs<E: Send>(
     options: &Options,
     jobs: usize,
-    run: impl Fn(&Rule) -> Result<RuleReport, E> + Sync,
+    run: impl Fn(usize, &Rule) -> Result<RuleReport, E> + Sync,
 ) -> Result<(Vec<RuleReport>, Vec<String>), E> {
     let selected = selected(options);
     let next = AtomicUsize::new(0);
@@ -369,15 +423,16 @@ pub fn run_selected_jobs<E: Send>(
     let slots: Vec<Mutex<Option<Result<RuleReport, E>>>> =
         selected.iter().map(|_| Mutex::new(None)).collect();
     thread::scope(|scope| {
-        for _ in 0..jobs.clamp(1, selected.len().max(1)) {
-            scope.spawn(|| {
+        for worker in 0..jobs.clamp(1, selected.len().max(1)) {
+            let (next, stop, slots, selected, run) = (&next, &stop, &slots, &selected, &run);
+            scope.spawn(move || {
                 loop {
                     // Rules are handed out in order, so every rule before `stop` has started.
                     let i = next.fetch_add(1, Ordering::SeqCst);
                     if i >= selected.len() || i > stop.load(Ordering::SeqCst) {
                         break;
                     }
-                    let result = run(&selected[i]);
+                    let result = run(worker, &selected[i]);
                     if halts(&result, options) {
                         stop.fetch_min(i, Ordering::SeqCst);
                     }
@@ -415,7 +470,34 @@ fn not_run_after(selected: &[Rule], i: usize) -> Vec<String> {
 
 #[cfg(test)]
 mod tests {
-    use super::matches;
+    use refrast::Reference;
+
+    use super::{Options, certify, certify_with, matches};
+
+    /// Two copies certify as one does: the same rules, verdicts, cases and counterexamples.
+    #[test]
+    fn copies_certify_as_one() {
+        let options = Options {
+            cases: Some(16),
+            rules: vec!["fill.*".to_owned(), "robust.*".to_owned()],
+            ..Options::default()
+        };
+        let summary = |r: &crate::Report| {
+            r.rules
+                .iter()
+                .map(|r| (r.id.clone(), r.status, r.cases, r.counterexample.clone()))
+                .collect::<Vec<_>>()
+        };
+        let one = certify(&mut Reference::default(), &options, |_| {});
+        let two = certify_with(
+            &mut [Reference::default(), Reference::default()],
+            &options,
+            |_| {},
+        );
+        assert_eq!(summary(&two), summary(&one));
+        assert_eq!(two.profile, one.profile);
+        assert!(!one.rules.is_empty());
+    }
 
     #[test]
     fn patterns_are_globs_or_prefixes() {

@@ -136,7 +136,7 @@ pub fn certify_isolated_jobs(
     let profile = Mutex::new(None);
     let refused = Mutex::new(None);
     let progress = Mutex::new(progress);
-    let ran = run_selected_jobs(options, jobs, |rule| {
+    let ran = run_selected_jobs(options, jobs, |_, rule| {
         match run_rule_isolated(rule, command(rule), options) {
             Outcome::Unavailable(why) => Err(Stop::Unavailable(why)),
             Outcome::Refused(why, reported) => {
@@ -435,7 +435,9 @@ mod tests {
                 };
                 let one = summary(run_selected(&options, |rule| scripted(rule, &options)));
                 for jobs in [1, 2, 3, 8, 100] {
-                    let many = summary(run_selected_jobs(&options, jobs, |rule| scripted(rule, &options)));
+                    let many = summary(run_selected_jobs(&options, jobs, |_, rule| {
+                        scripted(rule, &options)
+                    }));
                     assert_eq!(many, one, "jobs {jobs}, fail-fast {fail_fast}");
                 }
             }

@@ -49,8 +49,8 @@ pub mod strategy;
 mod violation;
 
 pub use certify::{
-    DEFAULT_CASE_TIMEOUT, Options, Shard, cases_for, certify, matches, matches_glob, refusal, run_rule,
-    selected,
+    DEFAULT_CASE_TIMEOUT, Options, Shard, cases_for, certify, certify_with, matches, matches_glob, refusal,
+    run_rule, selected,
 };
 pub use harness::{failure_text, run_as_tests};
 pub use named::Named;

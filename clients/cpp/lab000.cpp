@@ -134,6 +134,8 @@ std::vector<Record> rasterize(const Draw& d) {
 }  // namespace
 
 int main() {
+    // Version 1 on purpose: refrast still speaks it, and this client shows that it does (version 2
+    // adds a request's topology and samples and a fragment's sample word, docs/protocol.md).
     std::printf(
         "refrast-protocol 1\n"
         "name cpp-lab000\n"

@@ -1,4 +1,4 @@
-"""The child side of refrast's pipe protocol, version 1 (docs/protocol.md), standard library only.
+"""The child side of refrast's pipe protocol, version 2 (docs/protocol.md), standard library only.
 
 Copy this file beside your rasterizer and call `serve(profile, rasterize)`: refrast starts your
 program, reads the profile, then sends draws on stdin and reads fragments from stdout. Print
@@ -9,27 +9,29 @@ import struct
 import sys
 from collections import namedtuple
 
-VERSION = 1
+VERSION = 2
 
-# x, y, primitive, front-facing (u32), depth, perspective barycentrics, screen barycentrics (f32).
-FRAGMENT = struct.Struct("<4I7f")
+# x, y, primitive, front-facing (u32), depth, perspective barycentrics, screen barycentrics (f32),
+# sample (u32).
+FRAGMENT = struct.Struct("<4I7fI")
 
 Draw = namedtuple(
     "Draw",
     "width height positions triangles cull front_face depth_compare depth_write depth_clear "
-    "depth_range far_clipping",
+    "depth_range far_clipping topology samples",
 )
 Draw.__doc__ = """One draw: clip-space positions (x, y, z, w), triangles (i, j, k) and state.
 
 cull is none/front/back, front_face ccw/cw, depth_compare less/less-equal/greater/
 greater-equal/equal/not-equal/always/never, depth_write and far_clipping booleans, depth_clear a
-float, depth_range zero-to-one or negative-one-to-one. Indices are not checked: raise Refused
-for one that names no vertex."""
+float, depth_range zero-to-one or negative-one-to-one. topology is triangle-list and samples 1
+(reserved for lines, points and multisampling). Indices are not checked: raise Refused for one
+that names no vertex."""
 
 Fragment = namedtuple(
-    "Fragment", "x y primitive front_facing depth barycentric screen_barycentric"
+    "Fragment", "x y primitive front_facing depth barycentric screen_barycentric sample"
 )
-Fragment.__new__.__defaults__ = ((0.0, 0.0, 0.0),)
+Fragment.__new__.__defaults__ = ((0.0, 0.0, 0.0), 0)
 
 
 class Refused(Exception):
@@ -74,6 +76,8 @@ def _read_draw(words, stream):
         depth_clear=float(fields["depth-clear"]),
         depth_range=fields["depth-range"],
         far_clipping=fields["far-clipping"] == "on",
+        topology=fields.get("topology", "triangle-list"),
+        samples=int(fields.get("samples", "1")),
     )
 
 
@@ -111,7 +115,7 @@ def serve(profile, rasterize, resolve=None):
                     reply.append(
                         FRAGMENT.pack(
                             f.x, f.y, f.primitive, 1 if f.front_facing else 0, f.depth,
-                            *f.barycentric, *f.screen_barycentric,
+                            *f.barycentric, *f.screen_barycentric, f.sample,
                         )
                     )
             elif words[0] == "resolve" and resolve is not None:

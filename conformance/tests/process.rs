@@ -46,6 +46,14 @@ fn main() {
         trial("a_resolve_of_the_wrong_size_is_named", wrong_size),
         trial("a_refusal_is_an_error_and_no_restart", refusal),
         trial("a_version_mismatch_says_both_versions", version_mismatch),
+        trial(
+            "a_version_2_child_draws_what_the_reference_draws",
+            a_version_2_child_draws_what_the_reference_draws,
+        ),
+        trial(
+            "a_sample_the_draw_lacks_is_named",
+            a_sample_the_draw_lacks_is_named,
+        ),
         trial("a_bad_profile_line_is_named", bad_profile),
         trial("a_child_that_dies_at_start_shows_its_stderr", dies_at_start),
         trial("a_missing_program_is_a_start_error", missing_program),
@@ -121,7 +129,24 @@ fn misbehaved<T: std::fmt::Debug>(result: Result<T, DrawError>, words: &[&str]) 
 }
 
 fn a_good_child_draws_what_the_reference_draws() -> Result<(), String> {
-    let mut p = spawn("good", 10.0);
+    a_child_draws_what_the_reference_draws("good")
+}
+
+/// Version 2 draws as version 1 does: the same fragments and buffers, the reserved words sent.
+fn a_version_2_child_draws_what_the_reference_draws() -> Result<(), String> {
+    a_child_draws_what_the_reference_draws("v2")
+}
+
+/// Version 2's sample word names a sample the draw has: only 0 at one sample a pixel.
+fn a_sample_the_draw_lacks_is_named() -> Result<(), String> {
+    misbehaved(
+        spawn("v2-bad-sample", 10.0).rasterize(&draw(1)),
+        &["fragment 0 of", "names sample 1", "1 sample a pixel"],
+    )
+}
+
+fn a_child_draws_what_the_reference_draws(mode: &str) -> Result<(), String> {
+    let mut p = spawn(mode, 10.0);
     let mut reference = Reference::default();
     for n in [1, 2, 7] {
         let d = draw(n);
@@ -133,7 +158,7 @@ fn a_good_child_draws_what_the_reference_draws() -> Result<(), String> {
             return Err(format!("{n} triangles: resolve differs"));
         }
     }
-    assert_eq!(p.profile().name, "fake-good");
+    assert_eq!(p.profile().name, format!("fake-{mode}"));
     assert!(p.about().contains("fake child"), "{}", p.about());
     Ok(())
 }
@@ -317,8 +342,8 @@ fn start_error(mode: &str) -> String {
 }
 
 fn version_mismatch() -> Result<(), String> {
-    let why = start_error("version-2");
-    if why.contains("version 2") && why.contains("speaks version 1") {
+    let why = start_error("version-3");
+    if why.contains("version 3") && why.contains("speaks versions 1 and 2") {
         Ok(())
     } else {
         Err(why)
@@ -351,11 +376,11 @@ fn missing_program() -> Result<(), String> {
 }
 
 fn spawn_never_fails() -> Result<(), String> {
-    let mut p = Process::spawn(&child("version-2"));
+    let mut p = Process::spawn(&child("version-3"));
     if p.start_error().is_none() {
         return Err("no start error".into());
     }
-    misbehaved(p.rasterize(&draw(1)), &["version 2"])
+    misbehaved(p.rasterize(&draw(1)), &["version 3"])
 }
 
 fn certify_crashing() -> Result<(), String> {
@@ -442,7 +467,7 @@ fn protocol_md_example() -> Result<(), String> {
         [-1.0, -1.0, 0.5, 1.0],
     ];
     let d = Draw::new(viewport, positions, vec![[0, 1, 2]]);
-    let bytes = wire::request(wire::Op::Rasterize, &d);
+    let bytes = wire::request(wire::Op::Rasterize, &d, wire::VERSION);
     let header =
         String::from_utf8_lossy(&bytes[..bytes.iter().position(|&b| b == b'\n').unwrap_or(0)]).into_owned();
     if !doc.contains(&format!("→ {header}\n")) {
@@ -470,8 +495,8 @@ fn protocol_md_example() -> Result<(), String> {
 fn fake_child(mode: &str) {
     let mut out = std::io::stdout().lock();
     match mode {
-        "version-2" => {
-            let _ = writeln!(out, "refrast-protocol 2\nname future\nready");
+        "version-3" => {
+            let _ = writeln!(out, "refrast-protocol 3\nname future\nready");
             return;
         }
         "die-at-start" => {
@@ -492,10 +517,18 @@ fn fake_child(mode: &str) {
     } else {
         ""
     };
+    // Modes starting `v2` speak version 2: the reserved profile lines, a request's topology and
+    // samples, a sample word in each fragment.
+    let version = if mode.starts_with("v2") { 2 } else { 1 };
+    let reserved = if version == 2 {
+        "topology triangle-list line-list\nsamples 1 4\n"
+    } else {
+        ""
+    };
     let _ = write!(
         out,
-        "refrast-protocol 1\nname fake-{mode}\nabout a fake child\nsnapping grid 8\nfill top-left\n\
-         features perspective-barycentrics screen-barycentrics depth-test guard-band\n{colour}ready\n"
+        "refrast-protocol {version}\nname fake-{mode}\nabout a fake child\nsnapping grid 8\nfill top-left\n\
+         features perspective-barycentrics screen-barycentrics depth-test guard-band\n{reserved}{colour}ready\n"
     );
     let _ = out.flush();
     if mode == "sleeper" {
@@ -509,7 +542,7 @@ fn fake_child(mode: &str) {
         if input.read_line(&mut header).unwrap_or(0) == 0 {
             return;
         }
-        let Some((op, d)) = read_draw(&header, &mut input) else {
+        let Some((op, d)) = read_draw(&header, &mut input, version) else {
             return;
         };
         let mut reply = Vec::new();
@@ -559,10 +592,11 @@ fn fake_child(mode: &str) {
                 }
                 _ => {}
             }
-            let mut records: Vec<[u8; 44]> = fragments.iter().map(record).collect();
+            let mut records: Vec<Vec<u8>> = fragments.iter().map(|f| record(f, version)).collect();
             match mode {
                 "outside" => records[0][0..4].copy_from_slice(&d.viewport.width().to_le_bytes()),
                 "bad-primitive" => records[0][8..12].copy_from_slice(&1u32.to_le_bytes()),
+                "v2-bad-sample" => records[0][44..48].copy_from_slice(&1u32.to_le_bytes()),
                 _ => {}
             }
             let claimed = match mode {
@@ -572,7 +606,7 @@ fn fake_child(mode: &str) {
             };
             reply.extend(format!("fragments {claimed}\n").bytes());
             if mode == "truncated" {
-                reply.extend(records[0]);
+                reply.extend(&records[0]);
                 let _ = out.write_all(&reply);
                 let _ = out.flush();
                 std::process::exit(0);
@@ -593,8 +627,8 @@ fn fake_child(mode: &str) {
     }
 }
 
-/// A fragment as the protocol's 44-byte record.
-fn record(f: &refrast::Fragment) -> [u8; 44] {
+/// A fragment as the protocol's record: 44 bytes, and version 2's sample word (0).
+fn record(f: &refrast::Fragment, version: u32) -> Vec<u8> {
     let words = [
         f.x,
         f.y,
@@ -606,18 +640,31 @@ fn record(f: &refrast::Fragment) -> [u8; 44] {
         f.barycentric[2].to_bits(),
     ];
     let screen = f.screen_barycentric.unwrap_or_default().map(f32::to_bits);
-    let mut out = [0u8; 44];
-    for (k, w) in words.iter().chain(&screen).enumerate() {
-        out[4 * k..4 * k + 4].copy_from_slice(&w.to_le_bytes());
-    }
-    out
+    let sample = if version >= 2 { &[0u32][..] } else { &[] };
+    words
+        .iter()
+        .chain(&screen)
+        .chain(sample)
+        .flat_map(|w| w.to_le_bytes())
+        .collect()
 }
 
-/// Parses a request as a child must: the header's `key=value` words, then the arrays.
-fn read_draw(header: &str, input: &mut impl Read) -> Option<(String, Draw)> {
+/// Parses a request as a child must: the header's `key=value` words, then the arrays; in
+/// version 2 the header must also say a triangle list at one sample a pixel.
+fn read_draw(header: &str, input: &mut impl Read, version: u32) -> Option<(String, Draw)> {
     let mut words = header.split_whitespace();
     let op = words.next()?.to_owned();
     let fields: std::collections::HashMap<&str, &str> = words.filter_map(|w| w.split_once('=')).collect();
+    let reserved = (fields.get("topology").copied(), fields.get("samples").copied());
+    let expected = if version >= 2 {
+        (Some("triangle-list"), Some("1"))
+    } else {
+        (None, None)
+    };
+    if reserved != expected {
+        eprintln!("version {version} request with topology and samples {reserved:?}");
+        return None;
+    }
     let number = |key: &str| fields.get(key).and_then(|v| v.parse::<u32>().ok());
     let viewport = Viewport::new(number("width")?, number("height")?).ok()?;
     let (vertices, triangles) = (number("vertices")? as usize, number("triangles")? as usize);

@@ -199,10 +199,7 @@ impl Process {
                 args: Vec::new(),
             });
             Self {
-                declared: Declared {
-                    profile: wire::default_profile(&launch.short_name()),
-                    about: String::new(),
-                },
+                declared: Declared::defaults(&launch.short_name(), VERSION),
                 launch,
                 timeout,
                 memory: Some(DEFAULT_MEMORY_LIMIT),
@@ -257,12 +254,14 @@ impl Process {
             ))));
         }
         let deadline = Instant::now() + self.timeout;
-        running.outgoing.send(wire::request(op, draw));
+        running
+            .outgoing
+            .send(wire::request(op, draw, self.declared.version));
         match read_reply(
             &mut running.incoming,
             op,
             draw,
-            &self.declared.profile,
+            &self.declared,
             deadline,
             self.timeout,
         ) {
@@ -396,20 +395,13 @@ fn handshake(incoming: &mut Incoming, launch: &Launch, timeout: Duration) -> Res
     };
     let first = incoming.line(deadline, MAX_LINE).map_err(|s| stalled(s, 0))?;
     let version = wire::version(&first)?;
-    if version != VERSION {
-        return Err(format!(
-            "the child speaks refrast protocol version {version}, but this refrast speaks version {VERSION} \
-             (docs/protocol.md): write `refrast-protocol {VERSION}` and the version {VERSION} messages, or \
-             use a refrast that speaks version {version}"
-        ));
-    }
     let mut lines = Vec::new();
     loop {
         let line = incoming
             .line(deadline, MAX_LINE)
             .map_err(|s| stalled(s, lines.len() + 1))?;
         if line.trim() == "ready" {
-            return wire::parse_profile(&lines, &launch.short_name());
+            return wire::parse_profile(&lines, &launch.short_name(), version);
         }
         if lines.len() >= 64 {
             return Err("more than 64 profile lines without `ready`".into());

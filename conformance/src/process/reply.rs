@@ -2,10 +2,10 @@
 
 use std::time::{Duration, Instant};
 
-use refrast::{Draw, DrawError, Fragment, Profile, Resolved};
+use refrast::{Draw, DrawError, Fragment, Resolved};
 
 use super::pipe::{Incoming, Stall};
-use super::wire::{self, FRAGMENT_BYTES, MAX_LINE, Op};
+use super::wire::{self, Declared, MAX_LINE, Op};
 use super::{DIED, HANGS};
 
 /// A breach of the protocol, before the exit status and stderr are added.
@@ -24,7 +24,7 @@ pub fn read_reply(
     incoming: &mut Incoming,
     op: Op,
     draw: &Draw,
-    profile: &Profile,
+    declared: &Declared,
     deadline: Instant,
     timeout: Duration,
 ) -> Result<Reply, Breach> {
@@ -66,20 +66,19 @@ pub fn read_reply(
                 )));
             }
             let count = count as usize;
-            let bytes = incoming
-                .bytes(count * FRAGMENT_BYTES, deadline)
-                .map_err(|(stall, got)| {
-                    let what = format!("{count} fragments ({} bytes; {got} came)", count * FRAGMENT_BYTES);
-                    match stall {
-                        Stall::Closed => Breach(format!(
-                            "truncated reply: the child's stdout closed within {what}"
-                        )),
-                        _ => late(&format!("end of {what} (is the count right?)")),
-                    }
-                })?;
+            let record = wire::fragment_bytes(declared.version);
+            let bytes = incoming.bytes(count * record, deadline).map_err(|(stall, got)| {
+                let what = format!("{count} fragments ({} bytes; {got} came)", count * record);
+                match stall {
+                    Stall::Closed => Breach(format!(
+                        "truncated reply: the child's stdout closed within {what}"
+                    )),
+                    _ => late(&format!("end of {what} (is the count right?)")),
+                }
+            })?;
             let mut fragments = Vec::with_capacity(count);
-            for (k, record) in bytes.chunks_exact(FRAGMENT_BYTES).enumerate() {
-                let f = wire::fragment(record, profile.features.screen_barycentrics)
+            for (k, record) in bytes.chunks_exact(record).enumerate() {
+                let f = wire::fragment(record, declared.profile.features.screen_barycentrics)
                     .map_err(|why| Breach(format!("fragment {k} of {count}: {why}")))?;
                 if f.x >= width || f.y >= height {
                     return Err(Breach(format!(

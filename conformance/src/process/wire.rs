@@ -6,12 +6,57 @@ use refrast::{
     Setting, SnapAccuracy, Snapping, Spec, Supported,
 };
 
-/// The protocol version this refrast speaks.
-pub const VERSION: u32 = 1;
+/// The newest protocol version this refrast speaks, the one its messages suggest.
+pub const VERSION: u32 = 2;
+
+/// Every version this refrast speaks: 1, and 2, which adds a draw's topology and sample count
+/// and each fragment's sample (reserved for lines, points and multisampling, so that the
+/// protocol changes once).
+pub const VERSIONS: [u32; 2] = [1, 2];
 
 /// Bytes per fragment record: x, y, primitive, front-facing (u32), depth, three perspective and
-/// three screen-space barycentrics (f32), all little-endian.
-pub const FRAGMENT_BYTES: usize = 44;
+/// three screen-space barycentrics (f32), all little-endian; version 2 adds the sample (u32).
+#[must_use]
+pub fn fragment_bytes(version: u32) -> usize {
+    if version >= 2 { 48 } else { 44 }
+}
+
+/// A primitive topology, as version 2 spells it in the profile and in requests.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Topology {
+    /// Independent triangles, three indices each: all that refrast draws today.
+    TriangleList,
+    /// Independent lines, two indices each (reserved).
+    LineList,
+    /// A strip of lines sharing end points (reserved).
+    LineStrip,
+    /// Points, one index each (reserved).
+    PointList,
+}
+
+impl Topology {
+    /// Every topology, in the order the documentation lists them.
+    pub const ALL: [Self; 4] = [
+        Self::TriangleList,
+        Self::LineList,
+        Self::LineStrip,
+        Self::PointList,
+    ];
+
+    /// The topology's word.
+    #[must_use]
+    pub fn word(self) -> &'static str {
+        match self {
+            Self::TriangleList => "triangle-list",
+            Self::LineList => "line-list",
+            Self::LineStrip => "line-strip",
+            Self::PointList => "point-list",
+        }
+    }
+}
+
+/// Sample counts a version 2 profile may list: Vulkan's standard counts.
+pub const SAMPLE_COUNTS: [u32; 5] = [1, 2, 4, 8, 16];
 
 /// The longest line either side may send, in bytes.
 pub const MAX_LINE: usize = 4096;
@@ -133,13 +178,20 @@ pub const LEGACY_GUARD_BAND: u32 = 1500;
 /// The largest reach a profile may declare: [`COORD_LIMIT`](refrast::COORD_LIMIT) pixels.
 pub const GUARD_BAND_LIMIT: u32 = refrast::COORD_LIMIT as u32;
 
-/// The request for `op` on `draw`: its header line, then positions and indices.
+/// The request for `op` on `draw` in protocol `version`: its header line, then positions and
+/// indices. Version 2 ends the header with the topology and the samples per pixel, which are
+/// `triangle-list` and 1 until lines, points and multisampling are in the contract.
 #[must_use]
-pub fn request(op: Op, draw: &Draw) -> Vec<u8> {
+pub fn request(op: Op, draw: &Draw, version: u32) -> Vec<u8> {
     let s = &draw.state;
+    let reserved = if version >= 2 {
+        format!(" topology={} samples=1", Topology::TriangleList.word())
+    } else {
+        String::new()
+    };
     let header = format!(
         "{} width={} height={} vertices={} triangles={} cull={} front-face={} depth-compare={} \
-         depth-write={} depth-clear={:?} depth-range={} far-clipping={}\n",
+         depth-write={} depth-clear={:?} depth-range={} far-clipping={}{reserved}\n",
         op.word(),
         draw.viewport.width(),
         draw.viewport.height(),
@@ -176,11 +228,21 @@ pub fn f32_at(record: &[u8], k: usize) -> f32 {
     f32::from_bits(u32_at(record, k))
 }
 
-/// Decodes one fragment record; `Err` names a front-facing word that is neither 0 nor 1.
+/// Decodes one fragment record of [`fragment_bytes`]; `Err` names a front-facing word that is
+/// neither 0 nor 1, or (version 2) a sample the draw does not have.
 pub fn fragment(record: &[u8], screen_barycentrics: bool) -> Result<Fragment, String> {
     let front = u32_at(record, 3);
     if front > 1 {
         return Err(format!("its front-facing word is {front}, not 0 or 1"));
+    }
+    // Version 2's sample word: every draw has one sample a pixel until multisampling is in.
+    if record.len() >= 48 {
+        let sample = u32_at(record, 11);
+        if sample != 0 {
+            return Err(format!(
+                "it names sample {sample}, but the draw has 1 sample a pixel (samples=1: sample 0)"
+            ));
+        }
     }
     let screen = [f32_at(record, 8), f32_at(record, 9), f32_at(record, 10)];
     Ok(Fragment {
@@ -213,6 +275,26 @@ pub struct Declared {
     pub profile: Profile,
     /// The `about` line, empty when there is none.
     pub about: String,
+    /// The protocol version it speaks, one of [`VERSIONS`].
+    pub version: u32,
+    /// The topologies it draws (version 2's `topology`; triangle lists in version 1).
+    pub topologies: Vec<Topology>,
+    /// The sample counts it draws at (version 2's `samples`; 1 in version 1).
+    pub sample_counts: Vec<u32>,
+}
+
+impl Declared {
+    /// A child's declaration before its handshake: the defaults, named `name`, in `version`.
+    #[must_use]
+    pub fn defaults(name: &str, version: u32) -> Self {
+        Self {
+            profile: default_profile(name),
+            about: String::new(),
+            version,
+            topologies: vec![Topology::TriangleList],
+            sample_counts: vec![1],
+        }
+    }
 }
 
 /// The profile of a child that declares nothing but its name: the defaults of `docs/protocol.md`.
@@ -244,20 +326,27 @@ pub fn default_profile(name: &str) -> Profile {
     }
 }
 
-/// The version a first line declares: `Err` when it is not `refrast-protocol N`.
+/// The version a first line declares: `Err` when it is not `refrast-protocol N`, or when this
+/// refrast does not speak version N.
 pub fn version(line: &str) -> Result<u32, String> {
     let mut words = line.split_whitespace();
     match (words.next(), words.next().map(str::parse::<u32>), words.next()) {
-        (Some("refrast-protocol"), Some(Ok(v)), None) => Ok(v),
+        (Some("refrast-protocol"), Some(Ok(v)), None) if VERSIONS.contains(&v) => Ok(v),
+        (Some("refrast-protocol"), Some(Ok(v)), None) => Err(format!(
+            "the child speaks refrast protocol version {v}, but this refrast speaks versions 1 and \
+             {VERSION} (docs/protocol.md): write `refrast-protocol {VERSION}` and the version {VERSION} \
+             messages, or use a refrast that speaks version {v}"
+        )),
         _ => Err(format!(
-            "the child's first line must be `refrast-protocol {VERSION}`, but it is `{}`",
+            "the child's first line must be `refrast-protocol {VERSION}` (or 1), but it is `{}`",
             shown(line)
         )),
     }
 }
 
-/// Builds the profile from the handshake lines between the version line and `ready`.
-pub fn parse_profile(lines: &[String], fallback_name: &str) -> Result<Declared, String> {
+/// Builds the declaration from the handshake lines between the version line and `ready`.
+pub fn parse_profile(lines: &[String], fallback_name: &str, version: u32) -> Result<Declared, String> {
+    let mut declared = Declared::defaults(fallback_name, version);
     let mut profile = default_profile(fallback_name);
     let mut about = String::new();
     let mut seen: Vec<&str> = Vec::new();
@@ -377,11 +466,13 @@ pub fn parse_profile(lines: &[String], fallback_name: &str) -> Result<Declared, 
             DepthRange::KEY => f.depth_ranges = supported(&words, &bad)?,
             bool::KEY => f.depth_writes = supported(&words, &bad)?,
             FAR_CLIPPING => f.far_clipping = supported(&words, &bad)?,
+            "topology" if version >= 2 => declared.topologies = topologies(&words, &bad)?,
+            "samples" if version >= 2 => declared.sample_counts = sample_counts(&words, &bad)?,
             "name" => return Err(bad("the name is empty")),
             _ => {
                 return Err(format!(
                     "the profile has an unknown key `{key}`; docs/protocol.md lists the keys of version \
-                     {VERSION}"
+                     {version}"
                 ));
             }
         }
@@ -396,7 +487,43 @@ pub fn parse_profile(lines: &[String], fallback_name: &str) -> Result<Declared, 
         // The word alone, from before a guard band had a size: the reach the rule drew then.
         profile.features.guard_band = LEGACY_GUARD_BAND;
     }
-    Ok(Declared { profile, about })
+    Ok(Declared {
+        profile,
+        about,
+        ..declared
+    })
+}
+
+/// Version 2's `topology` line: known words, triangle lists among them (all refrast sends today).
+fn topologies(words: &[&str], bad: &dyn Fn(&str) -> String) -> Result<Vec<Topology>, String> {
+    let all = || Topology::ALL.map(Topology::word).join(", ");
+    let listed: Option<Vec<Topology>> = words
+        .iter()
+        .map(|w| Topology::ALL.into_iter().find(|t| t.word() == *w))
+        .collect();
+    match listed {
+        Some(listed) if listed.contains(&Topology::TriangleList) => Ok(listed),
+        Some(_) => Err(bad(
+            "list triangle-list too: this refrast draws only triangle lists (lines and points are \
+             reserved, not yet judged)",
+        )),
+        None => Err(bad(&format!("list one or more of {}", all()))),
+    }
+}
+
+/// Version 2's `samples` line: counts among [`SAMPLE_COUNTS`], 1 among them (all refrast sends today).
+fn sample_counts(words: &[&str], bad: &dyn Fn(&str) -> String) -> Result<Vec<u32>, String> {
+    let listed: Option<Vec<u32>> = words
+        .iter()
+        .map(|w| w.parse().ok().filter(|n| SAMPLE_COUNTS.contains(n)))
+        .collect();
+    match listed {
+        Some(listed) if listed.contains(&1) => Ok(listed),
+        Some(_) => Err(bad(
+            "list 1 too: this refrast draws one sample a pixel (multisampling is reserved, not yet judged)",
+        )),
+        None => Err(bad("list one or more of 1, 2, 4, 8, 16")),
+    }
 }
 
 /// The values a profile line lists, each a known word, at least one.
@@ -424,7 +551,7 @@ mod tests {
 
     fn parsed(lines: &[&str]) -> Result<Profile, String> {
         let lines: Vec<String> = lines.iter().map(|&l| l.to_owned()).collect();
-        parse_profile(&lines, "child").map(|d| d.profile)
+        parse_profile(&lines, "child", 1).map(|d| d.profile)
     }
 
     /// The guard band is a line with its reach, or the feature word alone for the reach the rule

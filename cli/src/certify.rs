@@ -239,6 +239,7 @@ pub fn run(args: &Args) -> ExitCode {
                 fail_fast: args.fail_fast,
                 jobs,
                 in_process: args.in_process,
+                memory_limit_mib: (args.memory_limit > 0).then_some(args.memory_limit),
                 expect: args.expect.clone(),
             },
         },

@@ -84,7 +84,7 @@ fn verdicts(doc: &Value) -> Value {
 #[test]
 fn the_json_says_how_the_run_was_made() {
     let dir = scratch("results-metadata");
-    let (out, doc) = certify(&dir, "r.json", &["--budget", "30"]);
+    let (out, doc) = certify(&dir, "r.json", &["--budget", "30", "--memory-limit", "2048"]);
     assert_eq!(out.status.code(), Some(1));
     assert_eq!(doc["schema_version"], 1);
     let run = &doc["run"];
@@ -104,6 +104,7 @@ fn the_json_says_how_the_run_was_made() {
         (Some(25), Some(7), Some(30.0))
     );
     assert_eq!(o["rules"], serde_json::json!(["fill.*"]));
+    assert_eq!(o["memory_limit_mib"].as_u64(), Some(2048));
     let entry = &doc["implementations"][0];
     assert_eq!(entry["subject"]["impl"], MUTANT);
     assert!(entry["rules"].as_array().is_some_and(|r| !r.is_empty()));

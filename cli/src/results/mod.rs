@@ -106,6 +106,10 @@ pub struct RunOptions {
     pub jobs: usize,
     /// `--in-process`.
     pub in_process: bool,
+    /// `--memory-limit` in MiB per child (`null`: no limit, `--memory-limit 0`); absent in
+    /// documents written before it was recorded.
+    #[serde(default)]
+    pub memory_limit_mib: Option<u64>,
     /// `--expect` files.
     pub expect: Vec<PathBuf>,
 }

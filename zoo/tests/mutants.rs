@@ -3,8 +3,14 @@
 
 use std::time::Instant;
 
-use refrast_conformance::{Options, Status, certify};
+use refrast_conformance::{Options, Status, certify_with};
 use refrast_zoo::mutant::{Bug, Mutant};
+
+/// One copy of a rasterizer per core, for [`certify_with`] to run that many rules at once.
+fn copies<R>(make: impl Fn() -> R) -> Vec<R> {
+    let n = std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get);
+    (0..n).map(|_| make()).collect()
+}
 
 #[test]
 fn every_mutant_is_caught_by_its_family_with_a_small_counterexample() {
@@ -16,7 +22,7 @@ fn every_mutant_is_caught_by_its_family_with_a_small_counterexample() {
             cases: Some(300),
             ..Options::default()
         };
-        let report = certify(&mut Mutant::new(bug), &options, |_| {});
+        let report = certify_with(&mut copies(|| Mutant::new(bug)), &options, |_| {});
         let failed: Vec<_> = report.rules.iter().filter(|r| r.status == Status::Fail).collect();
         let family = bug.caught_by();
         let triangles_of = |input: &str| {
@@ -69,7 +75,11 @@ fn a_consistent_but_misdeclared_convention_fails_only_exact_rules() {
         cases: Some(300),
         ..Options::default()
     };
-    let report = certify(&mut Mutant::new(Bug::BottomRightAsTopLeft), &options, |_| {});
+    let report = certify_with(
+        &mut copies(|| Mutant::new(Bug::BottomRightAsTopLeft)),
+        &options,
+        |_| {},
+    );
     let failed: Vec<_> = report.rules.iter().filter(|r| r.status == Status::Fail).collect();
     assert!(!failed.is_empty());
     for r in failed {
@@ -92,12 +102,12 @@ fn a_correct_rasterizer_declaring_another_convention_passes_everything() {
             fill,
             ..refrast::ReferenceConfig::default()
         };
-        let mut other = refrast_conformance::Named::new("other-convention", config);
+        let mut others = copies(|| refrast_conformance::Named::new("other-convention", config));
         let options = Options {
             cases: Some(300),
             ..Options::default()
         };
-        let report = certify(&mut other, &options, |_| {});
+        let report = certify_with(&mut others, &options, |_| {});
         let failed: Vec<_> = report
             .rules
             .iter()

@@ -349,10 +349,12 @@ mod tests {
     use proptest::prelude::*;
 
     use super::*;
+    use crate::oracle::ray_cast::reference_cut_rounding_px;
     use crate::strategy::{clipped_mesh_scene, crossing_scene, fan_scene, mesh_scene, projected_mesh_scene};
 
-    /// The expectation sample by sample over every triangle, without boxes: what
-    /// [`mesh_expectation_with`] computed before it skipped the samples a triangle cannot reach.
+    /// The expectation sample by sample over every triangle, without boxes, with the cut
+    /// rounding evaluated per sample: what [`mesh_expectation_with`] computed before it skipped
+    /// the samples a triangle cannot reach and set the rounding up once per triangle.
     fn direct(scene: &Scene, band: f64, relax: Relax) -> Vec<Expect> {
         let tris: Vec<_> = (0..scene.triangles.len())
             .map(|t| scene.positions_of(t))
@@ -380,7 +382,8 @@ mod tests {
                         };
                         let d = distance_to_outline(o, s, cut);
                         d.is_finite()
-                            && d < band + cut_rounding_px(t, scene.width, scene.height, s, &scene.state)
+                            && d < band
+                                + reference_cut_rounding_px(t, scene.width, scene.height, s, &scene.state)
                     });
                 let near_cut_vertex = outlines
                     .iter()

@@ -24,6 +24,9 @@ use crate::oracle::raster::{near_distance, to_ndc};
 /// clipping steps.
 pub const CLIP_ROUNDING: f64 = 1.0 / 524_288.0;
 
+#[cfg(test)]
+pub(crate) mod reference;
+
 /// How far, in pixels, an f32 clipper may move the cuts of `tri` near raster point `s`: 0 when
 /// no plane cuts the triangle, infinity where the triangle's plane cannot be evaluated there
 /// (seen edge-on).

@@ -43,6 +43,17 @@ fn bilinear(c: [f64; 4], [nx, ny]: [f64; 2]) -> f64 {
     c[0] + c[1] * ax + c[2] * ay + c[3] * ax * ay
 }
 
+/// `|(x, y)|` by a square root, within 2 ulps, where the squares neither overflow nor
+/// underflow (hypot takes several times as long); by hypot elsewhere.
+fn length(x: f64, y: f64) -> f64 {
+    let squared = x * x + y * y;
+    if squared.is_normal() {
+        squared.sqrt()
+    } else {
+        x.hypot(y)
+    }
+}
+
 /// Whether `sum` is settled for terms of total `magnitude` with [`CHECK_MARGIN`] to spare.
 fn clear(sum: f64, magnitude: f64) -> bool {
     let wide = magnitude * CHECK_MARGIN;
@@ -197,14 +208,10 @@ impl CutRounding {
         }
         // The sample, then the central differences' points: left, right, up, down.
         let h = 0.5;
-        let points = [
-            s,
-            [s[0] - h, s[1]],
-            [s[0] + h, s[1]],
-            [s[0], s[1] - h],
-            [s[0], s[1] + h],
-        ]
-        .map(|[x, y]| to_ndc(self.width, self.height, x, y));
+        // Three columns and three rows: six divisions, not ten.
+        let [[nx, ny], [left, up], [right, down]] =
+            [0.0, -h, h].map(|o| to_ndc(self.width, self.height, s[0] + o, s[1] + o));
+        let points = [[nx, ny], [left, ny], [right, ny], [nx, up], [nx, down]];
         let in_view = self.settled_in_view && points.iter().all(|p| p[0].abs() <= 1.0 && p[1].abs() <= 1.0);
         let d = points.map(|p| affine(self.plane.sums[0], p));
         for (&p, &dp) in points.iter().zip(&d) {
@@ -216,7 +223,6 @@ impl CutRounding {
                 return f64::INFINITY;
             }
         }
-        let [nx, ny] = points[0];
         // w = Σ nᵢwᵢ / Σ nᵢ at the sample, both settled: their signs are sure.
         let ws = affine(self.plane.sums[1], points[0]);
         if (ws > 0.0) != (d[0] > 0.0) {
@@ -238,7 +244,7 @@ impl CutRounding {
         let across = self.differences[..self.cuts]
             .iter()
             .map(|[x, y]| {
-                let gradient = ((x[0] + x[1] * ny) * along_x).hypot((y[0] + y[1] * nx) * along_y);
+                let gradient = length((x[0] + x[1] * ny) * along_x, (y[0] + y[1] * nx) * along_y);
                 2.0 * e / gradient
             })
             .fold(0.0, f64::max);

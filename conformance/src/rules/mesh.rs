@@ -8,7 +8,7 @@ use refrast::{CullMode, Profile, Rasterizer};
 use super::common::fragments;
 use crate::oracle::outline::{OutlinePoint, distance_to_outline, visible_outline};
 use crate::oracle::raster::{sample_centre, sample_ndc};
-use crate::oracle::ray_cast::{cut_rounding_px, ray_cast};
+use crate::oracle::ray_cast::{CutRounding, ray_cast};
 use crate::picture::finite_outlines;
 use crate::scene::Scene;
 use crate::violation::{Expect, Violation, compare_coverage, count_fragments};
@@ -19,7 +19,7 @@ use crate::violation::{Expect, Violation, compare_coverage, count_fragments};
 /// be covered, except within `band` pixels of an outline segment that is not a shared edge:
 /// the mesh boundary and the cuts made by clip planes (there, any count is accepted: a cut
 /// vertex snapped over a neighbour's sample makes it count twice); cuts are widened by how far
-/// an f32 clipper may move them ([`cut_rounding_px`]). Shared edges get no band,
+/// an f32 clipper may move them ([`CutRounding`]). Shared edges get no band,
 /// so a crack along them is caught exactly, and so is an overlap, except within the band of a
 /// shared edge ending at a cut vertex, where one or two is right ([`Expect::OneOrTwo`]).
 #[must_use]
@@ -106,6 +106,7 @@ pub fn mesh_expectation_with(scene: &Scene, band: f64, relax: Relax) -> (Vec<Exp
         if !(0..o.len()).any(|k| cut(&o[k], &o[(k + 1) % o.len()])) {
             continue;
         }
+        let rounding = CutRounding::new(t, width, height, &scene.state);
         for y in 0..height {
             for x in 0..width {
                 let (i, s) = (at(x, y), sample_centre(x, y));
@@ -114,8 +115,7 @@ pub fn mesh_expectation_with(scene: &Scene, band: f64, relax: Relax) -> (Vec<Exp
                 }
                 let d = distance_to_outline(o, s, cut);
                 // The rounding is never negative: within the band, it need not be computed.
-                near_boundary[i] = d < band
-                    || (d.is_finite() && d < band + cut_rounding_px(t, width, height, s, &scene.state));
+                near_boundary[i] = d < band || (d.is_finite() && d < band + rounding.at(s));
             }
         }
     }
@@ -349,10 +349,12 @@ mod tests {
     use proptest::prelude::*;
 
     use super::*;
+    use crate::oracle::ray_cast::reference_cut_rounding_px;
     use crate::strategy::{clipped_mesh_scene, crossing_scene, fan_scene, mesh_scene, projected_mesh_scene};
 
-    /// The expectation sample by sample over every triangle, without boxes: what
-    /// [`mesh_expectation_with`] computed before it skipped the samples a triangle cannot reach.
+    /// The expectation sample by sample over every triangle, without boxes, with the cut
+    /// rounding evaluated per sample: what [`mesh_expectation_with`] computed before it skipped
+    /// the samples a triangle cannot reach and set the rounding up once per triangle.
     fn direct(scene: &Scene, band: f64, relax: Relax) -> Vec<Expect> {
         let tris: Vec<_> = (0..scene.triangles.len())
             .map(|t| scene.positions_of(t))
@@ -380,7 +382,8 @@ mod tests {
                         };
                         let d = distance_to_outline(o, s, cut);
                         d.is_finite()
-                            && d < band + cut_rounding_px(t, scene.width, scene.height, s, &scene.state)
+                            && d < band
+                                + reference_cut_rounding_px(t, scene.width, scene.height, s, &scene.state)
                     });
                 let near_cut_vertex = outlines
                     .iter()
@@ -410,9 +413,10 @@ mod tests {
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(300))]
 
-        /// Skipping the samples out of a triangle's reach, and deciding those clearly inside or
-        /// outside an unclipped one in screen space, change no expectation, at the
-        /// bands profiles declare and with either relaxation.
+        /// Skipping the samples out of a triangle's reach, deciding those clearly inside or
+        /// outside an unclipped one in screen space, and setting the cut rounding up once per
+        /// triangle change no expectation, at the bands profiles declare and with either
+        /// relaxation.
         #[test]
         fn shortcuts_change_no_expectation(
             scene in any_scene(),

@@ -14,9 +14,9 @@
 //! For an f32 clipper these are real: lavapipe's clipper covers a sample 0.005 px beyond a far-plane
 //! cut that runs from a vertex at x = −30000, w = 0 (`clip_rounding_covers_lavapipes_far_cut`).
 
-use refrast::DrawState;
+use refrast::{DepthRange, DrawState};
 
-use super::spread::plane_at;
+use super::spread::{CANCELLATION, plane_at};
 use crate::oracle::raster::{near_distance, to_ndc};
 
 /// Bound on the rounding of a cut vertex's clip coordinates, relative to the largest
@@ -24,58 +24,240 @@ use crate::oracle::raster::{near_distance, to_ndc};
 /// clipping steps.
 pub const CLIP_ROUNDING: f64 = 1.0 / 524_288.0;
 
+#[cfg(test)]
+pub(crate) mod reference;
+
+/// How much wider [`CutRounding`]'s own cancellation checks take each magnitude than
+/// [`plane_at`] does: 2^-16, far above the 2^-28 by which their sums may differ (some 20
+/// roundings each, times the 2^20 of `CANCELLATION`), so a point they pass `plane_at` passes.
+const CHECK_MARGIN: f64 = 1.0 + 1.0 / 65_536.0;
+
+/// `c[0] + c[1]·nx + c[2]·ny`: the form of every sum [`plane_at`] divides by or into.
+fn affine(c: [f64; 3], [nx, ny]: [f64; 2]) -> f64 {
+    c[0] + c[1] * nx + c[2] * ny
+}
+
+/// `c[0] + c[1]·|nx| + c[2]·|ny| + c[3]·|nx||ny|`: the form of [`plane_at`]'s magnitudes.
+fn bilinear(c: [f64; 4], [nx, ny]: [f64; 2]) -> f64 {
+    let (ax, ay) = (nx.abs(), ny.abs());
+    c[0] + c[1] * ax + c[2] * ay + c[3] * ax * ay
+}
+
+/// `|(x, y)|` by a square root, within 2 ulps, where the squares neither overflow nor
+/// underflow (hypot takes several times as long); by hypot elsewhere.
+fn length(x: f64, y: f64) -> f64 {
+    let squared = x * x + y * y;
+    if squared.is_normal() {
+        squared.sqrt()
+    } else {
+        x.hypot(y)
+    }
+}
+
+/// Whether `sum` is settled for terms of total `magnitude` with [`CHECK_MARGIN`] to spare.
+fn clear(sum: f64, magnitude: f64) -> bool {
+    let wide = magnitude * CHECK_MARGIN;
+    sum.is_finite() && wide.is_finite() && wide <= CANCELLATION * sum.abs()
+}
+
+/// The plane of a triangle as [`plane_at`] evaluates it, set up once for every NDC point.
+///
+/// With `u = x − nx·w`, `v = y − ny·w`, each `nᵢ = uⱼvₖ − uₖvⱼ` is exactly affine in
+/// `(nx, ny)` (the `nx·ny` terms cancel), so every sum of them is too, and the magnitudes
+/// `plane_at` checks them against are bilinear in `(|nx|, |ny|)`.
+#[derive(Clone, Debug)]
+struct Plane {
+    /// `nᵢ`, the barycentrics' numerators.
+    n: [[f64; 3]; 3],
+    /// `Σ nᵢ`, `Σ nᵢwᵢ` and `Σ nᵢzᵢ`: the barycentrics' denominator, then depth's.
+    sums: [[f64; 3]; 3],
+    /// The magnitudes of the three sums' terms.
+    magnitudes: [[f64; 4]; 3],
+}
+
+impl Plane {
+    fn new(tri: &[[f64; 4]; 3]) -> Self {
+        let pairs = [(1, 2), (2, 0), (0, 1)];
+        let n = pairs.map(|(j, k)| {
+            let (a, b) = (tri[j], tri[k]);
+            [
+                a[0] * b[1] - b[0] * a[1],
+                b[3] * a[1] - a[3] * b[1],
+                b[0] * a[3] - a[0] * b[3],
+            ]
+        });
+        let an = pairs.map(|(j, k)| {
+            let (a, b) = (tri[j].map(f64::abs), tri[k].map(f64::abs));
+            [
+                a[0] * b[1] + b[0] * a[1],
+                a[3] * b[1] + b[3] * a[1],
+                a[0] * b[3] + b[0] * a[3],
+                2.0 * a[3] * b[3],
+            ]
+        });
+        let weights = [[1.0; 3], tri.map(|p| p[3]), tri.map(|p| p[2])];
+        let sums = weights.map(|f| std::array::from_fn(|c| (0..3).map(|i| n[i][c] * f[i]).sum()));
+        let magnitudes =
+            weights.map(|f| std::array::from_fn(|c| (0..3).map(|i| an[i][c] * f[i].abs()).sum()));
+        Self { n, sums, magnitudes }
+    }
+
+    /// Whether [`plane_at`] surely evaluates the plane at NDC `p`, given `Σ nᵢ` there: its
+    /// three cancellation checks, each with [`CHECK_MARGIN`] to spare.
+    fn surely_settled(&self, p: [f64; 2], d: f64) -> bool {
+        let [ad, aw, az] = self.magnitudes.map(|c| bilinear(c, p));
+        let (ws, zs) = (affine(self.sums[1], p), affine(self.sums[2], p));
+        clear(d, ad) && clear(ws, aw) && clear(ws, az + (zs / ws).abs() * aw)
+    }
+
+    /// Whether [`plane_at`] surely evaluates the plane everywhere in the NDC square
+    /// `[-1, 1]²`, the view: `Σ nᵢ` and `Σ nᵢwᵢ`, affine, keep one sign over it and stay
+    /// twice their terms' largest magnitude (at the corners) over `CANCELLATION` from zero; a
+    /// factor far above any rounding of these bounds.
+    fn settled_in_view(&self) -> bool {
+        let corners = [[-1.0, -1.0], [1.0, -1.0], [-1.0, 1.0], [1.0, 1.0]];
+        let [ad, aw, az] = self.magnitudes.map(|c| bilinear(c, [1.0, 1.0]));
+        let least = |c: [f64; 3]| {
+            let at = corners.map(|p| affine(c, p));
+            let same = at.iter().all(|&v| v > 0.0) || at.iter().all(|&v| v < 0.0);
+            if same {
+                at.iter().fold(f64::INFINITY, |m, v| m.min(v.abs()))
+            } else {
+                0.0
+            }
+        };
+        let (d, ws) = (least(self.sums[0]), least(self.sums[1]));
+        let zs = corners
+            .iter()
+            .fold(0.0f64, |m, &p| m.max(affine(self.sums[2], p).abs()));
+        let sure = |least: f64, magnitude: f64| {
+            let wide = 2.0 * magnitude;
+            wide.is_finite() && wide <= CANCELLATION * least
+        };
+        sure(d, ad) && sure(ws, aw) && sure(ws, az + zs / ws * aw)
+    }
+}
+
+/// How far, in pixels, an f32 clipper may move the cuts of one triangle near any sample: set
+/// up once per triangle, since it runs for every sample of every clipped one.
+#[derive(Clone, Debug)]
+pub struct CutRounding {
+    tri: [[f64; 4]; 3],
+    width: u32,
+    height: u32,
+    range: DepthRange,
+    plane: Plane,
+    /// Whether [`plane_at`] evaluates the plane everywhere in view, so no sample needs checks.
+    settled_in_view: bool,
+    /// For the signed distance to each plane that cuts (the first `cuts`), the numerators of
+    /// its central differences along x and along y, affine in the other coordinate.
+    differences: [[[f64; 2]; 2]; 3],
+    cuts: usize,
+    /// Each vertex's largest coordinate, which bounds its rounding.
+    size: [f64; 3],
+}
+
+impl CutRounding {
+    /// The bound for clip-space triangle `tri` in a `width` × `height` viewport.
+    #[must_use]
+    pub fn new(tri: &[[f64; 4]; 3], width: u32, height: u32, state: &DrawState) -> Self {
+        let range = state.depth_range;
+        // The signed distances to the planes that clip: w = 0, near, and far when enabled.
+        let distance = |plane: usize, p: &[f64; 4]| match plane {
+            0 => p[3],
+            1 => near_distance(range, p[2], p[3]),
+            _ => p[3] - p[2],
+        };
+        let plane = Plane::new(tri);
+        let mut differences = [[[0.0; 2]; 2]; 3];
+        let mut cuts = 0;
+        for k in 0..3 {
+            if (k < 2 || state.clip_far) && tri.iter().any(|v| distance(k, v) < 0.0) {
+                let f = tri.map(|v| distance(k, &v));
+                let [n0, nx, ny]: [f64; 3] =
+                    std::array::from_fn(|c| (0..3).map(|i| plane.n[i][c] * f[i]).sum());
+                let [d0, dx, dy] = plane.sums[0];
+                // For affine N and D along a line, N(r)/D(r) − N(l)/D(l) is
+                // (r − l)(N′D − ND′)/(D(r)D(l)): no difference of nearly equal quotients.
+                differences[cuts] = [
+                    [nx * d0 - dx * n0, nx * dy - dx * ny],
+                    [ny * d0 - dy * n0, ny * dx - dy * nx],
+                ];
+                cuts += 1;
+            }
+        }
+        Self {
+            tri: *tri,
+            width,
+            height,
+            range,
+            settled_in_view: plane.settled_in_view(),
+            plane,
+            differences,
+            cuts,
+            size: tri.map(|v| v.iter().fold(0.0f64, |m, c| m.max(c.abs()))),
+        }
+    }
+
+    /// How far, in pixels, the cuts may move near raster point `s`: 0 when no plane cuts the
+    /// triangle, infinity where the triangle's plane cannot be evaluated there (seen edge-on).
+    #[must_use]
+    pub fn at(&self, s: [f64; 2]) -> f64 {
+        if self.cuts == 0 {
+            return 0.0;
+        }
+        // The sample, then the central differences' points: left, right, up, down.
+        let h = 0.5;
+        // Three columns and three rows: six divisions, not ten.
+        let [[nx, ny], [left, up], [right, down]] =
+            [0.0, -h, h].map(|o| to_ndc(self.width, self.height, s[0] + o, s[1] + o));
+        let points = [[nx, ny], [left, ny], [right, ny], [nx, up], [nx, down]];
+        let in_view = self.settled_in_view && points.iter().all(|p| p[0].abs() <= 1.0 && p[1].abs() <= 1.0);
+        let d = points.map(|p| affine(self.plane.sums[0], p));
+        for (&p, &dp) in points.iter().zip(&d) {
+            // Only near the threshold does plane_at itself decide, exactly as before.
+            if !in_view
+                && !self.plane.surely_settled(p, dp)
+                && plane_at(&self.tri, p[0], p[1], self.range).is_none()
+            {
+                return f64::INFINITY;
+            }
+        }
+        // w = Σ nᵢwᵢ / Σ nᵢ at the sample, both settled: their signs are sure.
+        let ws = affine(self.plane.sums[1], points[0]);
+        if (ws > 0.0) != (d[0] > 0.0) {
+            // The plane is behind the eye along this ray: nothing visible projects here.
+            return 0.0;
+        }
+        // Σ |bᵢ| |Vᵢ|∞ times |Σ nᵢ|, and then the error E of the module's doc.
+        let sizes: f64 = (0..3)
+            .map(|i| affine(self.plane.n[i], points[0]).abs() * self.size[i])
+            .sum();
+        let e = CLIP_ROUNDING * sizes / d[0].abs();
+        let half = f64::from(self.width.max(self.height)) * 0.5;
+        // E / w is CLIP_ROUNDING · sizes / |Σ nᵢwᵢ|.
+        let moved = CLIP_ROUNDING * sizes / ws.abs() * (1.0 + nx.abs() + ny.abs()) * half;
+        // The central differences (value(right) − value(left)) / 2h and (down − up) / 2h of
+        // each distance's value Σ bᵢdᵢ, as one quotient each.
+        let along_x = (points[2][0] - points[1][0]) / (d[2] * d[1] * (2.0 * h));
+        let along_y = (points[4][1] - points[3][1]) / (d[4] * d[3] * (2.0 * h));
+        let across = self.differences[..self.cuts]
+            .iter()
+            .map(|[x, y]| {
+                let gradient = length((x[0] + x[1] * ny) * along_x, (y[0] + y[1] * nx) * along_y);
+                2.0 * e / gradient
+            })
+            .fold(0.0, f64::max);
+        moved + across
+    }
+}
+
 /// How far, in pixels, an f32 clipper may move the cuts of `tri` near raster point `s`: 0 when
 /// no plane cuts the triangle, infinity where the triangle's plane cannot be evaluated there
-/// (seen edge-on).
+/// (seen edge-on). For many samples of one triangle, [`CutRounding`] sets up once.
 #[must_use]
 pub fn cut_rounding_px(tri: &[[f64; 4]; 3], width: u32, height: u32, s: [f64; 2], state: &DrawState) -> f64 {
-    let range = state.depth_range;
-    // The signed distances to the planes that clip: w = 0, near, and far when enabled (a match,
-    // not a table of function pointers: it runs for every sample of a clipped triangle).
-    let distance = |plane: usize, p: &[f64; 4]| match plane {
-        0 => p[3],
-        1 => near_distance(range, p[2], p[3]),
-        _ => p[3] - p[2],
-    };
-    let cuts = |plane: usize| (plane < 2 || state.clip_far) && tri.iter().any(|v| distance(plane, v) < 0.0);
-    let planes = [cuts(0), cuts(1), cuts(2)];
-    if planes == [false; 3] {
-        return 0.0;
-    }
-    let at = |x: f64, y: f64| {
-        let [nx, ny] = to_ndc(width, height, x, y);
-        plane_at(tri, nx, ny, range).map(|(value, _)| value.barycentric)
-    };
-    let h = 0.5;
-    let (Some(b), Some(left), Some(right), Some(up), Some(down)) = (
-        at(s[0], s[1]),
-        at(s[0] - h, s[1]),
-        at(s[0] + h, s[1]),
-        at(s[0], s[1] - h),
-        at(s[0], s[1] + h),
-    ) else {
-        return f64::INFINITY;
-    };
-    let w: f64 = (0..3).map(|i| b[i] * tri[i][3]).sum();
-    if w <= 0.0 {
-        // The plane is behind the eye along this ray: nothing visible projects here.
-        return 0.0;
-    }
-    let size = |v: &[f64; 4]| v.iter().fold(0.0f64, |m, c| m.max(c.abs()));
-    let e = CLIP_ROUNDING * (0..3).map(|i| b[i].abs() * size(&tri[i])).sum::<f64>();
-    let [nx, ny] = to_ndc(width, height, s[0], s[1]);
-    let half = f64::from(width.max(height)) * 0.5;
-    let moved = e * (1.0 + nx.abs() + ny.abs()) / w * half;
-    let across = (0..3)
-        .filter(|&plane| planes[plane])
-        .map(|plane| {
-            let value = |b: [f64; 3]| (0..3).map(|i| b[i] * distance(plane, &tri[i])).sum::<f64>();
-            let gradient =
-                ((value(right) - value(left)) / (2.0 * h)).hypot((value(down) - value(up)) / (2.0 * h));
-            2.0 * e / gradient
-        })
-        .fold(0.0, f64::max);
-    moved + across
+    CutRounding::new(tri, width, height, state).at(s)
 }
 
 #[cfg(test)]

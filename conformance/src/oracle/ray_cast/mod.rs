@@ -10,7 +10,9 @@ mod cut_rounding;
 mod exact;
 mod spread;
 
-pub use cut_rounding::{CLIP_ROUNDING, cut_rounding_px};
+#[cfg(test)]
+pub(crate) use cut_rounding::reference::cut_rounding_px as reference_cut_rounding_px;
+pub use cut_rounding::{CLIP_ROUNDING, CutRounding, cut_rounding_px};
 pub use spread::{PlaneValue, Spread, spread};
 
 use refrast::DrawState;

@@ -44,7 +44,7 @@ pub struct Spread {
 /// Every quantity here is a sum of products of inputs, each rounded within about `6ε` of that
 /// magnitude, so at 2^20 the values are within `6ε·2^20 ≈ 1.4e-9` of exact: far below any
 /// profile's precision (2^-18 ≈ 3.8e-6 for the reference). Closer to edge-on, no bound is given.
-const CANCELLATION: f64 = 1_048_576.0;
+pub(super) const CANCELLATION: f64 = 1_048_576.0;
 
 /// Whether a computed `sum` is far enough from zero, for terms of total `magnitude`, that its
 /// sign and its quotients are settled.

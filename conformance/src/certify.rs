@@ -248,27 +248,15 @@ pub fn certify(
 ) -> Report {
     let profile = ProfileReport::of(rasterizer);
     if let Some(refused) = refusal(rasterizer) {
-        return Report {
-            implementation: profile.name.clone(),
-            profile,
-            rules: Vec::new(),
-            not_run: Vec::new(),
-            refused: Some(refused),
-        };
+        return report_of(profile, (Vec::new(), Vec::new()), Some(refused));
     }
     let run = |rule: &Rule| {
         let report = run_rule(rule, rasterizer, options);
         progress(&report);
         Ok::<_, std::convert::Infallible>(report)
     };
-    let Ok((rules, not_run)) = run_selected(options, run);
-    Report {
-        implementation: profile.name.clone(),
-        profile,
-        rules,
-        not_run,
-        refused: None,
-    }
+    let Ok(ran) = run_selected(options, run);
+    report_of(profile, ran, None)
 }
 
 /// [`certify`] with one rule at a time on each of `rasterizers`, copies of one implementation
@@ -281,25 +269,13 @@ pub fn certify_with<R: Rasterizer + Send>(
 ) -> Report {
     match rasterizers {
         [] => {
-            return Report {
-                implementation: String::new(),
-                profile: ProfileReport::unknown(),
-                rules: Vec::new(),
-                not_run: Vec::new(),
-                refused: Some("no rasterizer was given to certify".to_owned()),
-            };
+            let why = "no rasterizer was given to certify".to_owned();
+            return report_of(ProfileReport::unknown(), (Vec::new(), Vec::new()), Some(why));
         }
         [only] => return certify(only, options, progress),
         [first, ..] => {
             if let Some(refused) = refusal(first) {
-                let profile = ProfileReport::of(first);
-                return Report {
-                    implementation: profile.name.clone(),
-                    profile,
-                    rules: Vec::new(),
-                    not_run: Vec::new(),
-                    refused: Some(refused),
-                };
+                return report_of(ProfileReport::of(first), (Vec::new(), Vec::new()), Some(refused));
             }
         }
     }
@@ -314,13 +290,22 @@ pub fn certify_with<R: Rasterizer + Send>(
         (progress.lock().unwrap_or_else(PoisonError::into_inner))(&report);
         Ok::<_, std::convert::Infallible>(report)
     };
-    let Ok((rules, not_run)) = run_selected_jobs(options, workers.len(), run);
+    let Ok(ran) = run_selected_jobs(options, workers.len(), run);
+    report_of(profile, ran, None)
+}
+
+/// A report of `profile`'s implementation: the rules run and those left unrun, or why none ran.
+fn report_of(
+    profile: ProfileReport,
+    (rules, not_run): (Vec<RuleReport>, Vec<String>),
+    refused: Option<String>,
+) -> Report {
     Report {
         implementation: profile.name.clone(),
         profile,
         rules,
         not_run,
-        refused: None,
+        refused,
     }
 }
 

@@ -321,7 +321,11 @@ fn certify_exec(command: &str, options: &Options, jobs: usize, out: &Progress) -
         match spawn() {
             Ok(process) if process.profile() == children[0].profile() => children.push(process),
             Ok(_) => {
-                out.line("  a second child declared another profile: one rule at a time");
+                out.line(&format!(
+                    "  child {} declared another profile than the first: {} at a time",
+                    children.len() + 1,
+                    children.len()
+                ));
                 break;
             }
             Err(why) => {

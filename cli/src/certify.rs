@@ -318,25 +318,17 @@ fn certify_exec(command: &str, options: &Options, jobs: usize, out: &Progress) -
     // More children for the other jobs, each with the same handshake; one that does not start,
     // or declares another profile than the first, leaves the run with the children it has.
     while children.len() < jobs.min(selected(options).len()) {
-        match spawn() {
-            Ok(process) if process.profile() == children[0].profile() => children.push(process),
-            Ok(_) => {
-                out.line(&format!(
-                    "  child {} declared another profile than the first: {} at a time",
-                    children.len() + 1,
-                    children.len()
-                ));
-                break;
+        let why = match spawn() {
+            Ok(process) if process.profile() == children[0].profile() => {
+                children.push(process);
+                continue;
             }
-            Err(why) => {
-                out.line(&format!(
-                    "  child {} did not start ({why}): {} at a time",
-                    children.len() + 1,
-                    children.len()
-                ));
-                break;
-            }
-        }
+            Ok(_) => "declared another profile than the first".to_owned(),
+            Err(why) => format!("did not start ({why})"),
+        };
+        let n = children.len();
+        out.line(&format!("  child {} {why}: {n} at a time", n + 1));
+        break;
     }
     let report = one_at_a_time(command, options, out, |progress| {
         refrast_conformance::certify_with(&mut children, options, progress)

@@ -3,6 +3,7 @@
 use crate::clip::ClipMode;
 use crate::edge::FillConvention;
 use crate::fixed::{SnapRounding, SubpixelBits};
+use crate::primitive::LineRule;
 
 /// Which pixels are tested against a triangle; both give identical output.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -27,4 +28,6 @@ pub struct ReferenceConfig {
     pub clip: ClipMode,
     /// Bounding-box (default) or whole-viewport traversal.
     pub traversal: Traversal,
+    /// How lines are covered (the diamond-exit rule by default).
+    pub line: LineRule,
 }

@@ -10,10 +10,10 @@ use crate::clip::{
     ClipOutcome, ClipPlane, ClipVertex, assemble, classify, clip_planes, clip_triangle, outcode,
 };
 use crate::config::{ReferenceConfig, Traversal};
+use crate::draw::Draw;
 use crate::edge::FillConvention;
 use crate::fixed::FixedPoint;
 use crate::project::{ProjectedPoint, RasterVertex, ViewportTransform, input_w};
-use crate::rasterizer::Draw;
 use crate::setup::{SnappedTriangle, Winding, drawn_winding};
 use crate::traverse::{FanTriangle, PixelRect, build_fan};
 

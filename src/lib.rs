@@ -21,7 +21,8 @@
 //!
 //! | what | where | key items |
 //! |---|---|---|
-//! | the contract | `rasterizer.rs` | [`Rasterizer`], [`Draw`], [`Fragment`], [`Resolved`] |
+//! | the contract | `rasterizer.rs`, `draw.rs` | [`Rasterizer`], [`Draw`], [`Fragment`], [`Resolved`] |
+//! | lines, points, samples in the contract | `primitive.rs` | [`PrimitiveDraw`], [`Topology`], [`PrimitiveProfile`], [`LineRule`], [`SamplePattern`], [`SampleFragment`], [`SampleResolved`] |
 //! | what an implementation declares | `profile.rs`, `features.rs` | [`Profile`], [`Snapping`], [`Spec`], [`Features`], [`Supported`], [`SnapAccuracy`] |
 //! | state | `state.rs`, `setup.rs`, `depth.rs` | [`DrawState`], [`CullMode`], [`FrontFace`], [`DepthState`], [`CompareOp`], [`DepthRange`] |
 //! | the reference | `reference.rs` | [`Reference`], [`ReferenceConfig`], [`Traversal`], [`ClipMode`], [`DrawStats`], [`Sample`] |
@@ -34,7 +35,9 @@
 //! | setup, facing | `setup.rs` | [`stage::snap_before_clipping`], [`stage::drawn_winding`], [`stage::clipped_winding`], [`Winding`], [`stage::TriangleSetup`] |
 //! | traversal | `traverse.rs` | [`stage::build_fan`], [`stage::traverse`], [`stage::PixelRect`] |
 //! | interpolation | `interp.rs` | [`stage::Varyings`], [`stage::interpolate`], [`stage::interpolate_depth`] |
-//! | lines, points | `line.rs` | [`stage::rasterize_line`], [`stage::rasterize_point`] |
+//! | lines, points (the labs' DDA) | `line.rs` | [`stage::rasterize_line`], [`stage::rasterize_point`] |
+//! | exact lines, points | `segment.rs` | [`stage::diamond_exit`], [`stage::in_rectangle`], [`stage::in_parallelogram`], [`stage::in_point_square`] |
+//! | other topologies, samples | `topology.rs` | [`Reference::draw_primitives`] |
 //! | camera, projection | `camera.rs` | [`camera::Camera`], [`camera::Projection`] |
 //! | mesh pipeline, PNG | `pipeline.rs` | [`pipeline::Renderer`], [`pipeline::Mesh`], [`pipeline::Framebuffer`] |
 //! | lab scenes | `scenes.rs` | [`scenes::SCENES`], [`scenes::render`] |
@@ -91,6 +94,7 @@ pub mod camera;
 mod clip;
 mod config;
 mod depth;
+mod draw;
 mod edge;
 mod error;
 mod features;
@@ -99,26 +103,34 @@ mod front;
 mod interp;
 mod line;
 pub mod pipeline;
+mod primitive;
 mod profile;
 mod project;
 mod rasterizer;
 mod reference;
 pub mod scenes;
+mod segment;
 mod setup;
 pub mod stage;
 mod state;
+mod topology;
 mod traverse;
 mod viewport;
 
 pub use clip::ClipMode;
 pub use config::{ReferenceConfig, Traversal};
 pub use depth::{CompareOp, DepthRange, DepthState};
+pub use draw::{Draw, Fragment, Resolved};
 pub use edge::{FillConvention, is_top_left, orient2d};
 pub use error::{ConfigError, DrawError, Unavailable};
 pub use features::{Features, Setting, SnapAccuracy, Supported};
 pub use fixed::{COORD_LIMIT, FixedPoint, SnapRounding, SubpixelBits, snap};
+pub use primitive::{
+    LineRule, PrimitiveDraw, PrimitiveProfile, SAMPLE_COUNTS, SampleFragment, SamplePattern, SampleResolved,
+    Topology,
+};
 pub use profile::{DepthConvention, Profile, Snapping, Spec};
-pub use rasterizer::{Draw, Fragment, Rasterizer, Resolved};
+pub use rasterizer::{Rasterizer, rasterize_as_triangles, resolve_by_replay};
 pub use reference::{DrawStats, Reference, Sample};
 pub use setup::{CullMode, FrontFace, Winding};
 pub use state::DrawState;

@@ -3,12 +3,9 @@
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
-use crate::clip::{ClipMode, ClipVertex, clip_planes, clip_segment};
-use crate::depth::fragment_depth;
+use crate::draw::{Draw, Fragment};
 use crate::error::{ConfigError, DrawError};
-use crate::interp::{Varyings, interpolate};
-use crate::line::{LineVertex, rasterize_line, rasterize_point};
-use crate::rasterizer::Draw;
+use crate::primitive::{PrimitiveDraw, SamplePattern, Topology};
 use crate::reference::{DrawStats, Reference};
 use crate::state::DrawState;
 use crate::viewport::Viewport;
@@ -243,47 +240,26 @@ impl Renderer {
         }
     }
 
-    /// Draws each vertex as a point: the pixel holding its projection, in its colour.
+    /// Draws each vertex as a point of size one through the reference's point rasterization
+    /// (the path `point.*` certifies), in its colour: the pixel whose centre its one-pixel
+    /// square holds (on a pixel corner, the one above and to the left under top-left).
     ///
     /// A point outside the clip volume (behind the eye, before the near plane, beyond the far
     /// plane when enabled, or not finite) is not drawn; the depth test applies. Returns the
     /// number of pixels that passed.
     pub fn draw_points(&self, target: &mut Framebuffer, vertices: &[Vertex], mvp: Mat4) -> usize {
-        let viewport = target.viewport;
-        let planes = clip_planes(
-            ClipMode::Full,
-            viewport,
-            self.state.clip_far,
-            self.state.depth_range,
-        );
-        let mut written = 0;
-        for v in vertices {
-            let p = (mvp * v.position.extend(1.0)).as_dvec4();
-            if !p.is_finite() || p.w <= 0.0 || planes.iter().any(|plane| plane.distance(p) < 0.0) {
-                continue;
-            }
-            let (x, y) = viewport.to_raster(p.x / p.w, p.y / p.w);
-            let depth = self.state.depth_range.window_depth(p.z, p.w);
-            let Some(f) = rasterize_point(LineVertex { x, y, depth }, viewport) else {
-                continue;
-            };
-            let i = viewport.index(f.x, f.y);
-            if self
-                .state
-                .depth
-                .test_and_write(fragment_depth(f.depth), &mut target.depth[i])
-            {
-                target.color[i] = to_rgba8(v.color);
-                written += 1;
-            }
-        }
-        written
+        let indices = (0..vertices.len() as u32).collect();
+        self.draw_topology(target, vertices, Topology::PointList, indices, mvp, |f| {
+            vertices[f.primitive as usize].color
+        })
     }
 
-    /// Draws line segments between mesh vertices, colour interpolated perspective-correctly.
+    /// Draws line segments between mesh vertices through the reference's line rasterization
+    /// (the diamond-exit rule `line.*` certifies), colour interpolated perspective-correctly.
     ///
     /// Segments are clipped in clip space at the near plane, the guard band (and far when
-    /// enabled); the depth test applies. Returns the number of pixels that passed.
+    /// enabled); a segment naming a vertex that does not exist is skipped; the depth test
+    /// applies. Returns the number of pixels that passed.
     pub fn draw_lines(
         &self,
         target: &mut Framebuffer,
@@ -291,54 +267,56 @@ impl Renderer {
         segments: &[[u32; 2]],
         mvp: Mat4,
     ) -> usize {
+        let n = vertices.len();
+        let kept: Vec<[u32; 2]> = segments
+            .iter()
+            .copied()
+            .filter(|s| s.iter().all(|&i| (i as usize) < n))
+            .collect();
+        let indices = kept.iter().flatten().copied().collect();
+        self.draw_topology(target, vertices, Topology::LineList, indices, mvp, |f| {
+            let [a, b] = kept[f.primitive as usize].map(|i| vertices[i as usize].color);
+            // Perspective-correct, as for triangles: the fragment's place along the segment.
+            a.lerp(b, f.barycentric[1])
+        })
+    }
+
+    /// Draws `indices` of `vertices` as `topology` through the reference, depth-tested, each
+    /// passing fragment coloured by `color`; the number of pixels that passed.
+    fn draw_topology(
+        &self,
+        target: &mut Framebuffer,
+        vertices: &[Vertex],
+        topology: Topology,
+        indices: Vec<u32>,
+        mvp: Mat4,
+        color: impl Fn(&Fragment) -> Vec4,
+    ) -> usize {
         let viewport = target.viewport;
-        let planes = clip_planes(
-            ClipMode::GuardBand,
+        let draw = PrimitiveDraw {
             viewport,
-            self.state.clip_far,
-            self.state.depth_range,
-        );
+            positions: vertices
+                .iter()
+                .map(|v| (mvp * v.position.extend(1.0)).to_array())
+                .collect(),
+            topology,
+            indices,
+            samples: 1,
+            state: self.state,
+        };
+        let Some(centre) = SamplePattern::standard(1) else {
+            return 0;
+        };
         let mut written = 0;
-        for &[a, b] in segments {
-            let (Some(va), Some(vb)) = (vertices.get(a as usize), vertices.get(b as usize)) else {
-                continue;
-            };
-            let end = |v: &Vertex, t: f64| ClipVertex {
-                position: (mvp * v.position.extend(1.0)).as_dvec4(),
-                barycentric: glam::DVec3::new(1.0 - t, t, 0.0),
-            };
-            let Some((ca, cb)) = clip_segment(end(va, 0.0), end(vb, 1.0), &planes) else {
-                continue;
-            };
-            // Each visible end on screen, and what it carries: where it lies on the segment
-            // (linear in clip space) and its 1/w.
-            let depth_range = self.state.depth_range;
-            let [(a_px, a), (b_px, b)] = [ca, cb].map(|c| {
-                let p = c.position;
-                let (x, y) = viewport.to_raster(p.x / p.w, p.y / p.w);
-                let depth = depth_range.window_depth(p.z, p.w);
-                let varyings = Varyings {
-                    depth,
-                    inv_w: 1.0 / p.w,
-                    barycentric: c.barycentric,
-                    screen: None,
-                };
-                (LineVertex { x, y, depth }, varyings)
-            });
-            rasterize_line(a_px, b_px, viewport, |f| {
-                let i = viewport.index(f.x, f.y);
-                if self
-                    .state
-                    .depth
-                    .test_and_write(fragment_depth(f.depth), &mut target.depth[i])
-                {
-                    // Perspective-correct, as for triangles: the segment's t at this pixel.
-                    let t = interpolate([&a, &b], [1.0 - f.t, f.t]).perspective.y as f32;
-                    target.color[i] = to_rgba8(va.color.lerp(vb.color, t));
-                    written += 1;
-                }
-            });
-        }
+        // The draw is valid by construction (indices checked, one sample), so it cannot fail.
+        let _ = self.reference.draw_primitives(&draw, &centre, |s| {
+            let f = s.fragment;
+            let i = viewport.index(f.x, f.y);
+            if self.state.depth.test_and_write(f.depth, &mut target.depth[i]) {
+                target.color[i] = to_rgba8(color(&f));
+                written += 1;
+            }
+        });
         written
     }
 }

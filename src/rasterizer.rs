@@ -1,107 +1,10 @@
-//! The `Rasterizer` trait: the contract the conformance suite certifies, and its data types.
+//! The `Rasterizer` trait: the contract the conformance suite certifies (its data types are
+//! in `draw.rs` and `primitive.rs`).
 
+use crate::draw::{Draw, Fragment, Resolved};
 use crate::error::DrawError;
+use crate::primitive::{PrimitiveDraw, PrimitiveProfile, SampleFragment, SampleResolved};
 use crate::profile::Profile;
-use crate::state::DrawState;
-use crate::viewport::Viewport;
-
-/// One draw call: clip-space vertices, triangles indexing them, and state.
-///
-/// Triangle `i` of `triangles` is primitive `i` in every output.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Draw {
-    /// The render target's size.
-    pub viewport: Viewport,
-    /// Clip-space positions `[x, y, z, w]`.
-    pub positions: Vec<[f32; 4]>,
-    /// Vertex indices, three per triangle.
-    pub triangles: Vec<[u32; 3]>,
-    /// Culling, depth and clipping state.
-    pub state: DrawState,
-}
-
-impl Draw {
-    /// A draw with default state (no culling, CCW front, LESS depth, far clipping off).
-    #[must_use]
-    pub fn new(viewport: Viewport, positions: Vec<[f32; 4]>, triangles: Vec<[u32; 3]>) -> Self {
-        Self {
-            viewport,
-            positions,
-            triangles,
-            state: DrawState::default(),
-        }
-    }
-
-    /// Checks every index, so rasterizers can index `positions` freely afterwards.
-    pub fn validate(&self) -> Result<(), DrawError> {
-        let vertices = self.positions.len();
-        for (triangle, indices) in self.triangles.iter().enumerate() {
-            if let Some(&index) = indices.iter().find(|&&i| i as usize >= vertices) {
-                return Err(DrawError::IndexOutOfRange {
-                    triangle,
-                    index,
-                    vertices,
-                });
-            }
-        }
-        Ok(())
-    }
-}
-
-/// A covered sample before the depth test.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Fragment {
-    /// Pixel column.
-    pub x: u32,
-    /// Pixel row.
-    pub y: u32,
-    /// Index of the triangle in [`Draw::triangles`].
-    pub primitive: u32,
-    /// Window depth in `[0, 1]`, linear in screen space.
-    pub depth: f32,
-    /// Perspective-correct barycentrics of the sample in the input triangle.
-    pub barycentric: [f32; 3],
-    /// Screen-space (affine) barycentrics, where the implementation can give them.
-    pub screen_barycentric: Option<[f32; 3]>,
-    /// Whether the triangle faces the viewer under the draw's [`FrontFace`](crate::FrontFace).
-    pub front_facing: bool,
-}
-
-/// The depth and primitive-id buffers after the depth test, row-major.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Resolved {
-    /// The target's size.
-    pub viewport: Viewport,
-    /// Depth per pixel.
-    pub depth: Vec<f32>,
-    /// The primitive whose fragment last passed the depth test at each pixel (written or not), if any.
-    pub primitive: Vec<Option<u32>>,
-}
-
-impl Resolved {
-    /// Replays fragments through the draw's depth test in primitive order (API order).
-    #[must_use]
-    pub fn from_fragments(draw: &Draw, mut fragments: Vec<Fragment>) -> Self {
-        let viewport = draw.viewport;
-        let mut resolved = Self {
-            viewport,
-            depth: vec![draw.state.depth.clear; viewport.pixel_count()],
-            primitive: vec![None; viewport.pixel_count()],
-        };
-        // Stable: fragments of one primitive keep their order.
-        fragments.sort_by_key(|f| f.primitive);
-        for f in fragments {
-            if f.x >= viewport.width() || f.y >= viewport.height() {
-                continue;
-            }
-            let i = viewport.index(f.x, f.y);
-            if draw.state.depth.test_and_write(f.depth, &mut resolved.depth[i]) {
-                resolved.primitive[i] = Some(f.primitive);
-            }
-        }
-        resolved
-    }
-}
 
 /// A triangle rasterizer that the conformance suite can certify.
 ///
@@ -163,6 +66,69 @@ pub trait Rasterizer {
         let fragments = self.rasterize(draw)?;
         Ok(Resolved::from_fragments(draw, fragments))
     }
+
+    /// What it declares about lines, points and multisampling; by default nothing: triangles at
+    /// one sample per pixel.
+    fn primitive_profile(&self) -> PrimitiveProfile {
+        PrimitiveProfile::triangles_only()
+    }
+
+    /// Every covered sample of a draw of any topology and sample count, before the depth test.
+    ///
+    /// The default draws a triangle list at one sample through [`rasterize`](Rasterizer::rasterize)
+    /// and refuses anything else as [`DrawError::Unsupported`]; an implementation declaring
+    /// lines, points or samples in [`primitive_profile`](Rasterizer::primitive_profile)
+    /// overrides it.
+    fn rasterize_primitives(&mut self, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> {
+        rasterize_as_triangles(self, draw)
+    }
+
+    /// Depth and primitive-id buffers per sample after the depth test.
+    ///
+    /// The default resolves a triangle list at one sample through [`resolve`](Rasterizer::resolve)
+    /// and replays [`rasterize_primitives`](Rasterizer::rasterize_primitives) sample by sample
+    /// otherwise.
+    fn resolve_primitives(&mut self, draw: &PrimitiveDraw) -> Result<SampleResolved, DrawError> {
+        resolve_by_replay(self, draw)
+    }
+}
+
+/// [`Rasterizer::rasterize_primitives`] for an implementation that declares nothing beyond
+/// triangles: a triangle list at one sample through [`Rasterizer::rasterize`], anything else
+/// refused as unsupported.
+pub fn rasterize_as_triangles<R: Rasterizer + ?Sized>(
+    r: &mut R,
+    draw: &PrimitiveDraw,
+) -> Result<Vec<SampleFragment>, DrawError> {
+    draw.validate()?;
+    let Some(triangles) = draw.as_triangle_draw() else {
+        return Err(DrawError::Unsupported(draw.describe()));
+    };
+    Ok(r.rasterize(&triangles)?
+        .into_iter()
+        .map(|fragment| SampleFragment { fragment, sample: 0 })
+        .collect())
+}
+
+/// [`Rasterizer::resolve_primitives`] by default: a triangle list at one sample through the
+/// implementation's own [`Rasterizer::resolve`] (so its depth test is what gets judged), anything
+/// else replayed from [`Rasterizer::rasterize_primitives`].
+pub fn resolve_by_replay<R: Rasterizer + ?Sized>(
+    r: &mut R,
+    draw: &PrimitiveDraw,
+) -> Result<SampleResolved, DrawError> {
+    draw.validate()?;
+    if let Some(triangles) = draw.as_triangle_draw() {
+        let resolved = r.resolve(&triangles)?;
+        return Ok(SampleResolved {
+            viewport: resolved.viewport,
+            samples: 1,
+            depth: resolved.depth,
+            primitive: resolved.primitive,
+        });
+    }
+    let fragments = r.rasterize_primitives(draw)?;
+    Ok(SampleResolved::from_fragments(draw, fragments))
 }
 
 #[cfg(test)]

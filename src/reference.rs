@@ -2,14 +2,16 @@
 
 use crate::config::ReferenceConfig;
 use crate::depth::fragment_depth;
+use crate::draw::{Draw, Fragment};
 use crate::error::DrawError;
 use crate::features::{Features, SnapAccuracy};
 use crate::fixed::SnapRounding;
 use crate::front::{Discard, FrontScratch, FrontSetup, front_end};
 use crate::interp::{Varyings, interpolate, interpolate_depth, screen_weights};
+use crate::primitive::{PrimitiveDraw, PrimitiveProfile, SAMPLE_COUNTS, SampleFragment, SamplePattern};
 use crate::profile::{DepthConvention, Profile, Snapping, Spec};
 use crate::project::RasterVertex;
-use crate::rasterizer::{Draw, Fragment, Rasterizer};
+use crate::rasterizer::Rasterizer;
 use crate::traverse::{FanTriangle, Hit, traverse};
 
 /// What happened to the triangles of a draw.
@@ -34,7 +36,7 @@ pub struct DrawStats {
 }
 
 impl DrawStats {
-    fn count(&mut self, discard: Discard) {
+    pub(crate) fn count(&mut self, discard: Discard) {
         *match discard {
             Discard::NonFinite => &mut self.non_finite,
             Discard::ClippedAway => &mut self.clipped_away,
@@ -53,9 +55,9 @@ pub struct Reference {
 
 /// Buffers reused across the triangles of one draw.
 #[derive(Default)]
-struct Scratch {
-    front: FrontScratch,
-    row: Vec<[i64; 3]>,
+pub(crate) struct Scratch {
+    pub(crate) front: FrontScratch,
+    pub(crate) row: Vec<[i64; 3]>,
 }
 
 impl Reference {
@@ -161,7 +163,7 @@ pub struct Sample<'a> {
 
 impl<'a> Sample<'a> {
     /// The sample at `hit` of triangle `primitive`, its depth interpolated (screen-linear).
-    fn new(
+    pub(crate) fn new(
         primitive: u32,
         front_facing: bool,
         hit: Hit,
@@ -227,6 +229,34 @@ impl Rasterizer for Reference {
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
         let mut fragments = Vec::new();
         self.draw(draw, |f| fragments.push(f))?;
+        Ok(fragments)
+    }
+
+    /// Lines by the configured rule, points, and Vulkan's standard sample locations where the
+    /// grid holds sixteenths of a pixel (4 subpixel bits or more).
+    fn primitive_profile(&self) -> PrimitiveProfile {
+        let on_grid = self.config.subpixel_bits.get() >= 4;
+        PrimitiveProfile {
+            lines: Some(self.config.line),
+            points: true,
+            endpoint_snapping: None,
+            multisample: SAMPLE_COUNTS[1..]
+                .iter()
+                .filter(|_| on_grid)
+                .filter_map(|&n| SamplePattern::standard(n))
+                .collect(),
+        }
+    }
+
+    fn rasterize_primitives(&mut self, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> {
+        let pattern = SamplePattern::standard(draw.samples).ok_or_else(|| {
+            DrawError::Unsupported(format!(
+                "{} samples per pixel: a draw asks for 1, 2, 4, 8 or 16",
+                draw.samples
+            ))
+        })?;
+        let mut fragments = Vec::new();
+        self.draw_primitives(draw, &pattern, |f| fragments.push(f))?;
         Ok(fragments)
     }
 }

@@ -10,9 +10,9 @@ use glam::{Mat4, Vec3};
 use crate::camera::{Camera, Projection};
 use crate::config::{ReferenceConfig, Traversal};
 use crate::depth::{CompareOp, DepthState};
+use crate::draw::Draw;
 use crate::error::{ConfigError, DrawError};
 use crate::pipeline::{Framebuffer, Mesh, Renderer, Vertex};
-use crate::rasterizer::Draw;
 use crate::reference::Reference;
 use crate::viewport::Viewport;
 

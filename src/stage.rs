@@ -22,8 +22,10 @@
 //! 7. **interpolate** depth ([`interpolate_depth`], [`fragment_depth`]) and barycentrics
 //!    ([`screen_weights`], [`interpolate`]) from what the corners carry ([`Varyings`]).
 //!
-//! Lines and points have stages of their own: [`clip_segment`], [`rasterize_line`],
-//! [`rasterize_point`].
+//! Lines and points have stages of their own: [`clip_segment`], then the exact coverage of
+//! [`diamond_exit`], [`in_rectangle`], [`in_parallelogram`] and [`in_point_square`] on snapped
+//! ends ([`Reference::draw_primitives`](crate::Reference::draw_primitives)); the labs' DDA,
+//! [`rasterize_line`] and [`rasterize_point`], stays for the course implementations.
 
 pub use crate::clip::{
     ClipOutcome, ClipPlane, ClipVertex, assemble, classify, clip_planes, clip_polygon, clip_segment,
@@ -35,6 +37,9 @@ pub use crate::front::{Corner, Discard, FrontScratch, FrontSetup, Kept, front_en
 pub use crate::interp::{Barycentrics, Varyings, interpolate, interpolate_depth, screen_weights};
 pub use crate::line::{LineFragment, LineVertex, rasterize_line, rasterize_point};
 pub use crate::project::{ProjectedPoint, RasterVertex, ViewportTransform, input_w};
+pub use crate::segment::{
+    diamond_exit, in_diamond, in_parallelogram, in_point_square, in_rectangle, meets_diamond,
+};
 pub use crate::setup::{
     SnappedTriangle, TriangleSetup, ZeroArea, clipped_winding, drawn_winding, snap_before_clipping,
 };

@@ -1,0 +1,352 @@
+//! The reference beyond triangles at one sample: line lists and strips, point lists, and
+//! triangles at several samples per pixel, each decided exactly on snapped coordinates.
+//!
+//! - **Lines** are clipped in clip space ([`clip_segment`], the same planes as triangles),
+//!   their ends projected and snapped, then covered by the configured [`LineRule`]
+//!   ([`segment::covers`]). Under the diamond-exit rule every sample of a drawn pixel is
+//!   covered (Vulkan: "sample locations may all be treated as being at the pixel center").
+//!   A fragment's `t` is the sample's projection on the snapped segment, clamped to `[0, 1]`.
+//! - **Points** outside the view volume are discarded (Vulkan, Primitive Clipping: a point is
+//!   passed "unchanged if it lies within the clip volume"); a kept point covers the samples of
+//!   the one-pixel square centred on it ([`segment::in_point_square`]).
+//! - **Triangles at several samples**: sample `k` of pixel `p` lies at `p + oₖ`, so it is covered
+//!   exactly when the pixel's centre is covered by the snapped polygon moved by `½ − oₖ`. The
+//!   move is a whole number of grid steps (sixteenths of a pixel need at least 4 subpixel bits),
+//!   so coverage, ties and interpolation stay exact.
+
+use glam::{DVec3, DVec4};
+
+use crate::clip::{ClipMode, ClipVertex, clip_planes, clip_segment, outcode};
+use crate::config::Traversal;
+use crate::depth::fragment_depth;
+use crate::draw::{Draw, Fragment};
+use crate::error::DrawError;
+use crate::fixed::FixedPoint;
+use crate::front::{FrontSetup, front_end};
+use crate::interp::interpolate;
+use crate::primitive::{PrimitiveDraw, SampleFragment, SamplePattern, Topology};
+use crate::project::{RasterVertex, ViewportTransform};
+use crate::reference::{DrawStats, Reference, Sample, Scratch};
+use crate::segment;
+use crate::traverse::{PixelRect, build_fan, traverse};
+
+/// A pattern's sample offsets in grid units from the pixel's top-left corner.
+type Offsets = Vec<(i64, i64)>;
+
+impl Reference {
+    /// Rasterizes a draw of any topology with samples at `pattern`, handing each covered sample
+    /// to `emit` in primitive order; stats count primitives for `triangles`.
+    ///
+    /// A triangle list at one sample draws exactly as [`Reference::draw`]. `Err` for a draw that
+    /// [`PrimitiveDraw::validate`] refuses, a pattern of another count than the draw's, or
+    /// sample positions off this reference's grid (fewer than 4 subpixel bits).
+    pub fn draw_primitives(
+        &self,
+        draw: &PrimitiveDraw,
+        pattern: &SamplePattern,
+        mut emit: impl FnMut(SampleFragment),
+    ) -> Result<DrawStats, DrawError> {
+        draw.validate()?;
+        if pattern.count() != draw.samples {
+            return Err(DrawError::Unsupported(format!(
+                "a pattern of {} samples for a draw at {}",
+                pattern.count(),
+                draw.samples
+            )));
+        }
+        let offsets = self.offsets(pattern)?;
+        match draw.topology {
+            Topology::TriangleList => match draw.as_triangle_draw() {
+                Some(triangles) => self.draw(&triangles, |fragment| {
+                    emit(SampleFragment { fragment, sample: 0 })
+                }),
+                None => self.draw_triangles_at(draw, &offsets, emit),
+            },
+            Topology::LineList | Topology::LineStrip => Ok(self.draw_lines(draw, &offsets, emit)),
+            Topology::PointList => Ok(self.draw_points(draw, &offsets, emit)),
+        }
+    }
+
+    /// The pattern's offsets on this reference's grid, or why they are not on it.
+    fn offsets(&self, pattern: &SamplePattern) -> Result<Offsets, DrawError> {
+        let one = self.config().subpixel_bits.one();
+        pattern
+            .positions()
+            .iter()
+            .map(|&[u, v]| {
+                let (x, y) = (i64::from(u) * one, i64::from(v) * one);
+                if x % 16 == 0 && y % 16 == 0 {
+                    Ok((x / 16, y / 16))
+                } else {
+                    Err(DrawError::Unsupported(format!(
+                        "sample position {:?} sixteenths is off the {}-bit subpixel grid (4 bits hold every sixteenth)",
+                        [u, v],
+                        self.config().subpixel_bits.get()
+                    )))
+                }
+            })
+            .collect()
+    }
+
+    fn transform(&self, draw: &PrimitiveDraw) -> ViewportTransform {
+        ViewportTransform {
+            viewport: draw.viewport,
+            bits: self.config().subpixel_bits,
+            rounding: self.config().snap_rounding,
+            depth_range: draw.state.depth_range,
+        }
+    }
+
+    /// Triangles at several samples: each sample is the centre of the polygon moved by `½ − oₖ`.
+    fn draw_triangles_at(
+        &self,
+        draw: &PrimitiveDraw,
+        offsets: &Offsets,
+        mut emit: impl FnMut(SampleFragment),
+    ) -> Result<DrawStats, DrawError> {
+        let triangles = Draw {
+            viewport: draw.viewport,
+            positions: draw.positions.clone(),
+            triangles: draw.indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
+            state: draw.state,
+        };
+        // Every sample is tested: a triangle holding no pixel centre may still hold other samples.
+        let config = crate::ReferenceConfig {
+            traversal: Traversal::Viewport,
+            ..self.config()
+        };
+        let setup = FrontSetup::new(&triangles, config);
+        let (bits, half) = (config.subpixel_bits, config.subpixel_bits.one() / 2);
+        let mut scratch = Scratch::default();
+        let (mut moved, mut fan) = (Vec::new(), Vec::new());
+        let mut stats = DrawStats {
+            triangles: triangles.triangles.len(),
+            ..DrawStats::default()
+        };
+        for primitive in 0..triangles.triangles.len() {
+            let kept = match front_end(&setup, primitive, setup.corners(primitive), &mut scratch.front) {
+                Ok(kept) => kept,
+                Err(discard) => {
+                    stats.count(discard);
+                    continue;
+                }
+            };
+            stats.traversed += 1;
+            let polygon: Vec<RasterVertex> = match &kept.whole {
+                Some(t) => t.vertices.to_vec(),
+                None => scratch.front.raster.clone(),
+            };
+            for (k, &(ox, oy)) in offsets.iter().enumerate() {
+                let (dx, dy) = (half - ox, half - oy);
+                moved.clear();
+                moved.extend(polygon.iter().map(|v| RasterVertex {
+                    position: FixedPoint {
+                        x: v.position.x + dx,
+                        y: v.position.y + dy,
+                    },
+                    ..*v
+                }));
+                build_fan(&moved, config.fill, &mut fan);
+                let Some(rect) = PixelRect::bounding(moved.iter().map(|v| v.position), bits, draw.viewport)
+                else {
+                    continue;
+                };
+                traverse(&fan, kept.winding, rect, bits, &mut scratch.row, |hit| {
+                    stats.fragments += 1;
+                    let fragment =
+                        Sample::new(primitive as u32, kept.front_facing, hit, &fan, &moved).fragment();
+                    emit(SampleFragment {
+                        fragment,
+                        sample: k as u8,
+                    });
+                });
+            }
+        }
+        Ok(stats)
+    }
+
+    /// Line lists and strips: clip, project and snap each segment, cover it by the line rule.
+    fn draw_lines(
+        &self,
+        draw: &PrimitiveDraw,
+        offsets: &Offsets,
+        mut emit: impl FnMut(SampleFragment),
+    ) -> DrawStats {
+        let transform = self.transform(draw);
+        let planes = clip_planes(
+            self.config().clip,
+            draw.viewport,
+            draw.state.clip_far,
+            draw.state.depth_range,
+        );
+        let mut stats = DrawStats {
+            triangles: draw.primitive_count(),
+            ..DrawStats::default()
+        };
+        for i in 0..draw.primitive_count() {
+            let Some(&[ia, ib]) = draw.primitive(i) else {
+                continue;
+            };
+            let (pa, pb) = (draw.positions[ia as usize], draw.positions[ib as usize]);
+            if pa.iter().chain(&pb).any(|c| !c.is_finite()) {
+                stats.non_finite += 1;
+                continue;
+            }
+            let end = |p: [f32; 4], barycentric| ClipVertex {
+                position: DVec4::from(p.map(f64::from)),
+                barycentric,
+            };
+            let Some((ca, cb)) = clip_segment(end(pa, DVec3::X), end(pb, DVec3::Y), &planes) else {
+                stats.clipped_away += 1;
+                continue;
+            };
+            // Screen-space barycentrics along the input segment exist when both ends project.
+            let input_w =
+                (pa[3] > 0.0 && pb[3] > 0.0).then(|| DVec3::new(f64::from(pa[3]), f64::from(pb[3]), 1.0));
+            let (Some(va), Some(vb)) = (transform.project(&ca, input_w), transform.project(&cb, input_w))
+            else {
+                stats.degenerate += 1;
+                continue;
+            };
+            stats.traversed += 1;
+            stats.fragments += self.cover_segment(draw, i as u32, [va, vb], offsets, &mut emit);
+        }
+        stats
+    }
+
+    /// The samples of one snapped segment under the line rule; the number covered.
+    fn cover_segment(
+        &self,
+        draw: &PrimitiveDraw,
+        primitive: u32,
+        [va, vb]: [RasterVertex; 2],
+        offsets: &Offsets,
+        emit: &mut impl FnMut(SampleFragment),
+    ) -> usize {
+        let config = self.config();
+        let one = config.subpixel_bits.one();
+        let half = one / 2;
+        let (a, b) = (va.position, vb.position);
+        let (dx, dy) = ((b.x - a.x) as f64, (b.y - a.y) as f64);
+        let length2 = dx * dx + dy * dy;
+        let (width, height) = (
+            i64::from(draw.viewport.width()),
+            i64::from(draw.viewport.height()),
+        );
+        let mut covered = 0;
+        let mut fragment_at = |x: i64, y: i64, s: FixedPoint, sample: usize| {
+            // The sample's projection on the segment, the Vulkan line `t`.
+            let t = (((s.x - a.x) as f64 * dx + (s.y - a.y) as f64 * dy) / length2).clamp(0.0, 1.0);
+            let b = interpolate([&va.varyings, &vb.varyings], [1.0 - t, t]);
+            covered += 1;
+            emit(SampleFragment {
+                fragment: Fragment {
+                    x: x as u32,
+                    y: y as u32,
+                    primitive,
+                    depth: fragment_depth(va.varyings.depth + (vb.varyings.depth - va.varyings.depth) * t),
+                    barycentric: b.perspective.as_vec3().to_array(),
+                    screen_barycentric: b.screen.map(|s| s.as_vec3().to_array()),
+                    front_facing: true,
+                },
+                sample: sample as u8,
+            });
+        };
+        segment::candidates(a, b, one, |x, y| {
+            if !(0..width).contains(&x) || !(0..height).contains(&y) {
+                return;
+            }
+            let centre = FixedPoint {
+                x: x * one + half,
+                y: y * one + half,
+            };
+            if config.line == crate::LineRule::DiamondExit {
+                if segment::diamond_exit(a, b, centre, half) {
+                    (0..offsets.len()).for_each(|k| fragment_at(x, y, centre, k));
+                }
+                return;
+            }
+            for (k, &(ox, oy)) in offsets.iter().enumerate() {
+                let s = FixedPoint {
+                    x: x * one + ox,
+                    y: y * one + oy,
+                };
+                if segment::covers(config.line, a, b, s, half, config.fill) {
+                    fragment_at(x, y, s, k);
+                }
+            }
+        });
+        covered
+    }
+
+    /// Point lists: keep the points inside the view volume, cover the square around each.
+    fn draw_points(
+        &self,
+        draw: &PrimitiveDraw,
+        offsets: &Offsets,
+        mut emit: impl FnMut(SampleFragment),
+    ) -> DrawStats {
+        let transform = self.transform(draw);
+        let planes = clip_planes(
+            ClipMode::Full,
+            draw.viewport,
+            draw.state.clip_far,
+            draw.state.depth_range,
+        );
+        let config = self.config();
+        let one = config.subpixel_bits.one();
+        let half = one / 2;
+        let mut stats = DrawStats {
+            triangles: draw.primitive_count(),
+            ..DrawStats::default()
+        };
+        for (i, &index) in draw.indices.iter().enumerate() {
+            let p = draw.positions[index as usize];
+            if p.iter().any(|c| !c.is_finite()) {
+                stats.non_finite += 1;
+                continue;
+            }
+            let clip = DVec4::from(p.map(f64::from));
+            if outcode(&planes, clip) != 0 {
+                stats.clipped_away += 1;
+                continue;
+            }
+            let Some(point) = transform.project_point(clip) else {
+                stats.degenerate += 1;
+                continue;
+            };
+            stats.traversed += 1;
+            let c = point.position;
+            let pixels = |lo: i64, hi: i64, side: u32| {
+                lo.div_euclid(one).max(0)..=hi.div_euclid(one).min(i64::from(side) - 1)
+            };
+            for y in pixels(c.y - half, c.y + half, draw.viewport.height()) {
+                for x in pixels(c.x - half, c.x + half, draw.viewport.width()) {
+                    for (k, &(ox, oy)) in offsets.iter().enumerate() {
+                        let s = FixedPoint {
+                            x: x * one + ox,
+                            y: y * one + oy,
+                        };
+                        if !segment::in_point_square(c, s, half, config.fill) {
+                            continue;
+                        }
+                        stats.fragments += 1;
+                        emit(SampleFragment {
+                            fragment: Fragment {
+                                x: x as u32,
+                                y: y as u32,
+                                primitive: i as u32,
+                                depth: fragment_depth(point.depth),
+                                barycentric: [1.0, 0.0, 0.0],
+                                screen_barycentric: Some([1.0, 0.0, 0.0]),
+                                front_facing: true,
+                            },
+                            sample: k as u8,
+                        });
+                    }
+                }
+            }
+        }
+        stats
+    }
+}

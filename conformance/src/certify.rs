@@ -150,7 +150,15 @@ fn judge(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options) -> Rul
             return report;
         }
     };
-    if let Err(reason) = rule.applies(&profile) {
+    let primitives = match guarded(|| rasterizer.primitive_profile()) {
+        Ok(primitives) => primitives,
+        Err(what) => {
+            report.status = Status::Crash;
+            report.message = Some(format!("primitive_profile() panicked: {what}"));
+            return report;
+        }
+    };
+    if let Err(reason) = rule.applies(&profile, &primitives) {
         report.status = Status::NotApplicable;
         report.message = Some(reason.to_owned());
         return report;

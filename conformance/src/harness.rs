@@ -79,8 +79,11 @@ where
     let failed = Arc::new(AtomicBool::new(false));
     let args = Arguments::from_args();
     let make = Arc::new(make);
-    let profile = match guarded(|| make().profile()) {
-        Ok(profile) => profile,
+    let (profile, primitives) = match guarded(|| {
+        let r = make();
+        (r.profile(), r.primitive_profile())
+    }) {
+        Ok(declared) => declared,
         Err(what) => {
             eprintln!("error: the rasterizer's constructor or profile() panicked: {what}");
             std::process::exit(101);
@@ -97,7 +100,7 @@ where
     let trials = catalogue()
         .into_iter()
         .map(|rule| {
-            let ignored = rule.applies(&profile).is_err();
+            let ignored = rule.applies(&profile, &primitives).is_err();
             let (id, family) = (rule.id, rule.family);
             let (make, options, failed) = (Arc::clone(&make), Arc::clone(&options), Arc::clone(&failed));
             Trial::ignorable_test(id, move || {

@@ -5,13 +5,14 @@
 //! | layer | module | what |
 //! |---|---|---|
 //! | 0 | `status`, [`contain`] | [`Status`]: pass, fail, crash, timeout, flake, beyond-spec, n/a; child processes in a process group of their own, under a memory limit |
-//! | 1 | [`oracle`] | the conventions' geometry ([`oracle::raster`]), brute force (i128 `orient2d`), ray casting (f64 with exact fallback, clip space), visible outlines; no code shared with the reference |
+//! | 1 | [`oracle`] | the conventions' geometry ([`oracle::raster`]), brute force (i128 `orient2d`), ray casting (f64 with exact fallback, clip space), visible outlines, lines, points and samples ([`oracle::segment`]); no code shared with the reference |
 //! | 2 | `scene` | [`Scene`]: a draw whose `Debug` is pasteable Rust; [`Case`]: what a rule's input is |
 //! | 3 | `violation` | [`Violation`], [`Counts`], [`Expect`], [`Picture`] |
 //! | 4 | [`picture`] | the zoomed sample grid: missing purple, unexpected red, double blue, don't-care yellow; outlines |
+//! | 4½ | [`primitives`] | [`PrimitiveScene`]: a scene drawn as lines or points, or at several samples per pixel |
 //! | 5 | [`strategy`] | free functions that build valid scenes: grid triangles, spade meshes, fans, quads, clip crossings |
 //! | 6 | `runner` | [`property`]: one rule's property, seeded, shrunk, panics caught |
-//! | 7 | [`rules`] | [`catalogue`], [`Rule`], [`Family`], [`Kind`], [`Need`]: six families, each rule a proptest property |
+//! | 7 | [`rules`] | [`catalogue`], [`Rule`], [`Family`], [`Kind`], [`Need`]: nine families, each rule a proptest property |
 //! | 8 | `report` | [`Report`], [`RuleReport`], [`Status`], [`ProfileReport`] |
 //! | 9 | `certify` | [`certify`], [`Options`] |
 //! | 10 | [`isolate`], [`expect`] | rules in child processes: a hang is a `timeout`, an abort or a crash a `crash` of the rule it was running; expectation files |
@@ -38,6 +39,7 @@ pub mod isolate;
 mod named;
 pub mod oracle;
 pub mod picture;
+pub mod primitives;
 pub mod process;
 mod report;
 pub mod restricted;
@@ -54,6 +56,7 @@ pub use certify::{
 };
 pub use harness::{failure_text, run_as_tests};
 pub use named::Named;
+pub use primitives::PrimitiveScene;
 pub use process::{Process, ProcessError};
 pub use report::{ProfileReport, Report, RuleReport, Status, feature_list, fill_name};
 pub use rules::meta::Translated;
@@ -61,6 +64,6 @@ pub use rules::robust::Poisoned;
 pub use rules::{
     Family, Kind, Level, Levels, Need, Rule, RuleDraft, catalogue, levels_markdown, markdown_table, needs,
 };
-pub use runner::{DEFAULT_SEED, RunConfig, Verdict, property, property_for};
+pub use runner::{DEFAULT_SEED, RunConfig, Verdict, property, property_declared, property_for};
 pub use scene::{Case, Scene, clip_of};
 pub use violation::{Class, Counts, Expect, Findings, Picture, Violation, compare_coverage, count_fragments};

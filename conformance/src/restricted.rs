@@ -6,8 +6,9 @@
 //! 'restricted:*'` at full cases).
 
 use refrast::{
-    ClipMode, CompareOp, CullMode, DepthRange, Draw, DrawError, Features, Fragment, FrontFace, Profile,
-    Rasterizer, Reference, ReferenceConfig, Resolved, SnapRounding, Spec, Supported,
+    ClipMode, CompareOp, CullMode, DepthRange, Draw, DrawError, Features, Fragment, FrontFace, PrimitiveDraw,
+    PrimitiveProfile, Profile, Rasterizer, Reference, ReferenceConfig, Resolved, SampleFragment,
+    SampleResolved, SnapRounding, Spec, Supported,
 };
 
 /// The reference under a restricted profile.
@@ -80,6 +81,43 @@ impl Rasterizer for Restricted {
         } else {
             // No depth test of its own: the trait's replay of its fragments.
             Ok(Resolved::from_fragments(&forced, self.rasterize(draw)?))
+        }
+    }
+
+    /// The reference's lines, points and samples: the restrictions are of triangle states.
+    fn primitive_profile(&self) -> PrimitiveProfile {
+        self.inner.primitive_profile()
+    }
+
+    fn rasterize_primitives(&mut self, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> {
+        let forced = PrimitiveDraw {
+            state: self.profile().fit(draw.state),
+            ..draw.clone()
+        };
+        let mut fragments = self.inner.rasterize_primitives(&forced)?;
+        for SampleFragment { fragment: f, .. } in &mut fragments {
+            if !self.features.perspective_barycentrics {
+                f.barycentric = [f32::NAN; 3];
+            }
+            if !self.features.screen_barycentrics {
+                f.screen_barycentric = None;
+            }
+        }
+        Ok(fragments)
+    }
+
+    fn resolve_primitives(&mut self, draw: &PrimitiveDraw) -> Result<SampleResolved, DrawError> {
+        let forced = PrimitiveDraw {
+            state: self.profile().fit(draw.state),
+            ..draw.clone()
+        };
+        if self.features.depth_test {
+            self.inner.resolve_primitives(&forced)
+        } else {
+            Ok(SampleResolved::from_fragments(
+                &forced,
+                self.rasterize_primitives(draw)?,
+            ))
         }
     }
 }

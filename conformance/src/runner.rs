@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 
 use proptest::strategy::Strategy;
 use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestError, TestRng, TestRunner};
-use refrast::{Profile, Rasterizer};
+use refrast::{PrimitiveProfile, Profile, Rasterizer};
 
 use crate::picture;
 use crate::scene::{Case, Scene};
@@ -91,6 +91,21 @@ where
     T: Debug + Clone + Case,
     S: Strategy<Value = T>,
 {
+    property_declared(rasterizer, cfg, |profile, _| strategy_for(profile), check)
+}
+
+/// [`property_for`] with the strategy built from what the rasterizer declares about lines,
+/// points and samples as well: the sample counts it supports, say.
+pub fn property_declared<T, S>(
+    rasterizer: &mut dyn Rasterizer,
+    cfg: &RunConfig,
+    strategy_for: impl FnOnce(&Profile, &PrimitiveProfile) -> S,
+    check: Check<T>,
+) -> Verdict
+where
+    T: Debug + Clone + Case,
+    S: Strategy<Value = T>,
+{
     let deadline = cfg.budget.map(|b| Instant::now() + b);
     let spent = || deadline.is_some_and(|d| Instant::now() >= d);
     let config = Config {
@@ -107,19 +122,19 @@ where
     };
     // Every case asks only for draw states the rasterizer declares it supports, and under a
     // cull mode it cannot switch off, draws its triangles facing front.
-    let profile = match guarded(|| rasterizer.profile()) {
-        Ok(profile) => profile,
+    let (profile, primitives) = match guarded(|| (rasterizer.profile(), rasterizer.primitive_profile())) {
+        Ok(declared) => declared,
         Err(what) => {
             return Verdict::Fail {
                 cases: 0,
                 counterexample: String::new(),
-                violation: Violation::new(format!("profile() panicked: {what}")),
+                violation: Violation::new(format!("profile() or primitive_profile() panicked: {what}")),
                 scene: None,
             };
         }
     };
     let orient = cfg.orient;
-    let strategy = strategy_for(&profile).prop_map(move |mut input| {
+    let strategy = strategy_for(&profile, &primitives).prop_map(move |mut input| {
         let scene = input.scene_mut();
         scene.state = profile.fit(scene.state);
         if orient {

@@ -21,6 +21,7 @@ const LAYERS: &[&[&str]] = &[
     &["scene", "named"],
     &["violation"],
     &["picture"],
+    &["primitives"],
     &["strategy"],
     &["runner"],
     &["rules"],
@@ -35,15 +36,20 @@ const LAYERS: &[&[&str]] = &[
 const INNER_LAYERS: &[(&str, &[&[&str]])] = &[
     (
         "oracle",
-        &[&["raster"], &["brute_force", "outline", "ray_cast"], &["facing"]],
+        &[
+            &["raster"],
+            &["brute_force", "outline", "ray_cast"],
+            &["facing", "segment"],
+        ],
     ),
     (
         "rules",
         &[
-            &["common", "level"],
+            &["common", "level", "samples"],
             &["cast", "mesh"],
             &["fill"],
-            &["bary", "clip", "depth", "meta", "robust"],
+            &["bary", "clip", "depth", "meta", "robust", "line", "point"],
+            &["msaa"],
             &["hint"],
         ],
     ),

@@ -1,7 +1,7 @@
 //! The entries, in the order `refrast impls` lists them: the reference's configurations, the
 //! zoo, the third parties, `fast`.
 
-use refrast::{ClipMode, Rasterizer, Reference, ReferenceConfig, SubpixelBits};
+use refrast::{ClipMode, LineRule, Rasterizer, Reference, ReferenceConfig, SubpixelBits};
 use refrast_conformance::Named;
 use refrast_conformance::restricted::restrictions;
 use refrast_zoo::course;
@@ -40,6 +40,10 @@ fn reference() -> Vec<BuiltIn> {
         clip: ClipMode::Full,
         ..ReferenceConfig::default()
     };
+    let lines = |line: LineRule| ReferenceConfig {
+        line,
+        ..ReferenceConfig::default()
+    };
     vec![
         BuiltIn::new(
             "reference",
@@ -58,6 +62,18 @@ fn reference() -> Vec<BuiltIn> {
             "the reference snapping to 4 subpixel bits (Vulkan's minimum)",
             Origin::Ours,
             named("reference-4bit", four_bits),
+        ),
+        BuiltIn::new(
+            "reference-rectangle-lines",
+            "the reference drawing lines as rectangles one pixel wide (Vulkan's strictLines)",
+            Origin::Ours,
+            named("reference-rectangle-lines", lines(LineRule::Rectangle)),
+        ),
+        BuiltIn::new(
+            "reference-parallelogram-lines",
+            "the reference drawing lines as parallelograms along the minor axis (Vulkan's non-strict lines)",
+            Origin::Ours,
+            named("reference-parallelogram-lines", lines(LineRule::Parallelogram)),
         ),
     ]
 }

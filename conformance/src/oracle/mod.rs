@@ -10,6 +10,8 @@
 //!   depth, whatever the clipping.
 //! - [`outline`]: a triangle's visible outline in raster space and distances to it, for the
 //!   tolerance band and for pictures.
+//! - [`segment`]: lines (the diamond-exit rule by separating axes, rectangles, parallelograms),
+//!   point squares and triangles at each declared sample position, exact in i128.
 //! - [`facing`]: which way a triangle turns as an implementation with a profile may snap it,
 //!   and where correct implementations may disagree; the grid points a vertex may snap to.
 
@@ -18,3 +20,4 @@ pub mod facing;
 pub mod outline;
 pub mod raster;
 pub mod ray_cast;
+pub mod segment;

@@ -41,7 +41,7 @@ pub fn diagnose(r: &mut dyn Rasterizer, rule: &Rule, scene: &Scene) -> Option<St
         Family::Meta => vec![one_winding, mirrored_fill, other_bits, permuted_barycentrics],
         Family::Depth => vec![other_depth_range],
         Family::Bary => vec![permuted_barycentrics],
-        Family::Robust => Vec::new(),
+        Family::Robust | Family::Line | Family::Point | Family::Msaa => Vec::new(),
     };
     detectors
         .iter()

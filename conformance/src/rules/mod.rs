@@ -8,13 +8,19 @@ pub mod depth;
 pub mod fill;
 pub mod hint;
 pub mod level;
+pub mod line;
 pub mod mesh;
 pub mod meta;
+pub mod msaa;
+pub mod point;
 pub mod robust;
+pub mod samples;
 
 use std::fmt;
 
-use refrast::{CompareOp, CullMode, DepthConvention, DepthRange, Profile, Rasterizer, SubpixelBits};
+use refrast::{
+    CompareOp, CullMode, DepthConvention, DepthRange, PrimitiveProfile, Profile, Rasterizer, SubpixelBits,
+};
 
 use crate::runner::{RunConfig, Verdict};
 pub use level::{Level, Levels};
@@ -35,6 +41,12 @@ pub enum Family {
     Meta,
     /// Bad and extreme input.
     Robust,
+    /// Lines of width one.
+    Line,
+    /// Points of size one.
+    Point,
+    /// Several samples per pixel.
+    Msaa,
 }
 
 impl Family {
@@ -48,6 +60,9 @@ impl Family {
             Self::Clip => "clip",
             Self::Meta => "meta",
             Self::Robust => "robust",
+            Self::Line => "line",
+            Self::Point => "point",
+            Self::Msaa => "msaa",
         }
     }
 }
@@ -114,9 +129,12 @@ impl Rule {
         RuleDraft::new(family, Kind::Exact, id)
     }
 
-    /// `Err(reason)` when the rule does not apply to `profile`: the first need it lacks.
-    pub fn applies(&self, profile: &Profile) -> Result<(), &'static str> {
-        self.needs.iter().try_for_each(|need| need.check(profile))
+    /// `Err(reason)` when the rule does not apply to an implementation declaring `profile`
+    /// and `primitives`: the first need it lacks.
+    pub fn applies(&self, profile: &Profile, primitives: &PrimitiveProfile) -> Result<(), &'static str> {
+        self.needs
+            .iter()
+            .try_for_each(|need| need.check(profile, primitives))
     }
 }
 
@@ -238,18 +256,25 @@ impl RuleDraft {
 /// Something a rule needs a profile to declare; without it the rule is n/a, with the reason.
 #[derive(Clone, Copy)]
 pub struct Need {
-    has: fn(&Profile) -> bool,
+    has: Has,
     lacking: &'static str,
 }
 
+/// Where a need is declared: the profile, or what it declares about lines, points and samples.
+#[derive(Clone, Copy)]
+enum Has {
+    Profile(fn(&Profile) -> bool),
+    Primitives(fn(&Profile, &PrimitiveProfile) -> bool),
+}
+
 impl Need {
-    /// `Err(reason)` when `profile` lacks it.
-    pub fn check(&self, profile: &Profile) -> Result<(), &'static str> {
-        if (self.has)(profile) {
-            Ok(())
-        } else {
-            Err(self.lacking)
-        }
+    /// `Err(reason)` when an implementation declaring `profile` and `primitives` lacks it.
+    pub fn check(&self, profile: &Profile, primitives: &PrimitiveProfile) -> Result<(), &'static str> {
+        let has = match self.has {
+            Has::Profile(has) => has(profile),
+            Has::Primitives(has) => has(profile, primitives),
+        };
+        if has { Ok(()) } else { Err(self.lacking) }
     }
 
     /// Why a rule needing it does not apply to a profile without it.
@@ -269,7 +294,20 @@ impl fmt::Debug for Need {
 /// is the reason the rule is n/a when it does not.
 #[must_use]
 pub const fn needs(has: fn(&Profile) -> bool, lacking: &'static str) -> Need {
-    Need { has, lacking }
+    Need {
+        has: Has::Profile(has),
+        lacking,
+    }
+}
+
+/// [`needs`] for what is declared about lines, points and samples
+/// ([`Rasterizer::primitive_profile`](refrast::Rasterizer::primitive_profile)).
+#[must_use]
+pub const fn needs_primitives(has: fn(&Profile, &PrimitiveProfile) -> bool, lacking: &'static str) -> Need {
+    Need {
+        has: Has::Primitives(has),
+        lacking,
+    }
 }
 
 /// Fragments carry perspective-correct barycentrics.
@@ -364,6 +402,9 @@ pub fn catalogue() -> Vec<Rule> {
     rules.extend(clip::rules());
     rules.extend(meta::rules());
     rules.extend(robust::rules());
+    rules.extend(line::rules());
+    rules.extend(point::rules());
+    rules.extend(msaa::rules());
     rules
 }
 

@@ -10,6 +10,7 @@ use spade::{DelaunayTriangulation, Point2, Triangulation};
 use crate::scene::{Scene, clip_of};
 
 mod exact;
+pub mod primitive;
 mod sliver;
 
 pub use exact::{FINE_BITS, exact_scene, guard_band_scene};

@@ -1,0 +1,591 @@
+//! Lines of width one: exact coverage under the declared rule, strips, clipping, depth and
+//! barycentrics along the segment, and what reversing a segment may change.
+
+use refrast::{FillConvention, LineRule, PrimitiveProfile, Profile, Rasterizer, SampleFragment, Topology};
+
+use super::common::precision;
+use super::level::Level;
+use super::samples::{
+    compare_samples, counts, endpoint_bits, expect_covered, grid, positions, sample_fragments,
+    within_guard_band,
+};
+use super::{Family, PERSPECTIVE_BARYCENTRICS, Rule, needs_primitives};
+use crate::oracle::raster::{Point, near_distance, project, snap, window_depth};
+use crate::oracle::segment::SampleGrid;
+use crate::primitives::PrimitiveScene;
+use crate::runner::property;
+use crate::strategy::primitive as lines;
+use crate::violation::{Expect, Findings, Violation, plural};
+
+/// The implementation draws lines by the diamond-exit rule.
+const DIAMOND_EXIT: super::Need = needs_primitives(
+    |p, d| d.lines == Some(LineRule::DiamondExit) && endpoint_grid(p, d),
+    "no lines by the diamond-exit rule on a snapping grid",
+);
+/// The implementation draws lines as rectangles or parallelograms.
+const AREA_LINES: super::Need = needs_primitives(
+    |p, d| matches!(d.lines, Some(LineRule::Rectangle | LineRule::Parallelogram)) && endpoint_grid(p, d),
+    "no lines as rectangles or parallelograms on a snapping grid",
+);
+/// The implementation draws lines of any rule.
+const LINES: super::Need = needs_primitives(
+    |p, d| d.lines.is_some() && endpoint_grid(p, d),
+    "no lines on a snapping grid",
+);
+
+fn endpoint_grid(p: &Profile, d: &PrimitiveProfile) -> bool {
+    endpoint_bits(p, d).is_some()
+}
+
+/// Vulkan's and OpenGL's allowance for other algorithms than the diamond-exit rule itself.
+const OTHER_ALGORITHMS: &str = "Vulkan (Bresenham Line Segment Rasterization) and OpenGL 4.6 §14.5.1 let an implementation use another algorithm whose fragments lie within one pixel in x and y of the diamond-exit rule's, number within one of them, and never two in one column of an x-major line (one row of a y-major one); D3D11.3 (aliased line rules) breaks ties on a diamond's boundary its own way (an x-major line's diamond holds its lower edges and bottom corner): the ε-nudged rule is judged bit for bit under refrast's conventions, and only that allowance under these";
+
+pub(super) fn rules() -> Vec<Rule> {
+    vec![
+        Rule::exact(Family::Line, "line.diamond-exit.exact")
+            .sentence("Each segment of a line list or strip covers exactly the pixels the diamond-exit rule gives on its snapped ends (ends nudged by −(ε, ε²), the last end's diamond left out).")
+            .source("Vulkan 1.4, Bresenham Line Segment Rasterization; OpenGL 4.6 §14.5.1; dEQP-VK.rasterization.primitives.lines")
+            .cases(1500)
+            .needs(DIAMOND_EXIT)
+            .every_spec(Level::Partly {
+                part: |r, cfg| property(r, cfg, lines::lines(), check_diamond_allowance),
+                note: OTHER_ALGORITHMS,
+            })
+            .run(|r, cfg| property(r, cfg, lines::lines(), check_diamond_exact)),
+        Rule::invariant(Family::Line, "line.area.matches-oracle")
+            .sentence("A segment drawn as a rectangle or parallelogram one pixel wide covers the samples inside that shape on its snapped ends, samples within the tolerance band of its outline aside.")
+            .source("Vulkan 1.4, Basic Line Segment Rasterization (strictLines rectangles, non-strict parallelograms)")
+            .cases(1500)
+            .needs(AREA_LINES)
+            .run(|r, cfg| property(r, cfg, lines::lines(), check_area)),
+        Rule::invariant(Family::Line, "line.strip.same-as-list")
+            .sentence("A line strip draws each of its segments exactly as a line list of those segments does.")
+            .source("Vulkan 1.4, Line Lists and Line Strips (topologies); OpenGL 4.6 §10.1.2")
+            .cases(500)
+            .needs(LINES)
+            .run(|r, cfg| property(r, cfg, lines::line_strip(), check_strip_same_as_list)),
+        Rule::invariant(Family::Line, "line.strip.shared-end-once")
+            .sentence("Two segments of a strip that share an end and run the same way along the same major axis draw no pixel twice.")
+            .source("Vulkan 1.4, Bresenham Line Segment Rasterization (\"must not produce duplicate fragments\"); OpenGL 4.6 §14.5.1")
+            .cases(1000)
+            .needs(DIAMOND_EXIT)
+            .run(|r, cfg| property(r, cfg, lines::line_strip(), check_shared_end_once)),
+        Rule::invariant(Family::Line, "line.clip.visible-part")
+            .sentence("A segment crossing the near plane covers what its visible part covers, the pixels near the cut aside.")
+            .source("Vulkan 1.4, Primitive Clipping (a clipped line segment ends at the clip plane); seed 004 (clipping)")
+            .cases(800)
+            .needs(LINES)
+            .run(|r, cfg| property(r, cfg, lines::near_crossing_line(), check_clip)),
+        Rule::invariant(Family::Line, "line.depth.linear")
+            .sentence("A line fragment's depth is the ends' window depths interpolated linearly in screen space at the sample's projection on the segment, within a pixel's worth and the claimed precision.")
+            .source("Vulkan 1.4, Basic Line Segment Rasterization (z_f = (1 − t) z_a + t z_b); seed 004 (lines with depth)")
+            .cases(800)
+            .needs(LINES)
+            .run(|r, cfg| property(r, cfg, lines::perspective_line(), check_depth_linear)),
+        Rule::invariant(Family::Line, "line.bary.perspective")
+            .sentence("A line fragment's barycentrics are (1 − t′, t′, 0) with t′ the perspective-correct position along the segment, within a pixel's worth and the claimed precision.")
+            .source("Vulkan 1.4, Basic Line Segment Rasterization (perspective-correct interpolation along the line)")
+            .cases(800)
+            .needs(LINES)
+            .needs(PERSPECTIVE_BARYCENTRICS)
+            .run(|r, cfg| property(r, cfg, lines::perspective_line(), check_bary_perspective)),
+        Rule::invariant(Family::Line, "line.reversal.ends-only")
+            .sentence("Drawing a segment from its other end changes only the pixels whose diamonds hold an end (diamond-exit) and nothing else (rectangles, parallelograms), the tolerance band aside.")
+            .source("Vulkan 1.4, Bresenham Line Segment Rasterization (only the last end's diamond is left out); OpenGL 4.6 §14.5.1")
+            .cases(1000)
+            .needs(LINES)
+            .run(|r, cfg| property(r, cfg, lines::lines(), check_reversal)),
+    ]
+}
+
+/// What a line rule needs declared: the profile, the line rule, the ends' grid and the tie rule.
+struct Declared {
+    profile: Profile,
+    rule: LineRule,
+    bits: u8,
+    fill: FillConvention,
+}
+
+fn declared(r: &dyn Rasterizer) -> Option<Declared> {
+    let (profile, primitives) = (r.profile(), r.primitive_profile());
+    Some(Declared {
+        rule: primitives.lines?,
+        bits: endpoint_bits(&profile, &primitives)?,
+        fill: profile.fill.unwrap_or_default(),
+        profile,
+    })
+}
+
+/// Segment `i`'s ends snapped to `bits`, when both project and stay within the guard band
+/// (beyond it, clipping in x and y may move them).
+fn snapped_ends(case: &PrimitiveScene, i: usize, d: &Declared) -> Option<[Point; 2]> {
+    let ends = case.segment(i)?;
+    let (w, h) = (case.scene.width, case.scene.height);
+    let reach = f64::from(d.profile.features.guard_band);
+    let inside = |p: [f32; 4]| {
+        let [x, y] = project(w, h, p.map(f64::from));
+        (-reach..=f64::from(w) + reach).contains(&x) && (-reach..=f64::from(h) + reach).contains(&y)
+    };
+    if !ends.iter().all(|&p| p[3] > 0.0 && inside(p)) {
+        return None;
+    }
+    Some([snap(ends[0], w, h, d.bits)?, snap(ends[1], w, h, d.bits)?])
+}
+
+/// How far sample `s` (pixels) lies from the outline of segment `a → b`'s shape under `rule`,
+/// in pixels (roughly; exact at the long sides): where snapping may move it over.
+#[must_use]
+pub fn outline_margin(rule: LineRule, a: [f64; 2], b: [f64; 2], s: [f64; 2]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let (rx, ry) = (s[0] - a[0], s[1] - a[1]);
+    let cross = dx * ry - dy * rx;
+    let length = dx.hypot(dy);
+    if length == 0.0 {
+        return f64::INFINITY;
+    }
+    let (across, along, span) = match rule {
+        LineRule::Parallelogram if dx.abs() >= dy.abs() => {
+            (cross.abs() / dx.abs(), rx * dx.signum(), dx.abs())
+        }
+        LineRule::Parallelogram => (cross.abs() / dy.abs(), ry * dy.signum(), dy.abs()),
+        _ => (cross.abs() / length, (rx * dx + ry * dy) / length, length),
+    };
+    (across - 0.5).max(-along).max(along - span).abs()
+}
+
+/// Expectations for one segment: its oracle samples, with those within `band` px of the
+/// shape's outline (rectangles, parallelograms) not judged.
+fn segment_expectations(
+    case: &PrimitiveScene,
+    g: &SampleGrid<'_>,
+    d: &Declared,
+    ends: [Point; 2],
+    band: f64,
+) -> Vec<Expect> {
+    let covered = g.line(d.rule, ends[0], ends[1], d.fill);
+    let mut expected = expect_covered(case, &covered);
+    if d.rule != LineRule::DiamondExit {
+        let one = f64::from(1u32 << d.bits);
+        let [a, b] = ends.map(|p| [p.0 as f64 / one, p.1 as f64 / one]);
+        let [sa, sb] = ends.map(|p| g.scale(p));
+        let (xs, ys) = g.pixels_near((sa.0.min(sb.0), sa.1.min(sb.1)), (sa.0.max(sb.0), sa.1.max(sb.1)));
+        for y in ys {
+            for x in xs.clone() {
+                for (k, &[u, v]) in g.positions.iter().enumerate() {
+                    let s = [
+                        f64::from(x) + f64::from(u) / 16.0,
+                        f64::from(y) + f64::from(v) / 16.0,
+                    ];
+                    if outline_margin(d.rule, a, b, s) < band {
+                        expected[super::samples::cell(case, x, y, k as u8)] = Expect::ZeroOrOne;
+                    }
+                }
+            }
+        }
+    }
+    expected
+}
+
+/// Each segment against the diamond-exit oracle, bit for bit.
+pub fn check_diamond_exact(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    check_against_oracle(r, case, 0.0)
+}
+
+/// Each segment against the rectangle or parallelogram oracle, the band aside.
+pub fn check_area(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    let band = r.profile().band_px();
+    check_against_oracle(r, case, band)
+}
+
+fn check_against_oracle(r: &mut dyn Rasterizer, case: &PrimitiveScene, band: f64) -> Result<(), Violation> {
+    let Some(d) = declared(r) else { return Ok(()) };
+    let frags = sample_fragments(r, case)?;
+    let positions = positions(r, case);
+    let g = grid(case, d.bits, &positions);
+    for i in 0..case.primitive_count() {
+        let Some(ends) = snapped_ends(case, i, &d) else {
+            continue;
+        };
+        let expected = segment_expectations(case, &g, &d, ends, band);
+        let what = format!("the {} oracle for segment {i}", d.rule.name());
+        compare_samples(case, &counts(case, &frags, Some(i as u32)), &expected, &what)?;
+    }
+    Ok(())
+}
+
+/// Vulkan's allowance: within one pixel of the diamond-exit rule's fragments, their number
+/// within one, one per column (row) of an x-major (y-major) segment.
+pub fn check_diamond_allowance(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    let Some(d) = declared(r) else { return Ok(()) };
+    let frags = sample_fragments(r, case)?;
+    let g = grid(case, d.bits, &[[8, 8]]);
+    for i in 0..case.primitive_count() {
+        let Some([a, b]) = snapped_ends(case, i, &d) else {
+            continue;
+        };
+        let want: Vec<(u32, u32)> = g
+            .line(d.rule, a, b, d.fill)
+            .into_iter()
+            .map(|(x, y, _)| (x, y))
+            .collect();
+        let mut got: Vec<(u32, u32)> = frags
+            .iter()
+            .filter(|f| f.fragment.primitive == i as u32 && f.sample == 0)
+            .map(|f| (f.fragment.x, f.fragment.y))
+            .collect();
+        got.sort_unstable();
+        let x_major = (b.0 - a.0).abs() >= (b.1 - a.1).abs();
+        if got.len().abs_diff(want.len()) > 1 {
+            return Err(Violation::new(format!(
+                "segment {i} draws {} where the diamond-exit rule draws {}: more than one apart",
+                plural(got.len(), "fragment"),
+                want.len()
+            )));
+        }
+        let mut found = Findings::new();
+        for &(x, y) in &got {
+            if !want
+                .iter()
+                .any(|&(u, v)| x.abs_diff(u) <= 1 && y.abs_diff(v) <= 1)
+            {
+                found.add((x, y), || {
+                    format!("({x}, {y}) is more than a pixel from every diamond-exit fragment")
+                });
+            }
+        }
+        for pair in got.windows(2) {
+            let same_line = if x_major { pair[0].0 == pair[1].0 } else { false };
+            if same_line {
+                found.add(pair[1], || {
+                    format!("two fragments in column {} of an x-major segment", pair[1].0)
+                });
+            }
+        }
+        if !x_major {
+            let mut by_row = got.clone();
+            by_row.sort_unstable_by_key(|&(x, y)| (y, x));
+            for pair in by_row.windows(2).filter(|p| p[0].1 == p[1].1) {
+                found.add(pair[1], || {
+                    format!("two fragments in row {} of a y-major segment", pair[1].1)
+                });
+            }
+        }
+        found.verdict(|n| {
+            format!(
+                "segment {i} breaks Vulkan's allowance for other line algorithms at {}",
+                plural(n, "pixel")
+            )
+        })?;
+    }
+    Ok(())
+}
+
+/// `(primitive, x, y, sample)` of every fragment, sorted.
+fn keys(frags: &[SampleFragment]) -> Vec<(u32, u32, u32, u8)> {
+    let mut k: Vec<_> = frags
+        .iter()
+        .map(|f| (f.fragment.primitive, f.fragment.y, f.fragment.x, f.sample))
+        .collect();
+    k.sort_unstable();
+    k
+}
+
+/// A strip's fragments are its segments' drawn as a list.
+pub fn check_strip_same_as_list(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    let strip = sample_fragments(r, case)?;
+    let list = sample_fragments(r, &case.as_list())?;
+    if keys(&strip) == keys(&list) {
+        return Ok(());
+    }
+    let want = counts(case, &list, None);
+    let expected: Vec<Expect> = want
+        .iter()
+        .map(|&n| match n {
+            0 => Expect::Zero,
+            1 => Expect::One,
+            _ => Expect::OneOrTwo,
+        })
+        .collect();
+    compare_samples(
+        case,
+        &counts(case, &strip, None),
+        &expected,
+        "its segments drawn as a line list",
+    )?;
+    Err(Violation::new(
+        "the strip covers the samples its segments cover as a list, but names other segments for them",
+    ))
+}
+
+/// Consecutive segments of one major axis and direction share no pixel.
+pub fn check_shared_end_once(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    let frags = sample_fragments(r, case)?;
+    let pixels = |i: usize| -> Vec<(u32, u32)> {
+        frags
+            .iter()
+            .filter(|f| f.fragment.primitive == i as u32)
+            .map(|f| (f.fragment.x, f.fragment.y))
+            .collect()
+    };
+    let way = |i: usize| {
+        let [a, b] = case
+            .segment(i)?
+            .map(|p| project(case.scene.width, case.scene.height, p.map(f64::from)));
+        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        Some(if dx.abs() >= dy.abs() {
+            (0, dx > 0.0)
+        } else {
+            (1, dy > 0.0)
+        })
+    };
+    for i in 1..case.primitive_count() {
+        if way(i - 1).is_none() || way(i - 1) != way(i) {
+            continue;
+        }
+        let (before, after) = (pixels(i - 1), pixels(i));
+        if let Some(&p) = after.iter().find(|p| before.contains(p)) {
+            return Err(Violation::at(
+                p,
+                format!(
+                    "segments {} and {i} share an end, run the same way, and both draw ({}, {})",
+                    i - 1,
+                    p.0,
+                    p.1
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The segment from its front end to where it crosses the near plane, against the oracle of
+/// that visible part; samples the cut's rounding could change are not judged.
+pub fn check_clip(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    let Some(d) = declared(r) else { return Ok(()) };
+    let Some([pa, pb]) = case.segment(0) else {
+        return Ok(());
+    };
+    let (w, h) = (case.scene.width, case.scene.height);
+    let range = case.scene.state.depth_range;
+    let near = |p: [f32; 4]| near_distance(range, f64::from(p[2]), f64::from(p[3]));
+    let (da, db) = (near(pa), near(pb));
+    if da < 0.0 || !within_guard_band(case, &d.profile) {
+        return Ok(());
+    }
+    let frags = sample_fragments(r, case)?;
+    let one = f64::from(1u32 << d.bits);
+    let [a, b] = [pa, pb].map(|p| project(w, h, p.map(f64::from)));
+    let s = if db < 0.0 { da / (da - db) } else { 1.0 };
+    let cut = [a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])];
+    let Some(start) = snap(pa, w, h, d.bits) else {
+        return Ok(());
+    };
+    let cut_grid = (cut[0] * one, cut[1] * one);
+    let positions = positions(r, case);
+    let g = grid(case, d.bits, &positions);
+    let band = d.profile.band_px();
+    // The cut rounded each way on each axis: where they disagree, rounding decides.
+    let variants: Vec<Vec<Expect>> = [(0.0, 0.0), (1.0, 1.0), (-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0)]
+        .iter()
+        .map(|&(ox, oy)| {
+            let end = (
+                (cut_grid.0 + ox).round() as i128,
+                (cut_grid.1 + oy).round() as i128,
+            );
+            segment_expectations(case, &g, &d, [start, end], band)
+        })
+        .collect();
+    let mut expected = variants[0].clone();
+    for (i, e) in expected.iter_mut().enumerate() {
+        if variants.iter().any(|v| v[i] != variants[0][i]) {
+            *e = Expect::ZeroOrOne;
+        }
+    }
+    // Within 1.5 px of the cut, the end's own rule (its diamond left out) may go either way.
+    if db < 0.0 {
+        for y in 0..h {
+            for x in 0..w {
+                let c = [f64::from(x) + 0.5, f64::from(y) + 0.5];
+                if (c[0] - cut[0]).abs().max((c[1] - cut[1]).abs()) < 1.5 {
+                    for k in 0..positions.len() {
+                        expected[super::samples::cell(case, x, y, k as u8)] = Expect::ZeroOrOne;
+                    }
+                }
+            }
+        }
+    }
+    compare_samples(
+        case,
+        &counts(case, &frags, Some(0)),
+        &expected,
+        "the visible part's oracle",
+    )
+}
+
+/// For each fragment of segment 0: where on the snapped segment its sample projects (`t` in
+/// `[0, 1]`), and half the span of `t` a pixel makes (so a rule evaluating at another point of
+/// the pixel is not failed).
+fn along(
+    case: &PrimitiveScene,
+    d: &Declared,
+    positions: &[[u8; 2]],
+    f: &SampleFragment,
+) -> Option<(f64, f64)> {
+    let [a, b] = snapped_ends(case, 0, d)?;
+    let one = f64::from(1u32 << d.bits);
+    let (ax, ay, dx, dy) = (
+        a.0 as f64 / one,
+        a.1 as f64 / one,
+        (b.0 - a.0) as f64 / one,
+        (b.1 - a.1) as f64 / one,
+    );
+    let length2 = dx * dx + dy * dy;
+    if length2 == 0.0 {
+        return None;
+    }
+    let [u, v] = positions.get(usize::from(f.sample)).copied().unwrap_or([8, 8]);
+    let s = [
+        f64::from(f.fragment.x) + f64::from(u) / 16.0,
+        f64::from(f.fragment.y) + f64::from(v) / 16.0,
+    ];
+    let t = (((s[0] - ax) * dx + (s[1] - ay) * dy) / length2).clamp(0.0, 1.0);
+    Some((t, (1.0 / length2.sqrt()).min(1.0)))
+}
+
+/// Depth is the ends' window depths linear in `t`, within a pixel's span of `t` and the precision.
+pub fn check_depth_linear(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    let Some(d) = declared(r) else { return Ok(()) };
+    let frags = sample_fragments(r, case)?;
+    let positions = positions(r, case);
+    let Some(ends) = case.segment(0) else {
+        return Ok(());
+    };
+    let [za, zb] =
+        ends.map(|p| window_depth(case.scene.state.depth_range, f64::from(p[2]) / f64::from(p[3])));
+    let p = precision(&d.profile);
+    let mut found = Findings::new();
+    for f in &frags {
+        let Some((t, span)) = along(case, &d, &positions, f) else {
+            continue;
+        };
+        let at = |t: f64| za + (zb - za) * t.clamp(0.0, 1.0);
+        let (lo, hi) = (at(t - span).min(at(t + span)), at(t - span).max(at(t + span)));
+        let z = f64::from(f.fragment.depth);
+        if z < lo - 2.0 * p || z > hi + 2.0 * p {
+            found.add((f.fragment.x, f.fragment.y), || {
+                format!(
+                    "({}, {}) sample {}: depth {z}, expected {lo}..={hi} (t = {t:.4} between depths {za} and {zb})",
+                    f.fragment.x, f.fragment.y, f.sample
+                )
+            });
+        }
+    }
+    found.verdict(|n| format!("depth is not linear along the line at {}", plural(n, "fragment")))
+}
+
+/// Barycentrics are `(1 − t′, t′, 0)`, `t′` perspective-correct, within a pixel's span and the precision.
+pub fn check_bary_perspective(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    let Some(d) = declared(r) else { return Ok(()) };
+    let frags = sample_fragments(r, case)?;
+    let positions = positions(r, case);
+    let Some([pa, pb]) = case.segment(0) else {
+        return Ok(());
+    };
+    let (wa, wb) = (f64::from(pa[3]), f64::from(pb[3]));
+    let correct = |t: f64| {
+        let t = t.clamp(0.0, 1.0);
+        (t / wb) / ((1.0 - t) / wa + t / wb)
+    };
+    let p = precision(&d.profile);
+    let mut found = Findings::new();
+    for f in &frags {
+        let Some((t, span)) = along(case, &d, &positions, f) else {
+            continue;
+        };
+        let [b0, b1, b2] = f.fragment.barycentric.map(f64::from);
+        let (lo, hi) = (correct(t - span), correct(t + span));
+        if b1 < lo - p || b1 > hi + p || b2.abs() > p || (b0 + b1 - 1.0).abs() > 3.0 * p {
+            found.add((f.fragment.x, f.fragment.y), || {
+                format!(
+                    "({}, {}) sample {}: barycentrics {:?}, expected (1 − t′, t′, 0) with t′ in {lo}..={hi}",
+                    f.fragment.x, f.fragment.y, f.sample, f.fragment.barycentric
+                )
+            });
+        }
+    }
+    found.verdict(|n| format!("barycentrics along the line are off at {}", plural(n, "fragment")))
+}
+
+/// The case with every segment drawn from its other end, and which segment each one is.
+fn reversed(case: &PrimitiveScene) -> (PrimitiveScene, Vec<usize>) {
+    let n = case.primitive_count();
+    let mut flipped = case.clone();
+    match case.topology {
+        Topology::LineStrip => {
+            flipped.indices.reverse();
+            (flipped, (0..n).rev().collect())
+        }
+        _ => {
+            flipped.indices.chunks_exact_mut(2).for_each(|p| p.swap(0, 1));
+            (flipped, (0..n).collect())
+        }
+    }
+}
+
+/// Reversing a segment changes only the pixels whose diamonds hold an end (diamond-exit), or
+/// nothing outside the band (the area rules).
+pub fn check_reversal(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    let Some(d) = declared(r) else { return Ok(()) };
+    let forward = sample_fragments(r, case)?;
+    let (back_case, map) = reversed(case);
+    let backward = sample_fragments(r, &back_case)?;
+    let positions = positions(r, case);
+    let band = d.profile.band_px();
+    let one = f64::from(1u32 << d.bits);
+    let mut found = Findings::new();
+    for (i, &j) in map.iter().enumerate() {
+        let Some(ends) = snapped_ends(case, i, &d) else {
+            continue;
+        };
+        let [a, b] = ends.map(|p| [p.0 as f64 / one, p.1 as f64 / one]);
+        let set = |frags: &[SampleFragment], p: usize| -> Vec<(u32, u32, u8)> {
+            let mut v: Vec<_> = frags
+                .iter()
+                .filter(|f| f.fragment.primitive == p as u32)
+                .map(|f| (f.fragment.x, f.fragment.y, f.sample))
+                .collect();
+            v.sort_unstable();
+            v
+        };
+        let (there, back) = (set(&forward, i), set(&backward, j));
+        for &(x, y, k) in there
+            .iter()
+            .filter(|c| !back.contains(c))
+            .chain(back.iter().filter(|c| !there.contains(c)))
+        {
+            let c = [f64::from(x) + 0.5, f64::from(y) + 0.5];
+            let allowed = match d.rule {
+                LineRule::DiamondExit => [a, b]
+                    .iter()
+                    .any(|e| (e[0] - c[0]).abs() + (e[1] - c[1]).abs() <= 0.5 + band),
+                rule => {
+                    let [u, v] = positions.get(usize::from(k)).copied().unwrap_or([8, 8]);
+                    let s = [
+                        f64::from(x) + f64::from(u) / 16.0,
+                        f64::from(y) + f64::from(v) / 16.0,
+                    ];
+                    outline_margin(rule, a, b, s) < band
+                }
+            };
+            if !allowed {
+                found.add((x, y), || format!("segment {i}: ({x}, {y}) sample {k} is drawn one way and not the other, away from its ends"));
+            }
+        }
+    }
+    found.verdict(|n| {
+        format!(
+            "reversing segments changes {} away from their ends",
+            plural(n, "sample")
+        )
+    })
+}

@@ -1,0 +1,447 @@
+//! Multisampling: coverage at each declared sample position, per-sample watertightness, samples
+//! where the pattern puts them, per-sample depth and depth test, lines and points per sample.
+
+use refrast::{FillConvention, Fragment, LineRule, Rasterizer, SampleResolved};
+
+use super::common::precision;
+use super::level::{Level, NO_TIE_RULE, SHARED_EDGE_ONLY};
+use super::samples::{
+    cell, cells, compare_samples, counts, endpoint_bits, expect_covered, grid, positions, sample_fragments,
+    within_guard_band,
+};
+use super::{DEPTH_TEST, EXACT_COVERAGE, Family, Rule, needs_primitives};
+use crate::oracle::facing::{Turn, snapped_variants};
+use crate::oracle::outline::segment_distance;
+use crate::oracle::raster::{Point, ndc_offset, project, window_depth};
+use crate::oracle::segment::SampleGrid;
+use crate::primitives::PrimitiveScene;
+use crate::runner::property_declared;
+use crate::scene::Scene;
+use proptest::strategy::Strategy;
+
+use crate::strategy::{self, primitive};
+use crate::violation::{Expect, Findings, Violation, plural};
+
+/// The implementation declares a sample count above one.
+const MULTISAMPLE: super::Need =
+    needs_primitives(|_, d| !d.multisample.is_empty(), "no sample count above one");
+/// Lines as rectangles or parallelograms, or points, at a sample count above one.
+const MULTISAMPLE_AREAS: super::Need = needs_primitives(
+    |p, d| {
+        !d.multisample.is_empty()
+            && endpoint_bits(p, d).is_some()
+            && (d.points || matches!(d.lines, Some(LineRule::Rectangle | LineRule::Parallelogram)))
+    },
+    "no points, rectangle or parallelogram lines at a sample count above one",
+);
+
+/// The counts above one a rasterizer declares.
+fn counts_of(d: &refrast::PrimitiveProfile) -> Vec<u8> {
+    d.sample_counts().into_iter().filter(|&n| n > 1).collect()
+}
+
+pub(super) fn rules() -> Vec<Rule> {
+    vec![
+        Rule::exact(Family::Msaa, "msaa.coverage.exact")
+            .sentence("At each declared sample count, a triangle covers exactly the samples the brute-force oracle finds at the declared sample positions under the fill convention.")
+            .source("Vulkan 1.4, Multisampling (standard sample locations) and Basic Polygon Rasterization; D3D11.3 §3.5 (multisample rules)")
+            .cases(2000)
+            .needs(MULTISAMPLE)
+            .needs(EXACT_COVERAGE)
+            .vulkan_and_opengl(Level::Partly {
+                part: |r, cfg| property_declared(r, cfg, |_, d| primitive::multisampled(triangles(), counts_of(d)), check_coverage_away_from_edges),
+                note: NO_TIE_RULE,
+            })
+            .run(|r, cfg| property_declared(r, cfg, |_, d| primitive::multisampled(triangles(), counts_of(d)), check_coverage_exact)),
+        Rule::invariant(Family::Msaa, "msaa.mesh.exactly-once")
+            .sentence("At each declared sample count, a mesh covering the viewport covers every sample exactly once.")
+            .source("Vulkan 1.4, Basic Polygon Rasterization (shared edges, per sample); dEQP-VK.rasterization.fill_rules.*multisample*")
+            .cases(800)
+            .needs(MULTISAMPLE)
+            .vulkan_and_opengl(Level::Partly {
+                part: |r, cfg| property_declared(r, cfg, |_, d| primitive::multisampled(strategy::mesh_scene(), counts_of(d)), check_mesh_between_two),
+                note: SHARED_EDGE_ONLY,
+            })
+            .run(|r, cfg| property_declared(r, cfg, |_, d| primitive::multisampled(strategy::mesh_scene(), counts_of(d)), check_mesh_once)),
+        Rule::invariant(Family::Msaa, "msaa.sample.where-declared")
+            .sentence("Sample k's coverage equals the one-sample coverage of the triangle moved by the pixel centre minus sample k's declared position.")
+            .source("Vulkan 1.4, Multisampling (sample locations); dEQP-VK.multisample.sample_locations")
+            .cases(1500)
+            .needs(MULTISAMPLE)
+            .run(|r, cfg| {
+                property_declared(
+                    r,
+                    cfg,
+                    |p, d| {
+                        let bits = p.snapping.grid_bits().unwrap_or(8);
+                        primitive::multisampled(triangles().prop_map(move |s| primitive::on_grid(s, bits)), counts_of(d))
+                    },
+                    check_positions,
+                )
+            }),
+        Rule::invariant(Family::Msaa, "msaa.depth.per-sample")
+            .sentence("Each sample's depth is the triangle's screen-linear depth at that sample's position, not at the pixel's centre, within the claimed precision.")
+            .source("Vulkan 1.4, Depth Bias and Basic Polygon Rasterization (depth evaluated at each sample); D3D11.3 §3.5.6")
+            .cases(1000)
+            .needs(MULTISAMPLE)
+            .run(|r, cfg| {
+                property_declared(r, cfg, |_, d| primitive::multisampled(strategy::perspective_inside_scene(), counts_of(d)), check_depth)
+            }),
+        Rule::invariant(Family::Msaa, "msaa.resolve.per-sample")
+            .sentence("resolve_primitives at several samples equals the draw's sample fragments replayed through its depth test one sample at a time.")
+            .source("Vulkan 1.4, Depth Test (per sample); seed 001 (4× supersampled depth buffer)")
+            .cases(500)
+            .needs(MULTISAMPLE)
+            .needs(DEPTH_TEST)
+            .run(|r, cfg| {
+                property_declared(r, cfg, |_, d| primitive::multisampled(strategy::overlapping_scene(), counts_of(d)), check_resolve)
+            }),
+        Rule::invariant(Family::Msaa, "msaa.lines-points.per-sample")
+            .sentence("At each declared sample count, points and rectangle or parallelogram lines cover the samples inside their shapes at the declared positions, the tolerance band aside.")
+            .source("Vulkan 1.4, Basic Point Rasterization and Basic Line Segment Rasterization (per-sample coverage)")
+            .cases(800)
+            .needs(MULTISAMPLE_AREAS)
+            .run(|r, cfg| {
+                property_declared(
+                    r,
+                    cfg,
+                    |_, d| {
+                        let scenes = if d.points { primitive::points().boxed() } else { primitive::lines().boxed() };
+                        primitive::multisampled_primitives(scenes, counts_of(d))
+                    },
+                    check_lines_points,
+                )
+            }),
+    ]
+}
+
+/// Triangles on the grid at `w = 1`, inside a 16-px corner or anywhere near the viewport.
+fn triangles() -> impl proptest::strategy::Strategy<Value = Scene> {
+    proptest::prop_oneof![strategy::inside_scene(), strategy::grid_scene()]
+}
+
+/// Whether the snapped triangle is culled under the scene's state.
+fn culled(case: &PrimitiveScene, t: &[Point; 3]) -> bool {
+    let turn = match crate::oracle::brute_force::orient2d(t[0], t[1], t[2]).signum() {
+        1 => Turn::Clockwise,
+        -1 => Turn::CounterClockwise,
+        _ => Turn::Degenerate,
+    };
+    turn.drawn(&case.scene.state) == Some(false)
+}
+
+/// Per-sample expectations from the oracle for triangle 0 snapped as `t`; with `band` > 0, the
+/// samples within it of an edge are not judged.
+fn triangle_expectations(
+    case: &PrimitiveScene,
+    g: &SampleGrid<'_>,
+    t: [Point; 3],
+    fill: refrast::FillConvention,
+    band: f64,
+) -> Vec<Expect> {
+    let covered = if culled(case, &t) {
+        Vec::new()
+    } else {
+        g.triangle(t, fill)
+    };
+    let mut expected = expect_covered(case, &covered);
+    if band > 0.0 {
+        let one = f64::from(1u32 << g.bits);
+        let v = t.map(|p| [p.0 as f64 / one, p.1 as f64 / one]);
+        let s = t.map(|p| g.scale(p));
+        let lo = (s[0].0.min(s[1].0).min(s[2].0), s[0].1.min(s[1].1).min(s[2].1));
+        let hi = (s[0].0.max(s[1].0).max(s[2].0), s[0].1.max(s[1].1).max(s[2].1));
+        let (xs, ys) = g.pixels_near(lo, hi);
+        for y in ys {
+            for x in xs.clone() {
+                for (k, &[u, w]) in g.positions.iter().enumerate() {
+                    let s = [
+                        f64::from(x) + f64::from(u) / 16.0,
+                        f64::from(y) + f64::from(w) / 16.0,
+                    ];
+                    if (0..3).any(|i| segment_distance(v[i], v[(i + 1) % 3], s) < band) {
+                        expected[cell(case, x, y, k as u8)] = Expect::ZeroOrOne;
+                    }
+                }
+            }
+        }
+    }
+    expected
+}
+
+fn compare_with_oracle(r: &mut dyn Rasterizer, case: &PrimitiveScene, band: f64) -> Result<(), Violation> {
+    let profile = r.profile();
+    let (Some(bits), Some(fill)) = (profile.snapping.grid_bits(), profile.fill) else {
+        return Ok(());
+    };
+    if !within_guard_band(case, &profile) {
+        return Ok(());
+    }
+    let frags = sample_fragments(r, case)?;
+    let Some(variants) = snapped_variants(
+        &case.scene.corners(0),
+        case.scene.width,
+        case.scene.height,
+        &profile,
+    ) else {
+        return Ok(());
+    };
+    let positions = positions(r, case);
+    let g = grid(case, bits.min(16), &positions);
+    let got = counts(case, &frags, None);
+    let first = triangle_expectations(case, &g, variants[0], fill, band);
+    let verdict = compare_samples(case, &got, &first, "the per-sample brute-force oracle");
+    // Another way the profile may snap the vertices that explains every sample is no failure.
+    if verdict.is_err()
+        && variants[1..].iter().any(|&t| {
+            compare_samples(case, &got, &triangle_expectations(case, &g, t, fill, band), "").is_ok()
+        })
+    {
+        return Ok(());
+    }
+    verdict
+}
+
+/// Coverage per sample equals the oracle's at the declared positions.
+pub fn check_coverage_exact(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    compare_with_oracle(r, case, 0.0)
+}
+
+/// [`check_coverage_exact`] for the samples farther than the band from every edge.
+pub fn check_coverage_away_from_edges(
+    r: &mut dyn Rasterizer,
+    case: &PrimitiveScene,
+) -> Result<(), Violation> {
+    let band = r.profile().band_px();
+    compare_with_oracle(r, case, band)
+}
+
+/// Every sample of the viewport once; with `vertices_aside`, samples on a mesh vertex unjudged.
+fn mesh_once(r: &mut dyn Rasterizer, case: &PrimitiveScene, vertices_aside: bool) -> Result<(), Violation> {
+    let frags = sample_fragments(r, case)?;
+    let positions = positions(r, case);
+    let (w, h) = (case.scene.width, case.scene.height);
+    let mut expected = vec![Expect::One; cells(case)];
+    // A sample on the viewport's left or top side lies on the mesh's outline: covered under a
+    // convention owning left (top) edges, not under one owning right (bottom) edges, either way
+    // without a tie rule.
+    let fill = r.profile().fill;
+    let owned = |left: bool, top: bool| match fill {
+        None => Expect::ZeroOrOne,
+        Some(f) => {
+            let owns_left = matches!(f, FillConvention::TopLeft | FillConvention::BottomLeft);
+            let owns_top = matches!(f, FillConvention::TopLeft | FillConvention::TopRight);
+            if (!left || owns_left) && (!top || owns_top) {
+                Expect::One
+            } else {
+                Expect::Zero
+            }
+        }
+    };
+    for y in 0..h {
+        for x in 0..w {
+            for (k, &[u, v]) in positions.iter().enumerate() {
+                let (left, top) = (x == 0 && u == 0, y == 0 && v == 0);
+                if left || top {
+                    expected[cell(case, x, y, k as u8)] = owned(left, top);
+                }
+            }
+        }
+    }
+    if vertices_aside {
+        for p in &case.scene.positions {
+            let [x, y] = project(w, h, p.map(f64::from));
+            for (k, &[u, v]) in positions.iter().enumerate() {
+                let (sx, sy) = (x - f64::from(u) / 16.0, y - f64::from(v) / 16.0);
+                if sx.fract() == 0.0
+                    && sy.fract() == 0.0
+                    && sx >= 0.0
+                    && sy >= 0.0
+                    && sx < f64::from(w)
+                    && sy < f64::from(h)
+                {
+                    expected[cell(case, sx as u32, sy as u32, k as u8)] = Expect::ZeroOrOne;
+                }
+            }
+        }
+    }
+    compare_samples(
+        case,
+        &counts(case, &frags, None),
+        &expected,
+        "one triangle per sample",
+    )
+}
+
+/// A viewport-covering mesh covers each sample once.
+pub fn check_mesh_once(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    mesh_once(r, case, false)
+}
+
+/// [`check_mesh_once`], samples on vertices (shared by three or more triangles) aside.
+pub fn check_mesh_between_two(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    mesh_once(r, case, true)
+}
+
+/// Sample k of each pixel is covered exactly when the centre is, the triangle moved by
+/// `centre − position(k)`; samples within the band of a moved edge aside unless coverage is exact.
+pub fn check_positions(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    let profile = r.profile();
+    let exact = EXACT_COVERAGE.check(&profile, &r.primitive_profile()).is_ok();
+    let band = if exact { 0.0 } else { profile.band_px() };
+    if !within_guard_band(case, &profile) {
+        return Ok(());
+    }
+    let frags = sample_fragments(r, case)?;
+    let positions = positions(r, case);
+    let (w, h) = (case.scene.width, case.scene.height);
+    let got = counts(case, &frags, None);
+    let mut expected = vec![Expect::Zero; cells(case)];
+    for (k, &[u, v]) in positions.iter().enumerate() {
+        let (dx, dy) = ((8.0 - f64::from(u)) / 16.0, (8.0 - f64::from(v)) / 16.0);
+        let [ox, oy] = ndc_offset(w, h, dx, dy);
+        let mut moved = case.scene.clone();
+        for p in &mut moved.positions {
+            p[0] += (ox * f64::from(p[3])) as f32;
+            p[1] += (oy * f64::from(p[3])) as f32;
+        }
+        // Moved half a pixel, a triangle on the viewport's edge may need x/y clipping.
+        if !within_guard_band(&PrimitiveScene::triangles(moved.clone(), 1), &profile) {
+            return Ok(());
+        }
+        let centre: Vec<Fragment> = r
+            .rasterize(&moved.draw())
+            .map_err(|e| Violation::of_draw_error("rasterize (one sample, moved)", &e))?;
+        for f in centre.iter().filter(|f| f.x < w && f.y < h) {
+            let i = cell(case, f.x, f.y, k as u8);
+            expected[i] = if expected[i] == Expect::Zero {
+                Expect::One
+            } else {
+                Expect::OneOrTwo
+            };
+        }
+        if band > 0.0 {
+            for t in 0..moved.triangles.len() {
+                let c = moved.positions_of(t).map(|p| project(w, h, p));
+                for y in 0..h {
+                    for x in 0..w {
+                        let s = [f64::from(x) + 0.5, f64::from(y) + 0.5];
+                        if (0..3).any(|i| segment_distance(c[i], c[(i + 1) % 3], s) < band) {
+                            expected[cell(case, x, y, k as u8)] = Expect::ZeroOrOne;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    compare_samples(
+        case,
+        &got,
+        &expected,
+        "the one-sample coverage of the triangle moved to each sample",
+    )
+}
+
+/// Each sample's depth is the snapped triangle's depth plane at the sample's position.
+pub fn check_depth(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    let profile = r.profile();
+    let Some(bits) = profile.snapping.grid_bits() else {
+        return Ok(());
+    };
+    let frags = sample_fragments(r, case)?;
+    let positions = positions(r, case);
+    let (w, h) = (case.scene.width, case.scene.height);
+    let corners = case.scene.corners(0);
+    let Some(variants) = snapped_variants(&corners, w, h, &profile) else {
+        return Ok(());
+    };
+    let one = f64::from(1u32 << bits.min(16));
+    let v = variants[0].map(|p| [p.0 as f64 / one, p.1 as f64 / one]);
+    let z = corners.map(|p| window_depth(case.scene.state.depth_range, f64::from(p[2]) / f64::from(p[3])));
+    let area = (v[1][0] - v[0][0]) * (v[2][1] - v[0][1]) - (v[1][1] - v[0][1]) * (v[2][0] - v[0][0]);
+    if area == 0.0 {
+        return Ok(());
+    }
+    let plane = |s: [f64; 2]| {
+        let e = |a: [f64; 2], b: [f64; 2]| (b[0] - a[0]) * (s[1] - a[1]) - (b[1] - a[1]) * (s[0] - a[0]);
+        (e(v[1], v[2]) * z[0] + e(v[2], v[0]) * z[1] + e(v[0], v[1]) * z[2]) / area
+    };
+    // How far a snapping variant may move the plane: its slope times the band, both ways.
+    let slope = (plane([1.0, 0.0]) - plane([0.0, 0.0])).abs() + (plane([0.0, 1.0]) - plane([0.0, 0.0])).abs();
+    let tolerance = 2.0 * precision(&profile) + slope * 2.0 * profile.band_px();
+    let mut found = Findings::new();
+    for f in &frags {
+        let [u, vv] = positions.get(usize::from(f.sample)).copied().unwrap_or([8, 8]);
+        let s = [
+            f64::from(f.fragment.x) + f64::from(u) / 16.0,
+            f64::from(f.fragment.y) + f64::from(vv) / 16.0,
+        ];
+        let want = plane(s).clamp(0.0, 1.0);
+        let got = f64::from(f.fragment.depth);
+        if (got - want).abs() > tolerance {
+            found.add((f.fragment.x, f.fragment.y), || {
+                let centre = plane([f64::from(f.fragment.x) + 0.5, f64::from(f.fragment.y) + 0.5]);
+                format!(
+                    "({}, {}) sample {}: depth {got}, expected {want} at the sample (the pixel centre's is {centre})",
+                    f.fragment.x, f.fragment.y, f.sample
+                )
+            });
+        }
+    }
+    found.verdict(|n| {
+        format!(
+            "{} carry another depth than at their sample's position",
+            plural(n, "sample")
+        )
+    })
+}
+
+/// `resolve_primitives` equals the sample fragments replayed through the depth test.
+pub fn check_resolve(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    let draw = case.draw();
+    let got = r
+        .resolve_primitives(&draw)
+        .map_err(|e| Violation::of_draw_error("resolve_primitives", &e))?;
+    let want = SampleResolved::from_fragments(&draw, sample_fragments(r, case)?);
+    if got.depth.len() != want.depth.len() || got.primitive.len() != want.primitive.len() {
+        return Err(Violation::new(format!(
+            "resolve_primitives gave {} depths and {} primitives for {} samples",
+            got.depth.len(),
+            got.primitive.len(),
+            want.depth.len()
+        )));
+    }
+    let n = usize::from(case.samples);
+    let mut found = Findings::new();
+    for i in 0..want.depth.len() {
+        if got.depth[i].to_bits() != want.depth[i].to_bits() || got.primitive[i] != want.primitive[i] {
+            let pixel = i / n;
+            let (x, y) = (pixel as u32 % case.scene.width, pixel as u32 / case.scene.width);
+            found.add((x, y), || {
+                format!(
+                    "({x}, {y}) sample {}: resolved ({}, {:?}), its fragments replayed ({}, {:?})",
+                    i % n,
+                    got.depth[i],
+                    got.primitive[i],
+                    want.depth[i],
+                    want.primitive[i]
+                )
+            });
+        }
+    }
+    found.verdict(|n| {
+        format!(
+            "the resolved samples differ from the fragments replayed at {}",
+            plural(n, "sample")
+        )
+    })
+}
+
+/// Points and area lines at several samples against their per-sample oracles.
+pub fn check_lines_points(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    match case.topology {
+        refrast::Topology::PointList => super::point::check_pixel_holding(r, case),
+        _ if matches!(r.primitive_profile().lines, Some(LineRule::DiamondExit) | None) => Ok(()),
+        _ => super::line::check_area(r, case),
+    }
+}

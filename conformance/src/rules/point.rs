@@ -1,0 +1,183 @@
+//! Points of size one: the pixel holding the point, exact ties on pixel edges, and depth.
+
+use refrast::{Profile, Rasterizer, SampleFragment};
+
+use super::common::precision;
+use super::level::Level;
+use super::samples::{
+    cell, compare_samples, counts, endpoint_bits, expect_covered, grid, positions, sample_fragments,
+};
+use super::{Family, Rule, needs_primitives};
+use crate::oracle::facing::snap_candidates;
+use crate::oracle::raster::{Point, project, window_depth};
+use crate::primitives::PrimitiveScene;
+use crate::runner::property;
+use crate::strategy::primitive as points;
+use crate::violation::{Expect, Findings, Violation, plural};
+
+/// The implementation draws points.
+const POINTS: super::Need = needs_primitives(|_, d| d.points, "no points");
+/// Points on a snapping grid with a tie rule: their coverage has one exact answer.
+const EXACT_POINTS: super::Need = needs_primitives(
+    |p, d| d.points && endpoint_bits(p, d).is_some() && p.fill.is_some(),
+    "no points on a snapping grid with a tie rule",
+);
+
+/// Which pixel owns a point on a pixel's edge is a refrast convention.
+const POINT_TIES: &str = "Vulkan (Basic Point Rasterization) covers the samples inside the point's square but, like OpenGL 4.6 §14.4, names no tie rule for a sample on its edge (a point on a pixel edge puts two centres on its boundary), and D3D11.3 draws a point as a quad under the triangle rules: only the pixel holding the point, away from pixel edges, is required";
+
+pub(super) fn rules() -> Vec<Rule> {
+    vec![
+        Rule::exact(Family::Point, "point.square.exact")
+            .sentence("A point inside the view volume covers the samples its one-pixel square covers under the fill convention; a point outside it covers none.")
+            .source("Vulkan 1.4, Basic Point Rasterization and Primitive Clipping (a point outside the clip volume is discarded); D3D11.3 point rules")
+            .cases(1500)
+            .needs(EXACT_POINTS)
+            .every_spec(Level::Partly {
+                part: |r, cfg| property(r, cfg, points::points(), check_pixel_holding),
+                note: POINT_TIES,
+            })
+            .run(|r, cfg| property(r, cfg, points::points(), check_square_exact)),
+        Rule::invariant(Family::Point, "point.pixel.holding")
+            .sentence("A point covers the pixel that holds it and no other, points within the tolerance band of a pixel edge aside.")
+            .source("Vulkan 1.4, Basic Point Rasterization; seed 002 (a point is the pixel it falls in)")
+            .cases(1500)
+            .needs(POINTS)
+            .run(|r, cfg| property(r, cfg, points::points(), check_pixel_holding)),
+        Rule::invariant(Family::Point, "point.depth.vertex")
+            .sentence("A point's fragments carry its vertex's window depth and barycentrics (1, 0, 0), within the claimed precision.")
+            .source("Vulkan 1.4, Basic Point Rasterization (\"all fragments produced in rasterizing a point are assigned the same associated data\")")
+            .cases(800)
+            .needs(POINTS)
+            .run(|r, cfg| property(r, cfg, points::points(), check_depth)),
+    ]
+}
+
+/// Point `i`'s clip-space position.
+fn point(case: &PrimitiveScene, i: usize) -> [f32; 4] {
+    case.scene.positions[case.indices[i] as usize]
+}
+
+/// Whether point `p` (grid units of `bits`) lies inside the view volume in x and y.
+fn in_view(case: &PrimitiveScene, p: Point, bits: u8) -> bool {
+    let one = 1i128 << bits;
+    (0..=i128::from(case.scene.width) * one).contains(&p.0)
+        && (0..=i128::from(case.scene.height) * one).contains(&p.1)
+}
+
+/// Each point's samples equal the square oracle's on its snapped position.
+pub fn check_square_exact(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    let (profile, primitives) = (r.profile(), r.primitive_profile());
+    let (Some(bits), Some(fill)) = (endpoint_bits(&profile, &primitives), profile.fill) else {
+        return Ok(());
+    };
+    let frags = sample_fragments(r, case)?;
+    let positions = positions(r, case);
+    let g = grid(case, bits, &positions);
+    // The grid points the profile may snap each point to (one, unless it may round either way).
+    let on_ends = Profile {
+        snapping: refrast::Snapping::Grid(bits),
+        ..profile.clone()
+    };
+    for i in 0..case.indices.len() {
+        let Some(candidates) = snap_candidates(point(case, i), case.scene.width, case.scene.height, &on_ends)
+        else {
+            continue;
+        };
+        let got = counts(case, &frags, Some(i as u32));
+        let what = format!("the point square oracle for point {i}");
+        let judged = |p: Point| {
+            let covered = if in_view(case, p, bits) {
+                g.point(p, fill)
+            } else {
+                Vec::new()
+            };
+            compare_samples(case, &got, &expect_covered(case, &covered), &what)
+        };
+        let first = judged(candidates[0]);
+        if first.is_err() && candidates[1..].iter().any(|&p| judged(p).is_ok()) {
+            continue;
+        }
+        first?;
+    }
+    Ok(())
+}
+
+/// Each point covers the samples of the pixel holding it, the band around pixel edges aside;
+/// a point beyond the viewport (by more than the band) covers nothing.
+pub fn check_pixel_holding(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    let band = r.profile().band_px();
+    let frags = sample_fragments(r, case)?;
+    let positions = positions(r, case);
+    let (w, h) = (case.scene.width, case.scene.height);
+    for i in 0..case.indices.len() {
+        let p = point(case, i);
+        if p[3] <= 0.0 {
+            continue;
+        }
+        let [px, py] = project(w, h, p.map(f64::from));
+        let beyond = px < -band || py < -band || px > f64::from(w) + band || py > f64::from(h) + band;
+        let near_border = [px, py, f64::from(w) - px, f64::from(h) - py]
+            .iter()
+            .any(|d| d.abs() <= band);
+        let mut expected = vec![Expect::Zero; super::samples::cells(case)];
+        if !beyond {
+            for y in 0..h {
+                for x in 0..w {
+                    for (k, &[u, v]) in positions.iter().enumerate() {
+                        let s = [
+                            f64::from(x) + f64::from(u) / 16.0,
+                            f64::from(y) + f64::from(v) / 16.0,
+                        ];
+                        let d = (s[0] - px).abs().max((s[1] - py).abs());
+                        expected[cell(case, x, y, k as u8)] = if near_border && d < 0.5 + band {
+                            Expect::ZeroOrOne
+                        } else if d < 0.5 - band {
+                            Expect::One
+                        } else if d > 0.5 + band {
+                            Expect::Zero
+                        } else {
+                            Expect::ZeroOrOne
+                        };
+                    }
+                }
+            }
+        }
+        let what = format!("the pixel holding point {i} at ({px}, {py})");
+        compare_samples(case, &counts(case, &frags, Some(i as u32)), &expected, &what)?;
+    }
+    Ok(())
+}
+
+/// Every fragment of a point has its vertex's window depth and barycentrics `(1, 0, 0)`.
+pub fn check_depth(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    let profile = r.profile();
+    let frags = sample_fragments(r, case)?;
+    let p = precision(&profile);
+    let mut found = Findings::new();
+    for SampleFragment { fragment: f, sample } in &frags {
+        let v = point(case, f.primitive as usize);
+        let want =
+            window_depth(case.scene.state.depth_range, f64::from(v[2]) / f64::from(v[3])).clamp(0.0, 1.0);
+        let bary_off = profile.features.perspective_barycentrics
+            && (f64::from(f.barycentric[0]) - 1.0)
+                .abs()
+                .max(f64::from(f.barycentric[1]).abs())
+                .max(f64::from(f.barycentric[2]).abs())
+                > p;
+        if (f64::from(f.depth) - want).abs() > 2.0 * p || bary_off {
+            found.add((f.x, f.y), || {
+                format!(
+                    "({}, {}) sample {sample} of point {}: depth {}, barycentrics {:?}; expected depth {want}, (1, 0, 0)",
+                    f.x, f.y, f.primitive, f.depth, f.barycentric
+                )
+            });
+        }
+    }
+    found.verdict(|n| {
+        format!(
+            "{} of points carry other values than their vertex's",
+            plural(n, "fragment")
+        )
+    })
+}

@@ -1,0 +1,175 @@
+//! Helpers of the line, point and multisampling rules: drawing a [`PrimitiveScene`], counting
+//! its fragments per sample, and picturing samples.
+//!
+//! A picture of `n` samples per pixel lays each pixel's samples out as a small grid (2 × 1,
+//! 2 × 2, 4 × 2, 4 × 4), sample `k` at column `k mod cols`, row `k div cols`, so one cell of the
+//! picture is one sample.
+
+use refrast::{PrimitiveProfile, Profile, Rasterizer, SampleFragment};
+
+use crate::oracle::segment::SampleGrid;
+
+use crate::primitives::PrimitiveScene;
+use crate::violation::{Expect, Violation, compare_coverage};
+
+/// The columns and rows a pixel's samples take in a picture.
+#[must_use]
+pub fn layout(samples: u8) -> (u32, u32) {
+    match samples {
+        0 | 1 => (1, 1),
+        2 => (2, 1),
+        4 => (2, 2),
+        8 => (4, 2),
+        _ => (4, 4),
+    }
+}
+
+/// The index of sample `k` of pixel `(x, y)` in a picture of `case`'s samples.
+#[must_use]
+pub fn cell(case: &PrimitiveScene, x: u32, y: u32, k: u8) -> usize {
+    let (cols, rows) = layout(case.samples);
+    let k = u32::from(k);
+    let (cx, cy) = (x * cols + k % cols, y * rows + k / cols);
+    cy as usize * (case.scene.width * cols) as usize + cx as usize
+}
+
+/// How many cells a picture of `case`'s samples has.
+#[must_use]
+pub fn cells(case: &PrimitiveScene) -> usize {
+    let (cols, rows) = layout(case.samples);
+    (case.scene.width * cols * case.scene.height * rows) as usize
+}
+
+/// The grid bits a profile snaps line and point ends to, if it snaps them to a grid.
+#[must_use]
+pub fn endpoint_bits(profile: &Profile, primitives: &PrimitiveProfile) -> Option<u8> {
+    primitives
+        .endpoint_snapping
+        .unwrap_or(profile.snapping)
+        .grid_bits()
+        .map(|b| b.min(16))
+}
+
+/// The rasterizer's fragments for `case`; an error, a fragment outside the viewport, a sample
+/// index past the draw's count or a primitive the draw does not have becomes a violation.
+pub fn sample_fragments(
+    r: &mut dyn Rasterizer,
+    case: &PrimitiveScene,
+) -> Result<Vec<SampleFragment>, Violation> {
+    let draw = case.draw();
+    let frags = r
+        .rasterize_primitives(&draw)
+        .map_err(|e| Violation::of_draw_error(&format!("rasterize_primitives ({})", draw.describe()), &e))?;
+    let (w, h, n) = (case.scene.width, case.scene.height, case.primitive_count());
+    for f in &frags {
+        let SampleFragment { fragment: g, sample } = *f;
+        let wrong = if g.x >= w || g.y >= h {
+            Some(format!("outside the {w}×{h} viewport"))
+        } else if sample >= case.samples {
+            Some(format!(
+                "with sample index {sample} of a draw at {} samples",
+                case.samples
+            ))
+        } else if g.primitive as usize >= n {
+            Some(format!("naming primitive {} of a draw of {n}", g.primitive))
+        } else {
+            None
+        };
+        if let Some(wrong) = wrong {
+            let at = (g.x.min(w.saturating_sub(1)), g.y.min(h.saturating_sub(1)));
+            return Err(Violation::at(
+                at,
+                format!("a fragment at ({}, {}) {wrong}", g.x, g.y),
+            ));
+        }
+    }
+    Ok(frags)
+}
+
+/// Fragments per picture cell (sample), of primitive `primitive` or of all when `None`.
+#[must_use]
+pub fn counts(case: &PrimitiveScene, frags: &[SampleFragment], primitive: Option<u32>) -> Vec<u32> {
+    let mut counts = vec![0; cells(case)];
+    for f in frags {
+        if primitive.is_none_or(|p| p == f.fragment.primitive) {
+            counts[cell(case, f.fragment.x, f.fragment.y, f.sample)] += 1;
+        }
+    }
+    counts
+}
+
+/// Expectations per picture cell: `One` for each of `covered` (`(x, y, sample)`), else `Zero`.
+#[must_use]
+pub fn expect_covered(case: &PrimitiveScene, covered: &[(u32, u32, u8)]) -> Vec<Expect> {
+    let mut expected = vec![Expect::Zero; cells(case)];
+    for &(x, y, k) in covered {
+        expected[cell(case, x, y, k)] = Expect::One;
+    }
+    expected
+}
+
+/// Compares per-sample counts with expectations, the picture one cell per sample with the
+/// case's outlines drawn over it.
+pub fn compare_samples(
+    case: &PrimitiveScene,
+    counts: &[u32],
+    expected: &[Expect],
+    what: &str,
+) -> Result<(), Violation> {
+    let (cols, rows) = layout(case.samples);
+    let outlines = case
+        .outlines()
+        .into_iter()
+        .map(|o| {
+            o.into_iter()
+                .map(|[x, y]| [x * f64::from(cols), y * f64::from(rows)])
+                .collect()
+        })
+        .collect();
+    let samples = if case.samples > 1 {
+        format!(" ({} samples per pixel, one cell each)", case.samples)
+    } else {
+        String::new()
+    };
+    compare_coverage(
+        counts,
+        expected,
+        case.scene.width * cols,
+        case.scene.height * rows,
+        outlines,
+        &format!("{what}{samples}"),
+    )
+}
+
+/// Whether every vertex of `case` projects within the declared guard band: x and y clipping
+/// then moves no edge or end, so the oracles, which know nothing of clipping, apply.
+#[must_use]
+pub fn within_guard_band(case: &PrimitiveScene, profile: &Profile) -> bool {
+    let (w, h) = (case.scene.width, case.scene.height);
+    let reach = f64::from(profile.features.guard_band);
+    case.scene.positions.iter().all(|p| {
+        let [x, y] = crate::oracle::raster::project(w, h, p.map(f64::from));
+        p[3] > 0.0
+            && (-reach..=f64::from(w) + reach).contains(&x)
+            && (-reach..=f64::from(h) + reach).contains(&y)
+    })
+}
+
+/// The declared positions of the case's sample count, or the pixel centre.
+#[must_use]
+pub fn positions(r: &dyn Rasterizer, case: &PrimitiveScene) -> Vec<[u8; 2]> {
+    r.primitive_profile()
+        .pattern(case.samples)
+        .map_or(vec![[8, 8]], |p| p.positions().to_vec())
+}
+
+/// The oracle's sample grid over the case's viewport at `bits`, samples at `positions`.
+#[must_use]
+pub fn grid<'a>(case: &PrimitiveScene, bits: u8, positions: &'a [[u8; 2]]) -> SampleGrid<'a> {
+    SampleGrid {
+        width: case.scene.width,
+        height: case.scene.height,
+        bits,
+        positions,
+    }
+}

@@ -1,0 +1,196 @@
+//! Strategies for lines, points and multisampled triangles, on the 8-bit grid of
+//! power-of-two viewports, so that every implementation snaps their ends to the same points.
+
+use proptest::prelude::*;
+use refrast::Topology;
+
+use super::{GRID, side};
+use crate::primitives::PrimitiveScene;
+use crate::scene::{Scene, clip_of};
+
+/// A line end or point coordinate: on sample centres, pixel corners and half-way (the ties
+/// of every line rule), or anywhere, up to two pixels beyond a 16 to 64-px viewport.
+fn coordinate() -> impl Strategy<Value = i64> {
+    prop_oneof![
+        3 => -2 * GRID..66 * GRID,
+        1 => (-2i64..66).prop_map(|p| p * GRID + GRID / 2),
+        1 => (-2i64..66).prop_map(|p| p * GRID),
+        1 => (-4i64..132).prop_map(|p| p * GRID / 2 + GRID / 4),
+    ]
+}
+
+/// A segment: two ends, the second often along an axis, on a diagonal, or within a pixel.
+fn segment() -> impl Strategy<Value = [(i64, i64); 2]> {
+    (
+        (coordinate(), coordinate()),
+        (coordinate(), coordinate()),
+        0..8u8,
+        -2 * GRID..2 * GRID,
+    )
+        .prop_map(|(a, mut b, shape, short)| {
+            match shape {
+                0 => b.1 = a.1,
+                1 => b.0 = a.0,
+                2 => b.1 = a.1 + (b.0 - a.0),
+                3 => b.1 = a.1 - (b.0 - a.0),
+                4 => b = (a.0 + short, a.1 + short / 3),
+                _ => {}
+            }
+            [a, b]
+        })
+}
+
+/// Grid points to clip-space positions at `w = 1`, depths in `[0, 1]`.
+fn positions(w: u32, h: u32, points: &[(i64, i64)], zs: &[f32]) -> Vec<[f32; 4]> {
+    points
+        .iter()
+        .enumerate()
+        .map(|(i, &(x, y))| clip_of(w, h, 8, x, y, zs[i % zs.len()], 1.0))
+        .collect()
+}
+
+/// One to four segments as a line list, exactly on the grid, no clipping but at the guard band.
+pub fn line_list() -> impl Strategy<Value = PrimitiveScene> {
+    (
+        prop::collection::vec(segment(), 1..5),
+        prop::collection::vec(0.0f32..1.0, 1..9),
+        side(),
+        side(),
+    )
+        .prop_map(|(segments, zs, w, h)| {
+            let points: Vec<(i64, i64)> = segments.iter().flatten().copied().collect();
+            let indices = (0..points.len() as u32).collect();
+            PrimitiveScene::of(w, h, positions(w, h, &points, &zs), Topology::LineList, indices)
+        })
+}
+
+/// A strip of two to six vertices, exactly on the grid; half of them monotone in x (every
+/// segment x-major, left to right), where Vulkan forbids duplicate fragments at the joints.
+pub fn line_strip() -> impl Strategy<Value = PrimitiveScene> {
+    let free = prop::collection::vec((coordinate(), coordinate()), 2..7);
+    let monotone = (
+        (coordinate(), coordinate()),
+        prop::collection::vec((1..8 * GRID, -1..1i64, 0..GRID), 1..6),
+    )
+        .prop_map(|(start, steps)| {
+            let mut points = vec![start];
+            for (dx, sign, dy) in steps {
+                let last = points[points.len() - 1];
+                // |dy| ≤ dx keeps each segment x-major.
+                points.push((last.0 + dx, last.1 + (sign | 1) * dy.min(dx)));
+            }
+            points
+        });
+    (
+        prop_oneof![free, monotone],
+        prop::collection::vec(0.0f32..1.0, 1..9),
+        side(),
+        side(),
+    )
+        .prop_map(|(points, zs, w, h)| {
+            let indices = (0..points.len() as u32).collect();
+            PrimitiveScene::of(w, h, positions(w, h, &points, &zs), Topology::LineStrip, indices)
+        })
+}
+
+/// Either kind of line scene.
+pub fn lines() -> impl Strategy<Value = PrimitiveScene> {
+    prop_oneof![line_list(), line_strip()]
+}
+
+/// One segment whose ends have their own `w` in `[0.2, 4]` and depth in `[0, 1]`: perspective,
+/// inside the view volume, the ends no longer exactly on the grid.
+pub fn perspective_line() -> impl Strategy<Value = PrimitiveScene> {
+    (
+        segment(),
+        prop::array::uniform2((0.2f32..4.0, 0.0f32..1.0)),
+        side(),
+        side(),
+    )
+        .prop_map(|(s, wz, w, h)| {
+            let positions = (0..2)
+                .map(|i| clip_of(w, h, 8, s[i].0, s[i].1, wz[i].1, wz[i].0))
+                .collect();
+            PrimitiveScene::of(w, h, positions, Topology::LineList, vec![0, 1])
+        })
+}
+
+/// One segment crossing the near plane: the first end in front (`z` in `[0.05, 1]`), the
+/// second behind (`z` in `[−1, −0.05]`), both at `w = 1`, so the cut lies on the drawn line.
+pub fn near_crossing_line() -> impl Strategy<Value = PrimitiveScene> {
+    (segment(), 0.05f32..1.0, -1.0f32..-0.05, side(), side()).prop_map(|(s, front, behind, w, h)| {
+        let positions = vec![
+            clip_of(w, h, 8, s[0].0, s[0].1, front, 1.0),
+            clip_of(w, h, 8, s[1].0, s[1].1, behind, 1.0),
+        ];
+        PrimitiveScene::of(w, h, positions, Topology::LineList, vec![0, 1])
+    })
+}
+
+/// One to six points on the grid: on centres, corners, edges or anywhere, some beyond the
+/// viewport's sides; `w` of 1 or anywhere in `[0.25, 4]`.
+pub fn points() -> impl Strategy<Value = PrimitiveScene> {
+    (
+        prop::collection::vec(
+            (
+                (coordinate(), coordinate()),
+                0.0f32..1.0,
+                prop_oneof![Just(1.0f32), 0.25f32..4.0],
+            ),
+            1..7,
+        ),
+        side(),
+        side(),
+    )
+        .prop_map(|(points, w, h)| {
+            let positions = points
+                .iter()
+                .map(|&((x, y), z, pw)| clip_of(w, h, 8, x, y, z, pw))
+                .collect();
+            let indices = (0..points.len() as u32).collect();
+            PrimitiveScene::of(w, h, positions, Topology::PointList, indices)
+        })
+}
+
+/// `scenes` drawn at one of `counts` samples per pixel (the counts above one a profile declares).
+pub fn multisampled(
+    scenes: impl Strategy<Value = Scene>,
+    counts: Vec<u8>,
+) -> impl Strategy<Value = PrimitiveScene> {
+    let counts = if counts.is_empty() { vec![1] } else { counts };
+    (scenes, prop::sample::select(counts)).prop_map(|(scene, n)| PrimitiveScene::triangles(scene, n))
+}
+
+/// `scenes` of lines or points drawn at one of `counts` samples per pixel.
+pub fn multisampled_primitives(
+    scenes: impl Strategy<Value = PrimitiveScene>,
+    counts: Vec<u8>,
+) -> impl Strategy<Value = PrimitiveScene> {
+    let counts = if counts.is_empty() { vec![1] } else { counts };
+    (scenes, prop::sample::select(counts)).prop_map(|(scene, samples)| PrimitiveScene { samples, ..scene })
+}
+
+/// `scene` with every vertex (at `w = 1`) moved to the nearest point of a grid of `bits`
+/// subpixel bits, so that moving it by whole grid steps moves its snapped vertices alike
+/// (off the grid, rounding half to even is no translation: 0.5 rounds to 0 and 1.5 to 2).
+#[must_use]
+pub fn on_grid(mut scene: Scene, bits: u8) -> Scene {
+    let (w, h) = (scene.width, scene.height);
+    for p in &mut scene.positions {
+        if p[3] != 1.0 {
+            continue;
+        }
+        let [x, y] = crate::oracle::raster::project(w, h, p.map(f64::from));
+        let one = f64::from(1u32 << bits.min(16));
+        *p = clip_of(
+            w,
+            h,
+            bits,
+            (x * one).round() as i64,
+            (y * one).round() as i64,
+            p[2],
+            1.0,
+        );
+    }
+    scene
+}

@@ -181,7 +181,7 @@ struct Expected {
     not_applicable: &'static str,
 }
 
-const EXPECTED: [Expected; 3] = [
+const EXPECTED: [Expected; 4] = [
     Expected {
         name: "lab000",
         first_failure: "fill.mesh.exactly-once",
@@ -272,6 +272,24 @@ const EXPECTED: [Expected; 3] = [
         not_applicable: "fill.top-left.exact fill.guard-band.exact fill.brute-force.exact \
                bary.perspective.matches-raycast bary.equal-w.affine depth.order.independent \
                depth.resolve.matches-fragments meta.cull.by-facing",
+    },
+    Expected {
+        name: "lab004-dda",
+        first_failure: "line.diamond-exit.exact",
+        // Both end pixels drawn (so a strip's joints twice), steps between the ends' pixels
+        // rather than along the segment (so a clipped end's pixel is off by one), t stepped
+        // in screen space (affine barycentrics), points by floor (a corner's point below-right).
+        fail: "line.diamond-exit.exact line.strip.shared-end-once line.clip.visible-part \
+               line.bary.perspective point.square.exact",
+        fail_later: "",
+        // Its triangles are the reference's; its lines are symmetric (reversal changes nothing
+        // but end pixels), its depth linear in its screen-space t, its points in the pixel
+        // holding them away from pixel edges.
+        pass: "fill.mesh.exactly-once fill.top-left.exact line.strip.same-as-list line.depth.linear \
+               line.reversal.ends-only point.pixel.holding point.depth.vertex",
+        not_applicable: "line.area.matches-oracle msaa.coverage.exact msaa.mesh.exactly-once \
+               msaa.sample.where-declared msaa.depth.per-sample msaa.resolve.per-sample \
+               msaa.lines-points.per-sample",
     },
 ];
 

@@ -6,14 +6,17 @@
 //! | `lab000` | [`lab000`] | 000 | f32 cross products at pixel corners, view-depth buffer, no clipping |
 //! | `lab002-scanline` | [`lab002`] | 002 | whole-pixel vertices, rows from interpolated edges, 1/z depth |
 //! | `lab004-lineeq` | [`lab004`] | 004 | Sutherland–Hodgman (six planes, 1e-6 nudge), `O_i ≤ 0` |
+//! | `lab004-dda` | [`dda`] | 004, 002 | lines by a DDA between the ends' pixels, both drawn; points by `floor` |
 //!
 //! None has a fill convention; each profile names top-left because a profile must name one.
 //! They are course code, not certified correct: each fails some rules (`tests/course.rs`).
 
+pub mod dda;
 pub mod lab000;
 pub mod lab002;
 pub mod lab004;
 
+pub use dda::Dda;
 pub use lab000::Lab000;
 pub use lab002::Lab002;
 pub use lab004::Lab004;
@@ -34,7 +37,7 @@ pub struct CourseLab {
 
 /// The course rasterizers, in seed order.
 #[must_use]
-pub fn labs() -> [CourseLab; 3] {
+pub fn labs() -> [CourseLab; 4] {
     [
         CourseLab {
             name: "lab000",
@@ -50,6 +53,11 @@ pub fn labs() -> [CourseLab; 3] {
             name: "lab004-lineeq",
             description: "seed 004: Sutherland–Hodgman with a 1e-6 nudge, then line equations O_i <= 0",
             make: || Box::new(Lab004),
+        },
+        CourseLab {
+            name: "lab004-dda",
+            description: "seeds 004 and 002: lines by a DDA between the ends' pixels (both drawn), points by floor; triangles by the reference",
+            make: || Box::new(Dda),
         },
     ]
 }

@@ -75,11 +75,27 @@ pub enum Bug {
     /// reference's order (on the snapped input, before clipping): a collinear triangle the near
     /// plane cuts draws a sliver along its line.
     ZeroAreaAfterClipping,
+    /// Lines drawn with both end pixels under a diamond-exit claim: the last end's diamond is
+    /// not left out, as a DDA from end pixel to end pixel draws them (seed 004's lines).
+    BothEndsDrawn,
+    /// A strip whose segments each draw their last end too: every joint is drawn twice, while a
+    /// list is drawn right.
+    DoubledJoints,
+    /// Samples mirrored in x from the standard locations it declares.
+    MirroredSamples,
+    /// Samples on an ordered grid (2 × 2, 4 × 4) while declaring Vulkan's standard locations.
+    OrderedGridSamples,
+    /// Coverage from the pixel's centre only, copied to every sample.
+    CentreOnlyCoverage,
+    /// One depth per pixel (its first covered sample's) instead of one per sample.
+    PixelDepth,
+    /// Points drawn in the pixel `round(x)` names instead of the one that holds them.
+    RoundedPoints,
 }
 
 impl Bug {
     /// Every bug.
-    pub const ALL: [Bug; 27] = [
+    pub const ALL: [Bug; 34] = [
         Self::InclusiveEdges,
         Self::ExclusiveEdges,
         Self::BottomRightAsTopLeft,
@@ -107,6 +123,13 @@ impl Bug {
         Self::PermutedBarycentrics,
         Self::UnsnappedFacing,
         Self::ZeroAreaAfterClipping,
+        Self::BothEndsDrawn,
+        Self::DoubledJoints,
+        Self::MirroredSamples,
+        Self::OrderedGridSamples,
+        Self::CentreOnlyCoverage,
+        Self::PixelDepth,
+        Self::RoundedPoints,
     ];
 
     /// The name after `mutant:` in `--impl`.
@@ -140,6 +163,13 @@ impl Bug {
             Self::PermutedBarycentrics => "permuted-barycentrics",
             Self::UnsnappedFacing => "unsnapped-facing",
             Self::ZeroAreaAfterClipping => "zero-area-after-clipping",
+            Self::BothEndsDrawn => "both-ends-drawn",
+            Self::DoubledJoints => "doubled-joints",
+            Self::MirroredSamples => "mirrored-samples",
+            Self::OrderedGridSamples => "ordered-grid-samples",
+            Self::CentreOnlyCoverage => "centre-only-coverage",
+            Self::PixelDepth => "pixel-depth",
+            Self::RoundedPoints => "rounded-points",
         }
     }
 
@@ -174,6 +204,19 @@ impl Bug {
             | Self::UnsnappedFacing
             | Self::ZeroAreaAfterClipping => Family::Meta,
             Self::UnclampedBbox => Family::Robust,
+            Self::BothEndsDrawn | Self::DoubledJoints => Family::Line,
+            Self::MirroredSamples
+            | Self::OrderedGridSamples
+            | Self::CentreOnlyCoverage
+            | Self::PixelDepth => Family::Msaa,
+            Self::RoundedPoints => Family::Point,
         }
+    }
+
+    /// Whether it is a bug of lines, points or multisampling: the mutant then declares them
+    /// and draws them with it, and draws triangles at one sample right.
+    #[must_use]
+    pub fn is_primitive(self) -> bool {
+        matches!(self.caught_by(), Family::Line | Family::Point | Family::Msaa)
     }
 }

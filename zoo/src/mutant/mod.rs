@@ -7,11 +7,12 @@
 use glam::{DVec3, DVec4};
 use refrast::stage::{ClipOutcome, ClipPlane, ClipVertex, clip_planes, clip_triangle};
 use refrast::{
-    ClipMode, CompareOp, Draw, DrawError, FillConvention, FixedPoint, Fragment, FrontFace, Profile,
-    Rasterizer, Reference, Resolved, Viewport, is_top_left,
+    ClipMode, CompareOp, Draw, DrawError, FillConvention, FixedPoint, Fragment, FrontFace, PrimitiveDraw,
+    PrimitiveProfile, Profile, Rasterizer, Reference, Resolved, SampleFragment, Viewport, is_top_left,
 };
 
 mod bug;
+mod primitive;
 
 pub use bug::Bug;
 
@@ -50,6 +51,10 @@ impl Rasterizer for Mutant {
     }
 
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+        if self.bug.is_primitive() {
+            // Its bug is in lines, points or samples: triangles at one sample are the reference's.
+            return Reference::default().rasterize(draw);
+        }
         draw.validate()?;
         let state = &draw.state;
         let planes = clip_planes(
@@ -164,6 +169,23 @@ impl Rasterizer for Mutant {
             resolved.primitive[i] = Some(f.primitive);
         }
         Ok(resolved)
+    }
+
+    fn primitive_profile(&self) -> PrimitiveProfile {
+        if self.bug.is_primitive() {
+            primitive::declared()
+        } else {
+            PrimitiveProfile::triangles_only()
+        }
+    }
+
+    fn rasterize_primitives(&mut self, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> {
+        if self.bug.is_primitive() {
+            draw.validate()?;
+            primitive::rasterize(self.bug, draw)
+        } else {
+            refrast::rasterize_as_triangles(self, draw)
+        }
     }
 }
 

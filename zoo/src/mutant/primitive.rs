@@ -1,0 +1,159 @@
+//! The bugs of lines, points and multisampling: the reference's own drawing with one thing
+//! wrong, so that every failure is that thing's doing.
+
+use refrast::{
+    DrawError, Fragment, PrimitiveDraw, PrimitiveProfile, Rasterizer, Reference, SampleFragment,
+    SamplePattern, Topology,
+};
+
+use super::Bug;
+
+/// What the primitive mutants declare: the reference's lines, points and standard samples.
+#[must_use]
+pub fn declared() -> PrimitiveProfile {
+    Reference::default().primitive_profile()
+}
+
+/// Draws `draw` as the reference does, with `bug`.
+pub fn rasterize(bug: Bug, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> {
+    let reference = Reference::default();
+    let standard =
+        || SamplePattern::standard(draw.samples).ok_or_else(|| DrawError::Unsupported(draw.describe()));
+    let drawn = |pattern: &SamplePattern| {
+        let mut out = Vec::new();
+        reference.draw_primitives(draw, pattern, |f| out.push(f))?;
+        Ok::<_, DrawError>(out)
+    };
+    match bug {
+        Bug::BothEndsDrawn => Ok(with_last_pixels(draw, drawn(&standard()?)?, |_| true)),
+        Bug::DoubledJoints => {
+            let strip = draw.topology == Topology::LineStrip;
+            let last = draw.primitive_count().saturating_sub(1);
+            // Every segment of a strip but the last also draws its end: the next one's start.
+            Ok(with_last_pixels(draw, drawn(&standard()?)?, |i| {
+                strip && i < last
+            }))
+        }
+        Bug::MirroredSamples => {
+            let mirrored: Vec<[u8; 2]> = standard()?
+                .positions()
+                .iter()
+                .map(|&[u, v]| [16 - u.max(1), v])
+                .collect();
+            drawn(&SamplePattern::new(&mirrored).map_err(DrawError::Unsupported)?)
+        }
+        Bug::OrderedGridSamples => {
+            // The ordered grid many first multisampling chips used: n × n evenly spaced.
+            let n = match draw.samples {
+                1 => return drawn(&standard()?),
+                2 | 4 => 2,
+                _ => 4,
+            };
+            let step = 16 / n;
+            let grid: Vec<[u8; 2]> = (0..n * n)
+                .map(|i| [(i % n) * step + step / 2, (i / n) * step + step / 2])
+                .take(usize::from(draw.samples))
+                .collect();
+            drawn(&SamplePattern::new(&grid).map_err(DrawError::Unsupported)?)
+        }
+        Bug::CentreOnlyCoverage => {
+            let centre = PrimitiveDraw {
+                samples: 1,
+                ..draw.clone()
+            };
+            let mut out = Vec::new();
+            reference.draw_primitives(&centre, &SamplePattern::standard(1).expect("one sample"), |f| {
+                out.extend((0..draw.samples).map(|sample| SampleFragment { sample, ..f }));
+            })?;
+            Ok(out)
+        }
+        Bug::PixelDepth => {
+            let mut out = drawn(&standard()?)?;
+            // One depth per pixel and primitive: its first covered sample's, for every sample.
+            let mut first: std::collections::HashMap<(u32, u32, u32), f32> = std::collections::HashMap::new();
+            for f in &out {
+                let g = f.fragment;
+                first.entry((g.x, g.y, g.primitive)).or_insert(g.depth);
+            }
+            for f in &mut out {
+                let g = &mut f.fragment;
+                g.depth = first[&(g.x, g.y, g.primitive)];
+            }
+            Ok(out)
+        }
+        Bug::RoundedPoints => {
+            // Each point drawn in the pixel whose top-left corner is nearest, as `round(x)`
+            // does, not in the pixel that holds it, as `floor(x)` does.
+            let mut moved = draw.clone();
+            if draw.topology == Topology::PointList {
+                let (w, h) = (
+                    f64::from(draw.viewport.width()),
+                    f64::from(draw.viewport.height()),
+                );
+                for p in &mut moved.positions {
+                    let pw = f64::from(p[3]);
+                    let x = (f64::from(p[0]) / pw + 1.0) * 0.5 * w;
+                    let y = (1.0 - f64::from(p[1]) / pw) * 0.5 * h;
+                    let (rx, ry) = (x.round() + 0.5, y.round() + 0.5);
+                    p[0] = ((rx / w * 2.0 - 1.0) * pw) as f32;
+                    p[1] = ((1.0 - ry / h * 2.0) * pw) as f32;
+                }
+            }
+            let mut out = Vec::new();
+            reference.draw_primitives(&moved, &standard()?, |f| out.push(f))?;
+            Ok(out)
+        }
+        _ => refrast::rasterize_as_triangles(&mut reference.clone(), draw),
+    }
+}
+
+/// The reference's fragments plus, for each segment `i` with `also(i)`, the pixel holding its
+/// last end when not drawn already.
+fn with_last_pixels(
+    draw: &PrimitiveDraw,
+    mut out: Vec<SampleFragment>,
+    also: impl Fn(usize) -> bool,
+) -> Vec<SampleFragment> {
+    if !draw.topology.is_lines() {
+        return out;
+    }
+    let (w, h) = (
+        f64::from(draw.viewport.width()),
+        f64::from(draw.viewport.height()),
+    );
+    for i in (0..draw.primitive_count()).filter(|&i| also(i)) {
+        let Some(&[_, b]) = draw.primitive(i) else {
+            continue;
+        };
+        let end = draw.positions[b as usize];
+        if end[3] <= 0.0 {
+            continue;
+        }
+        let x = (f64::from(end[0]) / f64::from(end[3]) + 1.0) * 0.5 * w;
+        let y = (1.0 - f64::from(end[1]) / f64::from(end[3])) * 0.5 * h;
+        if !(0.0..w).contains(&x) || !(0.0..h).contains(&y) {
+            continue;
+        }
+        let (px, py) = (x as u32, y as u32);
+        if out
+            .iter()
+            .any(|f| f.fragment.primitive == i as u32 && (f.fragment.x, f.fragment.y) == (px, py))
+        {
+            continue;
+        }
+        let depth = (end[2] / end[3]).clamp(0.0, 1.0);
+        out.extend((0..draw.samples).map(|sample| SampleFragment {
+            fragment: Fragment {
+                x: px,
+                y: py,
+                primitive: i as u32,
+                depth,
+                barycentric: [0.0, 1.0, 0.0],
+                screen_barycentric: Some([0.0, 1.0, 0.0]),
+                front_facing: true,
+            },
+            sample,
+        }));
+    }
+    out
+}

@@ -30,6 +30,9 @@ r floor --size 320x240 --texture checker --sampling nearest --impl mutant:affine
 r star --size 320x240 --mode wire -o "$out/star-wire.png"
 r torus --size 320x240 --mode normals -o "$out/torus-normals.png"
 r plane --size 320x240 --mode overdraw --impl lab002-scanline -o "$out/plane-overdraw-lab002.png"
+# The star at one sample and at four (Vulkan's standard locations), resolved with a box filter.
+r star --size 160x120 -o "$out/star-1x.png"
+r star --size 160x120 --samples 4 -o "$out/star-4x.png"
 # The viewer's window under Xvfb (scripts/check_viewer.py keeps its screenshots): the room, and
 # the aligned plane's overdraw once I reaches mutant:inclusive-edges.
 shots=$(mktemp -d)

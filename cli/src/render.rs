@@ -24,6 +24,19 @@ pub struct Args {
     /// What to draw: points, wire, fill, depth, normals, barycentric, overdraw, or all of them.
     #[arg(long, value_name = "MODE", default_value = "fill", value_parser = parse_modes)]
     mode: Modes,
+    /// Samples per pixel (1, 2, 4, 8 or 16), each depth-tested and shaded on its own, then
+    /// averaged into its pixel (a box filter); the rasterizer must declare the count (the
+    /// reference declares them all). Points and wire modes draw at one sample.
+    #[arg(long, value_name = "N", default_value = "1", value_parser = parse_samples)]
+    samples: u8,
+}
+
+/// A sample count the contract knows: 1, 2, 4, 8 or 16.
+fn parse_samples(s: &str) -> Result<u8, String> {
+    s.parse::<u8>()
+        .ok()
+        .filter(|n| refrast::SAMPLE_COUNTS.contains(n))
+        .ok_or_else(|| format!("{s} is not a sample count: use 1, 2, 4, 8 or 16"))
 }
 
 /// One mode, or every mode.
@@ -73,7 +86,7 @@ fn render(args: &Args) -> Result<(), Failure> {
     for &mode in modes {
         let job = prepared.job(mode, &prepared.camera, prepared.light, prepared.state);
         let start = Instant::now();
-        let stats = refrast_render::render(rasterizer.as_mut(), &job, &mut target)
+        let stats = refrast_render::render_multisampled(rasterizer.as_mut(), &job, args.samples, &mut target)
             .map_err(|e| Failure(format!("{name} refused the draw: {e}"), 1))?;
         let seconds = start.elapsed().as_secs_f64();
         let file = format!(
@@ -92,8 +105,13 @@ fn render(args: &Args) -> Result<(), Failure> {
         refrast_render::output::save_png(&target, &path)
             .map_err(|e| Failure(format!("could not write {}: {e}", path.display()), 2))?;
         say(&format!(
-            "wrote {} ({width}x{height}, {stem}, {mode}{}, {}: {} primitives, {} fragments, {} pixels, {:.3} s)",
+            "wrote {} ({width}x{height}{}, {stem}, {mode}{}, {}: {} primitives, {} fragments, {} written, {:.3} s)",
             path.display(),
+            if args.samples > 1 && mode.uses_triangles() {
+                format!(" at {} samples", args.samples)
+            } else {
+                String::new()
+            },
             if mode == Mode::Fill {
                 format!(", shading {}", job.shading)
             } else {

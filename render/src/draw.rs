@@ -249,7 +249,7 @@ pub fn render_shaded<R: ShadingRasterizer + ?Sized>(
 
 /// The colour of a fragment under a job's mode and shading, with what is computed once per
 /// vertex or per triangle computed up front.
-struct Shader<'a> {
+pub(crate) struct Shader<'a> {
     job: &'a Job<'a>,
     /// Per vertex (Gouraud) or per triangle (flat): the light as `(diffuse, specular)`.
     lit: Vec<(Vec3, Vec3)>,
@@ -258,7 +258,7 @@ struct Shader<'a> {
 }
 
 impl<'a> Shader<'a> {
-    fn new(job: &'a Job<'a>) -> Self {
+    pub(crate) fn new(job: &'a Job<'a>) -> Self {
         let (mesh, light, eye) = (job.mesh, &job.light, job.eye);
         let (mut lit, mut flat_albedo) = (Vec::new(), Vec::new());
         if job.mode == Mode::Fill {
@@ -289,7 +289,7 @@ impl<'a> Shader<'a> {
     }
 
     /// The linear colour of `f`.
-    fn color(&self, primitive: u32, [wa, wb, wc]: [f32; 3]) -> Vec4 {
+    pub(crate) fn color(&self, primitive: u32, [wa, wb, wc]: [f32; 3]) -> Vec4 {
         let mesh = self.job.mesh;
         let t = mesh.triangles[primitive as usize];
         let [a, b, c] = t.map(|i| &mesh.vertices[i as usize]);

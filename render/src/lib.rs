@@ -11,12 +11,14 @@
 //! - [`texture`]: textures sampled nearest or bilinear;
 //! - [`mode`]: what a picture shows (points, wire, fill, depth, normals, barycentric, overdraw);
 //! - [`draw`]: a picture through any rasterizer;
+//! - [`multisample`]: a picture at several samples per pixel, resolved with a box filter;
 //! - [`output`]: PNG files written whole or not at all.
 
 pub mod draw;
 pub mod geometry;
 pub mod load;
 pub mod mode;
+pub mod multisample;
 pub mod output;
 pub mod room;
 pub mod scene;
@@ -27,6 +29,7 @@ pub mod view;
 
 pub use draw::{Job, ShadingRasterizer, Stats, render, render_shaded};
 pub use mode::Mode;
+pub use multisample::render_multisampled;
 pub use shade::{Light, Shading};
 pub use texture::{Sampling, Texture};
 pub use view::{Lens, Overrides, View};

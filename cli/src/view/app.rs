@@ -41,6 +41,8 @@ pub struct Viewer<'a> {
     pub target: Framebuffer,
     output: PathBuf,
     message: Option<(String, Instant)>,
+    /// Samples per pixel: 1, or 4 after `M`.
+    pub samples: u8,
 }
 
 impl<'a> Viewer<'a> {
@@ -85,6 +87,7 @@ impl<'a> Viewer<'a> {
             target,
             output,
             message: None,
+            samples: 1,
         })
     }
 
@@ -123,6 +126,14 @@ impl<'a> Viewer<'a> {
                     _ => CullMode::None,
                 };
                 Some(format!("cull {}", cull_name(self.state.cull)))
+            }
+            Action::ToggleSamples => {
+                self.samples = if self.samples == 1 { 4 } else { 1 };
+                Some(if self.samples == 1 {
+                    "1 sample per pixel".to_owned()
+                } else {
+                    format!("{} samples per pixel", self.samples)
+                })
             }
             Action::ToggleLight => {
                 self.moving_light = !self.moving_light;
@@ -206,7 +217,7 @@ impl<'a> Viewer<'a> {
         }
         let job = self.scene.job(self.mode, &camera, self.light, self.state);
         let start = Instant::now();
-        let drawn = self.rasterizer.draw(&job, &mut self.target);
+        let drawn = self.rasterizer.draw(&job, self.samples, &mut self.target);
         (drawn, start.elapsed())
     }
 
@@ -221,6 +232,9 @@ impl<'a> Viewer<'a> {
             self.scene.setup.mesh.triangles.len(),
             cull_name(self.state.cull),
         );
+        if self.samples > 1 {
+            line.push_str(&format!(" | {} samples", self.samples));
+        }
         if self.moving_light {
             line.push_str(" | keys move the light");
         }
@@ -381,6 +395,27 @@ mod tests {
         v.act(Action::ToggleLight);
         v.step(&up, (0.0, 0.0), 0.1);
         assert!(v.eye().unwrap().y > eye.unwrap().y);
+    }
+
+    #[test]
+    fn m_toggles_four_samples_and_the_status_line_says_so() {
+        let star = scene(&["star", "--size", "64x48"]);
+        let mut v = Viewer::new(&star, "reference", 1, Mode::Fill, PathBuf::from(".")).unwrap();
+        let one = colors(&mut v);
+        assert_eq!(
+            v.act(Action::ToggleSamples).as_deref(),
+            Some("4 samples per pixel")
+        );
+        assert!(v.status(1.0, 2.0).contains("| 4 samples"));
+        let four = colors(&mut v);
+        // Edge pixels blend: the two pictures differ, though not everywhere.
+        let differ = one.iter().zip(&four).filter(|(a, b)| a != b).count();
+        assert!(differ > 10 && differ < one.len() / 2, "{differ} pixels differ");
+        assert_eq!(
+            v.act(Action::ToggleSamples).as_deref(),
+            Some("1 sample per pixel")
+        );
+        assert!(!v.status(1.0, 2.0).contains("samples"));
     }
 
     #[test]

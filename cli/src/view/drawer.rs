@@ -61,8 +61,16 @@ pub fn build(name: &str, scene: &Prepared, threads: usize) -> Result<Drawer, Fai
 }
 
 impl Drawer {
-    /// Clears `target` and draws `job` into it.
-    pub fn draw(&mut self, job: &Job<'_>, target: &mut Framebuffer) -> Result<(), DrawError> {
+    /// Clears `target` and draws `job` into it at `samples` samples per pixel.
+    pub fn draw(&mut self, job: &Job<'_>, samples: u8, target: &mut Framebuffer) -> Result<(), DrawError> {
+        if samples > 1 {
+            // Through the fragments at each sample; one that does not declare the count says so.
+            let r: &mut dyn Rasterizer = match self {
+                Self::Fast(fast) => fast,
+                Self::Fragments(r) => r.as_mut(),
+            };
+            return refrast_render::render_multisampled(r, job, samples, target).map(|_| ());
+        }
         match self {
             // The same pixels as `render` (refrast-render's tests compare them), with no list
             // of fragments to build and sort, and each pixel shaded once.

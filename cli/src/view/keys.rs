@@ -15,6 +15,8 @@ pub enum Action {
     NextImpl,
     /// Switch culling between none and back faces (or the scene's own choice).
     ToggleCull,
+    /// Switch between one sample per pixel and four (box-filtered).
+    ToggleSamples,
     /// Make the movement keys move the light instead of the camera, or back.
     ToggleLight,
     /// Write the picture to a PNG.
@@ -39,6 +41,7 @@ pub fn action(key: Key) -> Option<Action> {
         Key::Key7 | Key::NumPad7 => mode(6),
         Key::I => Some(Action::NextImpl),
         Key::C => Some(Action::ToggleCull),
+        Key::M => Some(Action::ToggleSamples),
         Key::L => Some(Action::ToggleLight),
         Key::P => Some(Action::Save),
         Key::R => Some(Action::Reset),
@@ -61,7 +64,7 @@ pub fn motion(held: impl Fn(Key) -> bool) -> Motion {
 }
 
 /// The bindings as `(keys, what they do)`: printed when the window opens, and docs/render.md's table.
-pub const HELP: [(&str, &str); 11] = [
+pub const HELP: [(&str, &str); 12] = [
     ("W A S D", "move forward, left, back, right"),
     ("Q E", "move down, up"),
     ("← → ↑ ↓", "yaw and pitch the camera"),
@@ -72,6 +75,7 @@ pub const HELP: [(&str, &str); 11] = [
     ),
     ("I", "next implementation (reference, fast, course labs, mutants)"),
     ("C", "culling on or off"),
+    ("M", "4 samples per pixel on or off (box-filtered)"),
     (
         "L",
         "the movement keys move the light instead (again: the camera)",
@@ -109,6 +113,7 @@ mod tests {
         assert_eq!(action(Key::C), Some(Action::ToggleCull));
         assert_eq!(action(Key::L), Some(Action::ToggleLight));
         assert_eq!(action(Key::P), Some(Action::Save));
+        assert_eq!(action(Key::M), Some(Action::ToggleSamples));
         assert_eq!(action(Key::Escape), Some(Action::Quit));
         // Movement keys are held, not pressed: they have no action.
         assert_eq!(action(Key::W), None);

@@ -11,7 +11,7 @@
 //! - **Samples** lie at the declared positions, in sixteenths of a pixel: every coordinate is
 //!   scaled by 16 so that they are grid points.
 //!
-//! Every nudged quantity is a polynomial in ε ([`Poly`]) compared by its first non-zero term.
+//! Every nudged quantity is a polynomial in ε (`Poly`) compared by its first non-zero term.
 
 use refrast::{FillConvention, LineRule};
 

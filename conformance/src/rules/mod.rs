@@ -301,7 +301,7 @@ pub const fn needs(has: fn(&Profile) -> bool, lacking: &'static str) -> Need {
 }
 
 /// [`needs`] for what is declared about lines, points and samples
-/// ([`Rasterizer::primitive_profile`](refrast::Rasterizer::primitive_profile)).
+/// ([`refrast::Rasterizer::primitive_profile`]).
 #[must_use]
 pub const fn needs_primitives(has: fn(&Profile, &PrimitiveProfile) -> bool, lacking: &'static str) -> Need {
     Need {

@@ -24,9 +24,10 @@ Draw.__doc__ = """One draw: clip-space positions (x, y, z, w), triangles (i, j, 
 
 cull is none/front/back, front_face ccw/cw, depth_compare less/less-equal/greater/
 greater-equal/equal/not-equal/always/never, depth_write and far_clipping booleans, depth_clear a
-float, depth_range zero-to-one or negative-one-to-one. topology is triangle-list and samples 1
-(reserved for lines, points and multisampling). Indices are not checked: raise Refused for one
-that names no vertex."""
+float, depth_range zero-to-one or negative-one-to-one. topology is triangle-list and samples 1:
+refrast sends lines, points and other sample counts only to a child whose profile lists them,
+and this helper declares and reads triangle lists only. Indices are not checked: raise Refused
+for one that names no vertex."""
 
 Fragment = namedtuple(
     "Fragment", "x y primitive front_facing depth barycentric screen_barycentric sample"

@@ -9,7 +9,10 @@ use std::io::{BufRead, Read, Write};
 use std::time::{Duration, Instant};
 
 use libtest_mimic::{Arguments, Failed, Trial};
-use refrast::{CompareOp, CullMode, DepthRange, Draw, DrawError, FrontFace, Rasterizer, Reference, Viewport};
+use refrast::{
+    CompareOp, CullMode, DepthRange, Draw, DrawError, FrontFace, PrimitiveDraw, Rasterizer, Reference,
+    Topology, Viewport,
+};
 use refrast_conformance::process::wire::{self, Word};
 use refrast_conformance::{Options, Process, ProcessError, Status, certify};
 
@@ -53,6 +56,10 @@ fn main() {
         trial(
             "a_sample_the_draw_lacks_is_named",
             a_sample_the_draw_lacks_is_named,
+        ),
+        trial(
+            "a_version_2_child_draws_lines_points_and_samples",
+            a_version_2_child_draws_lines_points_and_samples,
         ),
         trial("a_bad_profile_line_is_named", bad_profile),
         trial("a_child_that_dies_at_start_shows_its_stderr", dies_at_start),
@@ -135,6 +142,61 @@ fn a_good_child_draws_what_the_reference_draws() -> Result<(), String> {
 /// Version 2 draws as version 1 does: the same fragments and buffers, the reserved words sent.
 fn a_version_2_child_draws_what_the_reference_draws() -> Result<(), String> {
     a_child_draws_what_the_reference_draws("v2")
+}
+
+/// A version 2 child declaring lines, points and 4 samples is sent them, and draws and resolves
+/// them as the reference does; a version 1 child is never sent them (refused here, unasked).
+fn a_version_2_child_draws_lines_points_and_samples() -> Result<(), String> {
+    let mut p = spawn("v2", 10.0);
+    let declared = p.primitive_profile();
+    if declared.lines != Some(refrast::LineRule::DiamondExit)
+        || !declared.points
+        || declared.sample_counts() != [1, 4]
+    {
+        return Err(format!("the child's declaration reads as {declared:?}"));
+    }
+    let mut reference = Reference::default();
+    let d = draw(2);
+    let strip = PrimitiveDraw::new(
+        d.viewport,
+        d.positions.clone(),
+        Topology::LineStrip,
+        vec![0, 1, 3, 2],
+    );
+    let draws = [
+        PrimitiveDraw::new(
+            d.viewport,
+            d.positions.clone(),
+            Topology::LineList,
+            vec![0, 3, 1, 2],
+        ),
+        strip.clone(),
+        PrimitiveDraw::new(
+            d.viewport,
+            d.positions.clone(),
+            Topology::PointList,
+            vec![0, 1, 2, 3],
+        ),
+        PrimitiveDraw::of_triangles(&d, 4),
+        PrimitiveDraw { samples: 4, ..strip },
+    ];
+    for d in &draws {
+        let what = d.describe();
+        let got = p.rasterize_primitives(d).map_err(|e| format!("{what}: {e}"))?;
+        if got != reference.rasterize_primitives(d).map_err(|e| e.to_string())? {
+            return Err(format!("{what}: fragments differ"));
+        }
+        if p.resolve_primitives(d).map_err(|e| e.to_string())?
+            != reference.resolve_primitives(d).map_err(|e| e.to_string())?
+        {
+            return Err(format!("{what}: resolve differs"));
+        }
+    }
+    let mut v1 = spawn("good", 10.0);
+    match v1.rasterize_primitives(&draws[0]) {
+        Err(DrawError::Unsupported(why)) if why.contains("does not declare") => Ok(()),
+        other => Err(format!("a version 1 child was sent a line list: {other:?}")),
+    }
 }
 
 /// Version 2's sample word names a sample the draw has: only 0 at one sample a pixel.
@@ -467,7 +529,11 @@ fn protocol_md_example() -> Result<(), String> {
         [-1.0, -1.0, 0.5, 1.0],
     ];
     let d = Draw::new(viewport, positions, vec![[0, 1, 2]]);
-    let bytes = wire::request(wire::Op::Rasterize, &d, wire::VERSION);
+    let bytes = wire::request(
+        wire::Op::Rasterize,
+        &PrimitiveDraw::of_triangles(&d, 1),
+        wire::VERSION,
+    );
     let header =
         String::from_utf8_lossy(&bytes[..bytes.iter().position(|&b| b == b'\n').unwrap_or(0)]).into_owned();
     if !doc.contains(&format!("→ {header}\n")) {
@@ -521,7 +587,7 @@ fn fake_child(mode: &str) {
     // samples, a sample word in each fragment.
     let version = if mode.starts_with("v2") { 2 } else { 1 };
     let reserved = if version == 2 {
-        "topology triangle-list line-list\nsamples 1 4\n"
+        "topology triangle-list line-list line-strip point-list\nsamples 1 4\nlines diamond-exit\n"
     } else {
         ""
     };
@@ -547,7 +613,7 @@ fn fake_child(mode: &str) {
         };
         let mut reply = Vec::new();
         if op == "resolve" {
-            let r = reference.resolve(&d).expect("valid");
+            let r = reference.resolve_primitives(&d).expect("valid");
             let (w, h) = (d.viewport.width(), d.viewport.height());
             let w = if mode == "wrong-size" { w + 1 } else { w };
             reply.extend(format!("resolved {w} {h}\n").bytes());
@@ -557,7 +623,7 @@ fn fake_child(mode: &str) {
                 .for_each(|p| reply.extend(p.unwrap_or(u32::MAX).to_le_bytes()));
             reply.extend(b"end\n");
         } else {
-            let fragments = match reference.rasterize(&d) {
+            let fragments = match reference.rasterize_primitives(&d) {
                 Ok(f) => f,
                 Err(e) => {
                     let _ = writeln!(out, "error {e}");
@@ -565,7 +631,7 @@ fn fake_child(mode: &str) {
                     continue;
                 }
             };
-            match (mode, d.triangles.len()) {
+            match (mode, d.primitive_count()) {
                 ("crash", 2..) => {
                     eprintln!("about to crash");
                     std::process::abort();
@@ -592,7 +658,10 @@ fn fake_child(mode: &str) {
                 }
                 _ => {}
             }
-            let mut records: Vec<Vec<u8>> = fragments.iter().map(|f| record(f, version)).collect();
+            let mut records: Vec<Vec<u8>> = fragments
+                .iter()
+                .map(|f| record(&f.fragment, f.sample, version))
+                .collect();
             match mode {
                 "outside" => records[0][0..4].copy_from_slice(&d.viewport.width().to_le_bytes()),
                 "bad-primitive" => records[0][8..12].copy_from_slice(&1u32.to_le_bytes()),
@@ -627,8 +696,8 @@ fn fake_child(mode: &str) {
     }
 }
 
-/// A fragment as the protocol's record: 44 bytes, and version 2's sample word (0).
-fn record(f: &refrast::Fragment, version: u32) -> Vec<u8> {
+/// A fragment as the protocol's record: 44 bytes, and version 2's sample word.
+fn record(f: &refrast::Fragment, sample: u8, version: u32) -> Vec<u8> {
     let words = [
         f.x,
         f.y,
@@ -640,7 +709,8 @@ fn record(f: &refrast::Fragment, version: u32) -> Vec<u8> {
         f.barycentric[2].to_bits(),
     ];
     let screen = f.screen_barycentric.unwrap_or_default().map(f32::to_bits);
-    let sample = if version >= 2 { &[0u32][..] } else { &[] };
+    let sample = [u32::from(sample)];
+    let sample = if version >= 2 { &sample[..] } else { &[] };
     words
         .iter()
         .chain(&screen)
@@ -649,35 +719,42 @@ fn record(f: &refrast::Fragment, version: u32) -> Vec<u8> {
         .collect()
 }
 
-/// Parses a request as a child must: the header's `key=value` words, then the arrays; in
-/// version 2 the header must also say a triangle list at one sample a pixel.
-fn read_draw(header: &str, input: &mut impl Read, version: u32) -> Option<(String, Draw)> {
+/// Parses a request as a child must: the header's `key=value` words, then the arrays; version 2
+/// says the topology and the samples (version 1: a triangle list at one sample a pixel), and
+/// `triangles=T` counts its primitives.
+fn read_draw(header: &str, input: &mut impl Read, version: u32) -> Option<(String, PrimitiveDraw)> {
     let mut words = header.split_whitespace();
     let op = words.next()?.to_owned();
     let fields: std::collections::HashMap<&str, &str> = words.filter_map(|w| w.split_once('=')).collect();
-    let reserved = (fields.get("topology").copied(), fields.get("samples").copied());
-    let expected = if version >= 2 {
-        (Some("triangle-list"), Some("1"))
-    } else {
-        (None, None)
+    let given = (fields.get("topology").copied(), fields.get("samples").copied());
+    let (topology, samples) = match (version, given) {
+        (1, (None, None)) => (Topology::TriangleList, 1),
+        (2, (Some(t), Some(n))) => (Topology::from_name(t)?, n.parse().ok()?),
+        _ => {
+            eprintln!("version {version} request with topology and samples {given:?}");
+            return None;
+        }
     };
-    if reserved != expected {
-        eprintln!("version {version} request with topology and samples {reserved:?}");
-        return None;
-    }
     let number = |key: &str| fields.get(key).and_then(|v| v.parse::<u32>().ok());
     let viewport = Viewport::new(number("width")?, number("height")?).ok()?;
-    let (vertices, triangles) = (number("vertices")? as usize, number("triangles")? as usize);
-    let mut bytes = vec![0u8; vertices * 16 + triangles * 12];
+    let (vertices, primitives) = (number("vertices")? as usize, number("triangles")? as usize);
+    let indices = match topology {
+        Topology::TriangleList => 3 * primitives,
+        Topology::LineList => 2 * primitives,
+        Topology::LineStrip if primitives > 0 => primitives + 1,
+        Topology::LineStrip => 0,
+        Topology::PointList => primitives,
+    };
+    let mut bytes = vec![0u8; vertices * 16 + indices * 4];
     input.read_exact(&mut bytes).ok()?;
     let positions = (0..vertices)
         .map(|v| std::array::from_fn(|k| wire::f32_at(&bytes, 4 * v + k)))
         .collect();
-    let indices = &bytes[vertices * 16..];
-    let triangles = (0..triangles)
-        .map(|t| std::array::from_fn(|k| wire::f32_at(indices, 3 * t + k).to_bits()))
+    let indices = (0..indices)
+        .map(|i| wire::f32_at(&bytes[vertices * 16..], i).to_bits())
         .collect();
-    let mut d = Draw::new(viewport, positions, triangles);
+    let mut d = PrimitiveDraw::new(viewport, positions, topology, indices);
+    d.samples = samples;
     let word = |key: &str| fields.get(key).copied().unwrap_or("");
     d.state.cull = CullMode::parse(word("cull"))?;
     d.state.front_face = FrontFace::parse(word("front-face"))?;

@@ -16,7 +16,10 @@ use std::fmt;
 use std::process::{Command, ExitStatus, Stdio};
 use std::time::{Duration, Instant};
 
-use refrast::{Draw, DrawError, Fragment, Profile, Rasterizer, Resolved};
+use refrast::{
+    Draw, DrawError, Fragment, PrimitiveDraw, PrimitiveProfile, Profile, Rasterizer, Resolved,
+    SampleFragment, SampleResolved,
+};
 
 use crate::contain::{Contained, DEFAULT_MEMORY_LIMIT, memory_note};
 
@@ -229,7 +232,7 @@ impl Process {
     }
 
     /// Sends one request and reads its reply; a breach kills the child, to be restarted.
-    fn exchange(&mut self, op: Op, draw: &Draw) -> Result<Reply, DrawError> {
+    fn exchange(&mut self, op: Op, draw: &PrimitiveDraw) -> Result<Reply, DrawError> {
         if let Some(why) = &self.start_error {
             return Err(DrawError::Misbehaved(why.clone()));
         }
@@ -326,6 +329,31 @@ impl Rasterizer for Process {
     }
 
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+        let fragments = self.rasterize_primitives(&PrimitiveDraw::of_triangles(draw, 1))?;
+        Ok(fragments.into_iter().map(|f| f.fragment).collect())
+    }
+
+    fn resolve(&mut self, draw: &Draw) -> Result<Resolved, DrawError> {
+        let resolved = self.resolve_primitives(&PrimitiveDraw::of_triangles(draw, 1))?;
+        Ok(Resolved {
+            viewport: resolved.viewport,
+            depth: resolved.depth,
+            primitive: resolved.primitive,
+        })
+    }
+
+    fn primitive_profile(&self) -> PrimitiveProfile {
+        self.declared.primitive_profile()
+    }
+
+    /// A draw the child does not declare is refused here, without asking it.
+    fn rasterize_primitives(&mut self, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> {
+        if !self.primitive_profile().supports(draw.topology, draw.samples) {
+            return Err(DrawError::Unsupported(format!(
+                "{} (the child does not declare it)",
+                draw.describe()
+            )));
+        }
         match self.exchange(Op::Rasterize, draw)? {
             Reply::Fragments(fragments) => Ok(fragments),
             Reply::Refused(e) => Err(e),
@@ -333,10 +361,16 @@ impl Rasterizer for Process {
         }
     }
 
-    fn resolve(&mut self, draw: &Draw) -> Result<Resolved, DrawError> {
+    fn resolve_primitives(&mut self, draw: &PrimitiveDraw) -> Result<SampleResolved, DrawError> {
         if !self.declared.profile.features.depth_test {
-            let fragments = self.rasterize(draw)?;
-            return Ok(Resolved::from_fragments(draw, fragments));
+            let fragments = self.rasterize_primitives(draw)?;
+            return Ok(SampleResolved::from_fragments(draw, fragments));
+        }
+        if !self.primitive_profile().supports(draw.topology, draw.samples) {
+            return Err(DrawError::Unsupported(format!(
+                "{} (the child does not declare it)",
+                draw.describe()
+            )));
         }
         match self.exchange(Op::Resolve, draw)? {
             Reply::Resolved(resolved) => Ok(resolved),

@@ -2,7 +2,7 @@
 
 use std::time::{Duration, Instant};
 
-use refrast::{Draw, DrawError, Fragment, Resolved};
+use refrast::{DrawError, PrimitiveDraw, SampleFragment, SampleResolved};
 
 use super::pipe::{Incoming, Stall};
 use super::wire::{self, Declared, MAX_LINE, Op};
@@ -13,8 +13,8 @@ pub struct Breach(pub String);
 
 /// A reply that kept to the protocol.
 pub enum Reply {
-    Fragments(Vec<Fragment>),
-    Resolved(Resolved),
+    Fragments(Vec<SampleFragment>),
+    Resolved(SampleResolved),
     /// `error` or `unsupported`: the child refused the draw, as it may.
     Refused(DrawError),
 }
@@ -23,7 +23,7 @@ pub enum Reply {
 pub fn read_reply(
     incoming: &mut Incoming,
     op: Op,
-    draw: &Draw,
+    draw: &PrimitiveDraw,
     declared: &Declared,
     deadline: Instant,
     timeout: Duration,
@@ -47,12 +47,19 @@ pub fn read_reply(
         .map_err(|s| stalled(s, "reply"))?;
     let (word, rest) = line.split_once(' ').unwrap_or((line.as_str(), ""));
     let (width, height) = (draw.viewport.width(), draw.viewport.height());
-    let triangles = draw.triangles.len();
+    let triangles = draw.primitive_count();
+    let samples = draw.samples;
+    // How the messages name the draw's primitives: "2 triangles", "3 line-strip primitives".
+    let unit = if draw.topology == refrast::Topology::TriangleList {
+        "triangles".to_owned()
+    } else {
+        format!("{} primitives", draw.topology)
+    };
     let reply = match (op, word) {
         (_, "error") => return Ok(Reply::Refused(DrawError::Backend(rest.to_owned()))),
         (_, "unsupported") => return Ok(Reply::Refused(DrawError::Unsupported(rest.to_owned()))),
         (Op::Rasterize, "fragments") => {
-            let most = u64::from(width) * u64::from(height) * triangles as u64;
+            let most = u64::from(width) * u64::from(height) * triangles as u64 * u64::from(samples);
             let count: u64 = rest.trim().parse().map_err(|_| {
                 Breach(format!(
                     "malformed reply `{}`: the count is not a number",
@@ -62,7 +69,7 @@ pub fn read_reply(
             if count > most {
                 return Err(Breach(format!(
                     "wrong count: {count} fragments, more than the {width}×{height} viewport times {triangles} \
-                     triangles allows ({most})"
+                     {unit} times {samples} samples allows ({most})"
                 )));
             }
             let count = count as usize;
@@ -78,8 +85,9 @@ pub fn read_reply(
             })?;
             let mut fragments = Vec::with_capacity(count);
             for (k, record) in bytes.chunks_exact(record).enumerate() {
-                let f = wire::fragment(record, declared.profile.features.screen_barycentrics)
-                    .map_err(|why| Breach(format!("fragment {k} of {count}: {why}")))?;
+                let (f, sample) =
+                    wire::fragment(record, declared.profile.features.screen_barycentrics, samples)
+                        .map_err(|why| Breach(format!("fragment {k} of {count}: {why}")))?;
                 if f.x >= width || f.y >= height {
                     return Err(Breach(format!(
                         "fragment {k} of {count} lies at ({}, {}), outside the {width}×{height} viewport",
@@ -88,11 +96,11 @@ pub fn read_reply(
                 }
                 if f.primitive as usize >= triangles {
                     return Err(Breach(format!(
-                        "fragment {k} of {count} names primitive {}, but the draw has {triangles} triangles",
+                        "fragment {k} of {count} names primitive {}, but the draw has {triangles} {unit}",
                         f.primitive
                     )));
                 }
-                fragments.push(f);
+                fragments.push(SampleFragment { fragment: f, sample });
             }
             Reply::Fragments(fragments)
         }
@@ -104,10 +112,11 @@ pub fn read_reply(
                     wire::shown(&line)
                 )));
             }
-            let pixels = draw.viewport.pixel_count();
+            // One value per sample, sample-minor: pixel (x, y)'s samples together.
+            let pixels = draw.viewport.pixel_count() * usize::from(samples);
             let bytes = incoming.bytes(pixels * 8, deadline).map_err(|(stall, got)| {
                 let what = format!(
-                    "the {width}×{height} depth and primitive buffers ({} bytes; {got} came)",
+                    "the {width}×{height}×{samples} depth and primitive buffers ({} bytes; {got} came)",
                     pixels * 8
                 );
                 match stall {
@@ -125,13 +134,14 @@ pub fn read_reply(
             {
                 return Err(Breach(format!(
                     "pixel ({}, {}) of the primitive buffer names primitive {p}, but the draw has {triangles} \
-                     triangles (0xFFFFFFFF means none)",
-                    i % width as usize,
-                    i / width as usize
+                     {unit} (0xFFFFFFFF means none)",
+                    (i / usize::from(samples)) % width as usize,
+                    (i / usize::from(samples)) / width as usize
                 )));
             }
-            Reply::Resolved(Resolved {
+            Reply::Resolved(SampleResolved {
                 viewport: draw.viewport,
+                samples,
                 depth: wire::floats(&bytes[..pixels * 4]),
                 primitive,
             })

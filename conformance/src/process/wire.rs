@@ -2,8 +2,9 @@
 //! and the reply headers. `docs/protocol.md` is the specification.
 
 use refrast::{
-    CompareOp, CullMode, DepthConvention, DepthRange, Draw, FillConvention, Fragment, FrontFace, Profile,
-    Setting, SnapAccuracy, Snapping, Spec, Supported,
+    CompareOp, CullMode, DepthConvention, DepthRange, FillConvention, Fragment, FrontFace, LineRule,
+    PrimitiveDraw, PrimitiveProfile, Profile, SamplePattern, Setting, SnapAccuracy, Snapping, Spec,
+    Supported,
 };
 
 /// The newest protocol version this refrast speaks, the one its messages suggest.
@@ -21,41 +22,11 @@ pub fn fragment_bytes(version: u32) -> usize {
     if version >= 2 { 48 } else { 44 }
 }
 
-/// A primitive topology, as version 2 spells it in the profile and in requests.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Topology {
-    /// Independent triangles, three indices each: all that refrast draws today.
-    TriangleList,
-    /// Independent lines, two indices each (reserved).
-    LineList,
-    /// A strip of lines sharing end points (reserved).
-    LineStrip,
-    /// Points, one index each (reserved).
-    PointList,
-}
+/// A primitive topology, as version 2 spells it in the profile and in requests: the
+/// contract's own ([`refrast::Topology::name`]).
+pub use refrast::Topology;
 
-impl Topology {
-    /// Every topology, in the order the documentation lists them.
-    pub const ALL: [Self; 4] = [
-        Self::TriangleList,
-        Self::LineList,
-        Self::LineStrip,
-        Self::PointList,
-    ];
-
-    /// The topology's word.
-    #[must_use]
-    pub fn word(self) -> &'static str {
-        match self {
-            Self::TriangleList => "triangle-list",
-            Self::LineList => "line-list",
-            Self::LineStrip => "line-strip",
-            Self::PointList => "point-list",
-        }
-    }
-}
-
-/// Sample counts a version 2 profile may list: Vulkan's standard counts.
+/// Sample counts a version 2 profile may list: Vulkan's standard counts ([`refrast::SAMPLE_COUNTS`]).
 pub const SAMPLE_COUNTS: [u32; 5] = [1, 2, 4, 8, 16];
 
 /// The longest line either side may send, in bytes.
@@ -179,24 +150,26 @@ pub const LEGACY_GUARD_BAND: u32 = 1500;
 pub const GUARD_BAND_LIMIT: u32 = refrast::COORD_LIMIT as u32;
 
 /// The request for `op` on `draw` in protocol `version`: its header line, then positions and
-/// indices. Version 2 ends the header with the topology and the samples per pixel, which are
-/// `triangle-list` and 1 until lines, points and multisampling are in the contract.
+/// indices. `triangles=T` counts the draw's primitives, whose indices follow: `3T` of a triangle
+/// list, `2T` of a line list, `T + 1` of a line strip (none when `T = 0`), `T` of a point list.
+/// Version 2 ends the header with the topology and the samples per pixel; a version 1 child is
+/// only ever sent triangle lists at one sample.
 #[must_use]
-pub fn request(op: Op, draw: &Draw, version: u32) -> Vec<u8> {
+pub fn request(op: Op, draw: &PrimitiveDraw, version: u32) -> Vec<u8> {
     let s = &draw.state;
-    let reserved = if version >= 2 {
-        format!(" topology={} samples=1", Topology::TriangleList.word())
+    let count = draw.primitive_count();
+    let extra = if version >= 2 {
+        format!(" topology={} samples={}", draw.topology.name(), draw.samples)
     } else {
         String::new()
     };
     let header = format!(
-        "{} width={} height={} vertices={} triangles={} cull={} front-face={} depth-compare={} \
-         depth-write={} depth-clear={:?} depth-range={} far-clipping={}{reserved}\n",
+        "{} width={} height={} vertices={} triangles={count} cull={} front-face={} depth-compare={} \
+         depth-write={} depth-clear={:?} depth-range={} far-clipping={}{extra}\n",
         op.word(),
         draw.viewport.width(),
         draw.viewport.height(),
         draw.positions.len(),
-        draw.triangles.len(),
         s.cull.word(),
         s.front_face.word(),
         s.depth.compare.word(),
@@ -205,12 +178,16 @@ pub fn request(op: Op, draw: &Draw, version: u32) -> Vec<u8> {
         s.depth_range.word(),
         s.clip_far.word(),
     );
+    let indices: &[u32] = match draw.topology {
+        Topology::LineStrip if count == 0 => &[],
+        _ => &draw.indices,
+    };
     let mut bytes = header.into_bytes();
-    bytes.reserve(draw.positions.len() * 16 + draw.triangles.len() * 12);
+    bytes.reserve(draw.positions.len() * 16 + indices.len() * 4);
     for c in draw.positions.iter().flatten() {
         bytes.extend_from_slice(&c.to_le_bytes());
     }
-    for i in draw.triangles.iter().flatten() {
+    for i in indices {
         bytes.extend_from_slice(&i.to_le_bytes());
     }
     bytes
@@ -228,24 +205,24 @@ pub fn f32_at(record: &[u8], k: usize) -> f32 {
     f32::from_bits(u32_at(record, k))
 }
 
-/// Decodes one fragment record of [`fragment_bytes`]; `Err` names a front-facing word that is
-/// neither 0 nor 1, or (version 2) a sample the draw does not have.
-pub fn fragment(record: &[u8], screen_barycentrics: bool) -> Result<Fragment, String> {
+/// Decodes one fragment record of [`fragment_bytes`] of a draw at `samples` samples a pixel,
+/// with its sample (0 in version 1); `Err` names a front-facing word that is neither 0 nor 1,
+/// or (version 2) a sample the draw does not have.
+pub fn fragment(record: &[u8], screen_barycentrics: bool, samples: u8) -> Result<(Fragment, u8), String> {
     let front = u32_at(record, 3);
     if front > 1 {
         return Err(format!("its front-facing word is {front}, not 0 or 1"));
     }
-    // Version 2's sample word: every draw has one sample a pixel until multisampling is in.
-    if record.len() >= 48 {
-        let sample = u32_at(record, 11);
-        if sample != 0 {
-            return Err(format!(
-                "it names sample {sample}, but the draw has 1 sample a pixel (samples=1: sample 0)"
-            ));
-        }
+    let sample = if record.len() >= 48 { u32_at(record, 11) } else { 0 };
+    if sample >= u32::from(samples) {
+        let a = if samples == 1 { "sample" } else { "samples" };
+        return Err(format!(
+            "it names sample {sample}, but the draw has {samples} {a} a pixel (samples={samples}: sample 0 to {})",
+            samples - 1
+        ));
     }
     let screen = [f32_at(record, 8), f32_at(record, 9), f32_at(record, 10)];
-    Ok(Fragment {
+    let fragment = Fragment {
         x: u32_at(record, 0),
         y: u32_at(record, 1),
         primitive: u32_at(record, 2),
@@ -253,7 +230,8 @@ pub fn fragment(record: &[u8], screen_barycentrics: bool) -> Result<Fragment, St
         depth: f32_at(record, 4),
         barycentric: [f32_at(record, 5), f32_at(record, 6), f32_at(record, 7)],
         screen_barycentric: screen_barycentrics.then_some(screen),
-    })
+    };
+    Ok((fragment, sample as u8))
 }
 
 /// Decodes the `u32` values of a primitive buffer, `0xFFFF_FFFF` meaning none.
@@ -281,6 +259,11 @@ pub struct Declared {
     pub topologies: Vec<Topology>,
     /// The sample counts it draws at (version 2's `samples`; 1 in version 1).
     pub sample_counts: Vec<u32>,
+    /// How it covers lines (version 2's `lines`; diamond-exit unless said).
+    pub lines: LineRule,
+    /// Sample positions it declares instead of the standard ones (version 2's
+    /// `sample-positions`), one pattern per count.
+    pub sample_positions: Vec<SamplePattern>,
 }
 
 impl Declared {
@@ -293,6 +276,34 @@ impl Declared {
             version,
             topologies: vec![Topology::TriangleList],
             sample_counts: vec![1],
+            lines: LineRule::DiamondExit,
+            sample_positions: Vec::new(),
+        }
+    }
+
+    /// What it declares about lines, points and samples: lines when it lists both line
+    /// topologies, points when it lists point lists, each count above one at its declared
+    /// positions or the standard ones.
+    #[must_use]
+    pub fn primitive_profile(&self) -> PrimitiveProfile {
+        let lists = |t: Topology| self.topologies.contains(&t);
+        PrimitiveProfile {
+            lines: (lists(Topology::LineList) && lists(Topology::LineStrip)).then_some(self.lines),
+            points: lists(Topology::PointList),
+            endpoint_snapping: None,
+            multisample: self
+                .sample_counts
+                .iter()
+                .filter(|&&n| n > 1)
+                .filter_map(|&n| {
+                    let n = u8::try_from(n).ok()?;
+                    self.sample_positions
+                        .iter()
+                        .find(|p| p.count() == n)
+                        .copied()
+                        .or_else(|| SamplePattern::standard(n))
+                })
+                .collect(),
         }
     }
 }
@@ -468,6 +479,18 @@ pub fn parse_profile(lines: &[String], fallback_name: &str, version: u32) -> Res
             FAR_CLIPPING => f.far_clipping = supported(&words, &bad)?,
             "topology" if version >= 2 => declared.topologies = topologies(&words, &bad)?,
             "samples" if version >= 2 => declared.sample_counts = sample_counts(&words, &bad)?,
+            "lines" if version >= 2 => {
+                declared.lines = match words.as_slice() {
+                    [rule] => LineRule::from_name(rule),
+                    _ => None,
+                }
+                .ok_or_else(|| bad("name one of diamond-exit, rectangle, parallelogram"))?;
+            }
+            "sample-positions" if version >= 2 => {
+                let pattern = sample_positions(&words).map_err(|why| bad(&why))?;
+                declared.sample_positions.retain(|p| p.count() != pattern.count());
+                declared.sample_positions.push(pattern);
+            }
             "name" => return Err(bad("the name is empty")),
             _ => {
                 return Err(format!(
@@ -496,17 +519,14 @@ pub fn parse_profile(lines: &[String], fallback_name: &str, version: u32) -> Res
 
 /// Version 2's `topology` line: known words, triangle lists among them (all refrast sends today).
 fn topologies(words: &[&str], bad: &dyn Fn(&str) -> String) -> Result<Vec<Topology>, String> {
-    let all = || Topology::ALL.map(Topology::word).join(", ");
-    let listed: Option<Vec<Topology>> = words
-        .iter()
-        .map(|w| Topology::ALL.into_iter().find(|t| t.word() == *w))
-        .collect();
+    let all = || Topology::ALL.map(Topology::name).join(", ");
+    let listed: Option<Vec<Topology>> = words.iter().map(|w| Topology::from_name(w)).collect();
     match listed {
+        Some(listed) if listed.contains(&Topology::LineList) != listed.contains(&Topology::LineStrip) => Err(
+            bad("list line-list and line-strip together: the line rules draw both"),
+        ),
         Some(listed) if listed.contains(&Topology::TriangleList) => Ok(listed),
-        Some(_) => Err(bad(
-            "list triangle-list too: this refrast draws only triangle lists (lines and points are \
-             reserved, not yet judged)",
-        )),
+        Some(_) => Err(bad("list triangle-list too: every child draws triangle lists")),
         None => Err(bad(&format!("list one or more of {}", all()))),
     }
 }
@@ -519,10 +539,27 @@ fn sample_counts(words: &[&str], bad: &dyn Fn(&str) -> String) -> Result<Vec<u32
         .collect();
     match listed {
         Some(listed) if listed.contains(&1) => Ok(listed),
-        Some(_) => Err(bad(
-            "list 1 too: this refrast draws one sample a pixel (multisampling is reserved, not yet judged)",
-        )),
+        Some(_) => Err(bad("list 1 too: every child draws one sample a pixel")),
         None => Err(bad("list one or more of 1, 2, 4, 8, 16")),
+    }
+}
+
+/// Version 2's `sample-positions N X,Y …` line: N positions in sixteenths of a pixel (0 to 15).
+fn sample_positions(words: &[&str]) -> Result<SamplePattern, String> {
+    let shape = "give the count, then that many `X,Y` pairs in sixteenths of a pixel (0 to 15)";
+    let Some((count, pairs)) = words.split_first() else {
+        return Err(shape.to_owned());
+    };
+    let positions: Option<Vec<[u8; 2]>> = pairs
+        .iter()
+        .map(|p| {
+            let (x, y) = p.split_once(',')?;
+            Some([x.parse().ok()?, y.parse().ok()?])
+        })
+        .collect();
+    match (count.parse::<usize>(), positions) {
+        (Ok(n), Some(positions)) if n == positions.len() => SamplePattern::new(&positions),
+        _ => Err(shape.to_owned()),
     }
 }
 

@@ -82,3 +82,28 @@ proptest! {
         }
     }
 }
+
+/// Regression (`refrast certify`, `reference-4bit`, `point.square.exact`, case 870): a point at
+/// raster y = 16.0039 on a 16-pixel target lies below the view volume, and clipping discards
+/// it, but 4 subpixel bits snap it onto the viewport's bottom edge. The oracle decided "in view"
+/// on the snapped point and expected a fragment; it now decides in clip space, as clipping does.
+#[test]
+fn a_point_outside_the_view_volume_is_discarded_though_it_snaps_onto_the_edge() {
+    use refrast::{ReferenceConfig, SubpixelBits};
+    use refrast_conformance::{Named, PrimitiveScene, Scene};
+    let config = ReferenceConfig {
+        subpixel_bits: SubpixelBits::new(4).expect("4 bits"),
+        ..ReferenceConfig::default()
+    };
+    let mut four_bits = Named::new("reference-4bit", config);
+    let case = PrimitiveScene {
+        scene: Scene::new(16, 16, vec![[-0.995_605_47, -1.000_488_3, 0.0, 1.0]], Vec::new()),
+        topology: refrast::Topology::PointList,
+        indices: vec![0],
+        samples: 1,
+    };
+    assert_eq!(
+        refrast_conformance::rules::point::check_square_exact(&mut four_bits, &case),
+        Ok(())
+    );
+}

@@ -9,7 +9,7 @@ use super::samples::{
 };
 use super::{Family, Rule, needs_primitives};
 use crate::oracle::facing::snap_candidates;
-use crate::oracle::raster::{Point, project, window_depth};
+use crate::oracle::raster::{Point, near_distance, project, window_depth};
 use crate::primitives::PrimitiveScene;
 use crate::runner::property;
 use crate::strategy::primitive as points;
@@ -58,11 +58,17 @@ fn point(case: &PrimitiveScene, i: usize) -> [f32; 4] {
     case.scene.positions[case.indices[i] as usize]
 }
 
-/// Whether point `p` (grid units of `bits`) lies inside the view volume in x and y.
-fn in_view(case: &PrimitiveScene, p: Point, bits: u8) -> bool {
-    let one = 1i128 << bits;
-    (0..=i128::from(case.scene.width) * one).contains(&p.0)
-        && (0..=i128::from(case.scene.height) * one).contains(&p.1)
+/// Whether point `i` lies inside the view volume, decided in clip space as clipping is, before
+/// the viewport transform and snapping: a point a hair below the viewport is discarded even
+/// where a coarse grid snaps it onto the viewport's edge.
+fn in_view(case: &PrimitiveScene, i: usize) -> bool {
+    let [x, y, z, w] = point(case, i).map(f64::from);
+    let state = &case.scene.state;
+    w > 0.0
+        && (-w..=w).contains(&x)
+        && (-w..=w).contains(&y)
+        && near_distance(state.depth_range, z, w) >= 0.0
+        && (!state.clip_far || z <= w)
 }
 
 /// Each point's samples equal the square oracle's on its snapped position.
@@ -87,7 +93,7 @@ pub fn check_square_exact(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Resu
         let got = counts(case, &frags, Some(i as u32));
         let what = format!("the point square oracle for point {i}");
         let judged = |p: Point| {
-            let covered = if in_view(case, p, bits) {
+            let covered = if in_view(case, i) {
                 g.point(p, fill)
             } else {
                 Vec::new()

@@ -107,3 +107,34 @@ fn a_point_outside_the_view_volume_is_discarded_though_it_snaps_onto_the_edge() 
         Ok(())
     );
 }
+
+/// Regression (`reference-4bit`, `line.strip.shared-end-once`, seed 33): a strip whose first
+/// segment runs at 45° before snapping, and straight down after 4-bit snapping, followed by a
+/// horizontal one. The rule took both for x-major left-to-right by their unsnapped ends and
+/// called the shared pixel a duplicate; it now classifies the snapped ends, and leaves out a
+/// joint that a grid step or two could reclassify.
+#[test]
+fn a_strip_is_classified_by_its_snapped_ends() {
+    use refrast::{ReferenceConfig, SubpixelBits};
+    use refrast_conformance::{Named, PrimitiveScene, Scene};
+    let config = ReferenceConfig {
+        subpixel_bits: SubpixelBits::new(4).expect("4 bits"),
+        ..ReferenceConfig::default()
+    };
+    let mut four_bits = Named::new("reference-4bit", config);
+    let positions = vec![
+        [-0.566_406_25, 0.883_789_06, 0.0, 1.0],
+        [-0.561_523_44, 0.878_906_25, 0.0, 1.0],
+        [-0.542_480_47, 0.878_906_25, 0.0, 1.0],
+    ];
+    let case = PrimitiveScene {
+        scene: Scene::new(16, 16, positions, Vec::new()),
+        topology: refrast::Topology::LineStrip,
+        indices: vec![0, 1, 2],
+        samples: 1,
+    };
+    assert_eq!(
+        refrast_conformance::rules::line::check_shared_end_once(&mut four_bits, &case),
+        Ok(())
+    );
+}

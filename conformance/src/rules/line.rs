@@ -40,6 +40,10 @@ fn endpoint_grid(p: &Profile, d: &PrimitiveProfile) -> bool {
 /// Vulkan's and OpenGL's allowance for other algorithms than the diamond-exit rule itself.
 const OTHER_ALGORITHMS: &str = "Vulkan (Bresenham Line Segment Rasterization) and OpenGL 4.6 §14.5.1 let an implementation use another algorithm whose fragments lie within one pixel in x and y of the diamond-exit rule's, number within one of them, and never two in one column of an x-major line (one row of a y-major one); D3D11.3 (aliased line rules) breaks ties on a diamond's boundary its own way (an x-major line's diamond holds its lower edges and bottom corner): the ε-nudged rule is judged bit for bit under refrast's conventions, and only that allowance under these";
 
+/// What reversing a segment may change is pinned only by the exact rule, which no
+/// specification requires of every implementation.
+const REVERSAL_OPEN: &str = "Vulkan (Bresenham Line Segment Rasterization) and OpenGL 4.6 §14.5.1 let another algorithm within one pixel of the diamond-exit rule draw each segment, in its own direction, and D3D11.3 names no rule for a reversed segment: that reversing one changes only its end pixels is refrast's convention (exact for the diamond-exit rule itself, whose nudge is the same both ways)";
+
 pub(super) fn rules() -> Vec<Rule> {
     vec![
         Rule::exact(Family::Line, "line.diamond-exit.exact")
@@ -75,6 +79,10 @@ pub(super) fn rules() -> Vec<Rule> {
             .source("Vulkan 1.4, Primitive Clipping (a clipped line segment ends at the clip plane); seed 004 (clipping)")
             .cases(800)
             .needs(LINES)
+            .every_spec(Level::Partly {
+                part: |r, cfg| property(r, cfg, lines::near_crossing_line(), check_clip_allowance),
+                note: OTHER_ALGORITHMS,
+            })
             .run(|r, cfg| property(r, cfg, lines::near_crossing_line(), check_clip)),
         Rule::invariant(Family::Line, "line.depth.linear")
             .sentence("A line fragment's depth is the ends' window depths interpolated linearly in screen space at the sample's projection on the segment, within a pixel's worth and the claimed precision.")
@@ -94,6 +102,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .source("Vulkan 1.4, Bresenham Line Segment Rasterization (only the last end's diamond is left out); OpenGL 4.6 §14.5.1")
             .cases(1000)
             .needs(LINES)
+            .every_spec(Level::NotCovered(REVERSAL_OPEN))
             .run(|r, cfg| property(r, cfg, lines::lines(), check_reversal)),
     ]
 }
@@ -364,16 +373,82 @@ pub fn check_shared_end_once(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> R
 /// The segment from its front end to where it crosses the near plane, against the oracle of
 /// that visible part; samples the cut's rounding could change are not judged.
 pub fn check_clip(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
-    let Some(d) = declared(r) else { return Ok(()) };
-    let Some([pa, pb]) = case.segment(0) else {
+    let Some((frags, expected, _)) = clip_expectations(r, case)? else {
         return Ok(());
+    };
+    compare_samples(
+        case,
+        &counts(case, &frags, Some(0)),
+        &expected,
+        "the visible part's oracle",
+    )
+}
+
+/// [`check_clip`] under Vulkan's allowance for other line algorithms (diamond-exit lines only;
+/// the area rules are judged whole): every fragment within a pixel of the visible part's, and
+/// every pixel of the visible part 2 px from the cut within a pixel of a fragment.
+pub fn check_clip_allowance(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    if r.primitive_profile().lines != Some(LineRule::DiamondExit) {
+        return check_clip(r, case);
+    }
+    let Some((frags, expected, cut)) = clip_expectations(r, case)? else {
+        return Ok(());
+    };
+    let w = case.scene.width;
+    let at = |i: usize| (i as u32 % w, i as u32 / w);
+    let near = |(x, y): (u32, u32), set: &[(u32, u32)]| {
+        set.iter().any(|&(u, v)| x.abs_diff(u) <= 1 && y.abs_diff(v) <= 1)
+    };
+    let got: Vec<(u32, u32)> = frags.iter().map(|f| (f.fragment.x, f.fragment.y)).collect();
+    let may: Vec<(u32, u32)> = (0..expected.len())
+        .filter(|&i| expected[i] != Expect::Zero)
+        .map(at)
+        .collect();
+    let mut found = Findings::new();
+    for &p in got.iter().filter(|&&p| !near(p, &may)) {
+        found.add(p, || {
+            format!(
+                "({}, {}) is more than a pixel from the visible part's pixels",
+                p.0, p.1
+            )
+        });
+    }
+    for i in (0..expected.len()).filter(|&i| expected[i] == Expect::One) {
+        let p = at(i);
+        let c = [f64::from(p.0) + 0.5, f64::from(p.1) + 0.5];
+        if (c[0] - cut[0]).abs().max((c[1] - cut[1]).abs()) >= 2.0 && !near(p, &got) {
+            found.add(p, || {
+                format!(
+                    "({}, {}) of the visible part has no fragment within a pixel",
+                    p.0, p.1
+                )
+            });
+        }
+    }
+    found.verdict(|n| {
+        format!(
+            "the clipped segment breaks Vulkan's allowance for other line algorithms at {}",
+            plural(n, "pixel")
+        )
+    })
+}
+
+/// What [`check_clip`] judges: the rasterizer's fragments, the expectations per sample, and
+/// where the segment meets the near plane (pixels).
+type ClipJudged = (Vec<SampleFragment>, Vec<Expect>, [f64; 2]);
+
+/// [`ClipJudged`] of a case, `None` for a case the rule does not judge.
+fn clip_expectations(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<Option<ClipJudged>, Violation> {
+    let Some(d) = declared(r) else { return Ok(None) };
+    let Some([pa, pb]) = case.segment(0) else {
+        return Ok(None);
     };
     let (w, h) = (case.scene.width, case.scene.height);
     let range = case.scene.state.depth_range;
     let near = |p: [f32; 4]| near_distance(range, f64::from(p[2]), f64::from(p[3]));
     let (da, db) = (near(pa), near(pb));
     if da < 0.0 || !within_guard_band(case, &d.profile) {
-        return Ok(());
+        return Ok(None);
     }
     let frags = sample_fragments(r, case)?;
     let one = f64::from(1u32 << d.bits);
@@ -381,7 +456,7 @@ pub fn check_clip(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), V
     let s = if db < 0.0 { da / (da - db) } else { 1.0 };
     let cut = [a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])];
     let Some(start) = snap(pa, w, h, d.bits) else {
-        return Ok(());
+        return Ok(None);
     };
     let cut_grid = (cut[0] * one, cut[1] * one);
     let positions = positions(r, case);
@@ -417,12 +492,7 @@ pub fn check_clip(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), V
             }
         }
     }
-    compare_samples(
-        case,
-        &counts(case, &frags, Some(0)),
-        &expected,
-        "the visible part's oracle",
-    )
+    Ok(Some((frags, expected, cut)))
 }
 
 /// For each fragment of segment 0: where on the snapped segment its sample projects (`t` in

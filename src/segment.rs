@@ -122,15 +122,18 @@ pub fn diamond_exit(a: FixedPoint, b: FixedPoint, c: FixedPoint, half: i64) -> b
 /// along segment `a → b`, from end to end.
 #[must_use]
 pub fn in_rectangle(a: FixedPoint, b: FixedPoint, s: FixedPoint, half: i64, fill: FillConvention) -> bool {
-    let (dx, dy) = (i128::from(b.x - a.x), i128::from(b.y - a.y));
+    let Relative {
+        dx,
+        dy,
+        rx,
+        ry,
+        cross,
+    } = relative(a, b, s, fill);
     let length2 = dx * dx + dy * dy;
     if length2 == 0 {
         return false;
     }
-    let (sx, sy) = nudged_sample(s, fill);
-    let (rx, ry) = (sub(sx, [i128::from(a.x), 0, 0]), sub(sy, [i128::from(a.y), 0, 0]));
     // Across: the distance to the line is |cross| / length; along: dot / length.
-    let cross = sub(ry.map(|c| c * dx), rx.map(|c| c * dy));
     let dot = [0, 1, 2].map(|k| rx[k] * dx + ry[k] * dy);
     let half = i128::from(half);
     less(mul(cross, cross), [half * half * length2, 0, 0]) && between(dot, [0; 3], [length2, 0, 0])
@@ -147,21 +150,48 @@ pub fn in_parallelogram(
     half: i64,
     fill: FillConvention,
 ) -> bool {
-    let (dx, dy) = (i128::from(b.x - a.x), i128::from(b.y - a.y));
+    let Relative {
+        dx,
+        dy,
+        rx,
+        ry,
+        cross,
+    } = relative(a, b, s, fill);
     if dx == 0 && dy == 0 {
         return false;
     }
+    let half = i128::from(half);
+    // Across the major axis the offset from the line is |cross| / |major|.
+    let (major, along) = if dx.abs() >= dy.abs() { (dx, rx) } else { (dy, ry) };
+    less(abs(cross), [half * major.abs(), 0, 0]) && between(along, [0; 3], [major, 0, 0])
+}
+
+/// Sample `s`, nudged as `fill` says, relative to segment `a → b`.
+struct Relative {
+    /// The segment's run in x.
+    dx: i128,
+    /// The segment's run in y.
+    dy: i128,
+    /// The nudged sample's x minus `a`'s.
+    rx: Nudged,
+    /// The nudged sample's y minus `a`'s.
+    ry: Nudged,
+    /// `(b − a) × (s − a)`: the sample's offset across the line, times the segment's length.
+    cross: Nudged,
+}
+
+fn relative(a: FixedPoint, b: FixedPoint, s: FixedPoint, fill: FillConvention) -> Relative {
+    let (dx, dy) = (i128::from(b.x - a.x), i128::from(b.y - a.y));
     let (sx, sy) = nudged_sample(s, fill);
     let (rx, ry) = (sub(sx, [i128::from(a.x), 0, 0]), sub(sy, [i128::from(a.y), 0, 0]));
     let cross = sub(ry.map(|c| c * dx), rx.map(|c| c * dy));
-    let half = i128::from(half);
-    // Across the major axis the offset from the line is |cross| / |major|.
-    let (major, along, end) = if dx.abs() >= dy.abs() {
-        (dx, rx, dx)
-    } else {
-        (dy, ry, dy)
-    };
-    less(abs(cross), [half * major.abs(), 0, 0]) && between(along, [0; 3], [end, 0, 0])
+    Relative {
+        dx,
+        dy,
+        rx,
+        ry,
+        cross,
+    }
 }
 
 /// Whether sample `s`, nudged as `fill` says, lies inside the square of half-side `half`

@@ -246,6 +246,10 @@ pub struct PrimitiveProfile {
     /// Where line and point end points are snapped; `None` for the grid of triangles
     /// ([`Profile::snapping`](crate::Profile::snapping)).
     pub endpoint_snapping: Option<Snapping>,
+    /// Where points alone are snapped, when on another grid than line ends (softpipe snaps
+    /// points to a quarter pixel, its lines and triangles to none); `None` for
+    /// [`endpoint_snapping`](Self::endpoint_snapping)'s.
+    pub point_snapping: Option<Snapping>,
     /// The sample counts above one it supports, each with its positions.
     pub multisample: Vec<SamplePattern>,
 }

@@ -240,6 +240,7 @@ impl Rasterizer for Reference {
             lines: Some(self.config.line),
             points: true,
             endpoint_snapping: None,
+            point_snapping: None,
             multisample: SAMPLE_COUNTS[1..]
                 .iter()
                 .filter(|_| on_grid)

@@ -291,6 +291,7 @@ impl Declared {
             lines: (lists(Topology::LineList) && lists(Topology::LineStrip)).then_some(self.lines),
             points: lists(Topology::PointList),
             endpoint_snapping: None,
+            point_snapping: None,
             multisample: self
                 .sample_counts
                 .iter()

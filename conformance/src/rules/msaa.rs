@@ -22,6 +22,9 @@ use proptest::strategy::Strategy;
 use crate::strategy::{self, primitive};
 use crate::violation::{Expect, Findings, Violation, plural};
 
+/// Why only the depth buffer's samples are required under Vulkan and OpenGL.
+const FRAGCOORD_Z: &str = "Vulkan (FragCoord: \"the z component of FragCoord is the interpolated depth value of the primitive\") and OpenGL 4.6 (gl_FragCoord) move only x and y to the sample under sample shading, and name no location for z, so a GPU's sample fragments, read from the shader, may carry one depth for every sample; the depth test's own values are each sample's (Vulkan, Depth Test: \"the sample's depth value z_f\"): only the depth buffer is required";
+
 /// The implementation declares a sample count above one.
 const MULTISAMPLE: super::Need =
     needs_primitives(|_, d| !d.multisample.is_empty(), "no sample count above one");
@@ -80,10 +83,16 @@ pub(super) fn rules() -> Vec<Rule> {
                 )
             }),
         Rule::invariant(Family::Msaa, "msaa.depth.per-sample")
-            .sentence("Each sample's depth is the triangle's screen-linear depth at that sample's position, not at the pixel's centre, within the claimed precision.")
-            .source("Vulkan 1.4, Depth Bias and Basic Polygon Rasterization (depth evaluated at each sample); D3D11.3 §3.5.6")
+            .sentence("Each sample's depth is the triangle's screen-linear depth at that sample's position, not at the pixel's centre, within the claimed precision: in its sample fragments and in the depth buffer the depth test leaves.")
+            .source("Vulkan 1.4, Basic Polygon Rasterization (the depth value z for a sample) and Depth Test (the sample's depth value z_f); D3D11.3 §3.5.6")
             .cases(1000)
             .needs(MULTISAMPLE)
+            .vulkan_and_opengl(Level::Partly {
+                part: |r, cfg| {
+                    property_declared(r, cfg, |_, d| primitive::multisampled(strategy::perspective_inside_scene(), counts_of(d)), check_depth_resolved)
+                },
+                note: FRAGCOORD_Z,
+            })
             .run(|r, cfg| {
                 property_declared(r, cfg, |_, d| primitive::multisampled(strategy::perspective_inside_scene(), counts_of(d)), check_depth)
             }),
@@ -344,11 +353,54 @@ pub fn check_positions(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<
 
 /// Each sample's depth is the snapped triangle's depth plane at the sample's position.
 pub fn check_depth(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    let frags = sample_fragments(r, case)?;
+    let depths: Vec<_> = frags
+        .iter()
+        .map(|f| (f.fragment.x, f.fragment.y, f.sample, f.fragment.depth))
+        .collect();
+    on_plane(r, case, &depths, "sample fragments")?;
+    check_depth_resolved(r, case)
+}
+
+/// The depth buffer's samples the triangle wrote hold its depth at their positions (with
+/// depth writes on; else the buffer keeps its clear value and says nothing).
+pub fn check_depth_resolved(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    if !case.scene.state.depth.write {
+        return Ok(());
+    }
+    let draw = case.draw();
+    let resolved = r
+        .resolve_primitives(&draw)
+        .map_err(|e| Violation::of_draw_error("resolve_primitives", &e))?;
+    let n = usize::from(resolved.samples.max(1));
+    let w = case.scene.width as usize;
+    let written: Vec<_> = (0..resolved.depth.len().min(resolved.primitive.len()))
+        .filter(|&i| resolved.primitive[i] == Some(0))
+        .map(|i| {
+            let pixel = i / n;
+            (
+                (pixel % w) as u32,
+                (pixel / w) as u32,
+                (i % n) as u8,
+                resolved.depth[i],
+            )
+        })
+        .collect();
+    on_plane(r, case, &written, "depth buffer")
+}
+
+/// Each `(x, y, sample, depth)` of triangle 0 lies on its depth plane at the sample's declared
+/// position, within the precision and what snapping may move the plane.
+fn on_plane(
+    r: &mut dyn Rasterizer,
+    case: &PrimitiveScene,
+    depths: &[(u32, u32, u8, f32)],
+    what: &str,
+) -> Result<(), Violation> {
     let profile = r.profile();
     let Some(bits) = profile.snapping.grid_bits() else {
         return Ok(());
     };
-    let frags = sample_fragments(r, case)?;
     let positions = positions(r, case);
     let (w, h) = (case.scene.width, case.scene.height);
     let corners = case.scene.corners(0);
@@ -370,27 +422,26 @@ pub fn check_depth(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), 
     let slope = (plane([1.0, 0.0]) - plane([0.0, 0.0])).abs() + (plane([0.0, 1.0]) - plane([0.0, 0.0])).abs();
     let tolerance = 2.0 * precision(&profile) + slope * 2.0 * profile.band_px();
     let mut found = Findings::new();
-    for f in &frags {
-        let [u, vv] = positions.get(usize::from(f.sample)).copied().unwrap_or([8, 8]);
+    for &(x, y, sample, depth) in depths {
+        let [u, vv] = positions.get(usize::from(sample)).copied().unwrap_or([8, 8]);
         let s = [
-            f64::from(f.fragment.x) + f64::from(u) / 16.0,
-            f64::from(f.fragment.y) + f64::from(vv) / 16.0,
+            f64::from(x) + f64::from(u) / 16.0,
+            f64::from(y) + f64::from(vv) / 16.0,
         ];
         let want = plane(s).clamp(0.0, 1.0);
-        let got = f64::from(f.fragment.depth);
+        let got = f64::from(depth);
         if (got - want).abs() > tolerance {
-            found.add((f.fragment.x, f.fragment.y), || {
-                let centre = plane([f64::from(f.fragment.x) + 0.5, f64::from(f.fragment.y) + 0.5]);
+            found.add((x, y), || {
+                let centre = plane([f64::from(x) + 0.5, f64::from(y) + 0.5]);
                 format!(
-                    "({}, {}) sample {}: depth {got}, expected {want} at the sample (the pixel centre's is {centre})",
-                    f.fragment.x, f.fragment.y, f.sample
+                    "({x}, {y}) sample {sample}: depth {got}, expected {want} at the sample (the pixel centre's is {centre})"
                 )
             });
         }
     }
     found.verdict(|n| {
         format!(
-            "{} carry another depth than at their sample's position",
+            "{} of the {what} carry another depth than at their sample's position",
             plural(n, "sample")
         )
     })
@@ -431,7 +482,7 @@ pub fn check_resolve(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<()
     }
     found.verdict(|n| {
         format!(
-            "the resolved samples differ from the fragments replayed at {}",
+            "{} resolved otherwise than the draw's fragments replayed through its depth test",
             plural(n, "sample")
         )
     })

@@ -5,7 +5,7 @@ use refrast::{Profile, Rasterizer, SampleFragment};
 use super::common::precision;
 use super::level::Level;
 use super::samples::{
-    cell, compare_samples, counts, endpoint_bits, expect_covered, grid, positions, sample_fragments,
+    cell, compare_samples, counts, expect_covered, grid, point_bits, positions, sample_fragments,
 };
 use super::{Family, Rule, needs_primitives};
 use crate::oracle::facing::snap_candidates;
@@ -19,7 +19,7 @@ use crate::violation::{Expect, Findings, Violation, plural};
 const POINTS: super::Need = needs_primitives(|_, d| d.points, "no points");
 /// Points on a snapping grid with a tie rule: their coverage has one exact answer.
 const EXACT_POINTS: super::Need = needs_primitives(
-    |p, d| d.points && endpoint_bits(p, d).is_some() && p.fill.is_some(),
+    |p, d| d.points && point_bits(p, d).is_some() && p.fill.is_some(),
     "no points on a snapping grid with a tie rule",
 );
 
@@ -74,7 +74,7 @@ fn in_view(case: &PrimitiveScene, i: usize) -> bool {
 /// Each point's samples equal the square oracle's on its snapped position.
 pub fn check_square_exact(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
     let (profile, primitives) = (r.profile(), r.primitive_profile());
-    let (Some(bits), Some(fill)) = (endpoint_bits(&profile, &primitives), profile.fill) else {
+    let (Some(bits), Some(fill)) = (point_bits(&profile, &primitives), profile.fill) else {
         return Ok(());
     };
     let frags = sample_fragments(r, case)?;
@@ -112,7 +112,13 @@ pub fn check_square_exact(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Resu
 /// Each point covers the samples of the pixel holding it, the band around pixel edges aside;
 /// a point beyond the viewport (by more than the band) covers nothing.
 pub fn check_pixel_holding(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
-    let band = r.profile().band_px();
+    // A point snapped to a coarser grid than the triangles' (softpipe's are, its triangles
+    // not) moves up to half a step of it, which the triangles' band may not cover.
+    let profile = r.profile();
+    let band = match point_bits(&profile, &r.primitive_profile()) {
+        Some(bits) => profile.band_px().max((-f64::from(bits) - 1.0).exp2()),
+        None => profile.band_px(),
+    };
     let frags = sample_fragments(r, case)?;
     let positions = positions(r, case);
     let (w, h) = (case.scene.width, case.scene.height);

@@ -5,7 +5,7 @@
 //! 2 × 2, 4 × 2, 4 × 4), sample `k` at column `k mod cols`, row `k div cols`, so one cell of the
 //! picture is one sample.
 
-use refrast::{PrimitiveProfile, Profile, Rasterizer, SampleFragment};
+use refrast::{PrimitiveProfile, Profile, Rasterizer, SampleFragment, Snapping};
 
 use crate::oracle::segment::SampleGrid;
 
@@ -43,11 +43,22 @@ pub fn cells(case: &PrimitiveScene) -> usize {
 /// The grid bits a profile snaps line and point ends to, if it snaps them to a grid.
 #[must_use]
 pub fn endpoint_bits(profile: &Profile, primitives: &PrimitiveProfile) -> Option<u8> {
-    primitives
-        .endpoint_snapping
-        .unwrap_or(profile.snapping)
-        .grid_bits()
-        .map(|b| b.min(16))
+    snapping_bits(primitives.endpoint_snapping.unwrap_or(profile.snapping))
+}
+
+/// The grid points are snapped to, in bits: [`PrimitiveProfile::point_snapping`], else the line
+/// ends' grid ([`endpoint_bits`]).
+#[must_use]
+pub fn point_bits(profile: &Profile, primitives: &PrimitiveProfile) -> Option<u8> {
+    match primitives.point_snapping {
+        Some(snapping) => snapping_bits(snapping),
+        None => endpoint_bits(profile, primitives),
+    }
+}
+
+/// A grid's bits, at most the 16 the oracles hold.
+fn snapping_bits(snapping: Snapping) -> Option<u8> {
+    snapping.grid_bits().map(|b| b.min(16))
 }
 
 /// The rasterizer's fragments for `case`; an error, a fragment outside the viewport, a sample

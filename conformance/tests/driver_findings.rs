@@ -1,0 +1,229 @@
+//! False verdicts the drivers' lines and points showed in refrast's own rules, each now a named
+//! regression test: the driver's fragments as they came back, and the rule passing them, beside
+//! a nearby wrong answer the rule still fails.
+
+use refrast::{
+    Draw, DrawError, Fragment, LineRule, PrimitiveDraw, PrimitiveProfile, Profile, Rasterizer, Reference,
+    SampleFragment, SamplePattern, SampleResolved, Snapping, Spec, Topology,
+};
+use refrast_conformance::rules::{line, msaa, point};
+use refrast_conformance::{PrimitiveScene, Scene};
+
+/// Answers every draw with the fragments a driver returned, declaring the reference's profile
+/// (8 bits, top-left) with llvmpipe's measured 7 bits of precision under `spec`, diamond-exit lines and points, and `points_on` for points.
+struct Returned {
+    spec: Spec,
+    points_on: Option<Snapping>,
+    fragments: Vec<SampleFragment>,
+    /// The depth buffer per sample its resolve returns; `None` replays the fragments.
+    depth_buffer: Option<Vec<f32>>,
+}
+
+impl Returned {
+    /// `(x, y, depth, barycentric)` of primitive 0 at sample 0.
+    fn new(spec: Spec, fragments: &[(u32, u32, f32, [f32; 3])]) -> Self {
+        let fragments = fragments
+            .iter()
+            .map(|&(x, y, depth, barycentric)| SampleFragment {
+                fragment: Fragment {
+                    x,
+                    y,
+                    primitive: 0,
+                    depth,
+                    barycentric,
+                    screen_barycentric: None,
+                    front_facing: true,
+                },
+                sample: 0,
+            })
+            .collect();
+        Self {
+            spec,
+            points_on: None,
+            fragments,
+            depth_buffer: None,
+        }
+    }
+}
+
+impl Rasterizer for Returned {
+    fn profile(&self) -> Profile {
+        Profile {
+            name: "returned".into(),
+            spec: self.spec,
+            precision_bits: 7,
+            ..Reference::default().profile()
+        }
+    }
+
+    fn rasterize(&mut self, _: &Draw) -> Result<Vec<Fragment>, DrawError> {
+        Ok(Vec::new())
+    }
+
+    fn primitive_profile(&self) -> PrimitiveProfile {
+        PrimitiveProfile {
+            lines: Some(LineRule::DiamondExit),
+            points: true,
+            point_snapping: self.points_on,
+            multisample: SamplePattern::standard(4).into_iter().collect(),
+            ..PrimitiveProfile::default()
+        }
+    }
+
+    fn rasterize_primitives(&mut self, _: &PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> {
+        Ok(self.fragments.clone())
+    }
+
+    fn resolve_primitives(&mut self, draw: &PrimitiveDraw) -> Result<SampleResolved, DrawError> {
+        let mut resolved = SampleResolved::from_fragments(draw, self.fragments.clone());
+        if let Some(depth) = &self.depth_buffer {
+            resolved.depth.clone_from(depth);
+        }
+        Ok(resolved)
+    }
+}
+
+/// One primitive of `topology` on a `width`×`height` target, far clipping on.
+fn case(width: u32, height: u32, positions: Vec<[f32; 4]>, topology: Topology) -> PrimitiveScene {
+    let indices = (0..positions.len() as u32).collect();
+    let mut scene = Scene::new(width, height, positions, Vec::new());
+    scene.state.clip_far = true;
+    PrimitiveScene {
+        scene,
+        topology,
+        indices,
+        samples: 1,
+    }
+}
+
+const BARY: [f32; 3] = [1.0, 0.0, 0.0];
+
+/// llvmpipe: a segment 0.005 px long from a pixel corner, which the diamond-exit rule draws as
+/// nothing, drawn as one fragment. OpenGL 4.6 §14.5.1 lets the count differ by one, and that
+/// fragment then corresponds to none; two such fragments are still more than one apart.
+#[test]
+fn one_fragment_for_a_segment_the_rule_draws_as_none_is_within_the_allowance() {
+    let tiny = case(
+        16,
+        16,
+        vec![[-0.9375, 1.0, 0.0, 1.0], [-0.937_011_7, 0.999_511_7, 0.0, 1.0]],
+        Topology::LineStrip,
+    );
+    let mut llvmpipe = Returned::new(Spec::OpenGl, &[(0, 0, 0.0, BARY)]);
+    assert_eq!(line::check_diamond_allowance(&mut llvmpipe, &tiny).err(), None);
+    let mut two = Returned::new(Spec::OpenGl, &[(0, 0, 0.0, BARY), (5, 5, 0.0, BARY)]);
+    assert!(line::check_diamond_allowance(&mut two, &tiny).is_err());
+}
+
+/// A vertical segment exactly on the viewport's left edge: the diamond-exit rule draws column
+/// −1, outside the target, and another algorithm may draw column 0 instead. A column two
+/// pixels in is not within a pixel of the rule's.
+#[test]
+fn a_segment_on_the_viewports_edge_may_draw_the_column_inside() {
+    let edge = case(
+        16,
+        16,
+        vec![[-1.0, -0.84375, 0.0, 1.0], [-1.0, 1.0, 0.0, 1.0]],
+        Topology::LineList,
+    );
+    let column = |x| (0..15).map(|y| (x, y, 0.0, BARY)).collect::<Vec<_>>();
+    let mut inside = Returned::new(Spec::OpenGl, &column(0));
+    assert_eq!(line::check_diamond_allowance(&mut inside, &edge).err(), None);
+    let mut two_in = Returned::new(Spec::OpenGl, &column(2));
+    assert!(line::check_diamond_allowance(&mut two_in, &edge).is_err());
+}
+
+/// llvmpipe: a pixel whose centre lies before a short segment's start gets the depth and
+/// barycentrics of Vulkan's and OpenGL's formula, `t` unclamped (t ≈ −0.64 here), not the
+/// start's. A depth above the segment's far end is still wrong.
+#[test]
+fn depth_and_barycentrics_beyond_an_end_may_extrapolate() {
+    let short = case(
+        16,
+        16,
+        vec![
+            [0.122_363_284, 0.1875, 0.0, 0.2],
+            [0.1375, 0.1875, 0.066_614_24, 0.2],
+        ],
+        Topology::LineList,
+    );
+    let mut llvmpipe = Returned::new(Spec::OpenGl, &[(12, 0, -0.217_033_62, [1.64, -0.64, 0.0])]);
+    assert_eq!(line::check_depth_linear(&mut llvmpipe, &short).err(), None);
+    assert_eq!(line::check_bary_perspective(&mut llvmpipe, &short).err(), None);
+    let mut above = Returned::new(Spec::OpenGl, &[(12, 0, 0.5, [1.64, -0.64, 0.0])]);
+    assert!(line::check_depth_linear(&mut above, &short).is_err());
+}
+
+/// llvmpipe: a perspective segment 0.13 px long, a pixel centre 1.9 of its lengths before its
+/// start: t′ = (t/w_b) / ((1 − t)/w_a + t/w_b) is 3.65 there, past the pole a pixel's span of `t`
+/// crosses, so no value is out of range.
+#[test]
+fn barycentrics_past_the_pole_of_an_extrapolated_segment_are_not_judged() {
+    let steep = case(
+        32,
+        64,
+        vec![
+            [0.843_796_25, -1.555_820_3, 0.0, 1.861_168_3],
+            [0.400_049_42, -0.741_287_05, 0.0, 0.882_392_2],
+        ],
+        Topology::LineList,
+    );
+    let mut llvmpipe = Returned::new(Spec::OpenGl, &[(23, 58, 0.0, [-2.649_228, 3.649_202, 0.0])]);
+    assert_eq!(line::check_bary_perspective(&mut llvmpipe, &steep).err(), None);
+}
+
+/// softpipe snaps points to a quarter pixel (its triangles to no grid): a point 1/128 px below
+/// a pixel edge lands on the edge, and covering the row above is a tie. Declared, the rule lets
+/// it; undeclared, the same pixel fails.
+#[test]
+fn a_point_on_a_coarser_grid_than_the_triangles_may_land_on_a_pixel_edge() {
+    let point = case(16, 16, vec![[-1.0, -0.250_976_56, 0.0, 1.0]], Topology::PointList);
+    let mut softpipe = Returned::new(Spec::OpenGl, &[(0, 9, 0.0, BARY)]);
+    softpipe.points_on = Some(Snapping::Grid(1));
+    assert_eq!(point::check_pixel_holding(&mut softpipe, &point).err(), None);
+    softpipe.points_on = None;
+    assert!(point::check_pixel_holding(&mut softpipe, &point).is_err());
+}
+
+/// SwiftShader at 4 samples: `FragCoord.z` is one value for the pixel's four samples, which
+/// Vulkan allows (it names no location for z), while its depth buffer holds each sample's depth
+/// from the position mirrored in x, which it does not. A pixel under the plane 0.1 + 0.4·x: the
+/// fragments alone fail only refrast's conventions; a depth buffer at the samples' own positions
+/// passes, the mirrored one fails.
+#[test]
+fn per_sample_depth_is_required_of_the_depth_buffer_not_of_fragcoord_z() {
+    let mut plane = case(
+        1,
+        1,
+        vec![
+            [-1.0, 1.0, 0.1, 1.0],
+            [3.0, 1.0, 0.9, 1.0],
+            [-1.0, -3.0, 0.1, 1.0],
+        ],
+        Topology::TriangleList,
+    );
+    plane.indices = Vec::new();
+    plane.scene.triangles = vec![[0, 1, 2]];
+    plane.samples = 4;
+    let at = |x16: f32| 0.1 + 0.4 * x16 / 16.0;
+    let mut swiftshader = Returned::new(Spec::Vulkan, &[]);
+    swiftshader.fragments = (0..4)
+        .map(|sample| SampleFragment {
+            fragment: Fragment {
+                x: 0,
+                y: 0,
+                primitive: 0,
+                depth: at(10.0),
+                barycentric: BARY,
+                screen_barycentric: None,
+                front_facing: true,
+            },
+            sample,
+        })
+        .collect();
+    swiftshader.depth_buffer = Some([6.0, 14.0, 2.0, 10.0].map(at).to_vec());
+    assert!(msaa::check_depth(&mut swiftshader, &plane).is_err());
+    assert_eq!(msaa::check_depth_resolved(&mut swiftshader, &plane).err(), None);
+    swiftshader.depth_buffer = Some([10.0, 2.0, 14.0, 6.0].map(at).to_vec());
+    assert!(msaa::check_depth_resolved(&mut swiftshader, &plane).is_err());
+}

@@ -14,19 +14,22 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, OnceLock};
 
-use refrast::{FillConvention, SnapAccuracy, Snapping, Unavailable};
+use refrast::{
+    FillConvention, LineRule, PrimitiveProfile, SamplePattern, SnapAccuracy, Snapping, Unavailable,
+};
 
 use crate::device::{Context, Driver};
 use crate::measured::Measured;
 
 /// The sources whose change must measure again.
-const SOURCES: [&str; 9] = [
+const SOURCES: [&str; 10] = [
     include_str!("probe/mod.rs"),
     include_str!("probe/band.rs"),
     include_str!("probe/coverage.rs"),
     include_str!("probe/fill.rs"),
     include_str!("probe/grid.rs"),
     include_str!("probe/precision.rs"),
+    include_str!("probe/primitives.rs"),
     include_str!("probe/snap.rs"),
     include_str!("measured.rs"),
     include_str!("reported.rs"),
@@ -162,9 +165,48 @@ fn load(file: &Path, key: &str) -> Option<Measured> {
         guard_band: get("guard_band")?.parse().ok()?,
         precision_bits: get("precision_bits")?.parse().ok()?,
         tolerance_subpixels: get("tolerance_subpixels")?.parse().ok()?,
+        primitives: PrimitiveProfile {
+            lines: match get("lines")? {
+                "none" => None,
+                name => Some(LineRule::from_name(name)?),
+            },
+            points: get("points")?.parse().ok()?,
+            endpoint_snapping: None,
+            point_snapping: match get("point_snapping")? {
+                "triangles" => None,
+                "float" => Some(Snapping::Float),
+                bits => Some(Snapping::Grid(bits.parse().ok()?)),
+            },
+            multisample: match get("samples")? {
+                "none" => Vec::new(),
+                list => {
+                    let positions: Option<Vec<[u8; 2]>> = list
+                        .split(' ')
+                        .map(|p| {
+                            let (x, y) = p.split_once(',')?;
+                            Some([x.parse().ok()?, y.parse().ok()?])
+                        })
+                        .collect();
+                    vec![SamplePattern::new(&positions?).ok()?]
+                }
+            },
+        },
         reported: get("reported")?.to_owned(),
         why: get("why")?.to_owned(),
     })
+}
+
+/// The sample pattern as the file holds it: `x,y` per sample, or `none`.
+fn samples(p: &PrimitiveProfile) -> String {
+    match p.multisample.first() {
+        Some(pattern) => pattern
+            .positions()
+            .iter()
+            .map(|[x, y]| format!("{x},{y}"))
+            .collect::<Vec<_>>()
+            .join(" "),
+        None => "none".to_owned(),
+    }
 }
 
 /// Writes `m` under `key`, through a file of this process's own renamed into place, so that
@@ -172,7 +214,8 @@ fn load(file: &Path, key: &str) -> Option<Measured> {
 fn store(file: &Path, key: &str, m: &Measured) {
     let text = format!(
         "{key}\nsnapping = {}\nfill = {}\nties_to_even = {}\nsnap = {:?}\nguard_band = {}\n\
-         precision_bits = {}\ntolerance_subpixels = {}\nreported = {}\nwhy = {}\n",
+         precision_bits = {}\ntolerance_subpixels = {}\nlines = {}\npoints = {}\npoint_snapping = {}\nsamples = {}\n\
+         reported = {}\nwhy = {}\n",
         match m.snapping {
             Snapping::Grid(bits) => bits.to_string(),
             Snapping::Float => "float".to_owned(),
@@ -183,6 +226,14 @@ fn store(file: &Path, key: &str, m: &Measured) {
         m.guard_band,
         m.precision_bits,
         m.tolerance_subpixels,
+        m.primitives.lines.map_or("none", LineRule::name),
+        m.primitives.points,
+        match m.primitives.point_snapping {
+            None => "triangles".to_owned(),
+            Some(Snapping::Float) => "float".to_owned(),
+            Some(Snapping::Grid(bits)) => bits.to_string(),
+        },
+        samples(&m.primitives),
         m.reported,
         m.why
     );
@@ -214,6 +265,13 @@ mod tests {
             guard_band: 0,
             precision_bits: 11,
             tolerance_subpixels: 1,
+            primitives: PrimitiveProfile {
+                lines: Some(LineRule::Parallelogram),
+                points: true,
+                endpoint_snapping: None,
+                point_snapping: None,
+                multisample: SamplePattern::standard(4).into_iter().collect(),
+            },
             reported: "SwiftShader driver (driverVersion 5.0.0)".into(),
             why: "4 subpixel bits (vulkaninfo; probe agrees), top-left (38/38)".into(),
         };
@@ -223,6 +281,13 @@ mod tests {
         let float = Measured {
             snapping: Snapping::Float,
             fill: None,
+            primitives: PrimitiveProfile {
+                lines: None,
+                points: false,
+                endpoint_snapping: None,
+                point_snapping: Some(Snapping::Grid(4)),
+                multisample: vec![SamplePattern::new(&[[1, 2], [3, 4], [5, 6], [7, 8]]).expect("4 samples")],
+            },
             ..m
         };
         store(&file, "the key", &float);

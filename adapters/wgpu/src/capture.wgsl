@@ -1,36 +1,8 @@
-// Capturing into a storage buffer: appended to `shaders.wgsl` by `Pipelines::new`.
+// Capturing into a storage buffer at one sample per pixel: appended to `shaders.wgsl` and
+// `record.wgsl` by `Pipelines::new`.
 
-// One covered sample, as the capture pass appends it.
-struct Sample {
-    x: u32,
-    y: u32,
-    primitive: u32,
-    front_facing: u32,
-    depth: f32,
-    perspective: array<f32, 3>,
-    screen: array<f32, 3>,
-    pad: u32,
-}
-
-@group(0) @binding(0) var<storage, read_write> count: atomic<u32>;
-@group(0) @binding(1) var<storage, read_write> samples: array<Sample>;
-
-// Every covered sample of every triangle, overlapped ones included: no depth test runs.
+// Every covered sample of every primitive, overlapped ones included: no depth test runs.
 @fragment
 fn capture(in: Varyings, @builtin(front_facing) front_facing: bool) {
-    let i = atomicAdd(&count, 1u);
-    if i < arrayLength(&samples) {
-        samples[i] = Sample(
-            // The sample position's bits: a conversion to u32 would clamp a fragment left of or
-            // above the target to column or row 0, inside it.
-            bitcast<u32>(in.position.x),
-            bitcast<u32>(in.position.y),
-            in.primitive,
-            select(0u, 1u, front_facing),
-            in.position.z,
-            array<f32, 3>(in.perspective.x, in.perspective.y, in.perspective.z),
-            array<f32, 3>(in.screen.x, in.screen.y, in.screen.z),
-            0u,
-        );
-    }
+    append(in, front_facing, 0u);
 }

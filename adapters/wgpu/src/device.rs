@@ -149,6 +149,9 @@ pub struct Context {
     pub renders_floats: bool,
     /// Whether it can copy a depth texture to a buffer (OpenGL ES cannot).
     pub copies_depth: bool,
+    /// Why it cannot draw at 4 samples per pixel and capture each sample, if it cannot: a
+    /// multisampled depth and id target, and fragment shaders run per sample.
+    pub no_multisampling: Option<String>,
 }
 
 /// What opening a driver gave: its device, or why there is none.
@@ -218,9 +221,13 @@ fn open(driver: Driver) -> Result<Context, Unavailable> {
         .allowed_usages
         .contains(wgpu::TextureUsages::RENDER_ATTACHMENT);
     let limits = adapter.limits();
+    let no_multisampling = multisampling(adapter);
     let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
         label: Some("refrast"),
         required_limits: limits.clone(),
+        // WebGPU's core formats hold no 32-bit integer at several samples; the id targets of a
+        // multisampled resolve need the adapter's own format features.
+        required_features: adapter.features() & wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES,
         ..wgpu::DeviceDescriptor::default()
     }))
     .map_err(|e| Unavailable(format!("{} refused a device: {e}", describe(info))))?;
@@ -234,5 +241,36 @@ fn open(driver: Driver) -> Result<Context, Unavailable> {
             .get_downlevel_capabilities()
             .flags
             .contains(wgpu::DownlevelFlags::DEPTH_TEXTURE_AND_BUFFER_COPIES),
+        no_multisampling,
     })
+}
+
+/// Why `adapter` cannot draw and capture at 4 samples per pixel, if it cannot: what wgpu
+/// reports of its per-sample shading and of its depth and integer formats.
+fn multisampling(adapter: &wgpu::Adapter) -> Option<String> {
+    if !adapter
+        .get_downlevel_capabilities()
+        .flags
+        .contains(wgpu::DownlevelFlags::MULTISAMPLED_SHADING)
+    {
+        return Some("its fragment shaders cannot run per sample (no MULTISAMPLED_SHADING)".into());
+    }
+    if !adapter
+        .features()
+        .contains(wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES)
+    {
+        return Some(
+            "WebGPU's core formats have no 4-sample R32Uint target, and it reports no others".into(),
+        );
+    }
+    let formats = [wgpu::TextureFormat::Depth32Float, wgpu::TextureFormat::R32Uint];
+    formats
+        .into_iter()
+        .find(|&f| {
+            !adapter
+                .get_texture_format_features(f)
+                .flags
+                .sample_count_supported(4)
+        })
+        .map(|f| format!("it has no 4-sample {f:?} target"))
 }

@@ -1,8 +1,9 @@
 //! The passes that read back what the driver did: capture (every covered sample) and resolve
-//! (the driver's own depth test into a depth and an id target).
+//! (the driver's own depth test into a depth and an id target), for any topology and sample
+//! count.
 
 use bytemuck::{Pod, Zeroable};
-use refrast::{Draw, DrawError, Fragment};
+use refrast::{DrawError, Fragment, PrimitiveDraw, SampleFragment, Topology};
 use wgpu::util::DeviceExt;
 
 use std::time::{Duration, Instant};
@@ -10,7 +11,7 @@ use std::time::{Duration, Instant};
 use crate::Timings;
 use crate::device::Context;
 use crate::pipelines::{DEPTH, DEPTHS, IDS, Key, Method, Pass, Pipelines};
-use crate::resources::{Readback, depth_attachment, map, target, vertex_list};
+use crate::resources::{Readback, along, depth_attachment, map, target, vertex_list};
 
 /// One covered sample as the capture shader writes it (`Sample` in `capture.wgsl`); the
 /// position as the bits of its f32 coordinates.
@@ -24,28 +25,77 @@ pub struct RawSample {
     depth: f32,
     perspective: [f32; 3],
     screen: [f32; 3],
-    pad: u32,
+    sample: u32,
 }
 
-/// Every covered sample of every triangle of `draw`, as the driver rasterized them.
-pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
-    if draw.triangles.is_empty() {
+/// Every covered sample of every primitive of `draw`, as the driver rasterized them.
+pub fn capture(
+    ctx: &Context,
+    pipelines: &mut Pipelines,
+    draw: &PrimitiveDraw,
+) -> Result<Vec<SampleFragment>, DrawError> {
+    let primitives = draw.primitive_count();
+    if primitives == 0 {
         return Ok(Vec::new());
     }
     if pipelines.method == Method::FloatTargets {
+        if draw.samples > 1 {
+            return Err(DrawError::Unsupported(format!(
+                "{} captures one primitive at a time into float targets, at one sample only",
+                ctx.info.name
+            )));
+        }
         return crate::targets::capture(ctx, pipelines, draw);
     }
+    let offset = strip_offset(ctx, pipelines, draw.topology)?;
     let vertices = vertex_list(draw);
-    // Room for every sample covered by four triangles; a draw covering more is drawn again with
+    // Room for every sample covered by four primitives; a draw covering more is drawn again with
     // room for exactly what the first pass counted.
-    let mut capacity = (draw.viewport.pixel_count() * draw.triangles.len().min(4)).max(1);
+    let mut capacity = (draw.viewport.pixel_count() * usize::from(draw.samples) * primitives.min(4)).max(1);
     loop {
         let (count, samples) = capture_pass(ctx, pipelines, draw, &vertices, capacity)?;
         if count <= capacity {
-            return Ok(samples[..count].iter().map(fragment).collect());
+            return Ok(samples[..count]
+                .iter()
+                .map(|s| {
+                    let mut f = fragment(s);
+                    f.primitive = f.primitive.wrapping_sub(offset);
+                    SampleFragment {
+                        fragment: along(draw.topology, f),
+                        sample: u8::try_from(s.sample).unwrap_or(u8::MAX),
+                    }
+                })
+                .collect());
         }
         capacity = count;
     }
+}
+
+/// How far `topology`'s flat primitive ids are from its primitives' indices: 0 but for a line
+/// strip on a driver whose flat values come from a segment's last vertex. A strip of one
+/// segment across a 4×1 target, drawn once per process, says which.
+fn strip_offset(ctx: &Context, pipelines: &mut Pipelines, topology: Topology) -> Result<u32, DrawError> {
+    if topology != Topology::LineStrip || pipelines.method == Method::FloatTargets {
+        return Ok(0);
+    }
+    if let Some(offset) = pipelines.strip_offset {
+        return Ok(offset);
+    }
+    let viewport = refrast::Viewport::new(4, 1).map_err(|e| DrawError::Backend(e.to_string()))?;
+    let ends = vec![[-0.75, 0.0, 0.5, 1.0], [0.75, 0.0, 0.5, 1.0]];
+    let probe = PrimitiveDraw::new(viewport, ends.clone(), Topology::LineStrip, vec![0, 1]);
+    let (_, samples) = capture_pass(ctx, pipelines, &probe, &ends, 16)?;
+    let offset = match samples.first().map(|s| s.primitive) {
+        Some(first) if samples.iter().all(|s| s.primitive == first) && first <= 1 => first,
+        _ => {
+            return Err(DrawError::Backend(format!(
+                "a one-segment line strip came back as {:?}: its flat values name neither end",
+                samples.iter().map(|s| s.primitive).collect::<Vec<_>>()
+            )));
+        }
+    };
+    pipelines.strip_offset = Some(offset);
+    Ok(offset)
 }
 
 /// A captured sample as a fragment; a position outside `0..2³²` (a driver shading off the
@@ -74,7 +124,7 @@ fn fragment(s: &RawSample) -> Fragment {
 fn capture_pass(
     ctx: &Context,
     pipelines: &mut Pipelines,
-    draw: &Draw,
+    draw: &PrimitiveDraw,
     vertices: &[[f32; 4]],
     capacity: usize,
 ) -> Result<(usize, Vec<RawSample>), DrawError> {
@@ -117,9 +167,15 @@ fn capture_pass(
             },
         ],
     });
-    let depth = target(ctx, draw, DEPTH);
+    let depth = target(ctx, draw.viewport, DEPTH, draw.samples);
     let depth_view = depth.create_view(&wgpu::TextureViewDescriptor::default());
-    let pipeline = pipelines.get(device, Key::new(Pass::Capture, &draw.state));
+    let pass = if draw.samples == 1 {
+        Pass::Capture
+    } else {
+        Pass::CaptureSamples
+    };
+    let key = Key::new(pass, &draw.state).drawing(draw.topology, draw.samples);
+    let pipeline = pipelines.get(device, key)?;
     let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
         label: Some("capture"),
     });
@@ -166,14 +222,15 @@ fn read_buffer(
     map(ctx, &staging)
 }
 
-/// The driver's depth test: the depth buffer and the id of the last fragment that passed.
-pub fn resolve(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<Resolve, DrawError> {
-    let (w, h) = (draw.viewport.width(), draw.viewport.height());
+/// The driver's depth test: the depth buffer and the id of the last fragment that passed, one
+/// value per sample.
+pub fn resolve(ctx: &Context, pipelines: &mut Pipelines, draw: &PrimitiveDraw) -> Result<Resolve, DrawError> {
+    let n = draw.viewport.pixel_count() * usize::from(draw.samples);
     let clear = draw.state.depth.clear;
-    if draw.triangles.is_empty() {
+    if draw.primitive_count() == 0 {
         return Ok(Resolve {
-            depth: vec![clear; draw.viewport.pixel_count()],
-            primitive: vec![None; draw.viewport.pixel_count()],
+            depth: vec![clear; n],
+            primitive: vec![None; n],
             timings: Timings {
                 drawing: Duration::ZERO,
                 reading: Duration::ZERO,
@@ -187,28 +244,20 @@ pub fn resolve(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
         contents: bytemuck::cast_slice(&vertices),
         usage: wgpu::BufferUsages::VERTEX,
     });
-    let depth = target(ctx, draw, DEPTH);
-    let ids = target(ctx, draw, IDS);
-    let depths = target(ctx, draw, DEPTHS);
+    let offset = strip_offset(ctx, pipelines, draw.topology)?;
+    let samples = draw.samples;
+    let depth = target(ctx, draw.viewport, DEPTH, samples);
+    let ids = target(ctx, draw.viewport, IDS, samples);
+    let depths = target(ctx, draw.viewport, DEPTHS, samples);
     let depth_view = depth.create_view(&wgpu::TextureViewDescriptor::default());
     let ids_view = ids.create_view(&wgpu::TextureViewDescriptor::default());
     let depths_view = depths.create_view(&wgpu::TextureViewDescriptor::default());
-    let pipeline = pipelines.get(device, Key::new(Pass::Resolve, &draw.state));
+    let key = Key::new(Pass::Resolve, &draw.state).drawing(draw.topology, samples);
+    let pipeline = pipelines.get(device, key)?;
     let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
         label: Some("resolve"),
     });
     {
-        let colour = |view, clear| {
-            Some(wgpu::RenderPassColorAttachment {
-                view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(clear),
-                    store: wgpu::StoreOp::Store,
-                },
-            })
-        };
         // The clear depth's bits, exact in an f64.
         let cleared = wgpu::Color {
             r: f64::from(clear.to_bits()),
@@ -235,39 +284,17 @@ pub fn resolve(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
         .map_err(|e| DrawError::Backend(format!("the device did not finish: {e}")))?;
     let drawing = started.elapsed();
     let started = Instant::now();
-    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-        label: Some("read back"),
-    });
-    let ids_out = Readback::new(ctx, w, h, 4);
-    ids_out.copy(&mut encoder, &ids, wgpu::TextureAspect::All);
-    let depth_out = if ctx.copies_depth {
-        let out = Readback::new(ctx, w, h, 4);
-        out.copy(&mut encoder, &depth, wgpu::TextureAspect::DepthOnly);
-        out
+    let (depths, primitives) = if samples == 1 {
+        read_single(ctx, draw, &ids, &depth, &depths)?
     } else {
-        // OpenGL ES cannot copy a depth texture: the passing fragment wrote its depth's bits to
-        // an integer target. With writes on, that is what the depth buffer holds; with writes off the
-        // buffer keeps its clear value (a driver writing it anyway would still show in the ids,
-        // as later fragments would test against it).
-        let out = Readback::new(ctx, w, h, 4);
-        out.copy(&mut encoder, &depths, wgpu::TextureAspect::All);
-        out
+        read_samples(ctx, pipelines, draw, &ids_view, &depth_view)?
     };
-    ctx.queue.submit([encoder.finish()]);
-    let depths: Vec<f32> = depth_out.read::<f32>(ctx)?;
-    let depths = if ctx.copies_depth || draw.state.depth.write {
-        depths
-    } else {
-        vec![clear; depths.len()]
-    };
-    let primitives = ids_out
-        .read::<u32>(ctx)?
-        .into_iter()
-        .map(|id| id.checked_sub(1))
-        .collect();
     Ok(Resolve {
         depth: depths,
-        primitive: primitives,
+        primitive: primitives
+            .into_iter()
+            .map(|id| id.checked_sub(1).map(|p| p.wrapping_sub(offset)))
+            .collect(),
         timings: Timings {
             drawing,
             reading: started.elapsed(),
@@ -275,11 +302,133 @@ pub fn resolve(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
     })
 }
 
+/// A colour attachment cleared to `clear` and stored.
+fn colour(view: &wgpu::TextureView, clear: wgpu::Color) -> Option<wgpu::RenderPassColorAttachment<'_>> {
+    Some(wgpu::RenderPassColorAttachment {
+        view,
+        depth_slice: None,
+        resolve_target: None,
+        ops: wgpu::Operations {
+            load: wgpu::LoadOp::Clear(clear),
+            store: wgpu::StoreOp::Store,
+        },
+    })
+}
+
+/// The depths and ids (plus one) of a resolve at one sample, copied back.
+fn read_single(
+    ctx: &Context,
+    draw: &PrimitiveDraw,
+    ids: &wgpu::Texture,
+    depth: &wgpu::Texture,
+    depths: &wgpu::Texture,
+) -> Result<(Vec<f32>, Vec<u32>), DrawError> {
+    let (w, h) = (draw.viewport.width(), draw.viewport.height());
+    let mut encoder = ctx
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("read back"),
+        });
+    let ids_out = Readback::new(ctx, w, h, 4);
+    ids_out.copy(&mut encoder, ids, wgpu::TextureAspect::All);
+    let depth_out = Readback::new(ctx, w, h, 4);
+    if ctx.copies_depth {
+        depth_out.copy(&mut encoder, depth, wgpu::TextureAspect::DepthOnly);
+    } else {
+        // OpenGL ES cannot copy a depth texture: the passing fragment wrote its depth's bits to
+        // an integer target. With writes on, that is what the depth buffer holds; with writes off the
+        // buffer keeps its clear value (a driver writing it anyway would still show in the ids,
+        // as later fragments would test against it).
+        depth_out.copy(&mut encoder, depths, wgpu::TextureAspect::All);
+    }
+    ctx.queue.submit([encoder.finish()]);
+    let read: Vec<f32> = depth_out.read::<f32>(ctx)?;
+    let read = if ctx.copies_depth || draw.state.depth.write {
+        read
+    } else {
+        vec![draw.state.depth.clear; read.len()]
+    };
+    Ok((read, ids_out.read::<u32>(ctx)?))
+}
+
+/// The depths and ids (plus one) of a resolve at several samples (at most
+/// [`MOST_SAMPLES`](crate::pipelines::MOST_SAMPLES)), sample by sample: `unpack.wgsl` loads each
+/// pixel's samples into two one-sample targets, which are copied back.
+fn read_samples(
+    ctx: &Context,
+    pipelines: &mut Pipelines,
+    draw: &PrimitiveDraw,
+    ids: &wgpu::TextureView,
+    depth: &wgpu::TextureView,
+) -> Result<(Vec<f32>, Vec<u32>), DrawError> {
+    use crate::pipelines::{MOST_SAMPLES, UNPACKED};
+    if draw.samples > MOST_SAMPLES {
+        return Err(DrawError::Unsupported(format!(
+            "a resolve at {} samples: the adapter reads back at most {MOST_SAMPLES}",
+            draw.samples
+        )));
+    }
+    let (w, h) = (draw.viewport.width(), draw.viewport.height());
+    let device = &ctx.device;
+    let (pipeline, layout) = pipelines.unpack(device);
+    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("unpack"),
+        layout,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(ids),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: wgpu::BindingResource::TextureView(depth),
+            },
+        ],
+    });
+    let unpacked = [0, 1].map(|_| target(ctx, draw.viewport, UNPACKED, 1));
+    let views = unpacked
+        .each_ref()
+        .map(|t| t.create_view(&wgpu::TextureViewDescriptor::default()));
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+        label: Some("unpack"),
+    });
+    {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("unpack"),
+            color_attachments: &[
+                colour(&views[0], wgpu::Color::TRANSPARENT),
+                colour(&views[1], wgpu::Color::TRANSPARENT),
+            ],
+            ..wgpu::RenderPassDescriptor::default()
+        });
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, &bind_group, &[]);
+        pass.draw(0..3, 0..1);
+    }
+    let outs = [0, 1].map(|_| Readback::new(ctx, w, h, 16));
+    for (out, texture) in outs.iter().zip(&unpacked) {
+        out.copy(&mut encoder, texture, wgpu::TextureAspect::All);
+    }
+    ctx.queue.submit([encoder.finish()]);
+    let per_sample = |texels: Vec<[u32; 4]>| -> Vec<u32> {
+        texels
+            .into_iter()
+            .flat_map(|t| t.into_iter().take(usize::from(draw.samples)))
+            .collect()
+    };
+    let ids = per_sample(outs[0].read::<[u32; 4]>(ctx)?);
+    let depths = per_sample(outs[1].read::<[u32; 4]>(ctx)?)
+        .into_iter()
+        .map(f32::from_bits)
+        .collect();
+    Ok((depths, ids))
+}
+
 /// What the driver's depth test left, and how long drawing and reading it back took.
 pub struct Resolve {
-    /// The depth buffer, row by row.
+    /// The depth buffer, row by row, sample by sample within a pixel.
     pub depth: Vec<f32>,
-    /// The primitive that last passed the depth test at each pixel.
+    /// The primitive that last passed the depth test at each sample.
     pub primitive: Vec<Option<u32>>,
     /// How long the device drew, and how long reading back took.
     pub timings: Timings,

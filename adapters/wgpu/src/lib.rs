@@ -44,6 +44,16 @@
 //!   [`measured::MARGIN`]: Vulkan and OpenGL hold a clipped polygon's values only to being a
 //!   convex combination, and the suite judges them so (docs/levels.md).
 //!
+//! - **Lines, points and samples** (`probe/primitives.rs`). The line rule no probe segment
+//!   disagrees with, else the nearest (the `line.` rules judge within each specification's
+//!   allowance); points, and the grid they snap to when coarser than the triangles' (softpipe's
+//!   quarter pixel); the 4 sample positions, read off coverage, when the driver runs fragment
+//!   shaders per sample. Lines and points draw through wgpu's line-list, line-strip and
+//!   point-list pipelines; at 4 samples a shader run per sample (`multisample.wgsl`) captures
+//!   each covered sample, and the resolve's multisampled targets are read back by a pass that
+//!   loads each sample (`unpack.wgsl`). A strip's primitive ids are measured too: OpenGL ES
+//!   takes flat values from a segment's last vertex, Vulkan from its first.
+//!
 //! Every probe is a few batched draws read back by primitive id (`probe/`, well under a second
 //! a process); the result is kept per driver and version under the target folder (`cache.rs`),
 //! so each rule's child process reads it instead. `tests/measured.rs` pins every choice on this
@@ -76,8 +86,8 @@ mod targets;
 use std::sync::{Arc, Mutex};
 
 use refrast::{
-    CompareOp, DepthConvention, DepthRange, Draw, DrawError, Features, Fragment, Profile, Rasterizer,
-    Resolved, Supported, Unavailable,
+    CompareOp, DepthConvention, DepthRange, Draw, DrawError, Features, Fragment, PrimitiveDraw,
+    PrimitiveProfile, Profile, Rasterizer, Resolved, SampleFragment, SampleResolved, Supported, Unavailable,
 };
 
 pub use device::Driver;
@@ -144,7 +154,11 @@ impl Gpu {
     /// the targets back took, apart (the side-by-side benchmark reports both).
     pub fn resolve_timed(&mut self, draw: &Draw) -> Result<(Resolved, Timings), DrawError> {
         self.check(draw)?;
-        let r = draw::resolve(&self.context, &mut self.pipelines(), draw)?;
+        let r = draw::resolve(
+            &self.context,
+            &mut self.pipelines(),
+            &PrimitiveDraw::of_triangles(draw, 1),
+        )?;
         let resolved = Resolved {
             viewport: draw.viewport,
             depth: r.depth,
@@ -180,6 +194,28 @@ impl Gpu {
         Ok(())
     }
 
+    /// Refuses a draw of lines, points or samples the driver cannot do as asked: what
+    /// [`Gpu::check`] refuses, and what its measured profile does not declare.
+    fn check_primitives(&self, draw: &PrimitiveDraw) -> Result<(), DrawError> {
+        draw.validate()?;
+        let declared = &self.measured.primitives;
+        if !declared.supports(draw.topology, draw.samples) {
+            return Err(DrawError::Unsupported(format!(
+                "{} draws no {} (measured: {})",
+                self.driver.name(),
+                draw.describe(),
+                self.measured.summary()
+            )));
+        }
+        let triangles = Draw {
+            viewport: draw.viewport,
+            positions: Vec::new(),
+            triangles: Vec::new(),
+            state: draw.state,
+        };
+        self.check(&triangles)
+    }
+
     fn pipelines(&self) -> std::sync::MutexGuard<'_, Pipelines> {
         self.pipelines
             .lock()
@@ -199,7 +235,8 @@ fn probe_now(
         None
     };
     let bits = reported.as_ref().and_then(|r| r.subpixel_bits);
-    let probes = probe::measure(&mut |d| draw::capture(ctx, pipelines, d), bits)
+    let multisampling = ctx.no_multisampling.clone().map_or(Ok(()), Err);
+    let probes = probe::measure(&mut |d| draw::capture(ctx, pipelines, d), bits, multisampling)
         .map_err(|e| Unavailable(format!("measuring {}'s profile failed: {e}", driver.name())))?;
     Ok((reported, probes))
 }
@@ -257,10 +294,37 @@ impl Rasterizer for Gpu {
 
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
         self.check(draw)?;
-        draw::capture(&self.context, &mut self.pipelines(), draw)
+        let all = draw::capture(
+            &self.context,
+            &mut self.pipelines(),
+            &PrimitiveDraw::of_triangles(draw, 1),
+        )?;
+        Ok(all.into_iter().map(|s| s.fragment).collect())
     }
 
     fn resolve(&mut self, draw: &Draw) -> Result<Resolved, DrawError> {
         self.resolve_timed(draw).map(|(resolved, _)| resolved)
+    }
+
+    /// What the probes measured: the line rule, points, and the 4 samples' positions.
+    fn primitive_profile(&self) -> PrimitiveProfile {
+        self.measured.primitives.clone()
+    }
+
+    fn rasterize_primitives(&mut self, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> {
+        self.check_primitives(draw)?;
+        draw::capture(&self.context, &mut self.pipelines(), draw)
+    }
+
+    /// The driver's own depth test at every sample, read back sample by sample.
+    fn resolve_primitives(&mut self, draw: &PrimitiveDraw) -> Result<SampleResolved, DrawError> {
+        self.check_primitives(draw)?;
+        let r = draw::resolve(&self.context, &mut self.pipelines(), draw)?;
+        Ok(SampleResolved {
+            viewport: draw.viewport,
+            samples: draw.samples,
+            depth: r.depth,
+            primitive: r.primitive,
+        })
     }
 }

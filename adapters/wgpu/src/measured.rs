@@ -2,7 +2,7 @@
 //! probe measures (OpenGL, which reports nothing through wgpu), and each probe's choice among the
 //! declarations the specification permits, with why.
 
-use refrast::{FillConvention, SnapAccuracy, Snapping, Spec};
+use refrast::{FillConvention, PrimitiveProfile, SnapAccuracy, Snapping, Spec};
 
 use crate::probe::{Probes, fill_name};
 use crate::reported::Reported;
@@ -32,6 +32,8 @@ pub struct Measured {
     pub precision_bits: u8,
     /// The tolerance band, in grid steps (1/256 px without a grid).
     pub tolerance_subpixels: u32,
+    /// Lines, points and sample positions.
+    pub primitives: PrimitiveProfile,
     /// What the driver reported through `vulkaninfo`, if anything.
     pub reported: String,
     /// Why each declaration, one clause each.
@@ -82,9 +84,12 @@ pub fn choose(spec: Spec, reported: Option<&Reported>, probes: &Probes) -> Measu
         ));
         band
     };
+    let primitives = primitive_profile(probes, snapping);
+    why.push(probes.primitives.describe());
     Measured {
         snapping,
         fill,
+        primitives,
         ties_to_even,
         snap,
         guard_band,
@@ -92,6 +97,28 @@ pub fn choose(spec: Spec, reported: Option<&Reported>, probes: &Probes) -> Measu
         tolerance_subpixels,
         reported: reported.map(Reported::describe).unwrap_or_default(),
         why: why.join(", "),
+    }
+}
+
+/// Lines by the rule the probe saw (the nearest when none fits every probe segment: the `line.`
+/// rules then show where), points when the driver draws them, and the 4 samples where the
+/// probe found them; end points on the triangles' grid unless points move on a coarser one.
+fn primitive_profile(probes: &Probes, triangles: Snapping) -> PrimitiveProfile {
+    let p = &probes.primitives;
+    // The point probe reads one bit coarse at worst (a half step is a tie), so only a grid
+    // coarser than that is a grid of its own. Line ends stay on the triangles' grid: no probe
+    // measures theirs apart.
+    let point_snapping = match (p.point_bits(), triangles.grid_bits()) {
+        (Some(points), Some(bits)) if points + 1 >= bits => None,
+        (Some(points), _) => Some(Snapping::Grid(points.max(1))),
+        (None, _) => None,
+    };
+    PrimitiveProfile {
+        lines: p.line_rule().or(p.nearest_rule()),
+        points: p.points.is_ok(),
+        endpoint_snapping: None,
+        point_snapping,
+        multisample: p.pattern().into_iter().collect(),
     }
 }
 
@@ -127,8 +154,14 @@ impl Measured {
     /// The declarations as reports list them: "top-left" and so on.
     #[must_use]
     pub fn summary(&self) -> String {
+        let lines = self.primitives.lines.map_or("no lines", |r| r.name());
+        let samples = if self.primitives.multisample.is_empty() {
+            "1 sample"
+        } else {
+            "1 or 4 samples"
+        };
         format!(
-            "{}, {}, {}{}, guard band {} px, {} bits precision",
+            "{}, {}, {}{}, guard band {} px, {} bits precision, {lines} lines, {samples}",
             self.snapping,
             fill_name(self.fill),
             match self.snap {

@@ -1,16 +1,19 @@
-//! The shaders and render pipelines of the three passes, built once per draw state, and how
-//! this driver captures: into a storage buffer, or one triangle at a time into float targets.
+//! The shaders and render pipelines of the passes, built once per draw state, topology and
+//! sample count, and how this driver captures: into a storage buffer, or one primitive at a
+//! time into float targets.
 
 use std::collections::HashMap;
 
-use refrast::{CompareOp, CullMode, DrawState, FrontFace};
+use refrast::{CompareOp, CullMode, DrawError, DrawState, FrontFace, Topology};
 
 /// Which pass a pipeline is for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Pass {
     /// Every covered sample appended to a storage buffer.
     Capture,
-    /// One triangle's covered samples written to two float targets.
+    /// The same at several samples per pixel, the fragment shader run once per sample.
+    CaptureSamples,
+    /// One primitive's covered samples written to two float targets.
     CaptureTargets,
     /// The driver's depth test, primitive ids into an id target.
     Resolve,
@@ -21,7 +24,7 @@ pub enum Pass {
 pub enum Method {
     /// One draw, a fragment shader appending to a storage buffer.
     StorageBuffer,
-    /// One pass per triangle into two `Rgba32Float` targets, for a driver whose fragment
+    /// One pass per primitive into two `Rgba32Float` targets, for a driver whose fragment
     /// shaders cannot write storage buffers (softpipe's OpenGL ES).
     FloatTargets,
 }
@@ -34,15 +37,17 @@ pub struct Key {
     front_face: FrontFace,
     compare: CompareOp,
     write: bool,
+    topology: Topology,
+    samples: u8,
 }
 
 impl Key {
-    /// The draw's state as a pipeline key for `pass`; the captures run no depth test, so
-    /// their keys leave the depth state out.
+    /// The draw's state as a pipeline key for `pass`, drawing triangles at one sample; the
+    /// captures run no depth test, so their keys leave the depth state out.
     pub fn new(pass: Pass, state: &DrawState) -> Self {
         let (compare, write) = match pass {
             Pass::Resolve => (state.depth.compare, state.depth.write),
-            Pass::Capture | Pass::CaptureTargets => (CompareOp::Always, false),
+            Pass::Capture | Pass::CaptureSamples | Pass::CaptureTargets => (CompareOp::Always, false),
         };
         Self {
             pass,
@@ -50,6 +55,18 @@ impl Key {
             front_face: state.front_face,
             compare,
             write,
+            topology: Topology::TriangleList,
+            samples: 1,
+        }
+    }
+
+    /// The same key drawing `topology` at `samples` samples per pixel.
+    #[must_use]
+    pub fn drawing(self, topology: Topology, samples: u8) -> Self {
+        Self {
+            topology,
+            samples,
+            ..self
         }
     }
 }
@@ -62,8 +79,13 @@ pub const IDS: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
 /// cannot copy a depth texture; integer because wgpu's OpenGL ES backend renders to no float
 /// format without an extension.
 pub const DEPTHS: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
-/// The two targets of a per-triangle capture: barycentrics and depth, then facing.
+/// The two targets of a per-primitive capture: barycentrics and depth, then facing.
 pub const FLOATS: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+/// The two targets a multisampled resolve is unpacked into: four samples' ids, then their
+/// depths' bits.
+pub const UNPACKED: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
+/// The most samples per pixel [`UNPACKED`] holds.
+pub const MOST_SAMPLES: u8 = 4;
 
 /// The shaders, the capture bind group layout, and the pipelines built so far.
 pub struct Pipelines {
@@ -72,6 +94,18 @@ pub struct Pipelines {
     resolve_module: wgpu::ShaderModule,
     capture_module: wgpu::ShaderModule,
     targets_module: wgpu::ShaderModule,
+    /// The per-sample capture's shaders, when built (on the first draw at several samples).
+    samples_module: Option<wgpu::ShaderModule>,
+    /// The resolve's shaders run per sample, when built (on the first resolve at several
+    /// samples): the same vertex stage and interpolation as the per-sample capture, so that
+    /// the two passes differ only in what their fragment shaders write.
+    samples_resolve_module: Option<wgpu::ShaderModule>,
+    /// The unpacking of a multisampled resolve: its pipeline and bind group layout, when built.
+    unpacking: Option<(wgpu::RenderPipeline, wgpu::BindGroupLayout)>,
+    /// How far a line strip's flat values are from its segment's index: 0 where a primitive's
+    /// flat values come from its first vertex (Vulkan), 1 from its last (OpenGL ES, which cannot
+    /// choose); measured on the first strip drawn.
+    pub strip_offset: Option<u32>,
     /// The capture pass's bind group layout: the count, then the samples.
     pub layout: wgpu::BindGroupLayout,
     capture_layout: wgpu::PipelineLayout,
@@ -83,12 +117,7 @@ impl Pipelines {
     /// Compiles the shaders on `device`, and finds out whether its fragment shaders can write
     /// storage buffers by building that capture pipeline.
     pub fn new(device: &wgpu::Device) -> Self {
-        let module = |label, extra: &str| {
-            device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some(label),
-                source: wgpu::ShaderSource::Wgsl(format!("{}\n{extra}", include_str!("shaders.wgsl")).into()),
-            })
-        };
+        let module = |label, extra: &str| shader(device, label, include_str!("varyings.wgsl"), extra);
         let storage = |binding| wgpu::BindGroupLayoutEntry {
             binding,
             visibility: wgpu::ShaderStages::FRAGMENT,
@@ -116,8 +145,19 @@ impl Pipelines {
         let mut pipelines = Self {
             method: Method::StorageBuffer,
             resolve_module: module("resolve", ""),
-            capture_module: module("capture", include_str!("capture.wgsl")),
+            capture_module: module(
+                "capture",
+                &format!(
+                    "{}\n{}",
+                    include_str!("record.wgsl"),
+                    include_str!("capture.wgsl")
+                ),
+            ),
             targets_module: module("capture targets", include_str!("targets.wgsl")),
+            samples_module: None,
+            samples_resolve_module: None,
+            unpacking: None,
+            strip_offset: None,
             layout,
             capture_layout,
             plain_layout,
@@ -125,26 +165,61 @@ impl Pipelines {
         };
         // A driver that cannot compile the storage capture says so as an internal (shader
         // translation) or a validation error.
-        let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let internal = device.push_error_scope(wgpu::ErrorFilter::Internal);
-        let probe = Key::new(Pass::Capture, &DrawState::default());
-        let built = pipelines.build(device, probe);
-        let failed = pollster::block_on(internal.pop()).is_some();
-        if !(pollster::block_on(validation.pop()).is_some() || failed) {
-            pipelines.built.insert(probe, built);
-        } else {
+        if pipelines
+            .get(device, Key::new(Pass::Capture, &DrawState::default()))
+            .is_err()
+        {
             pipelines.method = Method::FloatTargets;
         }
         pipelines
     }
 
-    /// The pipeline for `key`, built on first use.
-    pub fn get(&mut self, device: &wgpu::Device, key: Key) -> &wgpu::RenderPipeline {
+    /// The pipeline for `key`, built on first use; `Err` with the device's message when it
+    /// cannot be built (a driver lacking what a topology or sample count needs).
+    pub fn get(&mut self, device: &wgpu::Device, key: Key) -> Result<&wgpu::RenderPipeline, DrawError> {
         if !self.built.contains_key(&key) {
+            let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
+            let internal = device.push_error_scope(wgpu::ErrorFilter::Internal);
+            if key.pass == Pass::CaptureSamples && self.samples_module.is_none() {
+                self.samples_module = Some(shader(
+                    device,
+                    "capture samples",
+                    include_str!("varyings_sample.wgsl"),
+                    &format!(
+                        "{}\n{}",
+                        include_str!("record.wgsl"),
+                        include_str!("multisample.wgsl")
+                    ),
+                ));
+            }
+            if key.pass == Pass::Resolve && key.samples > 1 && self.samples_resolve_module.is_none() {
+                self.samples_resolve_module = Some(shader(
+                    device,
+                    "resolve samples",
+                    include_str!("varyings_sample.wgsl"),
+                    "",
+                ));
+            }
             let pipeline = self.build(device, key);
+            let failed = [
+                pollster::block_on(internal.pop()),
+                pollster::block_on(validation.pop()),
+            ];
+            if let Some(e) = failed.into_iter().flatten().next() {
+                return Err(DrawError::Backend(format!(
+                    "the driver could not build the pipeline for {} at {} samples: {e}",
+                    key.topology, key.samples
+                )));
+            }
             self.built.insert(key, pipeline);
         }
-        &self.built[&key]
+        Ok(&self.built[&key])
+    }
+
+    /// The pipeline unpacking a multisampled resolve, and its bind group layout (the ids, then
+    /// the depths), built on first use.
+    pub fn unpack(&mut self, device: &wgpu::Device) -> &(wgpu::RenderPipeline, wgpu::BindGroupLayout) {
+        self.unpacking.get_or_insert_with(|| build_unpack(device))
     }
 
     /// Builds the pipeline for `key`.
@@ -160,6 +235,13 @@ impl Pipelines {
                 vec![],
                 always,
             ),
+            Pass::CaptureSamples => (
+                self.samples_module.as_ref().unwrap_or(&self.capture_module),
+                &self.capture_layout,
+                "capture_samples",
+                vec![],
+                always,
+            ),
             Pass::CaptureTargets => (
                 &self.targets_module,
                 &self.plain_layout,
@@ -168,7 +250,10 @@ impl Pipelines {
                 always,
             ),
             Pass::Resolve => (
-                &self.resolve_module,
+                match (key.samples, &self.samples_resolve_module) {
+                    (2.., Some(module)) => module,
+                    _ => &self.resolve_module,
+                },
                 &self.plain_layout,
                 "resolve",
                 vec![
@@ -178,13 +263,28 @@ impl Pipelines {
                 (compare_function(key.compare), key.write),
             ),
         };
+        let (corners, strip) = match key.topology {
+            Topology::TriangleList => (3.0, 0.0),
+            Topology::LineList => (2.0, 0.0),
+            Topology::LineStrip => (2.0, 1.0),
+            Topology::PointList => (1.0, 0.0),
+        };
+        let constants = [("corners", corners), ("strip", strip)];
+        // Lines and points have no face to cull.
+        let cull = match key.topology {
+            Topology::TriangleList => cull_mode(key.cull),
+            _ => None,
+        };
         device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some(entry),
             layout: Some(layout),
             vertex: wgpu::VertexState {
                 module,
                 entry_point: Some("vertex"),
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants: &constants,
+                    ..wgpu::PipelineCompilationOptions::default()
+                },
                 buffers: &[Some(wgpu::VertexBufferLayout {
                     array_stride: 16,
                     step_mode: wgpu::VertexStepMode::Vertex,
@@ -192,9 +292,9 @@ impl Pipelines {
                 })],
             },
             primitive: wgpu::PrimitiveState {
-                topology: wgpu::PrimitiveTopology::TriangleList,
+                topology: primitive_topology(key.topology),
                 front_face: front_face(key.front_face),
-                cull_mode: cull_mode(key.cull),
+                cull_mode: cull,
                 ..wgpu::PrimitiveState::default()
             },
             depth_stencil: Some(wgpu::DepthStencilState {
@@ -204,16 +304,95 @@ impl Pipelines {
                 stencil: wgpu::StencilState::default(),
                 bias: wgpu::DepthBiasState::default(),
             }),
-            multisample: wgpu::MultisampleState::default(),
+            multisample: wgpu::MultisampleState {
+                count: u32::from(key.samples),
+                ..wgpu::MultisampleState::default()
+            },
             fragment: Some(wgpu::FragmentState {
                 module,
                 entry_point: Some(entry),
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants: &constants,
+                    ..wgpu::PipelineCompilationOptions::default()
+                },
                 targets: &targets,
             }),
             multiview_mask: None,
             cache: None,
         })
+    }
+}
+
+/// A shader module of `varyings`, `shaders.wgsl`, then `extra`.
+fn shader(device: &wgpu::Device, label: &str, varyings: &str, extra: &str) -> wgpu::ShaderModule {
+    let source = format!("{varyings}\n{}\n{extra}", include_str!("shaders.wgsl"));
+    device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    })
+}
+
+/// The pipeline of `unpack.wgsl`: a multisampled id and depth target in, two [`UNPACKED`]
+/// targets out.
+fn build_unpack(device: &wgpu::Device) -> (wgpu::RenderPipeline, wgpu::BindGroupLayout) {
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("unpack"),
+        source: wgpu::ShaderSource::Wgsl(include_str!("unpack.wgsl").into()),
+    });
+    let texture = |binding, sample_type| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type,
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: true,
+        },
+        count: None,
+    };
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("unpack"),
+        entries: &[
+            texture(0, wgpu::TextureSampleType::Uint),
+            texture(1, wgpu::TextureSampleType::Depth),
+        ],
+    });
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some("unpack"),
+        bind_group_layouts: &[Some(&layout)],
+        immediate_size: 0,
+    });
+    let target = Some(wgpu::ColorTargetState::from(UNPACKED));
+    let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("unpack"),
+        layout: Some(&pipeline_layout),
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some("cover"),
+            compilation_options: wgpu::PipelineCompilationOptions::default(),
+            buffers: &[],
+        },
+        primitive: wgpu::PrimitiveState::default(),
+        depth_stencil: None,
+        multisample: wgpu::MultisampleState::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some("unpack"),
+            compilation_options: wgpu::PipelineCompilationOptions::default(),
+            targets: &[target.clone(), target],
+        }),
+        multiview_mask: None,
+        cache: None,
+    });
+    (pipeline, layout)
+}
+
+/// The API's topology for refrast's.
+fn primitive_topology(topology: Topology) -> wgpu::PrimitiveTopology {
+    match topology {
+        Topology::TriangleList => wgpu::PrimitiveTopology::TriangleList,
+        Topology::LineList => wgpu::PrimitiveTopology::LineList,
+        Topology::LineStrip => wgpu::PrimitiveTopology::LineStrip,
+        Topology::PointList => wgpu::PrimitiveTopology::PointList,
     }
 }
 

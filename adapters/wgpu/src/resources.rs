@@ -2,33 +2,51 @@
 //! reading textures and buffers back to the CPU.
 
 use bytemuck::Pod;
-use refrast::{Draw, DrawError};
+use refrast::{DrawError, Fragment, PrimitiveDraw, Topology, Viewport};
 
 use crate::device::Context;
 
-/// The draw's triangles as a plain vertex list (three per triangle, in order): vertex `i` of
-/// the list is corner `i % 3` of primitive `i / 3`.
-pub fn vertex_list(draw: &Draw) -> Vec<[f32; 4]> {
-    draw.triangles
-        .iter()
-        .flat_map(|t| t.map(|i| draw.positions[i as usize]))
-        .collect()
+/// The draw's indices as a plain vertex list, in order, for the draw's topology without an
+/// index buffer: vertex `i` of a list is corner `i % n` of primitive `i / n` (`n` the
+/// primitive's vertices); of a strip, vertex `i` starts segment `i`. A draw the adapter has
+/// validated indexes within `positions`.
+pub fn vertex_list(draw: &PrimitiveDraw) -> Vec<[f32; 4]> {
+    draw.indices.iter().map(|&i| draw.positions[i as usize]).collect()
 }
 
-/// A texture of the viewport's size.
-pub fn target(ctx: &Context, draw: &Draw, format: wgpu::TextureFormat) -> wgpu::Texture {
+/// A fragment's barycentrics as the contract orders them: vertex `i` of a strip is corner
+/// `i % 2` (`shaders.wgsl`), so an odd segment starts at corner 1 and its weights are swapped
+/// to put its first vertex first.
+pub fn along(topology: Topology, mut f: Fragment) -> Fragment {
+    if topology == Topology::LineStrip && f.primitive % 2 == 1 {
+        f.barycentric.swap(0, 1);
+        if let Some(s) = f.screen_barycentric.as_mut() {
+            s.swap(0, 1);
+        }
+    }
+    f
+}
+
+/// A texture of the viewport's size at `samples` samples per pixel: copied back at one, read by
+/// a shader (`unpack.wgsl`) at several.
+pub fn target(ctx: &Context, viewport: Viewport, format: wgpu::TextureFormat, samples: u8) -> wgpu::Texture {
+    let read = if samples == 1 {
+        wgpu::TextureUsages::COPY_SRC
+    } else {
+        wgpu::TextureUsages::TEXTURE_BINDING
+    };
     ctx.device.create_texture(&wgpu::TextureDescriptor {
         label: Some("target"),
         size: wgpu::Extent3d {
-            width: draw.viewport.width(),
-            height: draw.viewport.height(),
+            width: viewport.width(),
+            height: viewport.height(),
             depth_or_array_layers: 1,
         },
         mip_level_count: 1,
-        sample_count: 1,
+        sample_count: u32::from(samples),
         dimension: wgpu::TextureDimension::D2,
         format,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | read,
         view_formats: &[],
     })
 }

@@ -1,24 +1,22 @@
 // refrast's wgpu adapter: the draw's clip-space positions go straight to the rasterizer; the
-// fragment shaders only report what the driver computed.
+// fragment shaders only report what the driver computed. `varyings.wgsl` or
+// `varyings_sample.wgsl` comes first.
 
-struct Varyings {
-    @builtin(position) position: vec4<f32>,
-    // The vertex's barycentric unit vector, interpolated perspective-correctly (the default).
-    @location(0) perspective: vec3<f32>,
-    // The same, interpolated linearly in screen space.
-    @location(1) @interpolate(linear) screen: vec3<f32>,
-    @location(2) @interpolate(flat) primitive: u32,
-}
+// The vertices a primitive has (3, 2 or 1), and whether the list is a line strip: vertex `i`
+// of a list is corner `i % corners` of primitive `i / corners`; of a strip, it starts segment
+// `i` (flat values come from a primitive's first vertex) as corner `i % 2`.
+override corners: u32 = 3u;
+override strip: bool = false;
 
 @vertex
 fn vertex(@location(0) position: vec4<f32>, @builtin(vertex_index) index: u32) -> Varyings {
-    let corner = index % 3u;
+    let corner = index % corners;
     let unit = vec3<f32>(f32(corner == 0u), f32(corner == 1u), f32(corner == 2u));
     var out: Varyings;
     out.position = position;
     out.perspective = unit;
     out.screen = unit;
-    out.primitive = index / 3u;
+    out.primitive = select(index / corners, index, strip);
     return out;
 }
 

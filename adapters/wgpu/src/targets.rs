@@ -1,16 +1,21 @@
-//! Capturing without storage buffers: one pass per triangle into two float targets, for a
+//! Capturing without storage buffers: one pass per primitive into two float targets, for a
 //! driver whose fragment shaders cannot write storage buffers (softpipe's OpenGL ES). A
-//! triangle covers a sample at most once, so one pass per triangle loses nothing.
+//! primitive covers a sample at most once, so one pass per primitive loses nothing.
 
-use refrast::{Draw, DrawError, Fragment};
+use refrast::{DrawError, Fragment, PrimitiveDraw, SampleFragment, Topology};
 use wgpu::util::DeviceExt;
 
 use crate::device::Context;
 use crate::pipelines::{DEPTH, FLOATS, Key, Pass, Pipelines};
-use crate::resources::{Readback, depth_attachment, target, vertex_list};
+use crate::resources::{Readback, along, depth_attachment, target, vertex_list};
 
-/// Every covered sample of every triangle of `draw`, one triangle per pass.
-pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+/// Every covered sample of every primitive of `draw` (at one sample per pixel), one primitive
+/// per pass.
+pub fn capture(
+    ctx: &Context,
+    pipelines: &mut Pipelines,
+    draw: &PrimitiveDraw,
+) -> Result<Vec<SampleFragment>, DrawError> {
     let device = &ctx.device;
     if !ctx.renders_floats {
         return Err(DrawError::Unsupported(format!(
@@ -27,19 +32,27 @@ pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
         usage: wgpu::BufferUsages::VERTEX,
     });
     let (perspective, screen, depth) = (
-        target(ctx, draw, FLOATS),
-        target(ctx, draw, FLOATS),
-        target(ctx, draw, DEPTH),
+        target(ctx, draw.viewport, FLOATS, 1),
+        target(ctx, draw.viewport, FLOATS, 1),
+        target(ctx, draw.viewport, DEPTH, 1),
     );
     let views =
         [&perspective, &screen, &depth].map(|t| t.create_view(&wgpu::TextureViewDescriptor::default()));
-    // One pipeline and one pair of read-back buffers serve every triangle.
-    let pipeline = pipelines.get(device, Key::new(Pass::CaptureTargets, &draw.state));
+    // One pipeline and one pair of read-back buffers serve every primitive.
+    let key = Key::new(Pass::CaptureTargets, &draw.state).drawing(draw.topology, 1);
+    let pipeline = pipelines.get(device, key)?;
+    // The vertices of primitive `i`: a list's own, a strip's segment from vertex `i`.
+    let (per, step) = match draw.topology {
+        Topology::TriangleList => (3, 3),
+        Topology::LineList => (2, 2),
+        Topology::LineStrip => (2, 1),
+        Topology::PointList => (1, 1),
+    };
     let (first, second) = (Readback::new(ctx, w, h, 16), Readback::new(ctx, w, h, 16));
     let mut fragments = Vec::new();
-    for primitive in 0..draw.triangles.len() as u32 {
+    for primitive in 0..draw.primitive_count() as u32 {
         let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("capture one triangle"),
+            label: Some("capture one primitive"),
         });
         {
             let colour = |view| {
@@ -54,14 +67,15 @@ pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
                 })
             };
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("capture one triangle"),
+                label: Some("capture one primitive"),
                 color_attachments: &[colour(&views[0]), colour(&views[1])],
                 depth_stencil_attachment: Some(depth_attachment(&views[2], 1.0, false)),
                 ..wgpu::RenderPassDescriptor::default()
             });
             pass.set_pipeline(pipeline);
             pass.set_vertex_buffer(0, vertex_buffer.slice(..));
-            pass.draw(3 * primitive..3 * primitive + 3, 0..1);
+            // The shader numbers corners by the global vertex index, as in one draw of all.
+            pass.draw(step * primitive..step * primitive + per, 0..1);
         }
         first.copy(&mut encoder, &perspective, wgpu::TextureAspect::All);
         second.copy(&mut encoder, &screen, wgpu::TextureAspect::All);
@@ -72,14 +86,20 @@ pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
             if s[3] == 0.0 {
                 continue;
             }
-            fragments.push(Fragment {
-                x: i as u32 % w,
-                y: i as u32 / w,
-                primitive,
-                depth: p[3],
-                barycentric: [p[0], p[1], p[2]],
-                screen_barycentric: Some([s[0], s[1], s[2]]),
-                front_facing: s[3] == 1.0,
+            fragments.push(SampleFragment {
+                fragment: along(
+                    draw.topology,
+                    Fragment {
+                        x: i as u32 % w,
+                        y: i as u32 / w,
+                        primitive,
+                        depth: p[3],
+                        barycentric: [p[0], p[1], p[2]],
+                        screen_barycentric: Some([s[0], s[1], s[2]]),
+                        front_facing: s[3] == 1.0,
+                    },
+                ),
+                sample: 0,
             });
         }
     }

@@ -9,7 +9,9 @@
 use std::process::Command;
 use std::time::Instant;
 
-use refrast::{FillConvention, Rasterizer, SnapAccuracy, Snapping};
+use refrast::{
+    FillConvention, LineRule, PrimitiveProfile, Rasterizer, SamplePattern, SnapAccuracy, Snapping,
+};
 use refrast_wgpu::measured::{Measured, choose};
 use refrast_wgpu::{Driver, Gpu};
 
@@ -27,6 +29,29 @@ struct Pinned {
 }
 
 fn pinned(d: Driver) -> Option<Pinned> {
+    // Lines by the rule the probe fits (Vulkan's strictLines rectangles on lavapipe and
+    // SwiftShader; OpenGL's diamond-exit rule on llvmpipe and softpipe), points, Vulkan's
+    // standard 4 sample locations where the capture at 4 samples works, and softpipe's points on
+    // a grid of their own (a quarter pixel, read one bit coarse).
+    let primitives = match d {
+        Driver::Lavapipe | Driver::Swiftshader | Driver::Vulkan => PrimitiveProfile {
+            lines: Some(LineRule::Rectangle),
+            points: true,
+            multisample: SamplePattern::standard(4).into_iter().collect(),
+            ..PrimitiveProfile::default()
+        },
+        Driver::Llvmpipe => PrimitiveProfile {
+            lines: Some(LineRule::DiamondExit),
+            points: true,
+            ..PrimitiveProfile::default()
+        },
+        Driver::Softpipe => PrimitiveProfile {
+            lines: Some(LineRule::DiamondExit),
+            points: true,
+            point_snapping: Some(Snapping::Grid(1)),
+            ..PrimitiveProfile::default()
+        },
+    };
     let pin = |snapping, fill, snap, ties_to_even, precision_bits, fewest_bits| Pinned {
         declared: Measured {
             snapping,
@@ -36,6 +61,7 @@ fn pinned(d: Driver) -> Option<Pinned> {
             guard_band: 0,
             precision_bits,
             tolerance_subpixels: 1,
+            primitives: primitives.clone(),
             reported: String::new(),
             why: String::new(),
         },
@@ -195,6 +221,17 @@ fn child(d: Driver) {
         probes.precision.bits() >= fewest_bits && fresh.precision_bits == want.precision_bits,
         "{name}: {}",
         probes.precision.describe()
+    );
+    assert_eq!(
+        fresh.primitives,
+        want.primitives,
+        "{name}: {}",
+        probes.primitives.describe()
+    );
+    assert_eq!(
+        gpu.primitive_profile(),
+        fresh.primitives,
+        "{name}: the profile declares it"
     );
     println!("{name}: every measured choice is the pinned one");
 }

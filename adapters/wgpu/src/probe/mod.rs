@@ -14,15 +14,17 @@ mod coverage;
 mod fill;
 mod grid;
 mod precision;
+pub mod primitives;
 mod snap;
 
-use refrast::{Draw, DrawError, Fragment, Viewport};
+use refrast::{Draw, DrawError, Fragment, PrimitiveDraw, Viewport};
 
 pub use band::{Band, REACHES};
 pub use coverage::Coverage;
 pub use fill::{TieRule, name as fill_name};
 pub use grid::{FINEST, Grid};
 pub use precision::Precision;
+pub use primitives::{PrimitiveProbes, PrimitiveRaster};
 pub use snap::{Rounding, Snap};
 
 /// Everything the probes counted on one driver.
@@ -42,11 +44,21 @@ pub struct Probes {
     pub band: Band,
     /// How far interpolated values are from exact on unclipped triangles.
     pub precision: Precision,
+    /// The line rule, points, and where the 4 samples lie.
+    pub primitives: PrimitiveProbes,
 }
 
 /// Runs every probe through `draw`. `reported_bits` is the grid the driver reports, if it
 /// reports one (Vulkan); the probes needing a grid use it, else the measured one.
-pub fn measure(draw: &mut Raster<'_>, reported_bits: Option<u8>) -> Result<Probes, DrawError> {
+/// `multisampling` is why the driver cannot draw at 4 samples, if it cannot.
+pub fn measure(
+    prims: &mut PrimitiveRaster<'_>,
+    reported_bits: Option<u8>,
+    multisampling: Result<(), String>,
+) -> Result<Probes, DrawError> {
+    let draw = &mut |d: &Draw| {
+        prims(&PrimitiveDraw::of_triangles(d, 1)).map(|all| all.into_iter().map(|s| s.fragment).collect())
+    };
     let grid = grid::probe(draw)?;
     let coverage = coverage::probe(draw)?;
     // The grid the other probes place ties on; 16 bits stands for "finer than 16" (no grid).
@@ -55,6 +67,8 @@ pub fn measure(draw: &mut Raster<'_>, reported_bits: Option<u8>) -> Result<Probe
     let (rounding, snap) = snap::probe(draw, bits)?;
     let band = band::probe(draw, tie_rule.chosen)?;
     let precision = precision::probe(draw, bits)?;
+    // A driver without a grid is compared with the reference's finest.
+    let primitives = primitives::measure(prims, bits.min(8), tie_rule.chosen, multisampling);
     Ok(Probes {
         grid,
         coverage,
@@ -63,6 +77,7 @@ pub fn measure(draw: &mut Raster<'_>, reported_bits: Option<u8>) -> Result<Probe
         snap,
         band,
         precision,
+        primitives,
     })
 }
 

@@ -10,7 +10,7 @@ fn reference(config: ReferenceConfig) -> Reference {
 
 /// Every probe, through `r`.
 fn measure(r: &mut Reference, reported_bits: Option<u8>) -> Result<Probes, refrast::DrawError> {
-    super::measure(&mut |d| r.rasterize(d), reported_bits)
+    super::measure(&mut |d| r.rasterize_primitives(d), reported_bits, Ok(()))
 }
 
 /// The default reference: 8 bits, top-left, ties to even, nearest, the 8192-px guard band, and
@@ -103,4 +103,39 @@ fn guard_bands_read_back() {
         assert_eq!(band.reach(), want, "{clip:?}: {}", band.describe());
         assert!(REACHES.contains(&want) || want == 0);
     }
+}
+
+/// The line, point and sample probes read back the reference's line rule (each of them, at 8
+/// and at 4 bits), its points, and Vulkan's standard 4 sample locations.
+#[test]
+fn the_primitive_probes_read_the_references_rule_points_and_samples() {
+    for bits in [8, 4] {
+        for line in refrast::LineRule::ALL {
+            let mut r = reference(ReferenceConfig {
+                subpixel_bits: SubpixelBits::new(bits).expect("a grid"),
+                line,
+                ..ReferenceConfig::default()
+            });
+            let p = measure(&mut r, None).expect("the reference draws").primitives;
+            assert_eq!(p.line_rule(), Some(line), "{bits} bits: {}", p.describe());
+            assert_eq!(p.points, Ok(0), "{bits} bits: {}", p.describe());
+            assert_eq!(
+                p.pattern(),
+                refrast::SamplePattern::standard(4),
+                "{}",
+                p.describe()
+            );
+        }
+    }
+}
+
+/// Each rule disagrees with the others somewhere on the probe's segments, so the probe can tell
+/// them apart.
+#[test]
+fn the_line_probe_tells_every_rule_apart() {
+    let mut r = reference(ReferenceConfig::default());
+    let p = measure(&mut r, None).expect("the reference draws").primitives;
+    let counts = p.lines.expect("the reference draws lines");
+    let off: Vec<usize> = counts.iter().map(|(_, n)| *n).collect();
+    assert_eq!(off.iter().filter(|&&n| n == 0).count(), 1, "{counts:?}");
 }

@@ -1,0 +1,13 @@
+// Capturing every covered sample at several samples per pixel: appended to
+// `varyings_sample.wgsl`, `shaders.wgsl` and `record.wgsl` by `Pipelines::multisample`. The
+// `sample` inputs run this once per covered sample, at the sample's position.
+
+// Every covered sample of every primitive, overlapped ones included: no depth test runs.
+@fragment
+fn capture_samples(
+    in: Varyings,
+    @builtin(front_facing) front_facing: bool,
+    @builtin(sample_index) sample: u32,
+) {
+    append(in, front_facing, sample);
+}

@@ -176,26 +176,11 @@ impl Gpu {
     /// Refuses a draw the driver cannot do as asked, rather than draw something else.
     fn check(&self, draw: &Draw) -> Result<(), DrawError> {
         draw.validate()?;
-        let profile = self.profile();
-        if !profile.supports(&draw.state) {
-            return Err(DrawError::Unsupported(format!(
-                "{} cannot draw with {:?}: far clipping is always on and z runs 0 ≤ z ≤ w",
-                profile.name, draw.state
-            )));
-        }
-        let side = self.context.max_side;
-        if draw.viewport.width() > side || draw.viewport.height() > side {
-            return Err(DrawError::Unsupported(format!(
-                "a {}×{} target is beyond this device's {side}-pixel limit",
-                draw.viewport.width(),
-                draw.viewport.height()
-            )));
-        }
-        Ok(())
+        self.check_target(draw.viewport, &draw.state)
     }
 
-    /// Refuses a draw of lines, points or samples the driver cannot do as asked: what
-    /// [`Gpu::check`] refuses, and what its measured profile does not declare.
+    /// Refuses a draw of lines, points or samples the driver cannot do as asked: what its
+    /// measured profile does not declare, and what [`Gpu::check_target`] refuses.
     fn check_primitives(&self, draw: &PrimitiveDraw) -> Result<(), DrawError> {
         draw.validate()?;
         let declared = &self.measured.primitives;
@@ -207,13 +192,28 @@ impl Gpu {
                 self.measured.summary()
             )));
         }
-        let triangles = Draw {
-            viewport: draw.viewport,
-            positions: Vec::new(),
-            triangles: Vec::new(),
-            state: draw.state,
-        };
-        self.check(&triangles)
+        self.check_target(draw.viewport, &draw.state)
+    }
+
+    /// Refuses a state WebGPU cannot set (far clipping off, `−w ≤ z`) and a target beyond the
+    /// device's largest side.
+    fn check_target(&self, viewport: refrast::Viewport, state: &refrast::DrawState) -> Result<(), DrawError> {
+        let profile = self.profile();
+        if !profile.supports(state) {
+            return Err(DrawError::Unsupported(format!(
+                "{} cannot draw with {state:?}: far clipping is always on and z runs 0 ≤ z ≤ w",
+                profile.name
+            )));
+        }
+        let side = self.context.max_side;
+        if viewport.width() > side || viewport.height() > side {
+            return Err(DrawError::Unsupported(format!(
+                "a {}×{} target is beyond this device's {side}-pixel limit",
+                viewport.width(),
+                viewport.height()
+            )));
+        }
+        Ok(())
     }
 
     fn pipelines(&self) -> std::sync::MutexGuard<'_, Pipelines> {

@@ -38,7 +38,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property(r, cfg, strategy::crossing_scene(), check_in_range)),
         Rule::invariant(Family::Bary, "bary.vertex.one")
             .sentence("A covered sample exactly on a vertex has weight 1 for that vertex and 0 for the others (in either declared kind of barycentrics).")
-            .source("Vulkan 1.4, Basic Polygon Rasterization (aᵢ = 1 at vertex i)")
+            .source("Vulkan 1.4, Basic Polygon Rasterization (barycentric coordinates a = A(p p_b p_c)/A(p_a p_b p_c): 1 at p_a, 0 at the others)")
             .cases(10000)
             .needs(ANY_BARYCENTRICS)
             .needs(VERTEX_ON_SAMPLE)

@@ -99,7 +99,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property(r, cfg, lines::perspective_line(), check_bary_perspective)),
         Rule::invariant(Family::Line, "line.reversal.ends-only")
             .sentence("Drawing a segment from its other end changes only the pixels whose diamonds hold an end (diamond-exit) and nothing else (rectangles, parallelograms), the tolerance band aside.")
-            .source("Vulkan 1.4, Bresenham Line Segment Rasterization (only the last end's diamond is left out); OpenGL 4.6 §14.5.1")
+            .source("refrast's own metamorphic property (a segment's direction may change only its ends); OpenGL 4.6 §14.5.1 (the diamond-exit rule it follows from, which lets an implementation choose otherwise)")
             .cases(1000)
             .needs(LINES)
             .every_spec(Level::NotCovered(REVERSAL_OPEN))

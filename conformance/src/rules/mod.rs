@@ -14,6 +14,7 @@ pub mod meta;
 pub mod msaa;
 pub mod point;
 pub mod robust;
+pub mod sample_depth;
 pub mod samples;
 
 use std::fmt;

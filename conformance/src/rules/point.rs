@@ -30,7 +30,7 @@ pub(super) fn rules() -> Vec<Rule> {
     vec![
         Rule::exact(Family::Point, "point.square.exact")
             .sentence("A point inside the view volume covers the samples its one-pixel square covers under the fill convention; a point outside it covers none.")
-            .source("Vulkan 1.4, Basic Point Rasterization and Primitive Clipping (a point outside the clip volume is discarded); D3D11.3 point rules")
+            .source("Vulkan 1.4, Basic Point Rasterization and Primitive Clipping (under VK_POINT_CLIPPING_BEHAVIOR_ALL_CLIP_PLANES, a point outside the view volume is discarded); D3D11.3 §3.4.6, §15.14.2")
             .cases(1500)
             .needs(EXACT_POINTS)
             .every_spec(Level::Partly {

@@ -86,7 +86,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property(r, cfg, bit_pattern_scene(), check_well_formed)),
         Rule::invariant(Family::Robust, "robust.output.well-formed")
             .sentence("Fragments lie in the viewport, name a real primitive, cover a pixel at most once per primitive, and have depth in [0, 1] within the claimed precision.")
-            .source("the Rasterizer contract (src/rasterizer.rs: Fragment); Vulkan 1.4, Scissor Test")
+            .source("the Rasterizer contract (src/rasterizer.rs: Fragment); Vulkan 1.4, Rasterization (no fragments outside the framebuffer) and Depth Clamping and Range Adjustment")
             .cases(5000)
             .vulkan_and_opengl(Level::Partly {
                 part: |r, cfg| property(r, cfg, strategy::crossing_scene(), check_well_formed_but_depth),

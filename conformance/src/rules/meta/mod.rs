@@ -49,7 +49,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property(r, cfg, strategy::grid_scene(), check_subpixel_translation)),
         Rule::invariant(Family::Meta, "meta.viewport.neutral")
             .sentence("A triangle at the same raster position in a viewport twice as large covers the same samples (near an edge, clipping may differ by the band).")
-            .source("Vulkan 1.4, Basic Polygon Rasterization (coverage is decided at sample points in framebuffer space); refrast's own metamorphic property")
+            .source("Vulkan 1.4, Controlling the Viewport (the viewport transform) and Basic Polygon Rasterization (coverage is decided at sample points in framebuffer space); refrast's own metamorphic property")
             .cases(5000)
             .run(|r, cfg| property(r, cfg, strategy::grid_scene(), check_viewport_neutral)),
         Rule::invariant(Family::Meta, "meta.batch.independent")
@@ -76,7 +76,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .run(|r, cfg| property_for(r, cfg, facing_scene, check_facing)),
         Rule::invariant(Family::Meta, "meta.degenerate.empty")
             .sentence("Zero-area triangles (collinear or repeated vertices, on sample centres too) draw nothing; without a guard band, those needing no x/y clipping; one the near plane cuts, nothing where the profile decides zero area before clipping, else nothing away from its line.")
-            .source("Vulkan 1.4, Basic Polygon Rasterization (zero area is back-facing); D3D11.3 §15.11.1")
+            .source("Vulkan 1.4, Basic Polygon Rasterization (a sample is covered when inside the polygon, and zero area leaves no inside; zero area is back-facing); D3D11.3 §15.11.1")
             .cases(10000)
             .every_spec(Level::Partly {
                 part: |r, cfg| property(r, cfg, degenerate_scene(), check_degenerate_off_line),

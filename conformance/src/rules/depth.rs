@@ -61,14 +61,24 @@ pub(super) fn rules() -> Vec<Rule> {
                 property_for(
                     r,
                     cfg,
-                    |p| {
-                        let depth = extreme_depth(p);
-                        strategy::overlapping_scene().prop_map(move |mut s| {
-                            s.state.depth = depth;
-                            s
-                        })
-                    },
+                    |p| with_extreme_depth(p, strategy::overlapping_scene()),
                     check_order_independent,
+                )
+            }),
+        Rule::invariant(Family::Depth, "depth.intersecting.nearest-wins")
+            .sentence("Where two triangles pass through each other, or three bars overlap in a cycle, the depth test keeping the nearest (or farthest) fragment leaves each surface where it is nearer: the resolved buffers are the fragments replayed through it, which no order of whole triangles gives.")
+            .source("seed 003 (the painter's algorithm cannot handle cyclic or intersecting polygons; the z-buffer can); Vulkan 1.4, Depth Test")
+            .cases(300)
+            .needs(EXTREME_WINS)
+            .run(|r, cfg| {
+                property_for(
+                    r,
+                    cfg,
+                    |p| {
+                        let visibility = prop_oneof![strategy::interpenetrating_scene(), strategy::cyclic_scene()];
+                        with_extreme_depth(p, visibility)
+                    },
+                    check_resolve,
                 )
             }),
         Rule::invariant(Family::Depth, "depth.resolve.matches-fragments")
@@ -95,6 +105,18 @@ pub fn extreme_depth(profile: &Profile) -> DepthState {
         write: true,
         clear: if nearest { 1.0 } else { 0.0 },
     }
+}
+
+/// `scenes` drawn under [`extreme_depth`]'s test for `profile`.
+fn with_extreme_depth<S: Strategy<Value = Scene>>(
+    profile: &Profile,
+    scenes: S,
+) -> impl Strategy<Value = Scene> + use<S> {
+    let depth = extreme_depth(profile);
+    scenes.prop_map(move |mut s| {
+        s.state.depth = depth;
+        s
+    })
 }
 
 fn depth_state_scene() -> impl Strategy<Value = Scene> {

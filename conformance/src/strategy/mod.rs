@@ -12,9 +12,11 @@ use crate::scene::{Scene, clip_of};
 mod exact;
 pub mod primitive;
 mod sliver;
+mod visibility;
 
 pub use exact::{FINE_BITS, exact_scene, guard_band_scene};
 pub use sliver::{flipped_sliver, zero_area_across_near};
+pub use visibility::{cyclic_scene, interpenetrating_scene};
 
 /// Subpixel units per pixel in grid strategies.
 pub const GRID: i64 = 256;

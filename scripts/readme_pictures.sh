@@ -33,6 +33,10 @@ r plane --size 320x240 --mode overdraw --impl lab002-scanline -o "$out/plane-ove
 # The star at one sample and at four (Vulkan's standard locations), resolved with a box filter.
 r star --size 160x120 -o "$out/star-1x.png"
 r star --size 160x120 --samples 4 -o "$out/star-4x.png"
+# Seed 003's overlaps (a cycle of bars, two triangles through each other): a depth buffer draws
+# them, the painter's algorithm cannot (docs/zoo.md).
+r overlaps --size 480x240 -o "$out/overlaps-reference.png"
+r overlaps --size 480x240 --impl lab003-painter -o "$out/overlaps-painter.png"
 # The viewer's window under Xvfb (scripts/check_viewer.py keeps its screenshots): the room, and
 # the aligned plane's overdraw once I reaches mutant:inclusive-edges.
 shots=$(mktemp -d)

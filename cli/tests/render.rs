@@ -425,3 +425,36 @@ fn the_documented_pictures_are_committed() {
         assert!(drawn(&image, "") > 0, "{name} is blank");
     }
 }
+
+#[test]
+fn an_implementations_own_depth_test_draws_its_picture() {
+    // Seed 003's painter draws `overlaps` in its painting order, which the reference's depth
+    // buffer does not give; through refrast's replay of its fragments the two would be equal.
+    let dir = scratch("own-depth-test");
+    let picture = |name: &str| {
+        let path = dir.join(format!("{name}.png"));
+        let out = render(&[
+            "overlaps",
+            "--impl",
+            name,
+            "--size",
+            "240x120",
+            "-o",
+            path.to_str().unwrap(),
+        ]);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        png(&path)
+    };
+    let (reference, painter) = (picture("reference"), picture("lab003-painter"));
+    let differ = reference
+        .pixels()
+        .zip(painter.pixels())
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(differ > 50, "{differ} pixels differ");
+    assert_eq!(
+        drawn(&reference, "overlaps"),
+        drawn(&painter, "overlaps"),
+        "the same coverage"
+    );
+}

@@ -131,7 +131,7 @@ impl Setup {
 }
 
 /// The scenes besides lab 000's (which [`refrast::scenes::SCENES`] lists).
-const MORE: [SceneInfo; 12] = [
+const MORE: [SceneInfo; 13] = [
     SceneInfo {
         name: "room",
         description: "lab 002: a Cornell box with a short and a tall block, lit per pixel by the lab's light",
@@ -147,6 +147,10 @@ const MORE: [SceneInfo; 12] = [
     SceneInfo {
         name: "star",
         description: "lab 004: a flat five-pointed star, a fan of thin triangles around its centre",
+    },
+    SceneInfo {
+        name: "overlaps",
+        description: "seed 003: three bars overlapping in a cycle and two triangles through each other: no painting order draws them",
     },
     SceneInfo {
         name: "text",
@@ -200,6 +204,18 @@ fn clipped_view() -> View {
     }
 }
 
+/// A camera `distance` before the origin on −z, looking along +z with `fov_y_degrees`.
+fn head_on(distance: f32, fov_y_degrees: f32) -> View {
+    View {
+        eye: Vec3::new(0.0, 0.0, -distance),
+        target: Vec3::ZERO,
+        up: Vec3::Y,
+        lens: Lens::Perspective { fov_y_degrees },
+        near: 0.1,
+        far: 100.0,
+    }
+}
+
 /// A mesh scene seen by the clipped scenes' fixed camera, unlit.
 fn clipped(mesh: Mesh, cull: CullMode) -> Setup {
     Setup::mesh(mesh, Framing::Fixed(clipped_view()), Shading::None, cull)
@@ -228,14 +244,7 @@ pub fn scene(name: &str) -> Option<Setup> {
             Framing::ClipSpace
         } else {
             // Lab 000's camera: at (0, 0, −10) looking along +z with a 60° field of view.
-            Framing::Fixed(View {
-                eye: Vec3::new(0.0, 0.0, -10.0),
-                target: Vec3::ZERO,
-                up: Vec3::Y,
-                lens: Lens::Perspective { fov_y_degrees: 60.0 },
-                near: 0.1,
-                far: 100.0,
-            })
+            Framing::Fixed(head_on(10.0, 60.0))
         };
         return Some(Setup {
             mesh: lab.mesh,
@@ -295,6 +304,13 @@ pub fn scene(name: &str) -> Option<Setup> {
             )
         },
         "star" => Setup::mesh(shapes::star(5), Framing::Auto, Shading::None, CullMode::None),
+        // Head-on, so that world z alone orders the surfaces, as the cycle is built.
+        "overlaps" => Setup::mesh(
+            shapes::overlaps(),
+            Framing::Fixed(head_on(8.0, 30.0)),
+            Shading::None,
+            CullMode::None,
+        ),
         "text" => Setup::mesh(
             shapes::text("refrast"),
             Framing::Auto,

@@ -136,6 +136,54 @@ pub fn star(points: u32) -> Mesh {
     Mesh { vertices, triangles }
 }
 
+/// Seed 003's cases for the painter's algorithm: on the left three bars in a pinwheel, each over
+/// the next where they cross (a cycle), on the right two triangles passing through each other.
+/// No order of whole triangles draws either right; a depth buffer does.
+#[must_use]
+pub fn overlaps() -> Mesh {
+    let mut vertices = Vec::new();
+    let mut triangles = Vec::new();
+    let mut quad = |corners: [Vec3; 4], rgb: Vec3| {
+        let base = vertices.len() as u32;
+        vertices.extend(corners.map(|p| vertex(p, rgb, Vec3::NEG_Z, flat_uv(p.x, p.y))));
+        triangles.extend([[base, base + 1, base + 2], [base, base + 2, base + 3]]);
+    };
+    // Bar k along u_k on the line p·n_k = h, depth growing along it: where bars k and k + 1
+    // cross, bar k is at t = −√3·h and bar k + 1 at +√3·h, so bar k is the nearer.
+    let (centre, h, half_width, length, slope) = (Vec3::new(-1.2, 0.0, 0.0), 0.25, 0.12, 1.0, 0.4);
+    for k in 0..3 {
+        let angle = PI / 2.0 + TAU * k as f32 / 3.0;
+        let u = Vec3::new(angle.cos(), angle.sin(), 0.0);
+        let n = Vec3::new(-u.y, u.x, 0.0);
+        let at = |t: f32, side: f32| centre + n * (h + side * half_width) + u * t + Vec3::Z * (slope * t);
+        quad(
+            [
+                at(-length, -1.0),
+                at(length, -1.0),
+                at(length, 1.0),
+                at(-length, 1.0),
+            ],
+            hue(k as f32 / 3.0),
+        );
+    }
+    // A level triangle and one tilted through it along x.
+    let right = Vec3::new(1.2, 0.0, 0.0);
+    let triangle = |tilt: f32, turn: f32| {
+        [0.0f32, 1.0, 2.0].map(|k| {
+            let a = PI / 2.0 + turn + TAU * k / 3.0;
+            let p = Vec3::new(a.cos(), a.sin(), 0.0);
+            right + p + Vec3::Z * (tilt * p.x)
+        })
+    };
+    for (k, (tilt, turn)) in [(0.0, 0.0), (0.8, PI)].into_iter().enumerate() {
+        let base = vertices.len() as u32;
+        let rgb = hue(0.15 + 0.5 * k as f32);
+        vertices.extend(triangle(tilt, turn).map(|p| vertex(p, rgb, Vec3::NEG_Z, flat_uv(p.x, p.y))));
+        triangles.push([base, base + 1, base + 2]);
+    }
+    Mesh { vertices, triangles }
+}
+
 /// The 8×8 glyph of `ch` from `font8x8` (basic, Latin, Greek, blocks, box drawing), `?` for any
 /// other character; row 0 is the top, bit 0 the leftmost column. Public for the viewer's status
 /// line, which writes in the same font.

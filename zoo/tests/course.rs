@@ -181,7 +181,7 @@ struct Expected {
     not_applicable: &'static str,
 }
 
-const EXPECTED: [Expected; 4] = [
+const EXPECTED: [Expected; 7] = [
     Expected {
         name: "lab000",
         first_failure: "fill.mesh.exactly-once",
@@ -245,6 +245,75 @@ const EXPECTED: [Expected; 4] = [
                depth.range.vertices depth.screen-linear.matches-raycast depth.order.independent \
                depth.resolve.matches-fragments clip.far.respected clip.gl-range.matches-raycast \
                meta.cull.by-facing",
+    },
+    Expected {
+        name: "lab003-painter",
+        first_failure: "depth.intersecting.nearest-wins",
+        // Its resolve paints whole triangles in the order of their farthest vertices, with no
+        // depth test: triangles through each other, or bars in a cycle, have no right order
+        // (zoo/tests/visibility.rs draws both); the replay also differs where a fragment lies
+        // at the clear depth (painted over the background all the same) and where the
+        // farthest-vertex key misorders triangles that neither intersect nor form a cycle.
+        // Coverage and interpolation are the reference's.
+        fail: "depth.intersecting.nearest-wins depth.resolve.matches-fragments",
+        fail_later: "",
+        pass: "fill.mesh.exactly-once fill.top-left.exact fill.brute-force.exact bary.sum.one \
+               bary.perspective.matches-raycast depth.range.vertices depth.screen-linear.matches-raycast \
+               depth.order.independent clip.mesh.watertight meta.batch.independent meta.cull.by-facing \
+               robust.bit-patterns.sane-output robust.bad-index.error",
+        not_applicable: "line.diamond-exit.exact point.square.exact msaa.coverage.exact \
+               msaa.depth.per-sample msaa.resolve.per-sample",
+    },
+    Expected {
+        name: "lab003-scanline-zbuffer",
+        first_failure: "depth.resolve.matches-fragments",
+        // A row's spans are depth-tested in the active list's order (faces by y_min), not in
+        // primitive order: under Always, Equal or where depths tie, the last primitive to pass
+        // is not the API's last. Everything else holds: half-open spans are the top-left rule,
+        // and f32 depth stepped along a span stays inside the 14 bits it claims.
+        fail: "depth.resolve.matches-fragments",
+        fail_later: "",
+        pass: "fill.mesh.exactly-once fill.fan.exactly-once fill.rotated-quad.exactly-once \
+               fill.projected-mesh.exactly-once fill.interior.matches-raycast bary.sum.one \
+               bary.range.unit bary.vertex.one bary.perspective.matches-raycast depth.range.vertices \
+               depth.screen-linear.matches-raycast depth.order.independent \
+               depth.intersecting.nearest-wins clip.behind-eye.empty clip.interior.matches-raycast \
+               clip.mesh.watertight clip.crossing-quad.watertight clip.far.respected \
+               clip.gl-range.matches-raycast meta.rotation.same-coverage meta.reversal.flips-facing \
+               meta.translate.whole-pixels meta.translate.one-subpixel meta.viewport.neutral \
+               meta.batch.independent meta.cull.by-facing meta.facing.from-winding \
+               meta.degenerate.empty robust.non-finite.discarded robust.bit-patterns.sane-output \
+               robust.output.well-formed robust.bad-index.error",
+        // No grid (exact rules), no screen-space weights, triangles at one sample only.
+        not_applicable: "fill.top-left.exact fill.guard-band.exact fill.brute-force.exact \
+               bary.screen.reconstructs-sample bary.equal-w.affine line.diamond-exit.exact \
+               point.pixel.holding msaa.coverage.exact msaa.mesh.exactly-once",
+    },
+    Expected {
+        name: "lab003-area-average",
+        first_failure: "fill.mesh.exactly-once",
+        // round(n · fraction) samples per pixel: at one sample a pixel is drawn when half of it
+        // is covered, so two triangles sharing an edge both draw a pixel each covers half of, or
+        // neither; the samples named need not be the ones inside (msaa.sample.where-declared);
+        // depth and weights are the covered part's averages, at its centroid, not at the sample.
+        fail: "fill.mesh.exactly-once fill.fan.exactly-once fill.rotated-quad.exactly-once \
+               fill.projected-mesh.exactly-once fill.interior.matches-raycast \
+               bary.perspective.matches-raycast depth.screen-linear.matches-raycast \
+               clip.interior.matches-raycast clip.mesh.watertight clip.far.respected \
+               clip.gl-range.matches-raycast msaa.mesh.exactly-once msaa.sample.where-declared \
+               msaa.depth.per-sample",
+        fail_later: "",
+        pass: "bary.sum.one bary.range.unit bary.vertex.one depth.range.vertices clip.behind-eye.empty \
+               clip.crossing-quad.watertight meta.rotation.same-coverage meta.reversal.flips-facing \
+               meta.translate.whole-pixels meta.translate.one-subpixel meta.viewport.neutral \
+               meta.batch.independent meta.cull.by-facing meta.facing.from-winding \
+               meta.degenerate.empty robust.non-finite.discarded robust.bit-patterns.sane-output \
+               robust.output.well-formed robust.bad-index.error",
+        // No grid or tie rule (exact rules), no depth test of its own, triangles only.
+        not_applicable: "fill.top-left.exact fill.guard-band.exact fill.brute-force.exact \
+               bary.screen.reconstructs-sample bary.equal-w.affine depth.order.independent \
+               depth.intersecting.nearest-wins depth.resolve.matches-fragments line.diamond-exit.exact \
+               point.square.exact msaa.coverage.exact msaa.resolve.per-sample",
     },
     Expected {
         name: "lab004-lineeq",

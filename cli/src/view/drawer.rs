@@ -9,12 +9,16 @@ use refrast_render::{Job, ShadingRasterizer};
 use crate::options::{Failure, Prepared, rasterizer};
 
 /// The implementations `I` steps through, in order: the reference, the fast one, the course
-/// labs, then two mutants whose fill-rule faults `overdraw` shows on shared edges.
-pub const CYCLE: [&str; 7] = [
+/// labs (seed 003's painter shows its order on overlapping surfaces), then two mutants whose
+/// fill-rule faults `overdraw` shows on shared edges.
+pub const CYCLE: [&str; 10] = [
     "reference",
     "fast",
     "lab000",
     "lab002-scanline",
+    "lab003-painter",
+    "lab003-scanline-zbuffer",
+    "lab003-area-average",
     "lab004-lineeq",
     "mutant:inclusive-edges",
     "mutant:exclusive-edges",

@@ -10,6 +10,52 @@ use serde_json::json;
 use crate::certify::this_program;
 use crate::say;
 
+/// `refrast rules --spec`: the spec map as text, JSON or docs/spec.md, or the statements one rule
+/// checks; exit 1 when the map does not parse, 2 for an unknown rule.
+pub fn spec(markdown: bool, as_json: bool, rule: Option<&str>) -> ExitCode {
+    let map = match refrast_conformance::spec_map() {
+        Ok(map) => map,
+        Err(e) => {
+            eprintln!("error: the spec map does not parse: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let Some(rule) = rule else {
+        if as_json {
+            say(&serde_json::to_string_pretty(&map).unwrap_or_default());
+        } else if markdown {
+            say(map.markdown().trim_end());
+        } else {
+            say(map.text().trim_end());
+        }
+        return ExitCode::SUCCESS;
+    };
+    if !catalogue().iter().any(|r| r.id == rule) {
+        eprintln!("error: no rule {rule}; `refrast rules` lists them");
+        return ExitCode::from(2);
+    }
+    let found: Vec<_> = map.statements_for(rule).collect();
+    if as_json {
+        let list: Vec<_> = found
+            .iter()
+            .map(|(spec, s)| json!({"spec": spec.key, "link": spec.link(s), "statement": s}))
+            .collect();
+        say(&serde_json::to_string_pretty(&list).unwrap_or_default());
+        return ExitCode::SUCCESS;
+    }
+    say(&format!("{rule} checks {} statement(s):", found.len()));
+    for (spec, s) in found {
+        say(&format!(
+            "  {}  {}, {}\n      {}",
+            s.id, spec.title, s.section, s.says
+        ));
+        if let Some(note) = &s.note {
+            say(&format!("      note: {note}"));
+        }
+    }
+    ExitCode::SUCCESS
+}
+
 /// Lists the rules: a line each, or a JSON array.
 pub fn rules(as_json: bool) -> ExitCode {
     if as_json {

@@ -35,6 +35,14 @@ enum Command {
         /// Print the rules as JSON: an array of {id, kind, family, source, sentence, default_cases}.
         #[arg(long, conflicts_with = "markdown")]
         json: bool,
+        /// Print the spec map instead: each normative statement of Vulkan, D3D11.3 and OpenGL,
+        /// the seed labs' results and refrast's conventions, with the rules that check it
+        /// (with --json as JSON, with --markdown as docs/spec.md).
+        #[arg(long, conflicts_with = "levels")]
+        spec: bool,
+        /// With --spec: only the statements this rule checks.
+        #[arg(long, requires = "spec", value_name = "RULE")]
+        rule: Option<String>,
     },
     /// List the built-in implementations and their profiles.
     Impls {
@@ -80,6 +88,13 @@ fn main() -> ExitCode {
     match cli.command {
         Command::Certify(args) => certify::run(&args),
         Command::RunRule(args) => certify::run_rule(&args),
+        Command::Rules {
+            spec: true,
+            markdown,
+            json,
+            rule,
+            ..
+        } => listing::spec(markdown, json, rule.as_deref()),
         Command::Rules { markdown: true, .. } => {
             say(&refrast_conformance::markdown_table());
             ExitCode::SUCCESS

@@ -82,10 +82,10 @@ fn the_page_holds_tables_matrix_failures_and_escaped_text() {
     );
     let page = std::fs::read_to_string(dir.join("index.html")).expect("index.html is written");
     assert!(page.starts_with("<!doctype html>") && page.trim_end().ends_with("</html>"));
-    assert!(
-        !page.contains("http://") && !page.contains("https://"),
-        "no external assets"
-    );
+    // Self-contained: no asset from elsewhere (links to the specifications' sections are fine).
+    for asset in ["src=\"http", "<link", "url(http", "@import"] {
+        assert!(!page.contains(asset), "no external assets: {asset}");
+    }
     assert!(
         std::fs::read_dir(&dir)
             .unwrap()
@@ -149,6 +149,11 @@ fn the_page_holds_tables_matrix_failures_and_escaped_text() {
         from = end;
     }
     assert!(pictures >= 1, "an embedded picture");
+    // Each failure names the statements of the specifications its rule checks.
+    assert!(
+        page.contains("<ul class=\"statements\">"),
+        "a failure's statements"
+    );
     let first = failures[0];
     let (code, _) =
         between(&page, 0, "<h4>Reproduce</h4>\n<pre><code>", "</code>").expect("a reproduce command");
@@ -271,4 +276,36 @@ fn zero_jobs_is_a_usage_error() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("--jobs"), "{stderr}");
     assert!(!stderr.contains("panicked"), "{stderr}");
+}
+
+#[test]
+fn rules_spec_prints_the_map_and_the_statements_of_one_rule() {
+    let run = |args: &[&str]| Command::new(REFRAST).args(args).output().expect("refrast runs");
+    let text = run(&["rules", "--spec"]);
+    assert!(text.status.success());
+    let text = String::from_utf8_lossy(&text.stdout);
+    assert!(
+        text.starts_with("Vulkan 1.4: "),
+        "{}",
+        &text[..text.len().min(200)]
+    );
+    assert!(text.contains("statements checked") && text.contains("vk.depth.test-per-sample"));
+
+    let json = run(&["rules", "--spec", "--json"]);
+    let json: Value = serde_json::from_slice(&json.stdout).expect("JSON");
+    let specs = json["specs"].as_array().expect("an array of specifications");
+    assert_eq!(specs[0]["key"], "vulkan");
+    assert!(
+        specs
+            .iter()
+            .all(|s| s["statements"].as_array().is_some_and(|a| !a.is_empty()))
+    );
+
+    let one = run(&["rules", "--spec", "--rule", "depth.intersecting.nearest-wins"]);
+    let one = String::from_utf8_lossy(&one.stdout);
+    assert!(one.contains("course.003.painters-algorithm"), "{one}");
+
+    let unknown = run(&["rules", "--spec", "--rule", "fill.no-such-rule"]);
+    assert_eq!(unknown.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&unknown.stderr).contains("no rule fill.no-such-rule"));
 }

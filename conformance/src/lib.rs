@@ -13,7 +13,7 @@
 //! | 5 | [`strategy`] | free functions that build valid scenes: grid triangles, spade meshes, fans, quads, clip crossings |
 //! | 6 | `runner` | [`property`]: one rule's property, seeded, shrunk, panics caught |
 //! | 7 | [`rules`] | [`catalogue`], [`Rule`], [`Family`], [`Kind`], [`Need`]: nine families, each rule a proptest property |
-//! | 8 | `report` | [`Report`], [`RuleReport`], [`Status`], [`ProfileReport`] |
+//! | 8 | `report`, [`spec`] | [`Report`], [`RuleReport`], [`Status`], [`ProfileReport`]; [`SpecMap`]: each normative statement of Vulkan, D3D11.3 and OpenGL, the seeds' results and refrast's conventions, with the rules that check it |
 //! | 9 | `certify` | [`certify`], [`Options`] |
 //! | 10 | [`isolate`], [`expect`] | rules in child processes: a hang is a `timeout`, an abort or a crash a `crash` of the rule it was running; expectation files |
 //! | 11 | `harness`, [`fuzz`] | [`run_as_tests`]: one test per rule in your own crate; the cargo-fuzz targets as functions on any rasterizer |
@@ -46,6 +46,7 @@ pub mod restricted;
 pub mod rules;
 mod runner;
 mod scene;
+pub mod spec;
 mod status;
 pub mod strategy;
 mod violation;
@@ -66,4 +67,5 @@ pub use rules::{
 };
 pub use runner::{DEFAULT_SEED, RunConfig, Verdict, property, property_declared, property_for};
 pub use scene::{Case, Scene, clip_of};
+pub use spec::{Coverage, SpecMap, Statement, spec_map};
 pub use violation::{Class, Counts, Expect, Findings, Picture, Violation, compare_coverage, count_fragments};

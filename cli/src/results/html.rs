@@ -6,9 +6,10 @@
 
 use std::io;
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 
 use base64::Engine;
-use refrast_conformance::{ProfileReport, Report, Rule, RuleReport, Status};
+use refrast_conformance::{ProfileReport, Report, Rule, RuleReport, SpecMap, Status};
 
 use super::{Document, Entry, Outcome, Subject, markup_entity, reproduce};
 
@@ -372,6 +373,7 @@ fn failure(
     if let Some(hint) = &r.hint {
         h.push_str(&format!("<p class=\"hint\"><b>Hint:</b> {}</p>\n", esc(hint)));
     }
+    h.push_str(&statements(&r.id));
     if r.details.len() > 1 {
         let details: Vec<String> = r.details.iter().skip(1).map(|d| esc(d)).collect();
         h.push_str(&format!("<h4>Details</h4>\n<pre>{}</pre>\n", details.join("\n")));
@@ -402,6 +404,33 @@ fn failure(
         esc(&reproduce(&page.doc.run.options, subject, r))
     ));
     h
+}
+
+/// The statements of the specifications that the rule checks, each linked to its section
+/// (`docs/spec.md` lists them all); nothing when the spec map names none.
+fn statements(rule: &str) -> String {
+    static MAP: OnceLock<Option<SpecMap>> = OnceLock::new();
+    let Some(map) = MAP.get_or_init(|| refrast_conformance::spec_map().ok()) else {
+        return String::new();
+    };
+    let items: Vec<String> = map
+        .statements_for(rule)
+        .map(|(spec, s)| {
+            let place = format!("{}, {}", spec.title, s.section);
+            let place = match spec.link(s) {
+                Some(link) => format!("<a href=\"{}\">{}</a>", esc(&link), esc(&place)),
+                None => esc(&place),
+            };
+            format!("<li>{place} <code>{}</code>: {}</li>\n", esc(&s.id), esc(&s.says))
+        })
+        .collect();
+    if items.is_empty() {
+        return String::new();
+    }
+    format!(
+        "<h4>What the specifications say <span class=\"why\">(the statements this rule checks)</span></h4>\n<ul class=\"statements\">\n{}</ul>\n",
+        items.concat()
+    )
 }
 
 /// `text` safe inside HTML elements and double-quoted attributes.

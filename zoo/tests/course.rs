@@ -1,9 +1,10 @@
 //! The course rasterizers: seed 002's worked example, the labs' own triangles, and what the
 //! conformance suite tells a student about each lab.
 
-use refrast::{Draw, FrontFace, Rasterizer, Viewport};
+use refrast::{DepthRange, Draw, FrontFace, Rasterizer, Viewport};
 use refrast_conformance::{Options, Report, Status, certify};
 use refrast_zoo::course::lab002::{Pixel, compute_polygon_rows, interpolate};
+use refrast_zoo::course::lab004::{ClipVertex, NUDGE, clipping_planes, intersect};
 use refrast_zoo::course::{self, Lab000, Lab002, Lab004};
 
 /// A draw of one triangle given in NDC (`w = 1`) on a square target.
@@ -48,6 +49,45 @@ fn lab002_rows_of_the_worked_example() {
         ((15, 15), (15, 15)),
     ];
     assert_eq!(rows, expected);
+}
+
+#[test]
+fn lab002_rows_of_the_seeds_tall_triangle() {
+    // Seed 002, section 4: a triangle at (10, 20), (30, 10), (20, 40) needs 40 − 10 + 1 = 31 rows.
+    let vertices = [Pixel::at(10, 20), Pixel::at(30, 10), Pixel::at(20, 40)];
+    let (left, right) = compute_polygon_rows(&vertices);
+    assert_eq!((left.len(), right.len()), (31, 31));
+    for (k, (l, r)) in left.iter().zip(&right).enumerate() {
+        assert_eq!((l.y, r.y), (10 + k as i32, 10 + k as i32), "row {k}");
+        assert!(l.x <= r.x, "row {k}: {} > {}", l.x, r.x);
+    }
+    // Each vertex lies in its row's span: (30, 10) ends the first, (10, 20) starts the eleventh,
+    // (20, 40) ends the last.
+    assert_eq!(right[0].x, 30);
+    assert_eq!(left[10].x, 10);
+    assert_eq!(right[30].x, 20);
+}
+
+#[test]
+fn lab004_nudges_cut_points_inward() {
+    // Seed 004, 5.2: t moves 10⁻⁶ toward the inside end, whichever end the edge starts from.
+    let (inside, outside) = (
+        ClipVertex {
+            position: [0.0, 0.0, 0.5, 1.0],
+            weights: [1.0, 0.0, 0.0],
+        },
+        ClipVertex {
+            position: [2.0, 0.0, 0.5, 1.0],
+            weights: [0.0, 1.0, 0.0],
+        },
+    );
+    // The plane x ≤ w, which the edge crosses at x = 1, halfway.
+    let right = clipping_planes(DepthRange::ZeroToOne)[0];
+    for (a, b) in [(&inside, &outside), (&outside, &inside)] {
+        let cut = intersect(a, b, &right);
+        assert!((cut.position[0] - (1.0 - 2.0 * NUDGE)).abs() < 1e-12, "{cut:?}");
+        assert!((cut.weights[1] - (0.5 - NUDGE)).abs() < 1e-12, "{cut:?}");
+    }
 }
 
 #[test]

@@ -227,3 +227,30 @@ fn per_sample_depth_is_required_of_the_depth_buffer_not_of_fragcoord_z() {
     swiftshader.depth_buffer = Some([10.0, 2.0, 14.0, 6.0].map(at).to_vec());
     assert!(msaa::check_depth_resolved(&mut swiftshader, &plane).is_err());
 }
+
+/// lavapipe and SwiftShader at 4 samples: a point just below the viewport covers sample 2 of
+/// pixel (0, 31). Vulkan (`ALL_CLIP_PLANES`) discards such a point, so that is a failure there;
+/// OpenGL 4.6 §13.7 lets the point be kept, and D3D11.3 draws it as a clipped quad, so under
+/// either the sample may be covered. The same fragment two pixels away is wrong under all three.
+#[test]
+fn a_point_just_outside_the_viewport_may_be_drawn_under_opengl_and_d3d11() {
+    let mut point = case(16, 32, vec![[-1.0, -1.000_732_4, 0.0, 1.0]], Topology::PointList);
+    point.samples = 4;
+    let returned = |spec: Spec, x: u32| {
+        let mut r = Returned::new(spec, &[(x, 31, 0.0, BARY)]);
+        r.fragments[0].sample = 2;
+        r
+    };
+    assert!(point::check_pixel_holding(&mut returned(Spec::Vulkan, 0), &point).is_err());
+    for spec in [Spec::OpenGl, Spec::D3d11] {
+        assert_eq!(
+            point::check_pixel_holding(&mut returned(spec, 0), &point).err(),
+            None,
+            "{spec:?}"
+        );
+        assert!(
+            point::check_pixel_holding(&mut returned(spec, 2), &point).is_err(),
+            "{spec:?}"
+        );
+    }
+}

@@ -59,3 +59,56 @@ fn facing_of_a_triangle_reaching_behind_the_eye_is_judged() {
     let report = certify(&mut Reference::default(), &options, |_| {});
     assert!(report.passed(), "{report:#?}");
 }
+
+/// The reference, except that its points and lines report back-facing (`flip`) or vanish under
+/// a cull mode (`cull_points`): what softpipe and a careless cull would do.
+struct CarelessPoints {
+    flip: bool,
+    cull_points: bool,
+}
+
+impl Rasterizer for CarelessPoints {
+    fn profile(&self) -> Profile {
+        Reference::default().profile()
+    }
+    fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+        Reference::default().rasterize(draw)
+    }
+    fn primitive_profile(&self) -> refrast::PrimitiveProfile {
+        Reference::default().primitive_profile()
+    }
+    fn rasterize_primitives(
+        &mut self,
+        draw: &refrast::PrimitiveDraw,
+    ) -> Result<Vec<refrast::SampleFragment>, DrawError> {
+        let mut out = Reference::default().rasterize_primitives(draw)?;
+        if draw.topology != refrast::Topology::TriangleList {
+            if self.cull_points && draw.state.cull != refrast::CullMode::None {
+                out.clear();
+            }
+            for f in &mut out {
+                f.fragment.front_facing ^= self.flip;
+            }
+        }
+        Ok(out)
+    }
+}
+
+#[test]
+fn lines_and_points_face_front_under_every_cull_mode() {
+    let status = |r: &mut dyn Rasterizer| {
+        let options = Options {
+            rules: vec!["meta.facing.lines-points-front".into()],
+            ..Options::default()
+        };
+        certify(r, &options, |_| {}).rules[0].status
+    };
+    assert_eq!(status(&mut Reference::default()), Status::Pass);
+    for (flip, cull_points) in [(true, false), (false, true)] {
+        assert_eq!(
+            status(&mut CarelessPoints { flip, cull_points }),
+            Status::Fail,
+            "flip {flip}, cull {cull_points}"
+        );
+    }
+}

@@ -1,18 +1,21 @@
 //! Facing and culling: a fragment's facing follows its triangle's winding, culling removes
-//! exactly one facing, and a triangle of zero area draws nothing.
+//! exactly one facing, a triangle of zero area draws nothing, and lines and points face front
+//! whatever the cull mode.
 
 use proptest::prelude::*;
 
-use refrast::{CullMode, Fragment, FrontFace, Profile, Rasterizer};
+use refrast::{CullMode, Fragment, FrontFace, PrimitiveProfile, Profile, Rasterizer};
 
 use super::translate;
 use crate::oracle::facing::Turn;
 use crate::oracle::outline::{distance_to_outline, visible_outline};
 use crate::oracle::raster::{self, sample_centre, sample_ndc};
 use crate::oracle::ray_cast::ray_cast;
+use crate::primitives::PrimitiveScene;
 use crate::rules::common::{check_draws_nothing, compare_sets, deep_sample, fragments};
+use crate::rules::samples::sample_fragments;
 use crate::scene::Scene;
-use crate::strategy;
+use crate::strategy::{self, primitive};
 use crate::violation::{Findings, Violation, plural};
 
 /// Overlapping grid triangles, or one across clip planes (w of either sign or 0): culling must
@@ -23,6 +26,59 @@ pub(super) fn cull_scene(profile: &Profile) -> impl Strategy<Value = Scene> + us
         2 => strategy::crossing_scene(),
         1 => strategy::flipped_sliver(profile),
     ]
+}
+
+/// Lines or points, whichever the implementation declares (both when it declares both).
+pub(super) fn lines_or_points(_: &Profile, declared: &PrimitiveProfile) -> BoxedStrategy<PrimitiveScene> {
+    match (declared.lines.is_some(), declared.points) {
+        (true, true) => prop_oneof![primitive::lines(), primitive::points()].boxed(),
+        (true, false) => primitive::lines().boxed(),
+        _ => primitive::points().boxed(),
+    }
+}
+
+/// `(x, y, sample, primitive)` of a covered sample.
+type CoveredSample = (u32, u32, u8, u32);
+
+/// Every fragment of a line or point faces front, and every supported cull mode and front face
+/// leaves the same samples covered: facing and culling belong to polygons.
+pub fn check_lines_points_front(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    let features = r.profile().features;
+    let mut first: Option<(CullMode, FrontFace, Vec<CoveredSample>)> = None;
+    for cull in features.cull_modes.values() {
+        for front in features.front_faces.values() {
+            let mut drawn = case.clone();
+            drawn.scene.state.cull = cull;
+            drawn.scene.state.front_face = front;
+            let frags = sample_fragments(r, &drawn)?;
+            if let Some(f) = frags.iter().find(|f| !f.fragment.front_facing) {
+                let f = &f.fragment;
+                return Err(Violation::new(format!(
+                    "({}, {}) of primitive {} reports back-facing under cull {cull:?}, front face {front:?}: \
+                     line and point fragments always face front",
+                    f.x, f.y, f.primitive
+                )));
+            }
+            let mut covered: Vec<_> = frags
+                .iter()
+                .map(|f| (f.fragment.x, f.fragment.y, f.sample, f.fragment.primitive))
+                .collect();
+            covered.sort_unstable();
+            match &first {
+                None => first = Some((cull, front, covered)),
+                Some((c0, f0, seen)) if *seen != covered => {
+                    return Err(Violation::new(format!(
+                        "cull {cull:?} with front face {front:?} covers {} samples where cull {c0:?} with \
+                         {f0:?} covers {}: culling and facing must leave lines and points alone",
+                        covered.len(),
+                        seen.len()
+                    )));
+                }
+                Some(_) => {}
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Unclipped grid triangles, triangles across clip planes with `w` of either sign, and slivers

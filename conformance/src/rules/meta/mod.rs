@@ -1,21 +1,27 @@
 //! Metamorphic relations: changes to the input that must leave coverage alone, or move it predictably.
 
 use super::level::{EDGES_NOT_PINNED, Level, ZERO_AREA_LINE};
-use super::{CULLING, Family, Rule};
-use crate::runner::{property, property_for};
+use super::{CULLING, Family, Rule, needs_primitives};
+use crate::runner::{property, property_declared, property_for};
 use crate::strategy;
 
 mod facing;
 mod order;
 mod translate;
 
-pub use facing::{check_culling, check_degenerate, check_degenerate_off_line, check_facing};
-use facing::{cull_scene, degenerate_scene, facing_scene};
+pub use facing::{
+    check_culling, check_degenerate, check_degenerate_off_line, check_facing, check_lines_points_front,
+};
+use facing::{cull_scene, degenerate_scene, facing_scene, lines_or_points};
 pub use order::{
     check_batch_away_from_edges, check_batch_independent, check_reversal, check_reversal_away_from_edges,
     check_rotation, check_rotation_away_from_edges,
 };
 pub use translate::{Translated, check_subpixel_translation, check_translation, check_viewport_neutral};
+
+/// The implementation draws lines or points.
+const LINES_OR_POINTS: super::Need =
+    needs_primitives(|_, d| d.lines.is_some() || d.points, "no lines or points");
 
 pub(super) fn rules() -> Vec<Rule> {
     vec![
@@ -74,6 +80,13 @@ pub(super) fn rules() -> Vec<Rule> {
             .cases(6000)
             .keeps_winding()
             .run(|r, cfg| property_for(r, cfg, facing_scene, check_facing)),
+        Rule::invariant(Family::Meta, "meta.facing.lines-points-front")
+            .sentence("Every fragment of a line or point reports front-facing, and no cull mode or front face changes which samples a line or point covers.")
+            .source("Vulkan 1.4, FrontFacing (non-zero for a non-polygon primitive) and VkCullModeFlagBits (triangle culling); D3D11.3 §15.12 (lines and points are front-facing), §3.4.6 (cull modes never remove points); OpenGL 4.6 §15.2.2 (fragments of points and lines are front-facing)")
+            .cases(300)
+            .needs(LINES_OR_POINTS)
+            .keeps_winding()
+            .run(|r, cfg| property_declared(r, cfg, lines_or_points, check_lines_points_front)),
         Rule::invariant(Family::Meta, "meta.degenerate.empty")
             .sentence("Zero-area triangles (collinear or repeated vertices, on sample centres too) draw nothing; without a guard band, those needing no x/y clipping; one the near plane cuts, nothing where the profile decides zero area before clipping, else nothing away from its line.")
             .source("Vulkan 1.4, Basic Polygon Rasterization (a sample is covered when inside the polygon, and zero area leaves no inside; zero area is back-facing); D3D11.3 §15.11.1")

@@ -214,6 +214,17 @@ pub fn run(args: &Args) -> ExitCode {
     if !left.is_empty() {
         say(&format!("--fail-fast: not certified: {}", left.join(", ")));
     }
+    let unavailable: Vec<&str> = entries
+        .iter()
+        .filter(|e| matches!(e.outcome, Outcome::Skipped { .. }))
+        .map(|e| e.subject.name())
+        .collect();
+    if !unavailable.is_empty() {
+        say(&format!(
+            "not certified, unavailable on this machine (the SKIPPED lines above say what is missing): {}",
+            unavailable.join(", ")
+        ));
+    }
     let doc = Document {
         schema_version: SCHEMA_VERSION,
         run: Run {

@@ -254,3 +254,35 @@ fn a_flipped_driver_expectation_fails_the_run() {
     assert_eq!(out.status.code(), Some(1), "flipped: {}", stdout(&out));
     assert!(stdout(&out).contains(&format!("lavapipe {rule}: expected pass, got n/a")));
 }
+
+/// A driver asked for by name that cannot run here (no `vulkaninfo` on `PATH`, so lavapipe's
+/// subpixel grid cannot be read) is SKIPPED with what is missing, and the run exits 1: it
+/// certified nothing of what it was asked. Under `--expect` the same.
+#[test]
+fn an_unavailable_implementation_fails_the_run() {
+    let dir = scratch("expect-unavailable");
+    let real = Path::new(env!("CARGO_MANIFEST_DIR")).join("../expectations/lavapipe.txt");
+    for expect in [None, Some(&real)] {
+        let mut command = Command::new(REFRAST);
+        command
+            .args(["certify", "--impl", "lavapipe", "--rule", "fill.guard-band.exact"])
+            .args(["--cases", "5", "--in-process"])
+            .arg("--report")
+            .arg(dir.join("report"))
+            .env("PATH", dir.join("no-such-folder"));
+        if let Some(file) = expect {
+            command.arg("--expect").arg(file);
+        }
+        let out = command.output().expect("refrast runs");
+        let said = stdout(&out);
+        assert_eq!(out.status.code(), Some(1), "{said}");
+        assert!(
+            said.contains("lavapipe: SKIPPED") && said.contains("vulkaninfo"),
+            "{said}"
+        );
+        assert!(
+            said.contains("unavailable") || said.contains("NOT AVAILABLE"),
+            "{said}"
+        );
+    }
+}

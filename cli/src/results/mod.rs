@@ -177,13 +177,13 @@ pub enum Outcome {
 }
 
 impl Entry {
-    /// Whether it counts as passed: certified with no failing rule, or skipped.
+    /// Whether it counts as passed: certified with no failing rule. One that was skipped
+    /// certified nothing of what the run was asked, so it is no pass.
     #[must_use]
     pub fn passed(&self) -> bool {
         match &self.outcome {
             Outcome::Certified(report) => report.passed(),
-            Outcome::FailedToStart { .. } => false,
-            Outcome::Skipped { .. } => true,
+            Outcome::FailedToStart { .. } | Outcome::Skipped { .. } => false,
         }
     }
 

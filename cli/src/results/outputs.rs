@@ -106,7 +106,7 @@ pub fn write_outputs(doc: &Document, rules: &[Rule], outputs: &Outputs) -> ExitC
 }
 
 /// Prints every verdict the expectations do not accept; whether there was any (an
-/// implementation that failed to start or was refused is always one).
+/// implementation that failed to start, was refused or was not available is always one).
 fn judge(doc: &Document, expect: &Expectations) -> bool {
     let mut mismatches: Vec<Mismatch> = Vec::new();
     let mut other: Vec<String> = Vec::new();
@@ -140,9 +140,7 @@ fn judge(doc: &Document, expect: &Expectations) -> bool {
                 other.push(format!("FAILED TO START: {name}: {failed_to_start}"));
             }
             Outcome::Skipped { skipped, .. } => {
-                if expect.section(name).is_some() {
-                    eprintln!("warning: {name} has expectations but was skipped: {skipped}");
-                }
+                other.push(format!("NOT AVAILABLE: {name}: {skipped}"));
             }
         }
     }

@@ -3,7 +3,7 @@
 use crate::clip::ClipMode;
 use crate::edge::FillConvention;
 use crate::fixed::{SnapRounding, SubpixelBits};
-use crate::primitive::LineRule;
+use crate::primitive::{LineRule, PointClipping};
 
 /// Which pixels are tested against a triangle; both give identical output.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -30,4 +30,7 @@ pub struct ReferenceConfig {
     pub traversal: Traversal,
     /// How lines are covered (the diamond-exit rule by default).
     pub line: LineRule,
+    /// What clipping does to a point outside the viewport in x or y (discarded by default;
+    /// kept, pop-free, as OpenGL ES and `USER_CLIP_PLANES_ONLY` devices do).
+    pub point_clipping: PointClipping,
 }

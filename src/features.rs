@@ -141,6 +141,63 @@ pub enum SnapAccuracy {
     /// Vulkan computes the viewport transform in floating point, so a vertex a hair from a
     /// snap tie may land on its far side (SwiftShader's `(x·(1/w))·scale + offset` in f32).
     WithinOneStep,
+    /// On the grid point at or below the exact raster coordinate, per axis (floor): one grid
+    /// point, so judged as exactly as [`SnapAccuracy::Nearest`], with an edge up to √2 steps
+    /// from the exact one.
+    Floor,
+    /// On the grid point between the exact raster coordinate and 0, per axis: the truncation
+    /// of a float-to-fixed conversion (Skia's 26.6 fixed point; a scan converter's
+    /// `(int)(x * 64)`). One grid point, like [`SnapAccuracy::Floor`].
+    TowardZero,
+}
+
+impl SnapAccuracy {
+    /// Every accuracy, refrast's first.
+    pub const ALL: [SnapAccuracy; 4] = [Self::Nearest, Self::WithinOneStep, Self::Floor, Self::TowardZero];
+
+    /// The word the pipe protocol, the profile cache and reports use: `nearest`,
+    /// `within-one-step`, `floor`, `toward-zero`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Nearest => "nearest",
+            Self::WithinOneStep => "within-one-step",
+            Self::Floor => "floor",
+            Self::TowardZero => "toward-zero",
+        }
+    }
+
+    /// The accuracy called `name` ([`SnapAccuracy::name`]).
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|a| a.name() == name)
+    }
+
+    /// The grid points a raster coordinate `v` (in grid units) may snap to, refrast's choice
+    /// (nearest, half to even) first where it is among them: one point but for
+    /// [`SnapAccuracy::WithinOneStep`] off the grid, and an exact tie without `ties_to_even`.
+    #[must_use]
+    pub fn candidates(self, v: f64, ties_to_even: bool) -> Vec<f64> {
+        let nearest = v.round_ties_even();
+        let other = if nearest > v { v.floor() } else { v.ceil() };
+        match self {
+            Self::Floor => vec![v.floor()],
+            Self::TowardZero => vec![v.trunc()],
+            Self::WithinOneStep if other != nearest => vec![nearest, other],
+            Self::Nearest if !ties_to_even && v - v.floor() == 0.5 => vec![nearest, other],
+            Self::Nearest | Self::WithinOneStep => vec![nearest],
+        }
+    }
+
+    /// The least tolerance band, in grid steps, that covers how far this snapping moves an
+    /// edge from the exact one: √2/2 of a step to the nearest point, up to √2 otherwise.
+    #[must_use]
+    pub fn least_band(self) -> u32 {
+        match self {
+            Self::Nearest => 1,
+            Self::WithinOneStep | Self::Floor | Self::TowardZero => 2,
+        }
+    }
 }
 
 /// Optional abilities and supported states; a rule needing one that is absent is "not
@@ -182,6 +239,18 @@ pub struct Features {
     /// near plane cuts it. Without this claim, clipping first may leave a sliver along the line
     /// (Vulkan allows it), which the suite then judges only outside the tolerance band.
     pub zero_area_before_clipping: bool,
+    /// It clips in homogeneous space (near always, far when enabled), so a triangle with a
+    /// vertex behind the eye draws its visible part. `false` for a 2D scan converter that
+    /// projects `x/w`, `y/w` and fills the triangle between: the suite then sends it only
+    /// vertices in front of the near plane (behind-the-eye vertices moved in front, beyond
+    /// the far plane moved onto it where far clipping is on), and the clip rules are n/a.
+    pub clips_in_3d: bool,
+    /// Its `z` arrives rewritten to `2z − w` in f32 under the `−w ≤ z ≤ w` volume before it
+    /// clips, as wgpu's OpenGL ES backend does to every vertex shader: a vertex within that
+    /// rounding of the near plane may land on either side, and a triangle the exact volume
+    /// leaves empty may keep a sliver. Values of such draws are required only where the
+    /// rewritten geometry, too, stays within the specification's floating-point range.
+    pub z_rewritten_in_f32: bool,
 }
 
 impl Features {
@@ -200,6 +269,8 @@ impl Features {
         ties_to_even: true,
         snap: SnapAccuracy::Nearest,
         zero_area_before_clipping: true,
+        clips_in_3d: true,
+        z_rewritten_in_f32: false,
     };
 
     /// The settings of which it supports no value, each as what to declare instead: a profile

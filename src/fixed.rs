@@ -149,6 +149,9 @@ pub enum SnapRounding {
     /// Down to the grid point at or below: always within one grid step of the exact value, on
     /// the far side of it half the time.
     Floor,
+    /// Toward zero, to the grid point between the exact value and the raster origin: the
+    /// truncation of a float-to-fixed conversion (Skia's 26.6 fixed point).
+    TowardZero,
 }
 
 impl SnapRounding {
@@ -164,6 +167,7 @@ impl SnapRounding {
             Self::NearestEven => scaled.round_ties_even(),
             Self::NearestAwayFromZero => scaled.round(),
             Self::Floor => scaled.floor(),
+            Self::TowardZero => scaled.trunc(),
         } as i64)
     }
 }

@@ -22,7 +22,7 @@
 //! | what | where | key items |
 //! |---|---|---|
 //! | the contract | `rasterizer.rs`, `draw.rs` | [`Rasterizer`], [`Draw`], [`Fragment`], [`Resolved`] |
-//! | lines, points, samples in the contract | `primitive.rs` | [`PrimitiveDraw`], [`Topology`], [`PrimitiveProfile`], [`LineRule`], [`SamplePattern`], [`SampleFragment`], [`SampleResolved`] |
+//! | lines, points, samples in the contract | `primitive.rs` | [`PrimitiveDraw`], [`Topology`], [`PrimitiveProfile`], [`LineRule`], [`PointClipping`], [`SamplePattern`], [`SampleFragment`], [`SampleResolved`] |
 //! | what an implementation declares | `profile.rs`, `features.rs` | [`Profile`], [`Snapping`], [`Spec`], [`Features`], [`Supported`], [`SnapAccuracy`] |
 //! | state | `state.rs`, `setup.rs`, `depth.rs` | [`DrawState`], [`CullMode`], [`FrontFace`], [`DepthState`], [`CompareOp`], [`DepthRange`] |
 //! | the reference | `reference.rs` | [`Reference`], [`ReferenceConfig`], [`Traversal`], [`ClipMode`], [`DrawStats`], [`Sample`] |
@@ -126,8 +126,8 @@ pub use error::{ConfigError, DrawError, Unavailable};
 pub use features::{Features, Setting, SnapAccuracy, Supported};
 pub use fixed::{COORD_LIMIT, FixedPoint, SnapRounding, SubpixelBits, snap};
 pub use primitive::{
-    LineRule, PrimitiveDraw, PrimitiveProfile, SAMPLE_COUNTS, SampleFragment, SamplePattern, SampleResolved,
-    Topology,
+    LineRule, PointClipping, PrimitiveDraw, PrimitiveProfile, SAMPLE_COUNTS, SampleFragment, SamplePattern,
+    SampleResolved, Topology,
 };
 pub use profile::{DepthConvention, Profile, Snapping, Spec};
 pub use rasterizer::{Rasterizer, rasterize_as_triangles, resolve_by_replay};

@@ -252,6 +252,48 @@ pub struct PrimitiveProfile {
     pub point_snapping: Option<Snapping>,
     /// The sample counts above one it supports, each with its positions.
     pub multisample: Vec<SamplePattern>,
+    /// What clipping does to a point whose centre lies outside the viewport in x or y.
+    pub point_clipping: PointClipping,
+}
+
+/// What clipping does to a point whose centre lies outside the view volume in x or y
+/// (Vulkan's `VkPointClippingBehavior`, which `vulkaninfo` reports as `pointClippingBehavior`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum PointClipping {
+    /// Discarded, with its whole square (`VK_POINT_CLIPPING_BEHAVIOR_ALL_CLIP_PLANES`, refrast's).
+    #[default]
+    AllClipPlanes,
+    /// Kept: only user clip planes discard a point, so the samples its square reaches inside
+    /// the viewport are drawn, a point sliding off the edge leaving gradually ("pop-free",
+    /// `VK_POINT_CLIPPING_BEHAVIOR_USER_CLIP_PLANES_ONLY`; OpenGL ES clips points by the near and
+    /// far planes only).
+    UserClipPlanesOnly,
+}
+
+impl PointClipping {
+    /// Both behaviours, refrast's first.
+    pub const ALL: [PointClipping; 2] = [Self::AllClipPlanes, Self::UserClipPlanesOnly];
+
+    /// The name the pipe protocol and reports use: `all-clip-planes`, `user-clip-planes-only`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::AllClipPlanes => "all-clip-planes",
+            Self::UserClipPlanesOnly => "user-clip-planes-only",
+        }
+    }
+
+    /// The behaviour called `name` ([`PointClipping::name`]), or as `vulkaninfo` prints it
+    /// (`POINT_CLIPPING_BEHAVIOR_ALL_CLIP_PLANES`, with or without `VK_`).
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        let vulkan = name
+            .trim_start_matches("VK_")
+            .trim_start_matches("POINT_CLIPPING_BEHAVIOR_");
+        Self::ALL
+            .into_iter()
+            .find(|c| c.name() == name || c.name().replace('-', "_").eq_ignore_ascii_case(vulkan))
+    }
 }
 
 impl PrimitiveProfile {
@@ -423,7 +465,12 @@ impl PrimitiveDraw {
 /// always front-facing).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SampleFragment {
-    /// The fragment, with its depth at this sample's position.
+    /// The fragment. Its depth is the primitive's at this sample's position under refrast's
+    /// conventions and D3D11.3 (`msaa.depth.per-sample` checks it); Vulkan and OpenGL tie the
+    /// depth a shader reads (`FragCoord.z`) to no sample, so a GPU's may be the pixel centre's,
+    /// judged beyond those specifications. Whatever it reports, the depth test uses each
+    /// sample's own depth: [`Rasterizer::resolve_primitives`](crate::Rasterizer::resolve_primitives)
+    /// is judged against a replay at each sample's depth (`msaa.resolve.per-sample`).
     pub fragment: Fragment,
     /// The sample's index in the pixel's [`SamplePattern`].
     pub sample: u8,

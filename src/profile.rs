@@ -5,7 +5,7 @@
 use std::fmt;
 
 use crate::edge::FillConvention;
-use crate::features::{Features, SnapAccuracy};
+use crate::features::Features;
 use crate::state::DrawState;
 
 /// How an implementation places vertices before it decides coverage.
@@ -66,15 +66,25 @@ pub enum Spec {
     Refrast,
     /// Vulkan 1.4.
     Vulkan,
-    /// OpenGL 4.6 (and OpenGL ES 3, which says the same of rasterization).
+    /// OpenGL 4.6 core.
     OpenGl,
     /// Direct3D 11.3's functional specification.
     D3d11,
+    /// OpenGL ES 3.2, which differs from OpenGL 4.6 where it matters here: points are clipped
+    /// by the near and far planes only, the clip volume's z is always `−w ≤ z ≤ w`, there is
+    /// no depth clamp. What a driver driven through OpenGL ES (wgpu's GL backend) is held to.
+    OpenGlEs,
 }
 
 impl Spec {
     /// Every specification, refrast's first.
-    pub const ALL: [Spec; 4] = [Self::Refrast, Self::Vulkan, Self::OpenGl, Self::D3d11];
+    pub const ALL: [Spec; 5] = [
+        Self::Refrast,
+        Self::Vulkan,
+        Self::OpenGl,
+        Self::D3d11,
+        Self::OpenGlEs,
+    ];
 
     /// The name reports, `--spec` and the pipe protocol use.
     #[must_use]
@@ -84,6 +94,7 @@ impl Spec {
             Self::Vulkan => "vulkan",
             Self::OpenGl => "opengl",
             Self::D3d11 => "d3d11",
+            Self::OpenGlEs => "opengles",
         }
     }
 
@@ -101,6 +112,7 @@ impl Spec {
             Self::Vulkan => "Vulkan 1.4",
             Self::OpenGl => "OpenGL 4.6",
             Self::D3d11 => "D3D11.3",
+            Self::OpenGlEs => "OpenGL ES 3.2",
         }
     }
 }
@@ -141,10 +153,7 @@ impl Profile {
     /// may land on either neighbour ([`SnapAccuracy::WithinOneStep`]: up to √2 of a step).
     #[must_use]
     pub fn band_px(&self) -> f64 {
-        let least = match self.features.snap {
-            SnapAccuracy::Nearest => 1,
-            SnapAccuracy::WithinOneStep => 2,
-        };
+        let least = self.features.snap.least_band();
         f64::from(self.tolerance_subpixels.max(least)) * self.snapping.unit_px()
     }
 
@@ -197,7 +206,7 @@ impl Profile {
 mod tests {
     use super::*;
     use crate::depth::CompareOp;
-    use crate::features::Supported;
+    use crate::features::{SnapAccuracy, Supported};
     use crate::setup::{CullMode, FrontFace};
 
     /// The words `certify` prints for a profile's snapping (docs/certified.md).

@@ -218,7 +218,8 @@ impl Rasterizer for Reference {
                 ties_to_even: self.config.snap_rounding == SnapRounding::NearestEven,
                 snap: match self.config.snap_rounding {
                     SnapRounding::NearestEven | SnapRounding::NearestAwayFromZero => SnapAccuracy::Nearest,
-                    SnapRounding::Floor => SnapAccuracy::WithinOneStep,
+                    SnapRounding::Floor => SnapAccuracy::Floor,
+                    SnapRounding::TowardZero => SnapAccuracy::TowardZero,
                 },
                 ..Features::ALL
             },
@@ -246,6 +247,7 @@ impl Rasterizer for Reference {
                 .filter(|_| on_grid)
                 .filter_map(|&n| SamplePattern::standard(n))
                 .collect(),
+            point_clipping: self.config.point_clipping,
         }
     }
 

@@ -7,8 +7,9 @@
 //!   covered (Vulkan: "sample locations may all be treated as being at the pixel center").
 //!   A fragment's `t` is the sample's projection on the snapped segment, clamped to `[0, 1]`.
 //! - **Points** outside the view volume are discarded (Vulkan, Primitive Clipping: a point is
-//!   passed "unchanged if it lies within the clip volume"); a kept point covers the samples of
-//!   the one-pixel square centred on it ([`segment::in_point_square`]).
+//!   passed "unchanged if it lies within the clip volume"), or, configured pop-free
+//!   ([`PointClipping::UserClipPlanesOnly`]), only those outside the near or far plane; a kept
+//!   point covers the samples of the one-pixel square centred on it ([`segment::in_point_square`]).
 //! - **Triangles at several samples**: sample `k` of pixel `p` lies at `p + oₖ`, so it is covered
 //!   exactly when the pixel's centre is covered by the snapped polygon moved by `½ − oₖ`. The
 //!   move is a whole number of grid steps (sixteenths of a pixel need at least 4 subpixel bits),
@@ -16,7 +17,7 @@
 
 use glam::{DVec3, DVec4};
 
-use crate::clip::{ClipMode, ClipVertex, clip_planes, clip_segment, outcode};
+use crate::clip::{ClipMode, ClipPlane, ClipVertex, clip_planes, clip_segment, outcode};
 use crate::config::Traversal;
 use crate::depth::fragment_depth;
 use crate::draw::{Draw, Fragment};
@@ -24,7 +25,7 @@ use crate::error::DrawError;
 use crate::fixed::FixedPoint;
 use crate::front::{FrontSetup, front_end};
 use crate::interp::interpolate;
-use crate::primitive::{PrimitiveDraw, SampleFragment, SamplePattern, Topology};
+use crate::primitive::{PointClipping, PrimitiveDraw, SampleFragment, SamplePattern, Topology};
 use crate::project::{RasterVertex, ViewportTransform};
 use crate::reference::{DrawStats, Reference, Sample, Scratch};
 use crate::segment;
@@ -287,13 +288,17 @@ impl Reference {
         mut emit: impl FnMut(SampleFragment),
     ) -> DrawStats {
         let transform = self.transform(draw);
-        let planes = clip_planes(
+        let config = self.config();
+        let mut planes = clip_planes(
             ClipMode::Full,
             draw.viewport,
             draw.state.clip_far,
             draw.state.depth_range,
         );
-        let config = self.config();
+        // Kept pop-free, a point is clipped by the near and far planes alone.
+        if config.point_clipping == PointClipping::UserClipPlanesOnly {
+            planes.retain(|p| matches!(p, ClipPlane::Near(_) | ClipPlane::Far));
+        }
         let one = config.subpixel_bits.one();
         let half = one / 2;
         let mut stats = DrawStats {

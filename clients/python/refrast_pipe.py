@@ -33,6 +33,12 @@ Fragment = namedtuple(
     "Fragment", "x y primitive front_facing depth barycentric screen_barycentric sample"
 )
 Fragment.__new__.__defaults__ = ((0.0, 0.0, 0.0), 0)
+Fragment.__doc__ = """One covered sample. screen_barycentric may be None for a triangle with a
+vertex at w <= 0, which has no shape on screen (sent as three NaN words, "none"); for any other
+triangle of a profile declaring screen-barycentrics, None fails the bary. rules."""
+
+# Three NaN words: no screen-space barycentrics (docs/protocol.md, fragment records).
+NO_WEIGHTS = (float("nan"),) * 3
 
 
 class Refused(Exception):
@@ -116,7 +122,7 @@ def serve(profile, rasterize, resolve=None):
                     reply.append(
                         FRAGMENT.pack(
                             f.x, f.y, f.primitive, 1 if f.front_facing else 0, f.depth,
-                            *f.barycentric, *f.screen_barycentric, f.sample,
+                            *f.barycentric, *(f.screen_barycentric or NO_WEIGHTS), f.sample,
                         )
                     )
             elif words[0] == "resolve" and resolve is not None:

@@ -155,7 +155,6 @@ pub fn feature_list(f: &Features) -> Vec<String> {
         (f.screen_barycentrics, "screen-barycentrics"),
         (f.depth_test, "depth-test"),
         (f.ties_to_even, "ties-to-even"),
-        (f.snap == SnapAccuracy::WithinOneStep, "snap within one step"),
         (f.zero_area_before_clipping, "zero-area-before-clipping"),
     ];
     let mut list: Vec<String> = abilities
@@ -163,6 +162,12 @@ pub fn feature_list(f: &Features) -> Vec<String> {
         .filter(|(on, _)| *on)
         .map(|(_, name)| (*name).to_owned())
         .collect();
+    if !f.clips_in_3d {
+        list.push("clipping none".to_owned());
+    }
+    if f.snap != SnapAccuracy::Nearest {
+        list.push(format!("snap {}", f.snap.name().replace('-', " ")));
+    }
     match f.guard_band {
         0 => {}
         u32::MAX => list.push("guard-band unbounded".to_owned()),

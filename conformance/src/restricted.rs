@@ -6,9 +6,9 @@
 //! 'restricted:*'` at full cases).
 
 use refrast::{
-    ClipMode, CompareOp, CullMode, DepthRange, Draw, DrawError, Features, Fragment, FrontFace, PrimitiveDraw,
-    PrimitiveProfile, Profile, Rasterizer, Reference, ReferenceConfig, Resolved, SampleFragment,
-    SampleResolved, SnapRounding, Spec, Supported,
+    ClipMode, CompareOp, CullMode, DepthRange, Draw, DrawError, Features, Fragment, FrontFace, PointClipping,
+    PrimitiveDraw, PrimitiveProfile, Profile, Rasterizer, Reference, ReferenceConfig, Resolved,
+    SampleFragment, SampleResolved, SnapAccuracy, SnapRounding, Spec, Supported,
 };
 
 /// The reference under a restricted profile.
@@ -256,9 +256,29 @@ pub fn restrictions() -> Vec<Restriction> {
         ),
         configured(
             "snap=floor",
-            "snapping down to the grid: within one step of x/w, not the nearest point",
+            "snapping down to the grid, declared loosely: within one step of x/w, not the nearest point",
             ReferenceConfig {
                 snap_rounding: SnapRounding::Floor,
+                ..ReferenceConfig::default()
+            },
+            |f: &mut Features| f.snap = SnapAccuracy::WithinOneStep,
+            Spec::Refrast,
+        ),
+        configured(
+            "snap=floor-exact",
+            "snapping down to the grid, declared as exactly that (snap floor)",
+            ReferenceConfig {
+                snap_rounding: SnapRounding::Floor,
+                ..ReferenceConfig::default()
+            },
+            |_: &mut Features| {},
+            Spec::Refrast,
+        ),
+        configured(
+            "snap=toward-zero",
+            "snapping by truncation toward the raster origin, declared as such (snap toward-zero)",
+            ReferenceConfig {
+                snap_rounding: SnapRounding::TowardZero,
                 ..ReferenceConfig::default()
             },
             |_: &mut Features| {},
@@ -297,15 +317,33 @@ pub fn restrictions() -> Vec<Restriction> {
             move |f: &mut Features| f.compare_ops = Supported::only(&[op]),
         ));
     }
-    for spec in [Spec::Vulkan, Spec::OpenGl, Spec::D3d11] {
+    for spec in [Spec::Vulkan, Spec::OpenGl, Spec::OpenGlEs, Spec::D3d11] {
+        // OpenGL ES clips points by the near and far planes only: the reference plays it so.
+        let point_clipping = match spec {
+            Spec::OpenGlEs => PointClipping::UserClipPlanesOnly,
+            _ => PointClipping::AllClipPlanes,
+        };
         all.push(configured(
             format!("spec={}", spec.name()),
             format!("claims {} instead of refrast's conventions", spec.title()),
-            ReferenceConfig::default(),
+            ReferenceConfig {
+                point_clipping,
+                ..ReferenceConfig::default()
+            },
             |_: &mut Features| {},
             spec,
         ));
     }
+    all.push(configured(
+        "points=pop-free",
+        "points outside the viewport kept by clipping (user-clip-planes-only), declared so",
+        ReferenceConfig {
+            point_clipping: PointClipping::UserClipPlanesOnly,
+            ..ReferenceConfig::default()
+        },
+        |_: &mut Features| {},
+        Spec::Refrast,
+    ));
     all.extend(combinations());
     all
 }
@@ -403,8 +441,16 @@ mod tests {
             .find(|r| r.name == "snap=floor")
             .expect("listed");
         let p = (floor.make)().profile();
-        assert_eq!(p.features.snap, refrast::SnapAccuracy::WithinOneStep);
+        assert_eq!(p.features.snap, SnapAccuracy::WithinOneStep);
         assert!(!p.features.ties_to_even);
+        let truncating = restrictions()
+            .into_iter()
+            .find(|r| r.name == "snap=toward-zero")
+            .expect("listed");
+        assert_eq!(
+            (truncating.make)().profile().features.snap,
+            SnapAccuracy::TowardZero
+        );
     }
 
     /// A restricted rasterizer uses its one value whatever the draw asks: told to cull nothing,

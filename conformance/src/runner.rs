@@ -3,7 +3,7 @@
 use std::cell::{Cell, RefCell};
 use std::fmt::Debug;
 use std::panic::{AssertUnwindSafe, catch_unwind};
-use std::sync::Once;
+use std::sync::{Arc, Once};
 use std::time::{Duration, Instant};
 
 use proptest::strategy::Strategy;
@@ -59,7 +59,48 @@ pub enum Verdict {
         violation: Violation,
         /// The scene the minimal input draws (none when no case ran).
         scene: Option<Box<Scene>>,
+        /// The check on the minimal input, to run again on another rasterizer (none when no
+        /// case ran): a hint is printed only if the case passes under what it suggests.
+        replay: Option<Replay>,
     },
+}
+
+/// A failing case's check, bound to its input: run on a rasterizer, it says whether that
+/// rasterizer passes the case.
+#[derive(Clone)]
+pub struct Replay(Arc<ReplayFn>);
+
+/// What a [`Replay`] runs.
+type ReplayFn = dyn Fn(&mut dyn Rasterizer) -> Result<(), Violation> + Send + Sync;
+
+impl Replay {
+    /// `check` on `input`, fitted to the profile of the rasterizer it runs on (as the rule's
+    /// cases are, `orient` saying whether triangles are turned to face front).
+    fn of<T: Case + Clone + Send + Sync + 'static>(check: Check<T>, input: T, orient: bool) -> Self {
+        Self(Arc::new(move |r| {
+            let mut input = input.clone();
+            let profile = guarded(|| r.profile()).map_err(|what| Violation::panicked(&what))?;
+            fit(input.scene_mut(), &profile, orient);
+            run_check(r, check, &input)
+        }))
+    }
+
+    /// Runs the case on `r`, fitted to its profile (a panic is a violation).
+    pub fn run(&self, r: &mut dyn Rasterizer) -> Result<(), Violation> {
+        (self.0)(r)
+    }
+}
+
+impl std::fmt::Debug for Replay {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Replay(..)")
+    }
+}
+
+impl PartialEq for Replay {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
 }
 
 /// A check: the rasterizer under test against one input.
@@ -73,7 +114,7 @@ pub fn property<T, S>(
     check: Check<T>,
 ) -> Verdict
 where
-    T: Debug + Clone + Case,
+    T: Debug + Clone + Case + Send + Sync + 'static,
     S: Strategy<Value = T>,
 {
     property_for(rasterizer, cfg, |_| strategy, check)
@@ -88,7 +129,7 @@ pub fn property_for<T, S>(
     check: Check<T>,
 ) -> Verdict
 where
-    T: Debug + Clone + Case,
+    T: Debug + Clone + Case + Send + Sync + 'static,
     S: Strategy<Value = T>,
 {
     property_declared(rasterizer, cfg, |profile, _| strategy_for(profile), check)
@@ -103,7 +144,7 @@ pub fn property_declared<T, S>(
     check: Check<T>,
 ) -> Verdict
 where
-    T: Debug + Clone + Case,
+    T: Debug + Clone + Case + Send + Sync + 'static,
     S: Strategy<Value = T>,
 {
     let deadline = cfg.budget.map(|b| Instant::now() + b);
@@ -120,8 +161,9 @@ where
             .map_or(0, |b| u32::try_from(b.as_millis()).unwrap_or(u32::MAX).max(1)),
         ..Config::default()
     };
-    // Every case asks only for draw states the rasterizer declares it supports, and under a
-    // cull mode it cannot switch off, draws its triangles facing front.
+    // Every case asks only for draw states the rasterizer declares it supports, needs no 3D
+    // clipping of one that does none, and under a cull mode it cannot switch off, draws its
+    // triangles facing front.
     let (profile, primitives) = match guarded(|| (rasterizer.profile(), rasterizer.primitive_profile())) {
         Ok(declared) => declared,
         Err(what) => {
@@ -130,16 +172,13 @@ where
                 counterexample: String::new(),
                 violation: Violation::new(format!("profile() or primitive_profile() panicked: {what}")),
                 scene: None,
+                replay: None,
             };
         }
     };
     let orient = cfg.orient;
     let strategy = strategy_for(&profile, &primitives).prop_map(move |mut input| {
-        let scene = input.scene_mut();
-        scene.state = profile.fit(scene.state);
-        if orient {
-            scene.orient_to_face_front(&profile);
-        }
+        fit(input.scene_mut(), &profile, orient);
         input
     });
     let rng = TestRng::from_seed(RngAlgorithm::ChaCha, &seed_bytes(cfg.seed));
@@ -201,6 +240,7 @@ where
                 counterexample: format!("{input:?}"),
                 violation,
                 scene: Some(Box::new(input.scene().clone())),
+                replay: Some(Replay::of(check, input, orient)),
             }
         }
         Err(TestError::Abort(reason)) => Verdict::Fail {
@@ -208,7 +248,19 @@ where
             counterexample: String::new(),
             violation: Violation::new(format!("the case generator gave up: {reason}")),
             scene: None,
+            replay: None,
         },
+    }
+}
+
+/// `scene` as a case asks it of a rasterizer with `profile`: only draw states it supports,
+/// nothing that needs 3D clipping of one that does none, and (with `orient`) its triangles
+/// facing front under a cull mode it cannot switch off.
+fn fit(scene: &mut Scene, profile: &Profile, orient: bool) {
+    scene.state = profile.fit(scene.state);
+    scene.keep_unclipped(profile);
+    if orient {
+        scene.orient_to_face_front(profile);
     }
 }
 

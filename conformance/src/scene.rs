@@ -84,8 +84,55 @@ impl Scene {
     #[must_use]
     pub fn fitted(mut self, profile: &Profile) -> Self {
         self.state = profile.fit(self.state);
+        self.keep_unclipped(profile);
         self.orient_to_face_front(profile);
         self
+    }
+
+    /// For a profile that clips nothing in 3D ([`refrast::Features::clips_in_3d`] false), moves
+    /// each vertex to where such a rasterizer can draw it, vertex by vertex so that shared
+    /// vertices stay shared: one behind the eye to `−v`, which projects to the same point (at
+    /// `w = 0`, to `w` as large as its `x` and `y`), its `x/w` and `y/w` then pulled within the
+    /// guard band; `z` onto the near plane when before it, and onto the far plane when beyond
+    /// it under far clipping. Non-finite vertices stay as they are (the robustness rules send
+    /// them on purpose); a profile that clips in 3D is left alone.
+    pub fn keep_unclipped(&mut self, profile: &Profile) {
+        if profile.features.clips_in_3d {
+            return;
+        }
+        // Half-extents of the reachable region in NDC: the viewport plus the guard band.
+        let reach = f64::from(profile.features.guard_band.min(8192));
+        let limit = [
+            1.0 + 2.0 * reach / f64::from(self.width.max(1)),
+            1.0 + 2.0 * reach / f64::from(self.height.max(1)),
+        ];
+        let state = self.state;
+        for p in &mut self.positions {
+            if p.iter().any(|c| !c.is_finite()) {
+                continue;
+            }
+            let mut v = p.map(f64::from);
+            if v[3] < 0.0 {
+                v = v.map(|c| -c);
+            }
+            if v[3] <= 0.0 {
+                v[3] = v[0].abs().max(v[1].abs()).max(1.0);
+            }
+            if p[3] <= 0.0 {
+                for axis in 0..2 {
+                    v[axis] = v[axis].clamp(-limit[axis] * v[3], limit[axis] * v[3]);
+                }
+            }
+            let near = match state.depth_range {
+                DepthRange::ZeroToOne => 0.0,
+                DepthRange::NegativeOneToOne => -v[3],
+            };
+            v[2] = v[2].max(near);
+            if state.clip_far {
+                v[2] = v[2].min(v[3]);
+            }
+            *p = v.map(|c| c as f32);
+        }
     }
 
     /// How each triangle turns as an implementation with `profile` may see it ([`turn`]);

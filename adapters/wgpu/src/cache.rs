@@ -15,7 +15,8 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, OnceLock};
 
 use refrast::{
-    FillConvention, LineRule, PrimitiveProfile, SamplePattern, SnapAccuracy, Snapping, Unavailable,
+    FillConvention, LineRule, PointClipping, PrimitiveProfile, SamplePattern, SnapAccuracy, Snapping,
+    Unavailable,
 };
 
 use crate::device::{Context, Driver};
@@ -157,10 +158,9 @@ fn load(file: &Path, key: &str) -> Option<Measured> {
             name => Some(*FillConvention::ALL.iter().find(|c| format!("{c:?}") == name)?),
         },
         ties_to_even: get("ties_to_even")?.parse().ok()?,
-        snap: match get("snap")? {
-            "Nearest" => SnapAccuracy::Nearest,
-            "WithinOneStep" => SnapAccuracy::WithinOneStep,
-            _ => return None,
+        snap: {
+            let snap = get("snap")?;
+            *SnapAccuracy::ALL.iter().find(|a| format!("{a:?}") == snap)?
         },
         guard_band: get("guard_band")?.parse().ok()?,
         precision_bits: get("precision_bits")?.parse().ok()?,
@@ -177,6 +177,7 @@ fn load(file: &Path, key: &str) -> Option<Measured> {
                 "float" => Some(Snapping::Float),
                 bits => Some(Snapping::Grid(bits.parse().ok()?)),
             },
+            point_clipping: PointClipping::from_name(get("point_clipping")?)?,
             multisample: match get("samples")? {
                 "none" => Vec::new(),
                 list => {
@@ -215,7 +216,7 @@ fn store(file: &Path, key: &str, m: &Measured) {
     let text = format!(
         "{key}\nsnapping = {}\nfill = {}\nties_to_even = {}\nsnap = {:?}\nguard_band = {}\n\
          precision_bits = {}\ntolerance_subpixels = {}\nlines = {}\npoints = {}\npoint_snapping = {}\nsamples = {}\n\
-         reported = {}\nwhy = {}\n",
+         point_clipping = {}\nreported = {}\nwhy = {}\n",
         match m.snapping {
             Snapping::Grid(bits) => bits.to_string(),
             Snapping::Float => "float".to_owned(),
@@ -234,6 +235,7 @@ fn store(file: &Path, key: &str, m: &Measured) {
             Some(Snapping::Grid(bits)) => bits.to_string(),
         },
         samples(&m.primitives),
+        m.primitives.point_clipping.name(),
         m.reported,
         m.why
     );
@@ -271,6 +273,7 @@ mod tests {
                 endpoint_snapping: None,
                 point_snapping: None,
                 multisample: SamplePattern::standard(4).into_iter().collect(),
+                point_clipping: PointClipping::AllClipPlanes,
             },
             reported: "SwiftShader driver (driverVersion 5.0.0)".into(),
             why: "4 subpixel bits (vulkaninfo; probe agrees), top-left (38/38)".into(),
@@ -287,6 +290,7 @@ mod tests {
                 endpoint_snapping: None,
                 point_snapping: Some(Snapping::Grid(4)),
                 multisample: vec![SamplePattern::new(&[[1, 2], [3, 4], [5, 6], [7, 8]]).expect("4 samples")],
+                point_clipping: PointClipping::UserClipPlanesOnly,
             },
             ..m
         };

@@ -91,13 +91,13 @@ impl Driver {
         }
     }
 
-    /// The specification it claims: Vulkan's drivers Vulkan 1.4, OpenGL ES's OpenGL (whose
-    /// rasterization OpenGL ES 3 states alike).
+    /// The specification it claims: Vulkan's drivers Vulkan 1.4; those driven through wgpu's
+    /// OpenGL ES backend OpenGL ES 3.2, the API they are driven through (not desktop OpenGL).
     #[must_use]
     pub fn spec(self) -> Spec {
         match self {
             Self::Lavapipe | Self::Swiftshader | Self::Vulkan => Spec::Vulkan,
-            Self::Llvmpipe | Self::Softpipe => Spec::OpenGl,
+            Self::Llvmpipe | Self::Softpipe => Spec::OpenGlEs,
         }
     }
 

@@ -267,6 +267,10 @@ impl Rasterizer for Gpu {
                 snap: m.snap,
                 // Mesa and SwiftShader clip first; no probe shows the reference's order.
                 zero_area_before_clipping: false,
+                clips_in_3d: true,
+                // wgpu's GL backend writes `gl_Position.z = 2z − w` in the vertex shader (naga's
+                // ADJUST_COORDINATE_SPACE, always on in wgpu-hal's GLES device).
+                z_rewritten_in_f32: self.driver.backends() == wgpu::Backends::GL,
             },
             spec: self.driver.spec(),
         }

@@ -2,7 +2,7 @@
 //! probe measures (OpenGL, which reports nothing through wgpu), and each probe's choice among the
 //! declarations the specification permits, with why.
 
-use refrast::{FillConvention, PrimitiveProfile, SnapAccuracy, Snapping, Spec};
+use refrast::{FillConvention, PointClipping, PrimitiveProfile, SnapAccuracy, Snapping, Spec};
 
 use crate::probe::{Probes, fill_name};
 use crate::reported::Reported;
@@ -84,8 +84,11 @@ pub fn choose(spec: Spec, reported: Option<&Reported>, probes: &Probes) -> Measu
         ));
         band
     };
-    let primitives = primitive_profile(probes, snapping);
+    let mut primitives = primitive_profile(probes, snapping);
     why.push(probes.primitives.describe());
+    let (point_clipping, clipping_why) = point_clipping(spec, reported);
+    primitives.point_clipping = point_clipping;
+    why.push(clipping_why);
     Measured {
         snapping,
         fill,
@@ -97,6 +100,24 @@ pub fn choose(spec: Spec, reported: Option<&Reported>, probes: &Probes) -> Measu
         tolerance_subpixels,
         reported: reported.map(Reported::describe).unwrap_or_default(),
         why: why.join(", "),
+    }
+}
+
+/// What clipping does to points outside the viewport in x/y, with why: under Vulkan what the
+/// device reports (`pointClippingBehavior`; Vulkan 1.1 requires it, so a device that prints
+/// none is taken at the core's `ALL_CLIP_PLANES`), under OpenGL ES the specification's own
+/// rule (§12.4: a point is clipped by the near and far planes only).
+fn point_clipping(spec: Spec, reported: Option<&Reported>) -> (PointClipping, String) {
+    match (spec, reported.and_then(|r| r.point_clipping)) {
+        (Spec::OpenGlEs, _) => (
+            PointClipping::UserClipPlanesOnly,
+            "points clipped by the near and far planes only (OpenGL ES 3.2 §12.4)".to_owned(),
+        ),
+        (_, Some(c)) => (c, format!("points {} (vulkaninfo)", c.name())),
+        (_, None) => (
+            PointClipping::AllClipPlanes,
+            "points all-clip-planes (none reported)".to_owned(),
+        ),
     }
 }
 
@@ -119,6 +140,7 @@ fn primitive_profile(probes: &Probes, triangles: Snapping) -> PrimitiveProfile {
         endpoint_snapping: None,
         point_snapping,
         multisample: p.pattern().into_iter().collect(),
+        point_clipping: PointClipping::AllClipPlanes,
     }
 }
 
@@ -165,8 +187,8 @@ impl Measured {
             self.snapping,
             fill_name(self.fill),
             match self.snap {
-                SnapAccuracy::Nearest => "snapping to nearest",
-                SnapAccuracy::WithinOneStep => "snapping within one step",
+                SnapAccuracy::Nearest => "snapping to nearest".to_owned(),
+                other => format!("snapping {}", other.name().replace('-', " ")),
             },
             if self.ties_to_even { ", ties to even" } else { "" },
             self.guard_band,

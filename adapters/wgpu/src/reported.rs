@@ -3,7 +3,7 @@
 
 use std::process::{Command, Stdio};
 
-use refrast::Unavailable;
+use refrast::{PointClipping, Unavailable};
 
 use crate::device::Driver;
 
@@ -26,6 +26,8 @@ pub struct Reported {
     pub api_version: String,
     /// `subPixelPrecisionBits`, when printed.
     pub subpixel_bits: Option<u8>,
+    /// `pointClippingBehavior` (Vulkan 1.1's point clipping properties), when printed.
+    pub point_clipping: Option<PointClipping>,
 }
 
 impl Reported {
@@ -136,6 +138,7 @@ pub fn parse(text: &str) -> Vec<Reported> {
             "driverVersion" => device.driver_version = value.to_owned(),
             "apiVersion" => device.api_version = value.to_owned(),
             "subPixelPrecisionBits" => device.subpixel_bits = value.parse().ok(),
+            "pointClippingBehavior" => device.point_clipping = PointClipping::from_name(value),
             _ => {}
         }
     }

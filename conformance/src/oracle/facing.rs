@@ -11,7 +11,7 @@
 //! open, a triangle clipped at x/y beyond the guard band, a clipped polygon seen edge-on), the
 //! winding is [`Turn::Unsure`] and a rule must accept either.
 
-use refrast::{DrawState, Profile, SnapAccuracy};
+use refrast::{DrawState, Profile};
 
 use super::brute_force::orient2d;
 use super::outline::visible_outline;
@@ -75,9 +75,9 @@ impl Turn {
 }
 
 /// The grid points an implementation with `profile` may snap a clip-space position to, per its
-/// snapping claims: the nearest (both at an exact tie unless it rounds ties to even), or either
-/// neighbour on each axis ([`SnapAccuracy::WithinOneStep`]); refrast's choice (nearest, half
-/// to even) comes first. `None` when the position does not project to a point [`on_grid`] or
+/// snapping claims ([`SnapAccuracy::candidates`]): the nearest (both at an exact tie unless it
+/// rounds ties to even), either neighbour on each axis ([`SnapAccuracy::WithinOneStep`]), or
+/// the one floor or truncation gives; refrast's choice (nearest, half to even) first. `None` when the position does not project to a point [`on_grid`] or
 /// the profile has no grid.
 #[must_use]
 pub fn snap_candidates(p: [f32; 4], width: u32, height: u32, profile: &Profile) -> Option<Vec<Point>> {
@@ -92,19 +92,12 @@ pub fn snap_candidates(p: [f32; 4], width: u32, height: u32, profile: &Profile) 
         return None;
     }
     let f = &profile.features;
-    // The nearest grid point (half to even) first, then the other neighbour where allowed.
     let axis = |v: f64| -> Vec<i128> {
-        let nearest = v.round_ties_even();
-        let other = if nearest > v { v.floor() } else { v.ceil() };
-        let both = match f.snap {
-            SnapAccuracy::WithinOneStep => other != nearest,
-            SnapAccuracy::Nearest => !f.ties_to_even && (v - v.floor()) == 0.5,
-        };
-        if both {
-            vec![nearest as i128, other as i128]
-        } else {
-            vec![nearest as i128]
-        }
+        f.snap
+            .candidates(v, f.ties_to_even)
+            .into_iter()
+            .map(|c| c as i128)
+            .collect()
     };
     let (xs, ys) = (axis(rx), axis(ry));
     Some(xs.iter().flat_map(|&x| ys.iter().map(move |&y| (x, y))).collect())
@@ -251,6 +244,7 @@ mod tests {
     use refrast::{CullMode, FrontFace, Rasterizer, Reference, ReferenceConfig, SnapRounding};
 
     use super::*;
+    use refrast::SnapAccuracy;
 
     fn reference() -> Profile {
         Reference::default().profile()
@@ -329,6 +323,14 @@ mod tests {
         let q = [((1.0 + 3.0 / 64.0) / 16.0 * 2.0 - 1.0) as f32, 0.0, 0.5, 1.0];
         let within = snap_candidates(q, 16, 16, &four(SnapAccuracy::WithinOneStep, true));
         assert_eq!(within.expect("projects"), [(17, 128), (16, 128)]);
+        // Floor and truncation: one point each, apart left of the viewport (raster x < 0).
+        let at_q = |snap| snap_candidates(q, 16, 16, &four(snap, false)).expect("projects");
+        assert_eq!(at_q(SnapAccuracy::Floor), [(16, 128)]);
+        assert_eq!(at_q(SnapAccuracy::TowardZero), [(16, 128)]);
+        let left = [((-1.0 - 3.0 / 64.0) / 16.0 * 2.0 - 1.0) as f32, 0.0, 0.5, 1.0];
+        let at_left = |snap| snap_candidates(left, 16, 16, &four(snap, false)).expect("projects");
+        assert_eq!(at_left(SnapAccuracy::Floor), [(-17, 128)]);
+        assert_eq!(at_left(SnapAccuracy::TowardZero), [(-16, 128)]);
         assert_eq!(snap_candidates([0.0, 0.0, 0.0, -1.0], 16, 16, &reference()), None);
     }
 

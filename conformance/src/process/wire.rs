@@ -3,8 +3,8 @@
 
 use refrast::{
     CompareOp, CullMode, DepthConvention, DepthRange, FillConvention, Fragment, FrontFace, LineRule,
-    PrimitiveDraw, PrimitiveProfile, Profile, SamplePattern, Setting, SnapAccuracy, Snapping, Spec,
-    Supported,
+    PointClipping, PrimitiveDraw, PrimitiveProfile, Profile, SamplePattern, Setting, SnapAccuracy, Snapping,
+    Spec, Supported,
 };
 
 /// The newest protocol version this refrast speaks, the one its messages suggest.
@@ -28,6 +28,10 @@ pub use refrast::Topology;
 
 /// Sample counts a version 2 profile may list: Vulkan's standard counts ([`refrast::SAMPLE_COUNTS`]).
 pub const SAMPLE_COUNTS: [u32; 5] = [1, 2, 4, 8, 16];
+
+/// The profile key that says whether the child clips in 3D (`homogeneous`, the default) or
+/// not at all (`none`: a 2D scan converter).
+pub const CLIPPING: &str = "clipping";
 
 /// The longest line either side may send, in bytes.
 pub const MAX_LINE: usize = 4096;
@@ -229,7 +233,9 @@ pub fn fragment(record: &[u8], screen_barycentrics: bool, samples: u8) -> Result
         front_facing: front == 1,
         depth: f32_at(record, 4),
         barycentric: [f32_at(record, 5), f32_at(record, 6), f32_at(record, 7)],
-        screen_barycentric: screen_barycentrics.then_some(screen),
+        // Three NaN words say "none": the triangle has a vertex at w ≤ 0 and no screen shape
+        // (the rules accept none only there; docs/protocol.md).
+        screen_barycentric: (screen_barycentrics && !screen.iter().all(|c| c.is_nan())).then_some(screen),
     };
     Ok((fragment, sample as u8))
 }
@@ -264,6 +270,8 @@ pub struct Declared {
     /// Sample positions it declares instead of the standard ones (version 2's
     /// `sample-positions`), one pattern per count.
     pub sample_positions: Vec<SamplePattern>,
+    /// What clipping does to a point outside the viewport (version 2's `point-clipping`).
+    pub point_clipping: PointClipping,
 }
 
 impl Declared {
@@ -278,6 +286,7 @@ impl Declared {
             sample_counts: vec![1],
             lines: LineRule::DiamondExit,
             sample_positions: Vec::new(),
+            point_clipping: PointClipping::AllClipPlanes,
         }
     }
 
@@ -305,6 +314,7 @@ impl Declared {
                         .or_else(|| SamplePattern::standard(n))
                 })
                 .collect(),
+            point_clipping: self.point_clipping,
         }
     }
 }
@@ -333,6 +343,8 @@ pub fn default_profile(name: &str) -> Profile {
             ties_to_even: false,
             snap: SnapAccuracy::Nearest,
             zero_area_before_clipping: false,
+            clips_in_3d: true,
+            z_rewritten_in_f32: false,
         },
         spec: Spec::Refrast,
     }
@@ -451,15 +463,19 @@ pub fn parse_profile(lines: &[String], fallback_name: &str, version: u32) -> Res
                 }
             }
             "snap" => {
-                f.snap = match rest {
-                    "nearest" => SnapAccuracy::Nearest,
-                    "within-one-step" => SnapAccuracy::WithinOneStep,
-                    _ => return Err(bad("say nearest or within-one-step")),
-                }
+                f.snap = SnapAccuracy::from_name(rest)
+                    .ok_or_else(|| bad("say nearest, within-one-step, floor or toward-zero"))?;
             }
             "spec" => {
-                profile.spec =
-                    Spec::from_name(rest).ok_or_else(|| bad("say refrast, vulkan, opengl or d3d11"))?;
+                profile.spec = Spec::from_name(rest)
+                    .ok_or_else(|| bad("say refrast, vulkan, opengl, opengles or d3d11"))?;
+            }
+            CLIPPING => {
+                f.clips_in_3d = match rest {
+                    "homogeneous" => true,
+                    "none" => false,
+                    _ => return Err(bad("say homogeneous or none")),
+                };
             }
             GUARD_BAND => {
                 f.guard_band = rest
@@ -486,6 +502,10 @@ pub fn parse_profile(lines: &[String], fallback_name: &str, version: u32) -> Res
                     _ => None,
                 }
                 .ok_or_else(|| bad("name one of diamond-exit, rectangle, parallelogram"))?;
+            }
+            "point-clipping" if version >= 2 => {
+                declared.point_clipping = PointClipping::from_name(rest)
+                    .ok_or_else(|| bad("say all-clip-planes or user-clip-planes-only"))?;
             }
             "sample-positions" if version >= 2 => {
                 let pattern = sample_positions(&words).map_err(|why| bad(&why))?;

@@ -254,6 +254,8 @@ impl Rasterizer for Lab002 {
                 // one step of it, not the nearest.
                 snap: SnapAccuracy::WithinOneStep,
                 zero_area_before_clipping: false,
+                clips_in_3d: true,
+                z_rewritten_in_f32: false,
             },
             spec: Spec::Refrast,
         }

@@ -233,6 +233,8 @@ impl Rasterizer for Lab004 {
                 ties_to_even: false,
                 snap: SnapAccuracy::Nearest,
                 zero_area_before_clipping: false,
+                clips_in_3d: true,
+                z_rewritten_in_f32: false,
             },
             spec: Spec::Refrast,
         }

@@ -27,6 +27,8 @@ pub fn features(depth_test: bool) -> Features {
         ties_to_even: false,
         snap: SnapAccuracy::Nearest,
         zero_area_before_clipping: false,
+        clips_in_3d: true,
+        z_rewritten_in_f32: false,
     }
 }
 

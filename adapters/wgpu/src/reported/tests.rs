@@ -1,5 +1,7 @@
 //! `vulkaninfo`'s text parsed whatever its layout, and the device wgpu picked chosen from it.
 
+use refrast::PointClipping;
+
 use super::{Reported, choose, parse};
 
 /// `vulkaninfo` 1.3.239 with lavapipe's and SwiftShader's ICDs both loaded, trimmed to the lines
@@ -31,6 +33,7 @@ fn every_device_is_read() {
             driver_version: "5.0.0 (20971520)".into(),
             api_version: "1.3.0 (4206592)".into(),
             subpixel_bits: Some(4),
+            point_clipping: Some(PointClipping::AllClipPlanes),
         }
     );
     assert_eq!(devices[1].subpixel_bits, Some(8));
@@ -64,4 +67,29 @@ fn the_adapter_is_chosen() {
     assert!(choose(&devices, &info("NVIDIA GeForce", 0x10de, 1)).is_none());
     let no_limits = parse(&TWO.replace("subPixelPrecisionBits", "somethingElse"));
     assert!(choose(&no_limits, &lavapipe).is_none());
+}
+
+/// `pointClippingBehavior` reads either way Vulkan spells it, and a device printing none has
+/// none read (the profile then takes Vulkan 1.0's `ALL_CLIP_PLANES`).
+#[test]
+fn point_clipping_is_read() {
+    let user = TWO.replacen(
+        "CLIPPING_BEHAVIOR_ALL_CLIP_PLANES",
+        "CLIPPING_BEHAVIOR_USER_CLIP_PLANES_ONLY",
+        1,
+    );
+    let devices = parse(&user);
+    assert_eq!(devices[0].point_clipping, Some(PointClipping::UserClipPlanesOnly));
+    assert_eq!(devices[1].point_clipping, Some(PointClipping::AllClipPlanes));
+    assert_eq!(
+        PointClipping::from_name("VK_POINT_CLIPPING_BEHAVIOR_USER_CLIP_PLANES_ONLY"),
+        Some(PointClipping::UserClipPlanesOnly)
+    );
+    assert_eq!(
+        PointClipping::from_name("all-clip-planes"),
+        Some(PointClipping::AllClipPlanes)
+    );
+    assert_eq!(PointClipping::from_name("SOMETIMES"), None);
+    let silent = parse(&TWO.replace("pointClippingBehavior", "somethingElse"));
+    assert_eq!(silent[0].point_clipping, None);
 }

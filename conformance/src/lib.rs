@@ -19,6 +19,7 @@
 //! | 11 | `harness`, [`fuzz`] | [`run_as_tests`]: one test per rule in your own crate; the cargo-fuzz targets as functions on any rasterizer |
 //! | — | `named` | [`Named`]: the reference under another name and configuration |
 //! | — | [`restricted`] | the reference restricted to one setting or a few, declaring and using only those (refrast only) |
+//! | — | [`shaped`] | the reference shaped like the rasterizers that exposed false verdicts: a GPU, a 2D scan converter (uses `oracle::raster`) |
 //! | — | [`process`] | [`Process`]: a rasterizer in any language, in a child speaking `docs/protocol.md` (refrast only) |
 //!
 //! # Kinds and tolerance
@@ -46,6 +47,7 @@ pub mod restricted;
 pub mod rules;
 mod runner;
 mod scene;
+pub mod shaped;
 pub mod spec;
 mod status;
 pub mod strategy;
@@ -65,7 +67,7 @@ pub use rules::robust::Poisoned;
 pub use rules::{
     Family, Kind, Level, Levels, Need, Rule, RuleDraft, catalogue, levels_markdown, markdown_table, needs,
 };
-pub use runner::{DEFAULT_SEED, RunConfig, Verdict, property, property_declared, property_for};
+pub use runner::{DEFAULT_SEED, Replay, RunConfig, Verdict, property, property_declared, property_for};
 pub use scene::{Case, Scene, clip_of};
 pub use spec::{Coverage, SpecMap, Statement, spec_map};
 pub use violation::{Class, Counts, Expect, Findings, Picture, Violation, compare_coverage, count_fragments};

@@ -254,3 +254,61 @@ fn a_point_just_outside_the_viewport_may_be_drawn_under_opengl_and_d3d11() {
         );
     }
 }
+
+/// softpipe's "non-finite weights within 2³²" (adapters/wgpu/tests/drivers/findings.rs), re-read:
+/// under 0 ≤ z ≤ w the 9×1 triangle is empty in exact arithmetic (two vertices behind the eye,
+/// vertex 1 5.9·10⁻⁷ before the near plane). wgpu's OpenGL ES backend hands the driver z
+/// rewritten to 2z − w in f32, which puts vertex 1 only 4.8·10⁻⁷ before it and leaves a sliver
+/// whose clipped vertices have w from 10⁻⁴⁰ to 10⁻²⁷, far below 2⁻³²: nothing is required of
+/// its values, so softpipe's NaN weights there are no failure.
+#[test]
+fn a_sliver_only_the_gl_rewrite_makes_requires_no_values() {
+    use refrast_conformance::rules::robust;
+    let scene = Scene::new(
+        9,
+        1,
+        vec![
+            [-1.175_494_4e-38, -3.996_676, 1.175_494_4e-38, -3.999_976_4],
+            [-1.175_494_4e-38, 1.175_494_4e-38, -2.970_919e-7, 2.546_645_2],
+            [-1.515_625, 22_237_420.0, 2.484_375, -0.576_177_6],
+        ],
+        vec![[0, 1, 2]],
+    );
+    let drawn = Reference::default().rasterize(&scene.draw()).expect("draws");
+    assert!(drawn.is_empty(), "empty in exact arithmetic: {drawn:?}");
+    assert!(robust::within_float_range(&scene), "the draw as sent stays within 2³²");
+    let mut received = Reference::default().profile();
+    received.features.z_rewritten_in_f32 = true;
+    assert!(
+        !robust::within_float_range_as_received(&scene, &received),
+        "as the driver receives it, a sliver at w < 2⁻³²"
+    );
+    let mut softpipe = Sliver(received);
+    robust::check_sane_where_defined(&mut softpipe, &scene).expect("NaN weights on that sliver");
+    softpipe.0.features.z_rewritten_in_f32 = false;
+    assert!(
+        robust::check_sane_where_defined(&mut softpipe, &scene).is_err(),
+        "without the rewrite, a fragment of an empty triangle must still be well formed"
+    );
+}
+
+/// Draws the sample on vertex 1 of the 9×1 sliver with softpipe's (NaN, ∞, ∞) weights.
+struct Sliver(Profile);
+
+impl Rasterizer for Sliver {
+    fn profile(&self) -> Profile {
+        self.0.clone()
+    }
+
+    fn rasterize(&mut self, _: &Draw) -> Result<Vec<Fragment>, DrawError> {
+        Ok(vec![Fragment {
+            x: 4,
+            y: 0,
+            primitive: 0,
+            depth: 0.0,
+            barycentric: [f32::NAN, f32::INFINITY, f32::INFINITY],
+            screen_barycentric: Some([f32::NAN; 3]),
+            front_facing: true,
+        }])
+    }
+}

@@ -14,11 +14,11 @@ mod modules;
 use modules::{code, module_of, resolve, rust_files, segments, use_paths, written_paths};
 
 /// Top-level modules, lowest layer first; `process`, `restricted` and `named` stand apart: they
-/// use only refrast (and `status`, which uses nothing).
+/// use only refrast (and `status`, which uses nothing); `shaped` uses the oracles' geometry.
 const LAYERS: &[&[&str]] = &[
     &["status", "contain"],
     &["oracle", "process", "restricted"],
-    &["scene", "named"],
+    &["scene", "named", "shaped"],
     &["violation"],
     &["picture"],
     &["primitives"],

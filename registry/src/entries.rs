@@ -4,6 +4,7 @@
 use refrast::{ClipMode, LineRule, Rasterizer, Reference, ReferenceConfig, SubpixelBits};
 use refrast_conformance::Named;
 use refrast_conformance::restricted::restrictions;
+use refrast_conformance::shaped::{Shape, Shaped};
 use refrast_zoo::course;
 use refrast_zoo::mutant::{Bug, Mutant};
 
@@ -14,6 +15,7 @@ use crate::{BuiltIn, Origin};
 pub fn all() -> Vec<BuiltIn> {
     let mut all = reference();
     all.extend(restricted());
+    all.extend(shaped());
     all.extend(mutants());
     all.extend(course_labs());
     #[cfg(feature = "third-party")]
@@ -89,6 +91,22 @@ fn restricted() -> Vec<BuiltIn> {
                 format!("the reference restricted: {}", r.description),
                 Origin::Restricted,
                 move || Box::new(make()),
+            )
+        })
+        .collect()
+}
+
+/// The reference shaped like the rasterizers that exposed false verdicts
+/// ([`refrast_conformance::shaped`]).
+fn shaped() -> Vec<BuiltIn> {
+    Shape::ALL
+        .into_iter()
+        .map(|shape| {
+            BuiltIn::new(
+                format!("shaped:{}", shape.name()),
+                format!("the reference shaped: {}", shape.description()),
+                Origin::Shaped,
+                move || Box::new(Shaped::new(shape)),
             )
         })
         .collect()

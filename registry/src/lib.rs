@@ -35,6 +35,9 @@ pub enum Origin {
     /// The reference restricted to what a simpler rasterizer supports: it must pass or be
     /// `n/a` on every rule (the suite's own check that it judges any profile).
     Restricted,
+    /// The reference shaped like a rasterizer unlike it (a GPU, a 2D scan converter), correct:
+    /// it must pass, be `n/a` or be beyond its claimed specification on every rule.
+    Shaped,
 }
 
 impl Origin {
@@ -47,6 +50,7 @@ impl Origin {
             Self::Course => "course lab",
             Self::Mutant => "broken on purpose",
             Self::Restricted => "reference, restricted",
+            Self::Shaped => "reference, shaped",
         }
     }
 }
@@ -148,7 +152,13 @@ mod tests {
     #[test]
     fn every_origin_is_listed_and_ours_come_first() {
         let all = all();
-        for origin in [Origin::Ours, Origin::Course, Origin::Mutant, Origin::Restricted] {
+        for origin in [
+            Origin::Ours,
+            Origin::Course,
+            Origin::Mutant,
+            Origin::Restricted,
+            Origin::Shaped,
+        ] {
             assert!(all.iter().any(|b| b.origin == origin), "no {origin:?} built-in");
         }
         #[cfg(feature = "third-party")]

@@ -225,3 +225,41 @@ fn correct_profiles_pass_the_hinted_rules() {
         assert!(report.passed(), "{rule}: {:?}", report.rules[0].message);
     }
 }
+
+/// A Skia-style scan converter (26.6 fixed point by truncation toward zero, bottom-right ties)
+/// declared as rounding to the nearest grid point: every hint it gets is verified on the failing
+/// case, so none blames the tie rule or the grid (as hints did before they were verified), and
+/// the exact rule's hint names the rounding it does.
+#[test]
+fn a_truncating_rasterizer_gets_no_wrong_hint() {
+    let config = ReferenceConfig {
+        subpixel_bits: SubpixelBits::new(6).expect("6 bits"),
+        snap_rounding: refrast::SnapRounding::TowardZero,
+        fill: FillConvention::BottomRight,
+        ..ReferenceConfig::default()
+    };
+    let declare = |p: &mut Profile| {
+        p.snapping = refrast::Snapping::Grid(6);
+        p.fill = Some(FillConvention::BottomRight);
+        p.features.snap = refrast::SnapAccuracy::Nearest;
+        p.features.ties_to_even = false;
+    };
+    let mut truncating = Misdeclared::new(config, declare, |_| {});
+    let right = hint(&mut truncating, "fill.brute-force.exact");
+    assert!(right.contains("toward zero (truncation)"), "{right}");
+    let options = Options {
+        cases: Some(500),
+        rules: vec!["fill.*".into(), "meta.*".into(), "clip.*".into()],
+        ..Options::default()
+    };
+    let report = certify(&mut truncating, &options, |_| {});
+    for rule in &report.rules {
+        if let Some(hint) = &rule.hint {
+            assert!(
+                hint.contains("toward zero"),
+                "{}: a hint other than the rounding: {hint}",
+                rule.id
+            );
+        }
+    }
+}

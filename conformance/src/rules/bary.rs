@@ -3,7 +3,7 @@
 use refrast::{Fragment, Profile, Rasterizer};
 
 use super::cast::{Expected, raycast_fragments, slack_note, snapped_triangles};
-use super::common::{Values, check_values_finite, fragments, precision, reaches_far};
+use super::common::{Values, check_values_finite, fragments, precision, reaches_far, screen_defined};
 use super::level::{FAR_VALUES, Level, NO_BARYCENTRICS};
 use super::{
     ANY_BARYCENTRICS, Family, PERSPECTIVE_BARYCENTRICS, Rule, SCREEN_BARYCENTRICS, VERTEX_ON_SAMPLE,
@@ -107,78 +107,144 @@ fn equal_w_inside_scene() -> impl proptest::strategy::Strategy<Value = Scene> {
     })
 }
 
-/// Reads one kind of barycentrics from a fragment.
-type Weights = fn(&Fragment) -> Option<[f32; 3]>;
+/// One kind of barycentrics a fragment carries.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Kind {
+    /// Perspective-correct.
+    Perspective,
+    /// Screen-space.
+    Screen,
+}
 
-/// The kinds of barycentrics a profile declares, each named and read from a fragment (`None`
-/// where the fragment has none: screen-space ones exist only while every `w > 0`).
-fn declared(profile: &Profile) -> Vec<(&'static str, Weights)> {
-    let mut kinds: Vec<(&'static str, Weights)> = Vec::new();
+impl Kind {
+    fn name(self) -> &'static str {
+        match self {
+            Self::Perspective => "perspective",
+            Self::Screen => "screen-space",
+        }
+    }
+}
+
+/// A fragment's barycentrics of one kind, as a rule may judge them.
+enum Weights {
+    /// Defined: judged by the rule.
+    Judged([f32; 3]),
+    /// Screen-space weights of a triangle with a vertex at `w ≤ 0`, which has no shape on
+    /// screen: neither the reference nor any specification defines them ("varies linearly in
+    /// framebuffer space", Vulkan's Clipping Shader Outputs, has no meaning across `w = 0`; a
+    /// GPU that rasterizes homogeneously gives the unclipped triangle's screen plane), so only
+    /// finiteness is judged, and none at all is an answer.
+    Undefined(Option<[f32; 3]>),
+    /// None, though the profile declares them and the triangle lies in front of the eye.
+    Missing,
+}
+
+/// The kinds of barycentrics a profile declares.
+fn declared(profile: &Profile) -> Vec<Kind> {
+    let mut kinds = Vec::new();
     if profile.features.perspective_barycentrics {
-        kinds.push(("perspective", |f| Some(f.barycentric)));
+        kinds.push(Kind::Perspective);
     }
     if profile.features.screen_barycentrics {
-        kinds.push(("screen-space", |f| f.screen_barycentric));
+        kinds.push(Kind::Screen);
     }
     kinds
+}
+
+/// Fragment `f`'s barycentrics of `kind` in `scene`.
+fn weights(scene: &Scene, f: &Fragment, kind: Kind) -> Weights {
+    match (kind, f.screen_barycentric) {
+        (Kind::Perspective, _) => Weights::Judged(f.barycentric),
+        (Kind::Screen, b) if !screen_defined(scene, f.primitive) => Weights::Undefined(b),
+        (Kind::Screen, Some(b)) => Weights::Judged(b),
+        (Kind::Screen, None) => Weights::Missing,
+    }
+}
+
+/// Checks each declared kind of each fragment's barycentrics with `judge` (a problem in words,
+/// or `None`) where they are defined, for finiteness where they are not, and that none is
+/// missing; `what` says the failure for `n` fragments.
+fn judge_weights(
+    r: &mut dyn Rasterizer,
+    scene: &Scene,
+    judge: impl Fn(&Fragment, Kind, [f32; 3]) -> Option<String>,
+    what: impl FnOnce(usize) -> String,
+) -> Result<(), Violation> {
+    let profile = r.profile();
+    let mut found = Findings::new();
+    let frags = fragments(r, scene)?;
+    for kind in declared(&profile) {
+        for f in &frags {
+            let problem = match weights(scene, f, kind) {
+                Weights::Judged(b) => judge(f, kind, b),
+                Weights::Undefined(b) => b.filter(|b| b.iter().any(|c| !c.is_finite())).map(|b| {
+                    format!(
+                        "{} {b:?} of a triangle with a vertex at w ≤ 0 (only finite values are required there)",
+                        kind.name()
+                    )
+                }),
+                Weights::Missing => Some(
+                    "no screen-space barycentrics, though the profile declares them and the triangle lies in front of \
+                     the eye (none, or all three NaN through the pipe, is an answer only for a triangle with a vertex \
+                     at w ≤ 0)"
+                        .to_owned(),
+                ),
+            };
+            if let Some(problem) = problem {
+                found.add((f.x, f.y), || format!("{:?} has {problem}", (f.x, f.y)));
+            }
+        }
+    }
+    found.verdict(what)
 }
 
 /// Every fragment's barycentrics of each declared kind sum to 1 within three times
 /// [`precision`].
 pub fn check_sum_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let profile = r.profile();
     // Each within the claimed precision of its exact value, which sum to 1.
-    let eps = 3.0 * precision(&profile) as f32;
-    let mut found = Findings::new();
-    let frags = fragments(r, scene)?;
-    for (kind, weights) in declared(&profile) {
-        for f in &frags {
-            let Some(b) = weights(f) else { continue };
+    let eps = 3.0 * precision(&r.profile()) as f32;
+    judge_weights(
+        r,
+        scene,
+        |_, kind, b| {
             let sum: f32 = b.iter().sum();
-            if (sum - 1.0).abs() > eps || sum.is_nan() {
-                found.add((f.x, f.y), || {
-                    format!("{:?} has {kind} {b:?}, summing to {sum}", (f.x, f.y))
-                });
-            }
-        }
-    }
-    found.verdict(|n| {
-        format!(
-            "barycentrics not summing to 1 within three times the claimed precision at {}",
-            plural(n, "fragment")
-        )
-    })
+            ((sum - 1.0).abs() > eps || sum.is_nan())
+                .then(|| format!("{} {b:?}, summing to {sum}", kind.name()))
+        },
+        |n| {
+            format!(
+                "barycentrics not summing to 1 within three times the claimed precision at {}",
+                plural(n, "fragment")
+            )
+        },
+    )
 }
 
 /// Barycentrics of each declared kind of samples outside the band lie in [0, 1] within
-/// [`precision`].
+/// [`precision`]; those within it, only where they must be finite.
 pub fn check_in_range(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let profile = r.profile();
     let eps = precision(&profile) as f32;
     let band = profile.band_px();
     let outline = visible_outline(&scene.positions_of(0), scene.width, scene.height, &scene.state);
-    let mut found = Findings::new();
-    let frags = fragments(r, scene)?;
-    for (kind, weights) in declared(&profile) {
-        for f in &frags {
-            let s = sample_centre(f.x, f.y);
-            if distance_to_outline(&outline, s, |_, _| true) < band {
-                continue;
+    judge_weights(
+        r,
+        scene,
+        |f, kind, b| {
+            if distance_to_outline(&outline, sample_centre(f.x, f.y), |_, _| true) < band {
+                return None;
             }
-            let Some(all) = weights(f) else { continue };
-            if let Some(b) = all.iter().find(|&&b| !(-eps..=1.0 + eps).contains(&b)) {
-                found.add((f.x, f.y), || {
-                    format!("{:?} has {b} in {kind} {all:?}", (f.x, f.y))
-                });
-            }
-        }
-    }
-    found.verdict(|n| {
-        format!(
-            "a barycentric outside [0, 1] at {} away from every edge",
-            plural(n, "fragment")
-        )
-    })
+            b.iter()
+                .find(|&&c| !(-eps..=1.0 + eps).contains(&c))
+                .map(|c| format!("{c} in {} {b:?}", kind.name()))
+        },
+        |n| {
+            format!(
+                "a barycentric outside [0, 1] at {} away from every edge",
+                plural(n, "fragment")
+            )
+        },
+    )
 }
 
 /// A covered sample on a vertex has weight 1 there and 0 elsewhere, in each declared kind.
@@ -187,10 +253,12 @@ pub fn check_vertex_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Vio
     let eps = precision(&profile) as f32;
     let tri = scene.positions_of(0);
     let corners = scene.corners(0);
-    // On a grid, a vertex counts as on a sample only where every way the profile lets it snap
-    // puts it there (snapping within one step may move one a hair off the sample to the next
-    // grid point); without one, within 1e-3 px of it.
-    let on_sample = |k: usize, x: u32, y: u32| match profile.snapping.grid_bits() {
+    // A vertex is on a sample only exactly as the profile places it: on a grid, where every
+    // way the profile lets it snap puts it there (snapping within one step may move one a hair
+    // off the sample to the next grid point); without one, where its exact projection is the
+    // sample itself. A vertex a hair from the sample has a weight a hair from 1, which the
+    // claimed precision need not cover on a sliver (bary.perspective.matches-raycast judges it).
+    let on = |k: usize, x: u32, y: u32| match profile.snapping.grid_bits() {
         // A whole-pixel grid has no point on a sample centre (the rule is n/a there).
         Some(0) => false,
         Some(bits) => {
@@ -198,22 +266,28 @@ pub fn check_vertex_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Vio
             let sample = (i128::from(x) * 2 * half + half, i128::from(y) * 2 * half + half);
             snap_candidates(corners[k], scene.width, scene.height, &profile).is_some_and(|c| c == [sample])
         }
-        None => {
-            let (p, s) = (project(scene.width, scene.height, tri[k]), sample_centre(x, y));
-            (p[0] - s[0]).abs() < 1e-3 && (p[1] - s[1]).abs() < 1e-3
-        }
+        None => project(scene.width, scene.height, tri[k]) == sample_centre(x, y),
     };
+    // Never two vertices at once: two on one sample make a triangle with no area there.
+    let on_sample = |k: usize, x: u32, y: u32| on(k, x, y) && (0..3).filter(|&j| on(j, x, y)).count() == 1;
     let mut found = Findings::new();
     let frags = fragments(r, scene)?;
-    for (kind, weights) in declared(&profile) {
+    for kind in declared(&profile) {
         for f in &frags {
             for k in 0..3 {
                 if on_sample(k, f.x, f.y) {
-                    let Some(b) = weights(f) else { continue };
+                    // Missing or undefined ones are bary.sum.one's and bary.range.unit's to judge.
+                    let Weights::Judged(b) = weights(scene, f, kind) else {
+                        continue;
+                    };
                     let ok = (0..3).all(|i| (b[i] - if i == k { 1.0 } else { 0.0 }).abs() <= eps);
                     if !ok {
                         found.add((f.x, f.y), || {
-                            format!("{:?} lies on vertex {k} but has {kind} {b:?}", (f.x, f.y))
+                            format!(
+                                "{:?} lies on vertex {k} but has {} {b:?}",
+                                (f.x, f.y),
+                                kind.name()
+                            )
                         });
                     }
                 }

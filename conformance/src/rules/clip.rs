@@ -4,9 +4,11 @@ use proptest::prelude::*;
 use refrast::DepthRange;
 
 use super::common::check_draws_nothing;
-use super::fill::{check_exactly_once, check_exactly_once_cuts_apart};
-use super::level::{CUT_VERTICES, Level, NO_GL_RANGE};
-use super::{FAR_CLIPPING, Family, GL_DEPTH_RANGE, Rule};
+use super::fill::{
+    check_exactly_once, check_exactly_once_between_two_cuts_apart, check_exactly_once_cuts_apart,
+};
+use super::level::{CUT_VERTICES, CUT_VERTICES_AND_SHARED_EDGES, Level, NO_GL_RANGE};
+use super::{CLIPS_IN_3D, FAR_CLIPPING, Family, GL_DEPTH_RANGE, Rule};
 use crate::runner::property;
 use crate::scene::Scene;
 use crate::strategy;
@@ -14,16 +16,19 @@ use crate::strategy;
 pub(super) fn rules() -> Vec<Rule> {
     vec![
         Rule::invariant(Family::Clip, "clip.behind-eye.empty")
+            .needs(CLIPS_IN_3D)
             .sentence("A triangle wholly behind the eye (w < 0) or wholly before the near plane draws nothing.")
             .source("MIT 6.837 seed 001 (why clip: w ≤ 0); Vulkan 1.4, Primitive Clipping")
             .cases(10000)
             .run(|r, cfg| property(r, cfg, behind_scene(), check_draws_nothing)),
         Rule::invariant(Family::Clip, "clip.interior.matches-raycast")
+            .needs(CLIPS_IN_3D)
             .sentence("A triangle crossing clip planes, w = 0, or reaching ±30000·w covers exactly the samples its ray cast hits, outside the tolerance band (widened along cuts by what an f32 clipper's rounding may move them: 2^-19 of the coordinates they come from). Known limit: clipping x and y at the viewport and snapping the vertices that makes (reference-full-clip) can miss samples along such a cut (seen at seed 8 before the generator reached w = 0 and any viewport side; not at seeds 1–20 since).")
             .source("dEQP-GLES3.functional.clipping.*; refrast's own property (clipping keeps the interior)")
             .cases(5000)
             .run(|r, cfg| property(r, cfg, strategy::crossing_scene(), check_exactly_once)),
         Rule::invariant(Family::Clip, "clip.mesh.watertight")
+            .needs(CLIPS_IN_3D)
             .sentence("A viewport-covering mesh whose shared edges cross the near plane covers each visible sample exactly once. Known limit: at 4 subpixel bits, snapping the vertices the near plane makes on a sliver can fold its clipped polygon and open a hole (reference-4bit, at seeds 13 and 15 of 1–20).")
             .source("dEQP fill_rules.clipped_*; nvdiffrast #225; seed 004 (Sutherland–Hodgman)")
             .cases(1500)
@@ -31,8 +36,15 @@ pub(super) fn rules() -> Vec<Rule> {
                 part: |r, cfg| property(r, cfg, strategy::clipped_mesh_scene(), check_exactly_once_cuts_apart),
                 note: CUT_VERTICES,
             })
+            .vulkan_and_opengl(Level::Partly {
+                part: |r, cfg| {
+                    property(r, cfg, strategy::clipped_mesh_scene(), check_exactly_once_between_two_cuts_apart)
+                },
+                note: CUT_VERTICES_AND_SHARED_EDGES,
+            })
             .run(|r, cfg| property(r, cfg, strategy::clipped_mesh_scene(), check_exactly_once)),
         Rule::invariant(Family::Clip, "clip.crossing-quad.watertight")
+            .needs(CLIPS_IN_3D)
             .sentence("A quad with corners at ±30000·w whose shared diagonal crosses the near plane inside the viewport leaves no hole there.")
             .source("dEQP-GLES3.functional.clipping (±30000·w); refrast convention (ARCHITECTURE.md, Conventions: clipping)")
             .cases(3000)
@@ -42,12 +54,14 @@ pub(super) fn rules() -> Vec<Rule> {
             })
             .run(|r, cfg| property(r, cfg, crossing_quad_scene(), check_exactly_once)),
         Rule::invariant(Family::Clip, "clip.far.respected")
+            .needs(CLIPS_IN_3D)
             .sentence("With far clipping on, samples whose hit lies beyond z = w are not covered, the rest as the ray cast says.")
             .source("Vulkan 1.4, Primitive Clipping (z ≤ w); seed 004 (six planes)")
             .cases(3000)
             .needs(FAR_CLIPPING)
             .run(|r, cfg| property(r, cfg, far_scene(), check_exactly_once)),
         Rule::invariant(Family::Clip, "clip.gl-range.matches-raycast")
+            .needs(CLIPS_IN_3D)
             .sentence("Under the −w ≤ z ≤ w clip volume, coverage matches the ray cast against that volume.")
             .source("OpenGL 4.6 §13.7; Vulkan VK_EXT_depth_clip_control")
             .cases(3000)

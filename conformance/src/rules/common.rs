@@ -2,7 +2,9 @@
 
 use std::collections::BTreeMap;
 
-use refrast::{Fragment, Profile, Rasterizer, Reference, ReferenceConfig, SubpixelBits};
+use refrast::{
+    Fragment, Profile, Rasterizer, Reference, ReferenceConfig, SnapAccuracy, SnapRounding, SubpixelBits,
+};
 
 use crate::oracle::outline::{distance_to_outline, visible_outline};
 use crate::oracle::raster::{sample_centre, sample_ndc};
@@ -59,14 +61,34 @@ pub fn fragments(r: &mut dyn Rasterizer, scene: &Scene) -> Result<Vec<Fragment>,
     Ok(frags)
 }
 
+/// Whether the screen-space barycentrics of `scene`'s triangle `primitive` are defined: every
+/// vertex at `w > 0`, so that the triangle has a shape on screen. A vertex at `w ≤ 0` leaves
+/// them undefined, in the reference (which gives none) and every specification; an index out
+/// of range says no.
+#[must_use]
+pub fn screen_defined(scene: &Scene, primitive: u32) -> bool {
+    scene.triangles.get(primitive as usize).is_some_and(|t| {
+        t.iter()
+            .all(|&i| scene.positions.get(i as usize).is_some_and(|p| p[3] > 0.0))
+    })
+}
+
 /// The reference configured as the profile says, for exact rules: `None` without a grid of
-/// 1..=8 bits and a tie rule.
+/// 1..=8 bits and a tie rule. It snaps as the profile's one choice where it declares one
+/// (floor, truncation), else to the nearest point, half to even: the first of the
+/// [`snap_candidates`](crate::oracle::facing::snap_candidates), whose others the rules try.
 #[must_use]
 pub fn reference_for(profile: &Profile) -> Option<Reference> {
     let subpixel_bits = SubpixelBits::new(profile.snapping.grid_bits()?).ok()?;
+    let snap_rounding = match profile.features.snap {
+        SnapAccuracy::Floor => SnapRounding::Floor,
+        SnapAccuracy::TowardZero => SnapRounding::TowardZero,
+        SnapAccuracy::Nearest | SnapAccuracy::WithinOneStep => SnapRounding::NearestEven,
+    };
     Some(Reference::new(ReferenceConfig {
         subpixel_bits,
         fill: profile.fill?,
+        snap_rounding,
         ..ReferenceConfig::default()
     }))
 }

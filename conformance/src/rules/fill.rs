@@ -126,6 +126,24 @@ pub fn check_exactly_once_cuts_apart(r: &mut dyn Rasterizer, scene: &Scene) -> R
     check_mesh_coverage(r, scene, "the ray-cast mesh (away from cut shared edges)", relax)
 }
 
+/// [`check_exactly_once_cuts_apart`] and [`check_exactly_once_between_two`] at once: what
+/// Vulkan and OpenGL require of a clipped mesh (cut shared edges and vertices of three aside).
+pub fn check_exactly_once_between_two_cuts_apart(
+    r: &mut dyn Rasterizer,
+    scene: &Scene,
+) -> Result<(), Violation> {
+    let relax = Relax {
+        vertices_of_three: true,
+        cut_shared_edges: true,
+    };
+    check_mesh_coverage(
+        r,
+        scene,
+        "the ray-cast mesh (away from cut shared edges, samples on shared edges exactly once)",
+        relax,
+    )
+}
+
 /// Coverage bit-identical to the reference under the same profile: snapping each vertex where
 /// the profile lets it snap ([`snapped_variants`]), and culling it either way where its facing
 /// is unsure.

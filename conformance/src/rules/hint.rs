@@ -3,32 +3,64 @@
 //! Each detector redraws the shrunk counterexample and asks whether one alternative explains
 //! every difference: the other winding (a front face or cull mode declared the wrong way round,
 //! or y pointing up), the facing inverted, another fill convention, another subpixel
-//! precision, the other clip volume's window depth, the barycentrics of a vertex order other
-//! than the draw's. A hint names both readings, a misdeclared profile or the bug that looks the
-//! same (the zoo's mutants have these shapes too), and fires only when the alternative
-//! explains the failure completely.
+//! precision, another rounding of vertices to the grid, the other clip volume's window depth,
+//! the barycentrics of a vertex order other than the draw's. A hint names both readings, a
+//! misdeclared profile or the bug that looks the same (the zoo's mutants have these shapes
+//! too). A hint is printed only once verified: the failing case, and more cases of the rule,
+//! are run again on the rasterizer as the hint reads it (declaring what it suggests, or with
+//! the difference it names undone), and must then pass. A guess that does not is worse than none.
 
-use refrast::{DepthConvention, DepthRange, FillConvention, Fragment, Profile, Rasterizer};
+use refrast::{
+    DepthConvention, DepthRange, Draw, DrawError, FillConvention, Fragment, PrimitiveDraw, PrimitiveProfile,
+    Profile, Rasterizer, Resolved, SampleFragment, SampleResolved, SnapAccuracy, Snapping, Supported,
+};
 
 use super::cast::{Expected, raycast_expectations, raycast_fragments};
 use super::common::{deep_sample, fragments, precision};
 use super::{Family, Rule};
 use crate::oracle::brute_force;
-use crate::oracle::facing::{Turn, snapped_variants};
+use crate::oracle::facing::{Turn, snapped_variants, turn};
 use crate::oracle::raster::{self, Point};
 use crate::scene::Scene;
 
-/// A detector: a hint when the failure on `scene` has its shape.
-type Detector = fn(&mut dyn Rasterizer, &Profile, &Scene, &[Fragment]) -> Option<String>;
+/// How the rasterizer reads under a hint: what it would declare (the case is fitted to that),
+/// or what difference it makes, undone.
+#[derive(Clone, Debug)]
+enum Reading {
+    /// It declares this profile instead.
+    Declares(Profile),
+    /// It drops triangles that turn this way: each is sent to it reversed, its weights put back.
+    Drops(Turn),
+    /// Its fragments' facing is inverted.
+    InvertedFacing,
+    /// Its perspective barycentrics go to vertex `order[k]` for weight `k`.
+    Permuted([usize; 3]),
+}
+
+/// A hint's text and the reading that must make the failing case pass.
+struct Suggestion {
+    text: String,
+    reading: Reading,
+}
+
+/// A detector: a suggestion when the failure on `scene` has its shape.
+type Detector = fn(&mut dyn Rasterizer, &Profile, &Scene, &[Fragment]) -> Option<Suggestion>;
 
 /// The hint for `rule`'s failure on `scene` (the shrunk counterexample), if its shape matches a
-/// misdeclaration; `None` when none explains it or the rasterizer cannot draw it again.
+/// misdeclaration and `verify` passes on the rasterizer as the hint reads it (the failing case
+/// run again, and more of the rule's cases: one case can agree with a wrong reading by
+/// chance); `None` when no detector's suggestion does, or the rasterizer cannot draw it again.
 ///
 /// Only the detectors that speak of what the rule judges run: coverage for the fill, clip and
 /// metamorphic rules, facing for the rules about facing, depth for the depth rules,
 /// barycentrics for theirs.
 #[must_use]
-pub fn diagnose(r: &mut dyn Rasterizer, rule: &Rule, scene: &Scene) -> Option<String> {
+pub fn diagnose(
+    r: &mut dyn Rasterizer,
+    rule: &Rule,
+    scene: &Scene,
+    verify: &mut dyn FnMut(&mut dyn Rasterizer) -> bool,
+) -> Option<String> {
     let profile = r.profile();
     let frags = fragments(r, scene).ok()?;
     let facing = matches!(
@@ -36,16 +68,124 @@ pub fn diagnose(r: &mut dyn Rasterizer, rule: &Rule, scene: &Scene) -> Option<St
         "meta.facing.from-winding" | "meta.reversal.flips-facing" | "meta.cull.by-facing"
     );
     let detectors: Vec<Detector> = match rule.family {
-        Family::Fill | Family::Clip => vec![one_winding, mirrored_fill, other_bits],
+        Family::Fill | Family::Clip => vec![one_winding, other_rounding, mirrored_fill, other_bits],
         Family::Meta if facing => vec![one_winding, inverted_facing],
-        Family::Meta => vec![one_winding, mirrored_fill, other_bits, permuted_barycentrics],
+        Family::Meta => vec![
+            one_winding,
+            other_rounding,
+            mirrored_fill,
+            other_bits,
+            permuted_barycentrics,
+        ],
         Family::Depth => vec![other_depth_range],
         Family::Bary => vec![permuted_barycentrics],
         Family::Robust | Family::Line | Family::Point | Family::Msaa => Vec::new(),
     };
-    detectors
-        .iter()
-        .find_map(|detect| detect(r, &profile, scene, &frags))
+    detectors.iter().find_map(|detect| {
+        let suggestion = detect(r, &profile, scene, &frags)?;
+        let mut read = Read {
+            inner: &mut *r,
+            reading: suggestion.reading,
+        };
+        verify(&mut read).then_some(suggestion.text)
+    })
+}
+
+/// The rasterizer as a hint reads it ([`Reading`]).
+struct Read<'a> {
+    inner: &'a mut dyn Rasterizer,
+    reading: Reading,
+}
+
+impl Read<'_> {
+    /// The draw as the rasterizer is sent it under the reading, and which triangles were
+    /// reversed.
+    fn told(&self, draw: &Draw) -> (Draw, Vec<bool>) {
+        let mut told = draw.clone();
+        let mut reversed = vec![false; draw.triangles.len()];
+        if let Reading::Drops(lost) = self.reading {
+            let profile = self.inner.profile();
+            let (w, h) = (draw.viewport.width(), draw.viewport.height());
+            for (t, tri) in told.triangles.iter_mut().enumerate() {
+                let Some(corners) = tri
+                    .iter()
+                    .map(|&i| draw.positions.get(i as usize).copied())
+                    .collect::<Option<Vec<_>>>()
+                else {
+                    continue;
+                };
+                let corners = [corners[0], corners[1], corners[2]];
+                if turn(&corners, w, h, &draw.state, &profile) == lost {
+                    tri.swap(1, 2);
+                    reversed[t] = true;
+                }
+            }
+        }
+        (told, reversed)
+    }
+
+    /// A fragment as the reading undoes its difference.
+    fn undo(&self, f: &mut Fragment, reversed: &[bool]) {
+        match self.reading {
+            Reading::InvertedFacing => f.front_facing = !f.front_facing,
+            Reading::Permuted(order) => {
+                let b = f.barycentric;
+                for k in 0..3 {
+                    f.barycentric[order[k]] = b[k];
+                }
+            }
+            Reading::Drops(_) if reversed.get(f.primitive as usize) == Some(&true) => {
+                f.barycentric.swap(1, 2);
+                if let Some(s) = &mut f.screen_barycentric {
+                    s.swap(1, 2);
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
+impl Rasterizer for Read<'_> {
+    fn profile(&self) -> Profile {
+        match &self.reading {
+            Reading::Declares(profile) => profile.clone(),
+            _ => self.inner.profile(),
+        }
+    }
+
+    fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+        let (told, reversed) = self.told(draw);
+        let mut frags = self.inner.rasterize(&told)?;
+        frags.iter_mut().for_each(|f| self.undo(f, &reversed));
+        Ok(frags)
+    }
+
+    fn resolve(&mut self, draw: &Draw) -> Result<Resolved, DrawError> {
+        let (told, _) = self.told(draw);
+        self.inner.resolve(&told)
+    }
+
+    fn primitive_profile(&self) -> PrimitiveProfile {
+        self.inner.primitive_profile()
+    }
+
+    fn rasterize_primitives(&mut self, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> {
+        let mut frags = self.inner.rasterize_primitives(draw)?;
+        frags.iter_mut().for_each(|f| self.undo(&mut f.fragment, &[]));
+        Ok(frags)
+    }
+
+    fn resolve_primitives(&mut self, draw: &PrimitiveDraw) -> Result<SampleResolved, DrawError> {
+        self.inner.resolve_primitives(draw)
+    }
+}
+
+/// The other clip volume.
+fn other_range(range: DepthRange) -> DepthRange {
+    match range {
+        DepthRange::ZeroToOne => DepthRange::NegativeOneToOne,
+        DepthRange::NegativeOneToOne => DepthRange::ZeroToOne,
+    }
 }
 
 /// Every triangle of one winding that should draw is missing, each draws once reversed, and
@@ -55,7 +195,7 @@ fn one_winding(
     profile: &Profile,
     scene: &Scene,
     frags: &[Fragment],
-) -> Option<String> {
+) -> Option<Suggestion> {
     let band = profile.band_px();
     let turns = scene.turns(profile);
     let judged: Vec<(usize, Turn, bool)> = (0..scene.triangles.len())
@@ -76,13 +216,17 @@ fn one_winding(
         return None;
     }
     let missing = judged.iter().filter(|(_, _, drawn)| !drawn).count();
-    Some(format!(
+    let text = format!(
         "every triangle here that turns {} on screen ({missing} of {}) is missing, and one drawn reversed is not: \
          the profile may declare its front faces or cull modes the wrong way round (or the rasterizer's y axis points \
          up), or a bug drops one winding (as mutant:one-winding does)",
         turn_word(lost),
         judged.len()
-    ))
+    );
+    Some(Suggestion {
+        text,
+        reading: Reading::Drops(lost),
+    })
 }
 
 /// Every fragment whose facing is sure says the opposite.
@@ -91,7 +235,7 @@ fn inverted_facing(
     profile: &Profile,
     scene: &Scene,
     frags: &[Fragment],
-) -> Option<String> {
+) -> Option<Suggestion> {
     let turns = scene.turns(profile);
     let judged: Vec<bool> = frags
         .iter()
@@ -100,13 +244,14 @@ fn inverted_facing(
             (turns[f.primitive as usize] != Turn::Degenerate).then_some(f.front_facing == want)
         })
         .collect();
-    (!judged.is_empty() && judged.iter().all(|right| !right)).then(|| {
-        format!(
+    (!judged.is_empty() && judged.iter().all(|right| !right)).then(|| Suggestion {
+        text: format!(
             "every fragment says front_facing the opposite of what its triangle's winding gives under {:?} front \
              faces: the profile may declare its front faces the wrong way round, or a bug inverts facing (as \
              mutant:inverted-facing does)",
             scene.state.front_face
-        )
+        ),
+        reading: Reading::InvertedFacing,
     })
 }
 
@@ -116,7 +261,7 @@ fn mirrored_fill(
     profile: &Profile,
     scene: &Scene,
     frags: &[Fragment],
-) -> Option<String> {
+) -> Option<Suggestion> {
     let (bits, declared) = (profile.snapping.grid_bits()?.min(16), profile.fill?);
     let explains = |fill| explains_coverage(scene, frags, bits, fill, None);
     if explains_coverage(scene, frags, bits, declared, Some(profile))? {
@@ -125,12 +270,19 @@ fn mirrored_fill(
     let other = FillConvention::ALL
         .into_iter()
         .find(|&fill| fill != declared && explains(fill) == Some(true))?;
-    Some(format!(
+    let text = format!(
         "the coverage is exactly what the {} fill convention gives, not the declared {}: the profile may declare the \
          wrong fill convention, or a bug breaks ties on edges the wrong way (as mutant:bottom-right-as-top-left does)",
         other.name(),
         declared.name()
-    ))
+    );
+    Some(Suggestion {
+        text,
+        reading: Reading::Declares(Profile {
+            fill: Some(other),
+            ..profile.clone()
+        }),
+    })
 }
 
 /// Coverage is exactly another subpixel precision's, not the declared one's.
@@ -139,7 +291,7 @@ fn other_bits(
     profile: &Profile,
     scene: &Scene,
     frags: &[Fragment],
-) -> Option<String> {
+) -> Option<Suggestion> {
     let (declared, fill) = (profile.snapping.grid_bits()?.min(16), profile.fill?);
     if explains_coverage(scene, frags, declared, fill, Some(profile))? {
         return None;
@@ -150,10 +302,65 @@ fn other_bits(
     let other = nearest
         .into_iter()
         .find(|&b| explains_coverage(scene, frags, b, fill, None) == Some(true))?;
-    Some(format!(
-        "the coverage is exactly what {other} subpixel bits give, not the declared {declared}: the profile may declare \
-         the wrong subpixel precision, or a bug snaps to a coarser grid (as mutant:dropped-subpixel-bit does)"
-    ))
+    Some(Suggestion {
+        text: format!(
+            "the coverage is exactly what {other} subpixel bits give, not the declared {declared}: the profile may \
+             declare the wrong subpixel precision, or a bug snaps to a coarser grid (as mutant:dropped-subpixel-bit does)"
+        ),
+        reading: Reading::Declares(Profile {
+            snapping: Snapping::Grid(other),
+            ..profile.clone()
+        }),
+    })
+}
+
+/// Coverage is exactly what another rounding of vertices to the declared grid gives (floor,
+/// truncation toward zero, to the nearest), not the declared one.
+fn other_rounding(
+    _: &mut dyn Rasterizer,
+    profile: &Profile,
+    scene: &Scene,
+    frags: &[Fragment],
+) -> Option<Suggestion> {
+    let (bits, fill) = (profile.snapping.grid_bits()?.min(16), profile.fill?);
+    if explains_coverage(scene, frags, bits, fill, Some(profile))? {
+        return None;
+    }
+    let rounding = |snap: SnapAccuracy| {
+        let mut p = profile.clone();
+        p.features.snap = snap;
+        p.features.ties_to_even = snap == SnapAccuracy::Nearest && profile.features.ties_to_even;
+        p
+    };
+    let other = [
+        SnapAccuracy::TowardZero,
+        SnapAccuracy::Floor,
+        SnapAccuracy::Nearest,
+    ]
+    .into_iter()
+    .filter(|&snap| snap != profile.features.snap)
+    .find(|&snap| explains_coverage(scene, frags, bits, fill, Some(&rounding(snap))) == Some(true))?;
+    Some(Suggestion {
+        text: format!(
+            "the coverage is exactly what snapping vertices {} gives, not the declared {}: the profile may declare \
+             the wrong rounding (`snap {}` in the pipe protocol; a float-to-fixed conversion truncates toward zero), \
+             or a bug rounds vertices to the grid otherwise",
+            accuracy_words(other),
+            accuracy_words(profile.features.snap),
+            other.name()
+        ),
+        reading: Reading::Declares(rounding(other)),
+    })
+}
+
+/// A snap accuracy as a hint says it.
+fn accuracy_words(snap: SnapAccuracy) -> &'static str {
+    match snap {
+        SnapAccuracy::Nearest => "to the nearest grid point",
+        SnapAccuracy::WithinOneStep => "to either neighbouring grid point",
+        SnapAccuracy::Floor => "down (floor)",
+        SnapAccuracy::TowardZero => "toward zero (truncation)",
+    }
 }
 
 /// Whether the brute-force oracle at `bits` under `fill` gives exactly `frags`, triangle by
@@ -216,7 +423,7 @@ fn other_depth_range(
     profile: &Profile,
     scene: &Scene,
     frags: &[Fragment],
-) -> Option<String> {
+) -> Option<Suggestion> {
     if profile.depth != DepthConvention::ScreenLinearZOverW {
         return None;
     }
@@ -230,10 +437,7 @@ fn other_depth_range(
     }
     let range = scene.state.depth_range;
     let mut other = scene.clone();
-    other.state.depth_range = match range {
-        DepthRange::ZeroToOne => DepthRange::NegativeOneToOne,
-        DepthRange::NegativeOneToOne => DepthRange::ZeroToOne,
-    };
+    other.state.depth_range = other_range(range);
     let explained = raycast_expectations(profile, &other, frags.to_vec());
     if explained.pairs.is_empty() || explained.pairs.iter().any(|(f, w)| off(f, w)) {
         return None;
@@ -248,10 +452,19 @@ fn other_depth_range(
             "0 ≤ z ≤ w volume's window depth z/w",
         ),
     };
-    Some(format!(
-        "every depth is the {other}, where the draw asked for {said}: the profile may declare the wrong depth ranges, \
-         or a bug maps z to window depth the other way (as mutant:unmapped-gl-depth does)"
-    ))
+    Some(Suggestion {
+        text: format!(
+            "every depth is the {other}, where the draw asked for {said}: the profile may declare the wrong depth \
+             ranges, or a bug maps z to window depth the other way (as mutant:unmapped-gl-depth does)"
+        ),
+        reading: Reading::Declares(Profile {
+            features: refrast::Features {
+                depth_ranges: Supported::only(&[other_range(range)]),
+                ..profile.features
+            },
+            ..profile.clone()
+        }),
+    })
 }
 
 /// The perspective barycentrics are the ray cast's with the vertices in another order.
@@ -260,7 +473,7 @@ fn permuted_barycentrics(
     profile: &Profile,
     scene: &Scene,
     _: &[Fragment],
-) -> Option<String> {
+) -> Option<Suggestion> {
     if !profile.features.perspective_barycentrics {
         return None;
     }
@@ -279,12 +492,15 @@ fn permuted_barycentrics(
     let order = [[1, 2, 0], [2, 0, 1], [0, 2, 1], [2, 1, 0], [1, 0, 2]]
         .into_iter()
         .find(|&o| fits(o))?;
-    Some(format!(
-        "every fragment's barycentrics are the ray cast's weights of vertices {}, {}, {} in that order: the weights go \
-         to the wrong vertices, as in a rasterizer that numbers them otherwise than the draw (from its provoking \
-         vertex, say) or one with a bug in its setup",
-        order[0], order[1], order[2]
-    ))
+    Some(Suggestion {
+        text: format!(
+            "every fragment's barycentrics are the ray cast's weights of vertices {}, {}, {} in that order: the weights \
+             go to the wrong vertices, as in a rasterizer that numbers them otherwise than the draw (from its \
+             provoking vertex, say) or one with a bug in its setup",
+            order[0], order[1], order[2]
+        ),
+        reading: Reading::Permuted(order),
+    })
 }
 
 /// A turn in words.

@@ -6,7 +6,7 @@
 //! it claims ([`refrast::Spec`]); a failure of something that specification does not require is
 //! reported as *beyond the specification*, with the sentence it rests on, not as a failure of
 //! conformance. Quotes are from Vulkan 1.4.360 (Vulkan-Docs 090f1b1), OpenGL 4.6 core
-//! (2022-05-05) and the D3D11.3 functional specification.
+//! (2022-05-05), OpenGL ES 3.2 (2019-05-14) and the D3D11.3 functional specification.
 
 use refrast::Spec;
 
@@ -62,6 +62,8 @@ pub struct Levels {
     pub opengl: Level,
     /// Under D3D11.3.
     pub d3d11: Level,
+    /// Under OpenGL ES 3.2: OpenGL 4.6's unless a rule says otherwise.
+    pub opengles: Level,
 }
 
 impl Levels {
@@ -70,6 +72,7 @@ impl Levels {
         vulkan: Level::Required,
         opengl: Level::Required,
         d3d11: Level::Required,
+        opengles: Level::Required,
     };
 
     /// The level under `spec`.
@@ -80,14 +83,40 @@ impl Levels {
             Spec::Vulkan => self.vulkan,
             Spec::OpenGl => self.opengl,
             Spec::D3d11 => self.d3d11,
+            Spec::OpenGlEs => self.opengles,
         }
     }
+
+    /// Each specification but refrast's with its level, in the order the tables show them.
+    #[must_use]
+    pub fn each(&self) -> [(Spec, Level); 4] {
+        [
+            (Spec::Vulkan, self.vulkan),
+            (Spec::OpenGl, self.opengl),
+            (Spec::OpenGlEs, self.opengles),
+            (Spec::D3d11, self.d3d11),
+        ]
+    }
+}
+
+/// The text of [`SHARED_EDGE_ONLY`], for notes that join it with another.
+macro_rules! shared_edge_only {
+    () => {
+        "Vulkan (Basic Polygon Rasterization) and OpenGL 4.6 §14.6.1 ask only that \"if two polygons lie on either side of a common edge (with identical endpoints) on which a sample point lies, then exactly one of the polygons must result in a covered sample\": a sample on a vertex shared by three or more triangles is not covered"
+    };
+}
+
+/// The text of [`CUT_VERTICES`], for notes that join it with another.
+macro_rules! cut_vertices {
+    () => {
+        "a shared edge is covered exactly once only \"with identical endpoints\"; no specification requires two triangles clipped at a plane to compute the identical cut vertex (Vulkan: floating-point results \"accurate to about 1 part in 10^5\"; D3D11.3 §15.4: \"at least float32 precision\"), so along a cut shared edge only the samples away from it are required"
+    };
 }
 
 /// Vulkan's and OpenGL's sentences on a sample on a shared edge speak of two polygons with
 /// identical endpoints: a vertex shared by three or more, and which polygon owns a tie, are
 /// theirs to choose.
-pub const SHARED_EDGE_ONLY: &str = "Vulkan (Basic Polygon Rasterization) and OpenGL 4.6 §14.6.1 ask only that \"if two polygons lie on either side of a common edge (with identical endpoints) on which a sample point lies, then exactly one of the polygons must result in a covered sample\": a sample on a vertex shared by three or more triangles is not covered";
+pub const SHARED_EDGE_ONLY: &str = shared_edge_only!();
 
 /// Vulkan and OpenGL fix neither a tie rule nor how a coordinate rounds to the subpixel grid.
 pub const NO_TIE_RULE: &str = "Vulkan fixes no tie rule (only \"exactly one of the polygons\" covers a sample on a shared edge) and no rounding of x_f and y_f (\"x_f and y_f have limited precision\", Controlling the Viewport); OpenGL 4.6 §14.6.1 likewise: only samples away from every edge are required, and the declared tie rule and rounding are the profile's own claim";
@@ -100,7 +129,10 @@ pub const FAR_VALUES: &str = "no specification bounds interpolation error: Vulka
 pub const NO_BARYCENTRICS: &str = "D3D11.3 defines no barycentric output (only interpolation modes, §16.4)";
 
 /// No specification makes two triangles sharing an edge cut it at the same point.
-pub const CUT_VERTICES: &str = "a shared edge is covered exactly once only \"with identical endpoints\"; no specification requires two triangles clipped at a plane to compute the identical cut vertex (Vulkan: floating-point results \"accurate to about 1 part in 10^5\"; D3D11.3 §15.4: \"at least float32 precision\"), so along a cut shared edge only the samples away from it are required";
+pub const CUT_VERTICES: &str = cut_vertices!();
+
+/// Vulkan and OpenGL on a clipped mesh: both of the above.
+pub const CUT_VERTICES_AND_SHARED_EDGES: &str = concat!(cut_vertices!(), "; and ", shared_edge_only!());
 
 /// Exact coverage at edges is a refrast convention under Vulkan and OpenGL.
 pub const EDGES_NOT_PINNED: &str = "Vulkan and OpenGL pin neither which polygon owns a sample on an edge nor that this is independent of vertex order or of the rest of the draw (\"The Vulkan specification is not pixel exact\", Invariance): only samples away from every edge are required";

@@ -9,7 +9,7 @@ use super::samples::{
     compare_samples, counts, endpoint_bits, expect_covered, grid, positions, sample_fragments,
     within_guard_band,
 };
-use super::{Family, PERSPECTIVE_BARYCENTRICS, Rule, needs_primitives};
+use super::{CLIPS_IN_3D, Family, PERSPECTIVE_BARYCENTRICS, Rule, needs_primitives};
 use crate::oracle::raster::{Point, near_distance, project, snap, window_depth};
 use crate::oracle::segment::SampleGrid;
 use crate::primitives::PrimitiveScene;
@@ -79,6 +79,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .source("Vulkan 1.4, Primitive Clipping (a clipped line segment ends at the clip plane); seed 004 (clipping)")
             .cases(800)
             .needs(LINES)
+            .needs(CLIPS_IN_3D)
             .every_spec(Level::Partly {
                 part: |r, cfg| property(r, cfg, lines::near_crossing_line(), check_clip_allowance),
                 note: OTHER_ALGORITHMS,

@@ -6,6 +6,7 @@ use std::collections::HashMap;
 use refrast::{CullMode, Profile, Rasterizer};
 
 use super::common::fragments;
+use crate::oracle::facing::snap_candidates;
 use crate::oracle::outline::{OutlinePoint, distance_to_outline, visible_outline};
 use crate::oracle::raster::{sample_centre, sample_ndc};
 use crate::oracle::ray_cast::{CutRounding, ray_cast};
@@ -31,9 +32,11 @@ pub fn mesh_expectation(scene: &Scene, band: f64) -> (Vec<Expect>, Vec<Vec<[f64;
 /// specification that requires less ([`super::level::Level::Partly`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Relax {
-    /// A sample exactly on a vertex shared by three or more triangles may be covered any number
-    /// of times: Vulkan's and OpenGL's exactly-once speaks of two polygons on either side of
-    /// an edge ([`super::level::SHARED_EDGE_ONLY`]).
+    /// A sample exactly on a vertex shared by three or more triangles, where the profile puts
+    /// it ([`vertices_of_three`]), may be covered any number of times: Vulkan's and OpenGL's
+    /// exactly-once speaks of two polygons on either side of an edge
+    /// ([`super::level::SHARED_EDGE_ONLY`]). Applied by [`check_mesh_coverage`], which knows
+    /// the profile.
     pub vertices_of_three: bool,
     /// A shared edge ending at a vertex made by clipping is a boundary (with the band and the
     /// clipper's rounding): two triangles need not cut it at the same point
@@ -49,7 +52,8 @@ impl Relax {
     };
 }
 
-/// [`mesh_expectation`], leaving to the implementation what `relax` says.
+/// [`mesh_expectation`], leaving to the implementation what `relax` says of cuts (its vertices
+/// of three are [`check_mesh_coverage`]'s, which knows where the profile puts them).
 #[must_use]
 pub fn mesh_expectation_with(scene: &Scene, band: f64, relax: Relax) -> (Vec<Expect>, Vec<Vec<[f64; 2]>>) {
     let shared = shared_edges(scene);
@@ -119,7 +123,7 @@ pub fn mesh_expectation_with(scene: &Scene, band: f64, relax: Relax) -> (Vec<Exp
             }
         }
     }
-    let mut expected: Vec<Expect> = (0..samples)
+    let expected: Vec<Expect> = (0..samples)
         .map(|i| match (near_boundary[i], near_cut_vertex[i], inside[i]) {
             (true, _, _) => Expect::ZeroOrOne,
             (false, true, true) => Expect::OneOrTwo,
@@ -127,11 +131,6 @@ pub fn mesh_expectation_with(scene: &Scene, band: f64, relax: Relax) -> (Vec<Exp
             (false, _, false) => Expect::Zero,
         })
         .collect();
-    if relax.vertices_of_three {
-        for (x, y) in samples_on_vertices_of_three(scene) {
-            expected[(y * scene.width + x) as usize] = Expect::ZeroOrOne;
-        }
-    }
     (expected, finite_outlines(&outlines))
 }
 
@@ -260,9 +259,11 @@ fn area_sure(p: [[f64; 2]; 3]) -> bool {
     area.is_finite() && area.abs() > 1e-6 * (ux.abs() + uy.abs()) * (vx.abs() + vy.abs())
 }
 
-/// The samples lying exactly on a vertex (as drawn, `w > 0`) that three or more triangles of
-/// the scene share.
-fn samples_on_vertices_of_three(scene: &Scene) -> Vec<(u32, u32)> {
+/// Where an implementation with `profile` may place each vertex of `scene` that three or more
+/// of its triangles share, in pixels: each grid point the profile lets it snap to
+/// ([`snap_candidates`]), or without a grid its exact projection; vertices at `w ≤ 0` have none.
+#[must_use]
+pub fn vertices_of_three(scene: &Scene, profile: &Profile) -> Vec<[f64; 2]> {
     let mut users: HashMap<[u32; 4], u32> = HashMap::new();
     for t in &scene.triangles {
         for &i in t {
@@ -271,17 +272,41 @@ fn samples_on_vertices_of_three(scene: &Scene) -> Vec<(u32, u32)> {
             }
         }
     }
+    let (w, h) = (scene.width, scene.height);
     users
         .into_iter()
         .filter(|&(_, n)| n >= 3)
-        .filter_map(|(bits, _)| {
-            let p = bits.map(f32::from_bits).map(f64::from);
-            if p[3] <= 0.0 {
-                return None;
+        .flat_map(|(bits, _)| {
+            let p = bits.map(f32::from_bits);
+            if p[3].is_nan() || p[3] <= 0.0 {
+                return Vec::new();
             }
-            let [x, y] = crate::oracle::raster::project(scene.width, scene.height, p).map(|c| c - 0.5);
-            let on = |c: f64, side: u32| c.fract() == 0.0 && (0.0..f64::from(side)).contains(&c);
-            (on(x, scene.width) && on(y, scene.height)).then_some((x as u32, y as u32))
+            match profile.snapping.grid_bits() {
+                Some(grid) => {
+                    let one = f64::from(1u32 << grid.min(16));
+                    snap_candidates(p, w, h, profile)
+                        .unwrap_or_default()
+                        .into_iter()
+                        .map(|(x, y)| [x as f64 / one, y as f64 / one])
+                        .collect()
+                }
+                None => vec![crate::oracle::raster::project(w, h, p.map(f64::from))],
+            }
+        })
+        .collect()
+}
+
+/// The samples lying exactly on a vertex three or more triangles of the scene share, as the
+/// profile places it (snapped, or exactly projected without a grid).
+fn samples_on_vertices_of_three(scene: &Scene, profile: &Profile) -> Vec<(u32, u32)> {
+    vertices_of_three(scene, profile)
+        .into_iter()
+        .filter_map(|[x, y]| {
+            let on = |c: f64, side: u32| {
+                let c = c - 0.5;
+                (c.fract() == 0.0 && (0.0..f64::from(side)).contains(&c)).then_some(c as u32)
+            };
+            Some((on(x, scene.width)?, on(y, scene.height)?))
         })
         .collect()
 }
@@ -339,7 +364,12 @@ pub fn check_mesh_coverage(
 ) -> Result<(), Violation> {
     let profile = r.profile();
     let frags = fragments(r, scene)?;
-    let (expected, outlines) = drawn_expectation(scene, &profile, profile.band_px(), relax);
+    let (mut expected, outlines) = drawn_expectation(scene, &profile, profile.band_px(), relax);
+    if relax.vertices_of_three {
+        for (x, y) in samples_on_vertices_of_three(scene, &profile) {
+            expected[(y * scene.width + x) as usize] = Expect::ZeroOrOne;
+        }
+    }
     let counts = count_fragments(&frags, scene.width, scene.height);
     compare_coverage(&counts, &expected, scene.width, scene.height, outlines, what)
 }

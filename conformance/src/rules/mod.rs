@@ -215,11 +215,28 @@ impl RuleDraft {
         }
     }
 
-    /// Its level under Vulkan and OpenGL alike (required unless said).
+    /// Its level under Vulkan, OpenGL and OpenGL ES alike (required unless said).
     #[must_use]
     pub fn vulkan_and_opengl(mut self, level: Level) -> Self {
         self.levels.vulkan = level;
         self.levels.opengl = level;
+        self.levels.opengles = level;
+        self
+    }
+
+    /// Its level under Vulkan alone, where it differs from OpenGL's (set after
+    /// [`RuleDraft::vulkan_and_opengl`] or [`RuleDraft::every_spec`]).
+    #[must_use]
+    pub fn vulkan(mut self, level: Level) -> Self {
+        self.levels.vulkan = level;
+        self
+    }
+
+    /// Its level under OpenGL ES 3.2 where it differs from OpenGL 4.6's (set after
+    /// [`RuleDraft::vulkan_and_opengl`]).
+    #[must_use]
+    pub fn opengles(mut self, level: Level) -> Self {
+        self.levels.opengles = level;
         self
     }
 
@@ -372,6 +389,12 @@ pub const GL_DEPTH_RANGE: Need = needs(
     |p| p.features.depth_ranges.contains(DepthRange::NegativeOneToOne),
     "no −w ≤ z clip volume",
 );
+/// Clipping in 3D: the clip rules ask what a triangle behind the eye or across a clip plane
+/// draws, which a 2D scan converter, sent only what needs no clipping, is never asked.
+pub const CLIPS_IN_3D: Need = needs(
+    |p| p.features.clips_in_3d,
+    "no clipping in 3D (clipping none): it is sent only what needs none",
+);
 /// x/y clipping moves no edge inside the viewport of a triangle reaching some way outside it.
 pub const GUARD_BAND: Need = needs(
     |p| p.features.guard_band > 0,
@@ -427,19 +450,22 @@ pub fn markdown_table() -> String {
 /// (`refrast rules --levels`; `docs/levels.md` holds it).
 #[must_use]
 pub fn levels_markdown() -> String {
-    let mut table = String::from("| rule | Vulkan 1.4 | OpenGL 4.6 | D3D11.3 |\n|---|---|---|---|");
+    let mut table =
+        String::from("| rule | Vulkan 1.4 | OpenGL 4.6 | OpenGL ES 3.2 | D3D11.3 |\n|---|---|---|---|---|");
     let mut notes = String::new();
     for rule in catalogue() {
         let l = rule.levels;
         table.push_str(&format!(
-            "\n| `{}` | {} | {} | {} |",
+            "\n| `{}` | {} | {} | {} | {} |",
             rule.id,
             l.vulkan.word(),
             l.opengl.word(),
+            l.opengles.word(),
             l.d3d11.word()
         ));
         let mut said: Vec<(Vec<&str>, Level)> = Vec::new();
-        for (spec, level) in [("Vulkan", l.vulkan), ("OpenGL", l.opengl), ("D3D11.3", l.d3d11)] {
+        for (spec, level) in l.each() {
+            let spec = spec.title();
             let Some(note) = level.note() else { continue };
             match said
                 .iter_mut()

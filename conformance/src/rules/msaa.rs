@@ -1,10 +1,11 @@
 //! Multisampling: coverage at each declared sample position, per-sample watertightness, samples
 //! where the pattern puts them, per-sample depth and depth test, lines and points per sample.
 
-use refrast::{FillConvention, Fragment, LineRule, Rasterizer, SampleResolved};
+use refrast::{FillConvention, Fragment, LineRule, Rasterizer};
 
 use super::level::{Level, NO_TIE_RULE, SHARED_EDGE_ONLY};
-pub use super::sample_depth::{check_depth, check_depth_resolved};
+use super::mesh::vertices_of_three;
+pub use super::sample_depth::{check_depth, check_depth_resolved, check_resolve};
 use super::samples::{
     cell, cells, compare_samples, counts, endpoint_bits, expect_covered, grid, positions, sample_fragments,
     within_guard_band,
@@ -20,7 +21,7 @@ use crate::scene::Scene;
 use proptest::strategy::Strategy;
 
 use crate::strategy::{self, primitive};
-use crate::violation::{Expect, Findings, Violation, plural};
+use crate::violation::{Expect, Violation};
 
 /// Why only the depth buffer's samples are required under Vulkan and OpenGL.
 const FRAGCOORD_Z: &str = "Vulkan (FragCoord: \"the z component of FragCoord is the interpolated depth value of the primitive\") and OpenGL 4.6 (gl_FragCoord) move only x and y to the sample under sample shading, and name no location for z, so a GPU's sample fragments, read from the shader, may carry one depth for every sample; the depth test's own values are each sample's (Vulkan, Depth Test: \"the sample's depth value z_f\"): only the depth buffer is required";
@@ -97,7 +98,7 @@ pub(super) fn rules() -> Vec<Rule> {
                 property_declared(r, cfg, |_, d| primitive::multisampled(strategy::perspective_inside_scene(), counts_of(d)), check_depth)
             }),
         Rule::invariant(Family::Msaa, "msaa.resolve.per-sample")
-            .sentence("resolve_primitives at several samples equals the draw's sample fragments replayed through its depth test one sample at a time.")
+            .sentence("resolve_primitives at several samples equals the draw's sample fragments replayed through its depth test one sample at a time, each at the triangle's own depth at that sample (not the depth a fragment reports), samples within the band of an edge or where two compared depths are within precision aside.")
             .source("Vulkan 1.4, Depth Test (per sample); seed 001 (4× supersampled depth buffer)")
             .cases(500)
             .needs(MULTISAMPLE)
@@ -110,6 +111,20 @@ pub(super) fn rules() -> Vec<Rule> {
             .source("Vulkan 1.4, Basic Point Rasterization and Basic Line Segment Rasterization (per-sample coverage)")
             .cases(800)
             .needs(MULTISAMPLE_AREAS)
+            .vulkan(Level::Partly {
+                part: |r, cfg| {
+                    property_declared(
+                        r,
+                        cfg,
+                        |_, d| {
+                            let scenes = if d.points { primitive::points().boxed() } else { primitive::lines().boxed() };
+                            primitive::multisampled_primitives(scenes, counts_of(d))
+                        },
+                        check_lines_points_as_cts,
+                    )
+                },
+                note: super::point::POP_FREE,
+            })
             .run(|r, cfg| {
                 property_declared(
                     r,
@@ -258,8 +273,8 @@ fn mesh_once(r: &mut dyn Rasterizer, case: &PrimitiveScene, vertices_aside: bool
         }
     }
     if vertices_aside {
-        for p in &case.scene.positions {
-            let [x, y] = project(w, h, p.map(f64::from));
+        // Where the profile puts each vertex shared by three or more triangles, snapped.
+        for [x, y] in vertices_of_three(&case.scene, &r.profile()) {
             for (k, &[u, v]) in positions.iter().enumerate() {
                 let (sx, sy) = (x - f64::from(u) / 16.0, y - f64::from(v) / 16.0);
                 if sx.fract() == 0.0
@@ -351,52 +366,27 @@ pub fn check_positions(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<
     )
 }
 
-/// `resolve_primitives` equals the sample fragments replayed through the depth test.
-pub fn check_resolve(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
-    let draw = case.draw();
-    let got = r
-        .resolve_primitives(&draw)
-        .map_err(|e| Violation::of_draw_error("resolve_primitives", &e))?;
-    let want = SampleResolved::from_fragments(&draw, sample_fragments(r, case)?);
-    if got.depth.len() != want.depth.len() || got.primitive.len() != want.primitive.len() {
-        return Err(Violation::new(format!(
-            "resolve_primitives gave {} depths and {} primitives for {} samples",
-            got.depth.len(),
-            got.primitive.len(),
-            want.depth.len()
-        )));
-    }
-    let n = usize::from(case.samples);
-    let mut found = Findings::new();
-    for i in 0..want.depth.len() {
-        if got.depth[i].to_bits() != want.depth[i].to_bits() || got.primitive[i] != want.primitive[i] {
-            let pixel = i / n;
-            let (x, y) = (pixel as u32 % case.scene.width, pixel as u32 / case.scene.width);
-            found.add((x, y), || {
-                format!(
-                    "({x}, {y}) sample {}: resolved ({}, {:?}), its fragments replayed ({}, {:?})",
-                    i % n,
-                    got.depth[i],
-                    got.primitive[i],
-                    want.depth[i],
-                    want.primitive[i]
-                )
-            });
-        }
-    }
-    found.verdict(|n| {
-        format!(
-            "{} resolved otherwise than the draw's fragments replayed through its depth test",
-            plural(n, "sample")
-        )
-    })
-}
-
 /// Points and area lines at several samples against their per-sample oracles.
 pub fn check_lines_points(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
     match case.topology {
         refrast::Topology::PointList => super::point::check_pixel_holding(r, case),
-        _ if matches!(r.primitive_profile().lines, Some(LineRule::DiamondExit) | None) => Ok(()),
-        _ => super::line::check_area(r, case),
+        _ => check_area_lines(r, case),
     }
+}
+
+/// [`check_lines_points`] with points outside the viewport read as Vulkan's conformance tests
+/// read them ([`super::point::check_pixel_holding_as_cts`]).
+pub fn check_lines_points_as_cts(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    match case.topology {
+        refrast::Topology::PointList => super::point::check_pixel_holding_as_cts(r, case),
+        _ => check_area_lines(r, case),
+    }
+}
+
+/// Rectangle and parallelogram lines against their area oracle; diamond-exit ones are not.
+fn check_area_lines(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    if matches!(r.primitive_profile().lines, Some(LineRule::DiamondExit) | None) {
+        return Ok(());
+    }
+    super::line::check_area(r, case)
 }

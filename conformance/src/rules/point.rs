@@ -1,6 +1,6 @@
 //! Points of size one: the pixel holding the point, exact ties on pixel edges, and depth.
 
-use refrast::{Profile, Rasterizer, SampleFragment, Spec};
+use refrast::{PointClipping, Profile, Rasterizer, SampleFragment, Spec};
 
 use super::common::precision;
 use super::level::Level;
@@ -24,7 +24,25 @@ const EXACT_POINTS: super::Need = needs_primitives(
 );
 
 /// Which pixel owns a point on a pixel's edge is a refrast convention.
-const POINT_TIES: &str = "Vulkan (Basic Point Rasterization) covers the samples inside the point's square but, like OpenGL 4.6 §14.4, names no tie rule for a sample on its edge (a point on a pixel edge puts two centres on its boundary), and D3D11.3 draws a point as a quad under the triangle rules: only the pixel holding the point, away from pixel edges, is required";
+macro_rules! point_ties {
+    () => {
+        "Vulkan (Basic Point Rasterization) covers the samples inside the point's square but, like OpenGL 4.6 §14.4, names no tie rule for a sample on its edge (a point on a pixel edge puts two centres on its boundary), and D3D11.3 draws a point as a quad under the triangle rules: only the pixel holding the point, away from pixel edges, is required"
+    };
+}
+
+/// A point drawn pop-free breaks Vulkan's text but not its conformance tests.
+macro_rules! pop_free {
+    () => {
+        "Vulkan's Primitive Clipping discards a point outside the view volume under VK_POINT_CLIPPING_BEHAVIOR_ALL_CLIP_PLANES, but its conformance tests accept one drawn pop-free (the samples its square reaches inside the viewport): dEQP-VK.clipping.clip_volume.clipped.large_points passes when every point is drawn (the CTS change \"allow pop-free clipping\", 2017) and no CTS test checks size-1 points there; lavapipe, SwiftShader and NVIDIA's driver all draw them. Required: what the CTS checks; beyond it: the text's discard"
+    };
+}
+
+/// Which pixel owns a point on a pixel's edge is a refrast convention.
+const POINT_TIES: &str = point_ties!();
+/// Pop-free points are beyond Vulkan's conformance tests, not a failure of them.
+pub(super) const POP_FREE: &str = pop_free!();
+/// Under Vulkan, both.
+const POINT_TIES_AND_POP_FREE: &str = concat!(point_ties!(), "; and ", pop_free!());
 
 pub(super) fn rules() -> Vec<Rule> {
     vec![
@@ -37,12 +55,20 @@ pub(super) fn rules() -> Vec<Rule> {
                 part: |r, cfg| property(r, cfg, points::points(), check_pixel_holding),
                 note: POINT_TIES,
             })
+            .vulkan(Level::Partly {
+                part: |r, cfg| property(r, cfg, points::points(), check_pixel_holding_as_cts),
+                note: POINT_TIES_AND_POP_FREE,
+            })
             .run(|r, cfg| property(r, cfg, points::points(), check_square_exact)),
         Rule::invariant(Family::Point, "point.pixel.holding")
-            .sentence("A point covers the pixel that holds it and no other, points within the tolerance band of a pixel edge aside; one outside the viewport covers nothing (under OpenGL and D3D11.3, at most the samples its square reaches inside).")
+            .sentence("A point covers the pixel that holds it and no other, points within the tolerance band of a pixel edge aside; one outside the viewport covers nothing (under OpenGL and D3D11.3, at most the samples its square reaches inside; declared pop-free, and under OpenGL ES, exactly those).")
             .source("Vulkan 1.4, Basic Point Rasterization; seed 002 (a point is the pixel it falls in)")
             .cases(1500)
             .needs(POINTS)
+            .vulkan(Level::Partly {
+                part: |r, cfg| property(r, cfg, points::points(), check_pixel_holding_as_cts),
+                note: POP_FREE,
+            })
             .run(|r, cfg| property(r, cfg, points::points(), check_pixel_holding)),
         Rule::invariant(Family::Point, "point.depth.vertex")
             .sentence("A point's fragments carry its vertex's window depth and barycentrics (1, 0, 0), within the claimed precision.")
@@ -58,15 +84,44 @@ fn point(case: &PrimitiveScene, i: usize) -> [f32; 4] {
     case.scene.positions[case.indices[i] as usize]
 }
 
+/// What a point whose centre lies outside the viewport in x or y must draw of its square.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Outside {
+    /// Nothing: clipping discards it.
+    Nothing,
+    /// The samples its square reaches inside the viewport ("pop-free").
+    Square,
+    /// Either: the specification leaves it open.
+    Either,
+}
+
+/// What a point outside the viewport in x/y must draw, for an implementation that claims
+/// `spec` and declares `clipping`; `cts` reads Vulkan as its conformance tests do (either).
+///
+/// Declared `UserClipPlanesOnly`, and under OpenGL ES 3.2 (§12.4: a point is discarded only
+/// outside the near and far planes), it is kept. OpenGL 4.6 §13.7 lets an implementation keep
+/// it and D3D11.3 draws points as clipped quads (§3.4.6): either. Vulkan's text discards it
+/// under `ALL_CLIP_PLANES` (Primitive Clipping), as refrast does, but the CTS's own test of it
+/// (dEQP-VK.clipping.clip_volume.clipped.large_points) accepts an image with every point drawn
+/// ("allow pop-free clipping", 2017), and every Vulkan implementation measured draws it.
+fn outside_xy(spec: Spec, clipping: PointClipping, cts: bool) -> Outside {
+    match (clipping, spec) {
+        (PointClipping::UserClipPlanesOnly, _) | (_, Spec::OpenGlEs) => Outside::Square,
+        (_, Spec::OpenGl | Spec::D3d11) => Outside::Either,
+        (_, Spec::Vulkan) if cts => Outside::Either,
+        _ => Outside::Nothing,
+    }
+}
+
 /// Whether point `i` lies inside the view volume, decided in clip space as clipping is, before
 /// the viewport transform and snapping: a point a hair below the viewport is discarded even
-/// where a coarse grid snaps it onto the viewport's edge.
-fn in_view(case: &PrimitiveScene, i: usize) -> bool {
+/// where a coarse grid snaps it onto the viewport's edge. With `xy` false, only the near and
+/// far planes count (a point kept pop-free).
+fn in_view(case: &PrimitiveScene, i: usize, xy: bool) -> bool {
     let [x, y, z, w] = point(case, i).map(f64::from);
     let state = &case.scene.state;
     w > 0.0
-        && (-w..=w).contains(&x)
-        && (-w..=w).contains(&y)
+        && (!xy || ((-w..=w).contains(&x) && (-w..=w).contains(&y)))
         && near_distance(state.depth_range, z, w) >= 0.0
         && (!state.clip_far || z <= w)
 }
@@ -92,8 +147,9 @@ pub fn check_square_exact(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Resu
         };
         let got = counts(case, &frags, Some(i as u32));
         let what = format!("the point square oracle for point {i}");
+        let xy = outside_xy(profile.spec, primitives.point_clipping, false) != Outside::Square;
         let judged = |p: Point| {
-            let covered = if in_view(case, i) {
+            let covered = if in_view(case, i, xy) {
                 g.point(p, fill)
             } else {
                 Vec::new()
@@ -110,12 +166,23 @@ pub fn check_square_exact(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Resu
 }
 
 /// Each point covers the samples of the pixel holding it, the band around pixel edges aside;
-/// a point beyond the viewport (by more than the band) covers nothing.
+/// a point beyond the viewport (by more than the band) covers what its declared point clipping
+/// and claimed specification say ([`outside_xy`]).
 pub fn check_pixel_holding(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    pixel_holding(r, case, false)
+}
+
+/// [`check_pixel_holding`] as Vulkan's conformance tests read point clipping: a point outside
+/// the viewport may draw the samples its square reaches inside.
+pub fn check_pixel_holding_as_cts(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    pixel_holding(r, case, true)
+}
+
+fn pixel_holding(r: &mut dyn Rasterizer, case: &PrimitiveScene, cts: bool) -> Result<(), Violation> {
     // A point snapped to a coarser grid than the triangles' (softpipe's are, its triangles
     // not) moves up to half a step of it, which the triangles' band may not cover.
-    let profile = r.profile();
-    let band = match point_bits(&profile, &r.primitive_profile()) {
+    let (profile, primitives) = (r.profile(), r.primitive_profile());
+    let band = match point_bits(&profile, &primitives) {
         Some(bits) => profile.band_px().max((-f64::from(bits) - 1.0).exp2()),
         None => profile.band_px(),
     };
@@ -129,14 +196,18 @@ pub fn check_pixel_holding(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Res
         }
         let [px, py] = project(w, h, p.map(f64::from));
         let outside = px < -band || py < -band || px > f64::from(w) + band || py > f64::from(h) + band;
-        // Beyond the viewport in x/y, Vulkan discards the point; OpenGL may, and D3D11.3 draws
-        // its quad, clipped: there the samples its square reaches inside are either.
-        let beyond = outside && !xy_discard_optional(profile.spec);
-        let near_border = [px, py, f64::from(w) - px, f64::from(h) - py]
-            .iter()
-            .any(|d| d.abs() <= band);
+        let drawn = if outside {
+            outside_xy(profile.spec, primitives.point_clipping, cts)
+        } else {
+            Outside::Square
+        };
+        // Within the band of the viewport's side, clipping may keep it or not, either way.
+        let near_border = drawn != Outside::Square
+            || [px, py, f64::from(w) - px, f64::from(h) - py]
+                .iter()
+                .any(|d| d.abs() <= band);
         let mut expected = vec![Expect::Zero; super::samples::cells(case)];
-        if !beyond {
+        if drawn != Outside::Nothing {
             for y in 0..h {
                 for x in 0..w {
                     for (k, &[u, v]) in positions.iter().enumerate() {
@@ -145,7 +216,7 @@ pub fn check_pixel_holding(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Res
                             f64::from(y) + f64::from(v) / 16.0,
                         ];
                         let d = (s[0] - px).abs().max((s[1] - py).abs());
-                        expected[cell(case, x, y, k as u8)] = if (outside || near_border) && d < 0.5 + band {
+                        expected[cell(case, x, y, k as u8)] = if near_border && d < 0.5 + band {
                             Expect::ZeroOrOne
                         } else if d < 0.5 - band {
                             Expect::One
@@ -162,13 +233,6 @@ pub fn check_pixel_holding(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Res
         compare_samples(case, &counts(case, &frags, Some(i as u32)), &expected, &what)?;
     }
     Ok(())
-}
-
-/// Whether a point outside the viewport in x/y may still draw the samples its square reaches
-/// inside: OpenGL 4.6 §13.7 lets an implementation keep it, D3D11.3 draws points as clipped
-/// quads (§3.4.6); Vulkan (`ALL_CLIP_PLANES`) and refrast discard it.
-fn xy_discard_optional(spec: Spec) -> bool {
-    matches!(spec, Spec::OpenGl | Spec::D3d11)
 }
 
 /// Every fragment of a point has its vertex's window depth and barycentrics `(1, 0, 0)`.

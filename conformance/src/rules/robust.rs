@@ -257,10 +257,10 @@ pub fn check_well_formed_but_depth(r: &mut dyn Rasterizer, scene: &Scene) -> Res
 
 /// What Vulkan and OpenGL define for any input: fragments inside the viewport, naming real
 /// primitives (the scissor sets coverage outside it to 0 whatever the input); where the
-/// arithmetic stays within 2^32 ([`within_float_range`]), well-formed values too, the depth
-/// range aside.
+/// arithmetic stays within 2^32 ([`within_float_range_as_received`]), well-formed values too,
+/// the depth range aside.
 pub fn check_sane_where_defined(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    if within_float_range(scene) {
+    if within_float_range_as_received(scene, &r.profile()) {
         check_well_formed_but_depth(r, scene)
     } else {
         fragments(r, scene).map(drop)
@@ -277,6 +277,31 @@ const FLOAT_RANGE: f64 = 4_294_967_296.0;
 /// Rasterization). A vertex clipped away may have any w: nothing divides by it.
 #[must_use]
 pub fn within_float_range(scene: &Scene) -> bool {
+    exact_within_float_range(scene)
+}
+
+/// [`within_float_range`] of the draw as an implementation with `profile` receives it: for one
+/// whose `z` arrives rewritten to `2z − w` in f32 ([`refrast::Features::z_rewritten_in_f32`]),
+/// the rewritten draw too, since that rounding may move a vertex across the near plane and
+/// leave a sliver at `w` far below 2^-32 where the exact volume leaves nothing.
+#[must_use]
+pub fn within_float_range_as_received(scene: &Scene, profile: &refrast::Profile) -> bool {
+    exact_within_float_range(scene)
+        && (!profile.features.z_rewritten_in_f32 || exact_within_float_range(&gl_rewritten(scene)))
+}
+
+/// `scene` with every `z` rewritten to `fl(fl(2z) − w)` under the `−w ≤ z ≤ w` volume, as
+/// wgpu's OpenGL ES backend hands it to the driver.
+fn gl_rewritten(scene: &Scene) -> Scene {
+    let mut s = scene.clone();
+    for p in &mut s.positions {
+        p[2] = 2.0 * p[2] - p[3];
+    }
+    s.state.depth_range = refrast::DepthRange::NegativeOneToOne;
+    s
+}
+
+fn exact_within_float_range(scene: &Scene) -> bool {
     use refrast::stage::{ClipOutcome, assemble, clip_planes, clip_triangle};
     let finite = scene
         .positions

@@ -86,6 +86,14 @@ fn the_consistency_check_catches_each_kind_of_mistake() {
         .expect("a not-yet entry");
     vk[two].rules.push("fill.mesh.exactly-once".into());
     let two_id = vk[two].id.clone();
+    // A partly-checked entry that names no rules: it cannot be partly checked.
+    let partly = vk
+        .iter()
+        .position(|s| s.coverage == Coverage::Partly)
+        .expect("a partly-checked entry");
+    vk[partly].rules.clear();
+    vk[partly].partly = Some("the rest".into());
+    let partly_id = vk[partly].id.clone();
     // A repeated ID, an empty section and a golden test without its path.
     let (first_id, course) = (vk[0].id.clone(), broken.specs.len() - 2);
     broken.specs[1].statements[0].id = first_id.clone();
@@ -103,6 +111,7 @@ fn the_consistency_check_catches_each_kind_of_mistake() {
         "an empty reason".to_owned(),
         format!("{doubled_id} in vulkan.toml: needs exactly one of"),
         format!("{two_id} in vulkan.toml: needs exactly one of"),
+        format!("{partly_id} in vulkan.toml: says `partly` but names no rules"),
         format!("{first_id} in d3d11.toml: the ID is also used in vulkan.toml"),
         "an empty field".to_owned(),
         "golden test \"just_a_name\" is not `path::function`".to_owned(),

@@ -1,5 +1,6 @@
-//! The spec map (`conformance/spec/*.toml`) is consistent with the catalogue, its golden tests
-//! exist, and `docs/spec.md` is what it generates.
+//! The spec map (`conformance/spec/*.toml`) is consistent with the catalogue, traces every
+//! section of each pinned source (`conformance/spec/sections/*.txt`), its golden tests exist,
+//! and `docs/spec.md` is what it generates.
 
 use std::path::Path;
 
@@ -123,6 +124,69 @@ fn the_consistency_check_catches_each_kind_of_mistake() {
         );
     }
     assert!(map.problems(&rules).is_empty());
+}
+
+/// The keys of the specifications whose pinned sources have section lists.
+const LISTED: [&str; 1] = ["vulkan"];
+
+#[test]
+fn every_section_of_each_pinned_source_has_a_statement() {
+    let map = spec_map().expect("the spec map parses");
+    for key in LISTED {
+        let spec = map
+            .specs
+            .iter()
+            .find(|s| s.key == key)
+            .expect("the specification is in the map");
+        assert!(
+            spec.sections.len() > 20,
+            "conformance/spec/sections/{key}.txt lists {} sections; it should list every section of the chapters {key}.toml traces",
+            spec.sections.len()
+        );
+    }
+    let problems = map.section_problems();
+    assert!(
+        problems.is_empty(),
+        "the spec map does not trace every section of its sources:\n{}",
+        problems.join("\n")
+    );
+}
+
+#[test]
+fn the_completeness_check_catches_a_missing_section_and_an_unknown_one() {
+    let map = spec_map().expect("the spec map parses");
+    let mut broken = map.clone();
+    // Every Vulkan statement on depth bias dropped: the section is then untraced.
+    let vk = &mut broken.specs[0].statements;
+    vk.retain(|s| s.anchor.as_deref() != Some("primsrast-depthbias"));
+    // A statement linking to an anchor its list does not have (a typo), and one with no anchor,
+    // each from a section with other statements.
+    for s in vk.iter_mut() {
+        match s.id.as_str() {
+            "vk.line.t" => s.anchor = Some("primsrast-lines-basik".into()),
+            "vk.raster.inside-framebuffer" => s.anchor = None,
+            _ => {}
+        }
+    }
+    let problems = broken.section_problems().join("\n");
+    for expected in [
+        "vulkan.toml has no statement for 1 section(s) of conformance/spec/sections/vulkan.txt".to_owned(),
+        "  primsrast-depthbias (Depth Bias)".to_owned(),
+        "vk.line.t in vulkan.toml: its anchor primsrast-lines-basik is not in conformance/spec/sections/vulkan.txt"
+            .to_owned(),
+        "vk.raster.inside-framebuffer in vulkan.toml: has no anchor".to_owned(),
+    ] {
+        assert!(
+            problems.contains(&expected),
+            "{expected:?} not reported in:\n{problems}"
+        );
+    }
+    assert!(
+        broken
+            .problems(&catalogue())
+            .join("\n")
+            .contains("primsrast-depthbias (Depth Bias)")
+    );
 }
 
 #[test]

@@ -6,8 +6,12 @@
 //! *checked* by the rules it names (or, for the course, by its golden tests), *partly* checked
 //! when it also says what they leave unchecked, or says why not: *out of scope* (outside what
 //! the [`Rasterizer`](refrast::Rasterizer) contract can express) or *not yet* (within it, but no
-//! rule checks it). [`SpecMap::problems`] is the consistency check `cargo test` runs: every rule
-//! maps to a statement, every named rule exists, every reason is given.
+//! rule checks it). Each specification with a pinned source also has a list of that source's
+//! sections (`conformance/spec/sections/*.txt`, see [`sections`]), every one of which must have
+//! a statement. [`SpecMap::problems`] is the consistency check `cargo test` runs: every rule
+//! maps to a statement, every named rule exists, every reason is given, every section is traced.
+
+mod sections;
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
@@ -15,15 +19,20 @@ use std::fmt::Write as _;
 use serde::{Deserialize, Serialize};
 
 use crate::rules::Rule;
+pub use sections::Section;
 
 /// The map's files, in the order they are shown: the specifications, then the course, then
-/// refrast's conventions.
-const FILES: [(&str, &str); 5] = [
-    ("vulkan.toml", include_str!("../../spec/vulkan.toml")),
-    ("d3d11.toml", include_str!("../../spec/d3d11.toml")),
-    ("opengl.toml", include_str!("../../spec/opengl.toml")),
-    ("course.toml", include_str!("../../spec/course.toml")),
-    ("refrast.toml", include_str!("../../spec/refrast.toml")),
+/// refrast's conventions; each with the list of its pinned source's sections, where it has one.
+const FILES: [(&str, &str, Option<&str>); 5] = [
+    (
+        "vulkan.toml",
+        include_str!("../../spec/vulkan.toml"),
+        Some(include_str!("../../spec/sections/vulkan.txt")),
+    ),
+    ("d3d11.toml", include_str!("../../spec/d3d11.toml"), None),
+    ("opengl.toml", include_str!("../../spec/opengl.toml"), None),
+    ("course.toml", include_str!("../../spec/course.toml"), None),
+    ("refrast.toml", include_str!("../../spec/refrast.toml"), None),
 ];
 
 /// How far the suite checks a statement.
@@ -60,9 +69,11 @@ impl Coverage {
 pub struct Statement {
     /// Stable ID, unique across the map: `vk.…`, `d3d.…`, `gl.…`, `course.…`, `refrast.…`.
     pub id: String,
-    /// The section it comes from, as the specification titles (and numbers) it.
+    /// The section it comes from, as the specification titles it; numbered specifications start
+    /// it with the section's number (`§14.6.1 …`), which must be in their section list.
     pub section: String,
-    /// The section's fragment in the specification's HTML, where it has one.
+    /// The fragment in the specification's HTML it links to; for Vulkan, an anchor of its
+    /// section list.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub anchor: Option<String>,
     /// The statement in refrast's own words.
@@ -122,6 +133,10 @@ pub struct Spec {
     pub url: String,
     /// Its statements, in the order of the specification.
     pub statements: Vec<Statement>,
+    /// The sections of its pinned source, each of which needs a statement; empty for the course
+    /// and refrast's conventions.
+    #[serde(skip)]
+    pub sections: Vec<Section>,
 }
 
 impl Spec {
@@ -192,8 +207,12 @@ pub struct SpecMap {
 pub fn spec_map() -> Result<SpecMap, String> {
     let specs = FILES
         .iter()
-        .map(|(name, text)| {
-            let spec = parse(text).map_err(|e| format!("conformance/spec/{name}: {e}"))?;
+        .map(|(name, text, list)| {
+            let mut spec = parse(text).map_err(|e| format!("conformance/spec/{name}: {e}"))?;
+            if let Some(list) = list {
+                spec.sections =
+                    sections::parse(list).map_err(|e| format!("{}: {e}", sections::path(&spec.key)))?;
+            }
             if format!("{}.toml", spec.key) == *name {
                 Ok(spec)
             } else {
@@ -226,6 +245,7 @@ fn parse(text: &str) -> Result<Spec, String> {
         version,
         url,
         statements,
+        sections: Vec::new(),
     })
 }
 
@@ -243,8 +263,8 @@ impl SpecMap {
     /// What is inconsistent between the map and `rules`, one line each; empty when nothing is:
     /// a rule no statement names, a statement naming a rule that does not exist, a statement
     /// neither checked nor giving its reason (or giving two answers, or `partly` without rules),
-    /// a repeated ID, an empty field, a golden test not written as `path::function`. Each
-    /// statement is judged by its fields
+    /// a repeated ID, an empty field, a golden test not written as `path::function`, and what
+    /// [`SpecMap::section_problems`] finds. Each statement is judged by its fields
     /// ([`Statement::answer`]), not by its stored coverage.
     #[must_use]
     pub fn problems(&self, rules: &[Rule]) -> Vec<String> {
@@ -320,6 +340,7 @@ impl SpecMap {
                 ));
             }
         }
+        problems.extend(self.section_problems());
         problems
     }
 
@@ -356,7 +377,8 @@ impl SpecMap {
             "# The specifications, sentence by sentence\n\n\
              Generated by `refrast rules --spec --markdown` from `conformance/spec/*.toml`; \
              `cargo test` fails when it is out of date, when a rule maps to no statement, when a \
-             statement names a rule that does not exist, or when one gives no reason.\n\n\
+             statement names a rule that does not exist, when one gives no reason, or when a \
+             section of a pinned source (listed in `conformance/spec/sections/`) has no statement.\n\n\
              Each entry is a normative statement in refrast's own words, with the rules that check \
              it, *partly* when they leave some of it unchecked (and what), or why none does: *out \
              of scope* (outside what the `Rasterizer` contract can express or observe) or *not \
@@ -372,6 +394,14 @@ impl SpecMap {
             let _ = write!(out, "\n## {}\n\n{}", spec.title, spec.version);
             if !spec.url.is_empty() {
                 let _ = write!(out, ", <{}>", spec.url);
+            }
+            if !spec.sections.is_empty() {
+                let _ = write!(
+                    out,
+                    "\n\nEach of the {} sections listed in `{}` has a statement.",
+                    spec.sections.len(),
+                    sections::path(&spec.key)
+                );
             }
             out.push_str("\n\n| statement | section | says | checked by |\n|---|---|---|---|\n");
             for s in &spec.statements {

@@ -127,7 +127,7 @@ fn the_consistency_check_catches_each_kind_of_mistake() {
 }
 
 /// The keys of the specifications whose pinned sources have section lists.
-const LISTED: [&str; 2] = ["vulkan", "d3d11"];
+const LISTED: [&str; 3] = ["vulkan", "d3d11", "opengl"];
 
 #[test]
 fn every_section_of_each_pinned_source_has_a_statement() {
@@ -168,6 +168,14 @@ fn the_completeness_check_catches_a_missing_section_and_an_unknown_one() {
             _ => {}
         }
     }
+    // An OpenGL statement citing a section number its list does not have.
+    let gl = broken
+        .specs
+        .iter_mut()
+        .find(|s| s.key == "opengl")
+        .expect("OpenGL is in the map");
+    gl.statements[0].section = "§14.66 Depth Offset".into();
+    let gl_id = gl.statements[0].id.clone();
     let problems = broken.section_problems().join("\n");
     for expected in [
         "vulkan.toml has no statement for 1 section(s) of conformance/spec/sections/vulkan.txt".to_owned(),
@@ -175,6 +183,7 @@ fn the_completeness_check_catches_a_missing_section_and_an_unknown_one() {
         "vk.line.t in vulkan.toml: its anchor primsrast-lines-basik is not in conformance/spec/sections/vulkan.txt"
             .to_owned(),
         "vk.raster.inside-framebuffer in vulkan.toml: has no anchor".to_owned(),
+        format!("{gl_id} in opengl.toml: its section number §14.66 is not in conformance/spec/sections/opengl.txt"),
     ] {
         assert!(
             problems.contains(&expected),

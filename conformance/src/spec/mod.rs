@@ -34,7 +34,11 @@ const FILES: [(&str, &str, Option<&str>); 5] = [
         include_str!("../../spec/d3d11.toml"),
         Some(include_str!("../../spec/sections/d3d11.txt")),
     ),
-    ("opengl.toml", include_str!("../../spec/opengl.toml"), None),
+    (
+        "opengl.toml",
+        include_str!("../../spec/opengl.toml"),
+        Some(include_str!("../../spec/sections/opengl.txt")),
+    ),
     ("course.toml", include_str!("../../spec/course.toml"), None),
     ("refrast.toml", include_str!("../../spec/refrast.toml"), None),
 ];

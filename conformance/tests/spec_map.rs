@@ -127,7 +127,7 @@ fn the_consistency_check_catches_each_kind_of_mistake() {
 }
 
 /// The keys of the specifications whose pinned sources have section lists.
-const LISTED: [&str; 3] = ["vulkan", "d3d11", "opengl"];
+const LISTED: [&str; 4] = ["vulkan", "d3d11", "opengl", "opengles"];
 
 #[test]
 fn every_section_of_each_pinned_source_has_a_statement() {

@@ -23,7 +23,7 @@ pub use sections::Section;
 
 /// The map's files, in the order they are shown: the specifications, then the course, then
 /// refrast's conventions; each with the list of its pinned source's sections, where it has one.
-const FILES: [(&str, &str, Option<&str>); 5] = [
+const FILES: [(&str, &str, Option<&str>); 6] = [
     (
         "vulkan.toml",
         include_str!("../../spec/vulkan.toml"),
@@ -38,6 +38,11 @@ const FILES: [(&str, &str, Option<&str>); 5] = [
         "opengl.toml",
         include_str!("../../spec/opengl.toml"),
         Some(include_str!("../../spec/sections/opengl.txt")),
+    ),
+    (
+        "opengles.toml",
+        include_str!("../../spec/opengles.toml"),
+        Some(include_str!("../../spec/sections/opengles.txt")),
     ),
     ("course.toml", include_str!("../../spec/course.toml"), None),
     ("refrast.toml", include_str!("../../spec/refrast.toml"), None),
@@ -75,7 +80,7 @@ impl Coverage {
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Statement {
-    /// Stable ID, unique across the map: `vk.…`, `d3d.…`, `gl.…`, `course.…`, `refrast.…`.
+    /// Stable ID, unique across the map: `vk.…`, `d3d.…`, `gl.…`, `es.…`, `course.…`, `refrast.…`.
     pub id: String,
     /// The section it comes from, as the specification titles it; numbered specifications start
     /// it with the section's number (`§14.6.1 …`), which must be in their section list.
@@ -131,7 +136,7 @@ impl Statement {
 /// One specification's statements.
 #[derive(Clone, Debug, Serialize)]
 pub struct Spec {
-    /// Short key: `vulkan`, `d3d11`, `opengl`, `course`, `refrast`.
+    /// Short key: `vulkan`, `d3d11`, `opengl`, `opengles`, `course`, `refrast`.
     pub key: String,
     /// Its title.
     pub title: String,
@@ -207,7 +212,7 @@ struct Header {
 /// Every specification's statements.
 #[derive(Clone, Debug, Serialize)]
 pub struct SpecMap {
-    /// In this order: Vulkan, D3D11.3, OpenGL, the course, refrast's conventions.
+    /// In this order: Vulkan, D3D11.3, OpenGL, OpenGL ES, the course, refrast's conventions.
     pub specs: Vec<Spec>,
 }
 

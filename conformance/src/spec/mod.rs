@@ -7,9 +7,10 @@
 //! when it also says what they leave unchecked, or says why not: *out of scope* (outside what
 //! the [`Rasterizer`](refrast::Rasterizer) contract can express) or *not yet* (within it, but no
 //! rule checks it). Each specification with a pinned source also has a list of that source's
-//! sections (`conformance/spec/sections/*.txt`, see [`sections`]), every one of which must have
-//! a statement. [`SpecMap::problems`] is the consistency check `cargo test` runs: every rule
-//! maps to a statement, every named rule exists, every reason is given, every section is traced.
+//! sections (`conformance/spec/sections/*.txt`, read by the `sections` module), every one of
+//! which must have a statement. [`SpecMap::problems`] is the consistency check `cargo test`
+//! runs: every rule maps to a statement, every named rule exists, every reason is given, every
+//! section is traced.
 
 mod sections;
 

@@ -49,6 +49,9 @@ pub fn spec(markdown: bool, as_json: bool, rule: Option<&str>) -> ExitCode {
             "  {}  {}, {}\n      {}",
             s.id, spec.title, s.section, s.says
         ));
+        if let Some(partly) = &s.partly {
+            say(&format!("      partly; unchecked: {partly}"));
+        }
         if let Some(note) = &s.note {
             say(&format!("      note: {note}"));
         }

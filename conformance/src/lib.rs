@@ -13,7 +13,7 @@
 //! | 5 | [`strategy`] | free functions that build valid scenes: grid triangles, spade meshes, fans, quads, clip crossings |
 //! | 6 | `runner` | [`property`]: one rule's property, seeded, shrunk, panics caught |
 //! | 7 | [`rules`] | [`catalogue`], [`Rule`], [`Family`], [`Kind`], [`Need`]: nine families, each rule a proptest property |
-//! | 8 | `report`, [`spec`] | [`Report`], [`RuleReport`], [`Status`], [`ProfileReport`]; [`SpecMap`]: each normative statement of Vulkan, D3D11.3 and OpenGL, the seeds' results and refrast's conventions, with the rules that check it |
+//! | 8 | `report`, [`spec`] | [`Report`], [`RuleReport`], [`Status`], [`ProfileReport`]; [`SpecMap`]: each normative statement of Vulkan, D3D11.3, OpenGL and OpenGL ES, the seeds' results and refrast's conventions, with the rules that check it |
 //! | 9 | `certify` | [`certify`], [`Options`] |
 //! | 10 | [`isolate`], [`expect`] | rules in child processes: a hang is a `timeout`, an abort or a crash a `crash` of the rule it was running; expectation files |
 //! | 11 | `harness`, [`fuzz`] | [`run_as_tests`]: one test per rule in your own crate; the cargo-fuzz targets as functions on any rasterizer |

@@ -1,5 +1,6 @@
-//! The spec map (`conformance/spec/*.toml`) is consistent with the catalogue, its golden tests
-//! exist, and `docs/spec.md` is what it generates.
+//! The spec map (`conformance/spec/*.toml`) is consistent with the catalogue, traces every
+//! section of each pinned source (`conformance/spec/sections/*.txt`), its golden tests exist,
+//! and `docs/spec.md` is what it generates.
 
 use std::path::Path;
 
@@ -86,6 +87,14 @@ fn the_consistency_check_catches_each_kind_of_mistake() {
         .expect("a not-yet entry");
     vk[two].rules.push("fill.mesh.exactly-once".into());
     let two_id = vk[two].id.clone();
+    // A partly-checked entry that names no rules: it cannot be partly checked.
+    let partly = vk
+        .iter()
+        .position(|s| s.coverage == Coverage::Partly)
+        .expect("a partly-checked entry");
+    vk[partly].rules.clear();
+    vk[partly].partly = Some("the rest".into());
+    let partly_id = vk[partly].id.clone();
     // A repeated ID, an empty section and a golden test without its path.
     let (first_id, course) = (vk[0].id.clone(), broken.specs.len() - 2);
     broken.specs[1].statements[0].id = first_id.clone();
@@ -103,6 +112,7 @@ fn the_consistency_check_catches_each_kind_of_mistake() {
         "an empty reason".to_owned(),
         format!("{doubled_id} in vulkan.toml: needs exactly one of"),
         format!("{two_id} in vulkan.toml: needs exactly one of"),
+        format!("{partly_id} in vulkan.toml: says `partly` but names no rules"),
         format!("{first_id} in d3d11.toml: the ID is also used in vulkan.toml"),
         "an empty field".to_owned(),
         "golden test \"just_a_name\" is not `path::function`".to_owned(),
@@ -114,6 +124,78 @@ fn the_consistency_check_catches_each_kind_of_mistake() {
         );
     }
     assert!(map.problems(&rules).is_empty());
+}
+
+/// The keys of the specifications whose pinned sources have section lists.
+const LISTED: [&str; 4] = ["vulkan", "d3d11", "opengl", "opengles"];
+
+#[test]
+fn every_section_of_each_pinned_source_has_a_statement() {
+    let map = spec_map().expect("the spec map parses");
+    for key in LISTED {
+        let spec = map
+            .specs
+            .iter()
+            .find(|s| s.key == key)
+            .expect("the specification is in the map");
+        assert!(
+            spec.sections.len() > 20,
+            "conformance/spec/sections/{key}.txt lists {} sections; it should list every section of the chapters {key}.toml traces",
+            spec.sections.len()
+        );
+    }
+    let problems = map.section_problems();
+    assert!(
+        problems.is_empty(),
+        "the spec map does not trace every section of its sources:\n{}",
+        problems.join("\n")
+    );
+}
+
+#[test]
+fn the_completeness_check_catches_a_missing_section_and_an_unknown_one() {
+    let map = spec_map().expect("the spec map parses");
+    let mut broken = map.clone();
+    // Every Vulkan statement on depth bias dropped: the section is then untraced.
+    let vk = &mut broken.specs[0].statements;
+    vk.retain(|s| s.anchor.as_deref() != Some("primsrast-depthbias"));
+    // A statement linking to an anchor its list does not have (a typo), and one with no anchor,
+    // each from a section with other statements.
+    for s in vk.iter_mut() {
+        match s.id.as_str() {
+            "vk.line.t" => s.anchor = Some("primsrast-lines-basik".into()),
+            "vk.raster.inside-framebuffer" => s.anchor = None,
+            _ => {}
+        }
+    }
+    // An OpenGL statement citing a section number its list does not have.
+    let gl = broken
+        .specs
+        .iter_mut()
+        .find(|s| s.key == "opengl")
+        .expect("OpenGL is in the map");
+    gl.statements[0].section = "§14.66 Depth Offset".into();
+    let gl_id = gl.statements[0].id.clone();
+    let problems = broken.section_problems().join("\n");
+    for expected in [
+        "vulkan.toml has no statement for 1 section(s) of conformance/spec/sections/vulkan.txt".to_owned(),
+        "  primsrast-depthbias (Depth Bias)".to_owned(),
+        "vk.line.t in vulkan.toml: its anchor primsrast-lines-basik is not in conformance/spec/sections/vulkan.txt"
+            .to_owned(),
+        "vk.raster.inside-framebuffer in vulkan.toml: has no anchor".to_owned(),
+        format!("{gl_id} in opengl.toml: its section number §14.66 is not in conformance/spec/sections/opengl.txt"),
+    ] {
+        assert!(
+            problems.contains(&expected),
+            "{expected:?} not reported in:\n{problems}"
+        );
+    }
+    assert!(
+        broken
+            .problems(&catalogue())
+            .join("\n")
+            .contains("primsrast-depthbias (Depth Bias)")
+    );
 }
 
 #[test]

@@ -3,11 +3,16 @@
 //!
 //! The map is data, `conformance/spec/*.toml`, one file per specification, compiled into the
 //! crate so that `refrast rules --spec` and reports need no files at run time. A statement is
-//! *checked* by the rules it names (or, for the course, by its golden tests), or says why not:
-//! *out of scope* (outside what the [`Rasterizer`](refrast::Rasterizer) contract can express) or
-//! *not yet* (within it, but no rule checks it). [`SpecMap::problems`] is the consistency check
-//! `cargo test` runs: every rule maps to a statement, every named rule exists, every reason is
-//! given.
+//! *checked* by the rules it names (or, for the course, by its golden tests), *partly* checked
+//! when it also says what they leave unchecked, or says why not: *out of scope* (outside what
+//! the [`Rasterizer`](refrast::Rasterizer) contract can express) or *not yet* (within it, but no
+//! rule checks it). Each specification with a pinned source also has a list of that source's
+//! sections (`conformance/spec/sections/*.txt`, read by the `sections` module), every one of
+//! which must have a statement. [`SpecMap::problems`] is the consistency check `cargo test`
+//! runs: every rule maps to a statement, every named rule exists, every reason is given, every
+//! section is traced.
+
+mod sections;
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
@@ -15,15 +20,33 @@ use std::fmt::Write as _;
 use serde::{Deserialize, Serialize};
 
 use crate::rules::Rule;
+pub use sections::Section;
 
 /// The map's files, in the order they are shown: the specifications, then the course, then
-/// refrast's conventions.
-const FILES: [(&str, &str); 5] = [
-    ("vulkan.toml", include_str!("../spec/vulkan.toml")),
-    ("d3d11.toml", include_str!("../spec/d3d11.toml")),
-    ("opengl.toml", include_str!("../spec/opengl.toml")),
-    ("course.toml", include_str!("../spec/course.toml")),
-    ("refrast.toml", include_str!("../spec/refrast.toml")),
+/// refrast's conventions; each with the list of its pinned source's sections, where it has one.
+const FILES: [(&str, &str, Option<&str>); 6] = [
+    (
+        "vulkan.toml",
+        include_str!("../../spec/vulkan.toml"),
+        Some(include_str!("../../spec/sections/vulkan.txt")),
+    ),
+    (
+        "d3d11.toml",
+        include_str!("../../spec/d3d11.toml"),
+        Some(include_str!("../../spec/sections/d3d11.txt")),
+    ),
+    (
+        "opengl.toml",
+        include_str!("../../spec/opengl.toml"),
+        Some(include_str!("../../spec/sections/opengl.txt")),
+    ),
+    (
+        "opengles.toml",
+        include_str!("../../spec/opengles.toml"),
+        Some(include_str!("../../spec/sections/opengles.txt")),
+    ),
+    ("course.toml", include_str!("../../spec/course.toml"), None),
+    ("refrast.toml", include_str!("../../spec/refrast.toml"), None),
 ];
 
 /// How far the suite checks a statement.
@@ -32,6 +55,8 @@ const FILES: [(&str, &str); 5] = [
 pub enum Coverage {
     /// Named rules (or golden tests) check it.
     Checked,
+    /// Named rules check part of it; the statement says which part they leave unchecked.
+    Partly,
     /// Outside what the `Rasterizer` contract can express or observe.
     OutOfScope,
     /// Within the contract, but nothing checks it yet.
@@ -45,6 +70,7 @@ impl Coverage {
     pub fn label(self) -> &'static str {
         match self {
             Self::Checked => "checked",
+            Self::Partly => "partly",
             Self::OutOfScope => "out of scope",
             Self::NotYet => "not yet",
         }
@@ -55,11 +81,13 @@ impl Coverage {
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Statement {
-    /// Stable ID, unique across the map: `vk.…`, `d3d.…`, `gl.…`, `course.…`, `refrast.…`.
+    /// Stable ID, unique across the map: `vk.…`, `d3d.…`, `gl.…`, `es.…`, `course.…`, `refrast.…`.
     pub id: String,
-    /// The section it comes from, as the specification titles (and numbers) it.
+    /// The section it comes from, as the specification titles it; numbered specifications start
+    /// it with the section's number (`§14.6.1 …`), which must be in their section list.
     pub section: String,
-    /// The section's fragment in the specification's HTML, where it has one.
+    /// The fragment in the specification's HTML it links to; for Vulkan, an anchor of its
+    /// section list.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub anchor: Option<String>,
     /// The statement in refrast's own words.
@@ -70,6 +98,9 @@ pub struct Statement {
     /// The golden tests that reproduce it (`path::function`, course entries).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub golden: Vec<String>,
+    /// What its rules leave unchecked, when they check only part of it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub partly: Option<String>,
     /// Why it is outside the contract.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub out_of_scope: Option<String>,
@@ -85,12 +116,16 @@ pub struct Statement {
 }
 
 impl Statement {
-    /// How far it is checked, from its fields: checked when it names rules or golden tests,
-    /// else out of scope when it says why, else not yet.
+    /// How far it is checked, from its fields: checked when it names rules or golden tests
+    /// (partly when it says what they leave), else out of scope when it says why, else not yet.
     #[must_use]
     pub fn answer(&self) -> Coverage {
         if !self.rules.is_empty() || !self.golden.is_empty() {
-            Coverage::Checked
+            if self.partly.is_some() {
+                Coverage::Partly
+            } else {
+                Coverage::Checked
+            }
         } else if self.out_of_scope.is_some() {
             Coverage::OutOfScope
         } else {
@@ -102,7 +137,7 @@ impl Statement {
 /// One specification's statements.
 #[derive(Clone, Debug, Serialize)]
 pub struct Spec {
-    /// Short key: `vulkan`, `d3d11`, `opengl`, `course`, `refrast`.
+    /// Short key: `vulkan`, `d3d11`, `opengl`, `opengles`, `course`, `refrast`.
     pub key: String,
     /// Its title.
     pub title: String,
@@ -112,6 +147,10 @@ pub struct Spec {
     pub url: String,
     /// Its statements, in the order of the specification.
     pub statements: Vec<Statement>,
+    /// The sections of its pinned source, each of which needs a statement; empty for the course
+    /// and refrast's conventions.
+    #[serde(skip)]
+    pub sections: Vec<Section>,
 }
 
 impl Spec {
@@ -127,23 +166,25 @@ impl Spec {
         })
     }
 
-    /// Statements checked, out of scope and not yet.
+    /// Statements checked, partly checked, out of scope and not yet.
     #[must_use]
-    pub fn tally(&self) -> [usize; 3] {
+    pub fn tally(&self) -> [usize; 4] {
         let count = |c: Coverage| self.statements.iter().filter(|s| s.coverage == c).count();
         [
             count(Coverage::Checked),
+            count(Coverage::Partly),
             count(Coverage::OutOfScope),
             count(Coverage::NotYet),
         ]
     }
 
-    /// One line: `Vulkan 1.4: 84 of 111 statements checked, 24 out of scope, 3 not yet`.
+    /// One line: `Vulkan 1.4: 84 of 131 statements checked, 20 partly, 24 out of scope, 3 not
+    /// yet` (the four counts add up to the statements).
     #[must_use]
     pub fn coverage_line(&self) -> String {
-        let [checked, out, not_yet] = self.tally();
+        let [checked, partly, out, not_yet] = self.tally();
         format!(
-            "{}: {checked} of {} statements checked, {out} out of scope, {not_yet} not yet",
+            "{}: {checked} of {} statements checked, {partly} partly, {out} out of scope, {not_yet} not yet",
             self.title,
             self.statements.len()
         )
@@ -172,7 +213,7 @@ struct Header {
 /// Every specification's statements.
 #[derive(Clone, Debug, Serialize)]
 pub struct SpecMap {
-    /// In this order: Vulkan, D3D11.3, OpenGL, the course, refrast's conventions.
+    /// In this order: Vulkan, D3D11.3, OpenGL, OpenGL ES, the course, refrast's conventions.
     pub specs: Vec<Spec>,
 }
 
@@ -180,8 +221,12 @@ pub struct SpecMap {
 pub fn spec_map() -> Result<SpecMap, String> {
     let specs = FILES
         .iter()
-        .map(|(name, text)| {
-            let spec = parse(text).map_err(|e| format!("conformance/spec/{name}: {e}"))?;
+        .map(|(name, text, list)| {
+            let mut spec = parse(text).map_err(|e| format!("conformance/spec/{name}: {e}"))?;
+            if let Some(list) = list {
+                spec.sections =
+                    sections::parse(list).map_err(|e| format!("{}: {e}", sections::path(&spec.key)))?;
+            }
             if format!("{}.toml", spec.key) == *name {
                 Ok(spec)
             } else {
@@ -214,6 +259,7 @@ fn parse(text: &str) -> Result<Spec, String> {
         version,
         url,
         statements,
+        sections: Vec::new(),
     })
 }
 
@@ -230,9 +276,10 @@ impl SpecMap {
 
     /// What is inconsistent between the map and `rules`, one line each; empty when nothing is:
     /// a rule no statement names, a statement naming a rule that does not exist, a statement
-    /// neither checked nor giving its reason (or giving two answers), a repeated ID, an empty
-    /// field, a golden test not written as `path::function`. Each statement is judged by its
-    /// fields ([`Statement::answer`]), not by its stored coverage.
+    /// neither checked nor giving its reason (or giving two answers, or `partly` without rules),
+    /// a repeated ID, an empty field, a golden test not written as `path::function`, and what
+    /// [`SpecMap::section_problems`] finds. Each statement is judged by its fields
+    /// ([`Statement::answer`]), not by its stored coverage.
     #[must_use]
     pub fn problems(&self, rules: &[Rule]) -> Vec<String> {
         let known: BTreeSet<&str> = rules.iter().map(|r| r.id).collect();
@@ -254,14 +301,14 @@ impl SpecMap {
                 if let Some(other) = ids.insert(s.id.as_str(), spec.key.as_str()) {
                     problems.push(format!("{at}: the ID is also used in {other}.toml"));
                 }
-                let optional = [&s.anchor, &s.note].into_iter().flatten();
+                let optional = [&s.anchor, &s.note, &s.partly].into_iter().flatten();
                 let texts = [&s.id, &s.section, &s.says]
                     .into_iter()
                     .chain(optional)
                     .chain(&s.rules);
                 if texts.chain(&s.golden).any(|t| t.trim().is_empty()) {
                     problems.push(format!(
-                        "{at}: an empty field (`section`, `says`, an anchor, a note, a rule or a golden test)"
+                        "{at}: an empty field (`section`, `says`, an anchor, a note, `partly`, a rule or a golden test)"
                     ));
                 }
                 for rule in &s.rules {
@@ -285,8 +332,13 @@ impl SpecMap {
                         problems.push(format!("{at}: an empty reason; say why in one sentence"));
                     }
                 }
-                let answers = usize::from(s.answer() == Coverage::Checked)
-                    + reasons.iter().filter(|r| r.is_some()).count();
+                if s.partly.is_some() && s.rules.is_empty() {
+                    problems.push(format!(
+                        "{at}: says `partly` but names no rules; name the rules that check the rest"
+                    ));
+                }
+                let checked = matches!(s.answer(), Coverage::Checked | Coverage::Partly);
+                let answers = usize::from(checked) + reasons.iter().filter(|r| r.is_some()).count();
                 if answers != 1 {
                     problems.push(format!(
                         "{at}: needs exactly one of `rules` (or `golden`), `out_of_scope` and `not_yet` (with its reason)"
@@ -302,6 +354,7 @@ impl SpecMap {
                 ));
             }
         }
+        problems.extend(self.section_problems());
         problems
     }
 
@@ -314,6 +367,11 @@ impl SpecMap {
             for s in &spec.statements {
                 let what = match s.coverage {
                     Coverage::Checked => format!("checked by {}", checked_by(s, "")),
+                    Coverage::Partly => format!(
+                        "partly checked by {}; unchecked: {}",
+                        checked_by(s, ""),
+                        s.partly.as_deref().unwrap_or("")
+                    ),
                     Coverage::OutOfScope => {
                         format!("out of scope: {}", s.out_of_scope.as_deref().unwrap_or(""))
                     }
@@ -333,10 +391,12 @@ impl SpecMap {
             "# The specifications, sentence by sentence\n\n\
              Generated by `refrast rules --spec --markdown` from `conformance/spec/*.toml`; \
              `cargo test` fails when it is out of date, when a rule maps to no statement, when a \
-             statement names a rule that does not exist, or when one gives no reason.\n\n\
+             statement names a rule that does not exist, when one gives no reason, or when a \
+             section of a pinned source (listed in `conformance/spec/sections/`) has no statement.\n\n\
              Each entry is a normative statement in refrast's own words, with the rules that check \
-             it, or why none does: *out of scope* (outside what the `Rasterizer` contract can \
-             express or observe) or *not yet* (within it, but unchecked). The course's entries are \
+             it, *partly* when they leave some of it unchecked (and what), or why none does: *out \
+             of scope* (outside what the `Rasterizer` contract can express or observe) or *not \
+             yet* (within it, but unchecked). The course's entries are \
              the seed labs' expected results, each with the golden test that reproduces it; \
              refrast's conventions are the rules that check a choice of refrast's rather than a \
              sentence of a specification.\n\n## Coverage\n\n",
@@ -349,6 +409,14 @@ impl SpecMap {
             if !spec.url.is_empty() {
                 let _ = write!(out, ", <{}>", spec.url);
             }
+            if !spec.sections.is_empty() {
+                let _ = write!(
+                    out,
+                    "\n\nEach of the {} sections listed in `{}` has a statement.",
+                    spec.sections.len(),
+                    sections::path(&spec.key)
+                );
+            }
             out.push_str("\n\n| statement | section | says | checked by |\n|---|---|---|---|\n");
             for s in &spec.statements {
                 let section = match spec.link(s).filter(|_| s.anchor.is_some()) {
@@ -357,6 +425,11 @@ impl SpecMap {
                 };
                 let by = match s.coverage {
                     Coverage::Checked => checked_by(s, "`"),
+                    Coverage::Partly => format!(
+                        "{}; *partly, unchecked:* {}",
+                        checked_by(s, "`"),
+                        s.partly.as_deref().unwrap_or("")
+                    ),
                     Coverage::OutOfScope => {
                         format!("*out of scope:* {}", s.out_of_scope.as_deref().unwrap_or(""))
                     }

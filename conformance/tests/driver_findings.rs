@@ -276,7 +276,10 @@ fn a_sliver_only_the_gl_rewrite_makes_requires_no_values() {
     );
     let drawn = Reference::default().rasterize(&scene.draw()).expect("draws");
     assert!(drawn.is_empty(), "empty in exact arithmetic: {drawn:?}");
-    assert!(robust::within_float_range(&scene), "the draw as sent stays within 2³²");
+    assert!(
+        robust::within_float_range(&scene),
+        "the draw as sent stays within 2³²"
+    );
     let mut received = Reference::default().profile();
     received.features.z_rewritten_in_f32 = true;
     assert!(
@@ -308,6 +311,60 @@ impl Rasterizer for Sliver {
             depth: 0.0,
             barycentric: [f32::NAN, f32::INFINITY, f32::INFINITY],
             screen_barycentric: Some([f32::NAN; 3]),
+            front_facing: true,
+        }])
+    }
+}
+
+/// softpipe's "flat triangle, weights summing to 0", re-read: on 32×32 the triangle projects
+/// to y = 4.5000004…4.5000005 (1.2·10⁻⁸ px², which f32 cannot resolve), and the sample of
+/// (24, 4), 4·10⁻⁷ px outside it, within the band where coverage is not judged, is drawn
+/// weighted (0, 0, 0) in one vertex order and otherwise in another. A sample covered there is
+/// covered as if an edge had moved by the band, and its weights are that other triangle's: no
+/// specification bounds them, so `meta.rotation.same-coverage` and `meta.reversal.flips-facing`
+/// compare weights only outside the band for a profile without exact coverage.
+#[test]
+fn weights_in_the_band_of_a_sliver_are_not_compared() {
+    use refrast_conformance::rules::meta;
+    let scene = Scene::new(
+        32,
+        32,
+        vec![
+            [0.053125, 0.071875, 0.0, 0.1],
+            [1.355_272_4, 2.509_384_9, 0.0, 3.491_318_2],
+            [0.050_903_32, 0.071875, 0.0, 0.1],
+        ],
+        vec![[0, 1, 2]],
+    );
+    let mut softpipe = Flat;
+    meta::check_rotation(&mut softpipe, &scene).expect("weights in the band are not compared");
+}
+
+/// softpipe's flat triangle: the sample of (24, 4), weighted (0, 0, 0) when vertex 0 comes
+/// first, (1/3, 1/3, 1/3) otherwise; softpipe's profile (no grid, no tie rule, 1/256 px band).
+struct Flat;
+
+impl Rasterizer for Flat {
+    fn profile(&self) -> Profile {
+        Profile {
+            name: "softpipe-like".into(),
+            snapping: Snapping::Float,
+            fill: None,
+            precision_bits: 7,
+            ..Reference::default().profile()
+        }
+    }
+
+    fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+        let first = draw.triangles.first().map_or(0, |t| t[0]);
+        let weight = if first == 0 { 0.0 } else { 1.0 / 3.0 };
+        Ok(vec![Fragment {
+            x: 24,
+            y: 4,
+            primitive: 0,
+            depth: 0.0,
+            barycentric: [weight; 3],
+            screen_barycentric: Some([weight; 3]),
             front_facing: true,
         }])
     }

@@ -193,8 +193,9 @@ fn a_point_drawn_pop_free_is_beyond_vulkan_not_a_failure() {
 }
 
 /// A student's float rasterizer through the pipe: vertices 0 and 1 project 3e-7 px on either side
-/// of the sample (3.5, 14.5), on neither; the rule demanded weight 1 for both at once. Without a
-/// grid a vertex is on a sample only where its exact projection is.
+/// of the sample (3.5, 14.5), on neither; the rule demanded weight 1 for both at once, where the
+/// exact weights are (0.809, 0.191, 0). Without a grid, a vertex that near is judged against the
+/// exact weights at the sample.
 #[test]
 fn a_vertex_a_hair_from_a_sample_is_not_on_it() {
     let scene = triangle(
@@ -205,11 +206,17 @@ fn a_vertex_a_hair_from_a_sample_is_not_on_it() {
             [-0.1, 0.1, 0.0, 0.1],
         ],
     );
-    let mut float = Declaring(Reference::default(), |p| {
-        p.snapping = Snapping::Float;
-        p.fill = None;
+    let mut student = ExactWeights(Reference::default());
+    bary::check_vertex_one(&mut student, &scene).expect("the exact weights at the sample");
+    let mut one = Altered(ExactWeights(Reference::default()), |f| {
+        if (f.x, f.y) == (3, 14) {
+            f.barycentric = [1.0, 0.0, 0.0];
+        }
     });
-    bary::check_vertex_one(&mut float, &scene).expect("no vertex lies exactly on the sample");
+    assert!(
+        bary::check_vertex_one(&mut one, &scene).is_err(),
+        "weight 1 is not exact there"
+    );
     // Exactly on a sample, a vertex still has weight 1.
     let on = triangle(
         16,
@@ -219,9 +226,45 @@ fn a_vertex_a_hair_from_a_sample_is_not_on_it() {
             [0.5, 0.5, 0.5, 1.0],
         ],
     );
-    bary::check_vertex_one(&mut float, &on).expect("exact");
+    bary::check_vertex_one(&mut student, &on).expect("exact");
     let mut off = Altered(Reference::default(), |f| f.barycentric = [0.9, 0.05, 0.05]);
     assert!(bary::check_vertex_one(&mut off, &on).is_err());
+}
+
+/// A float rasterizer as the student's: the reference's coverage, no grid declared, and the
+/// exact perspective-correct weights of the unsnapped triangle at each sample.
+struct ExactWeights(Reference);
+
+impl Rasterizer for ExactWeights {
+    fn profile(&self) -> Profile {
+        Profile {
+            snapping: Snapping::Float,
+            fill: None,
+            ..self.0.profile()
+        }
+    }
+
+    fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+        let (w, h) = (
+            f64::from(draw.viewport.width()),
+            f64::from(draw.viewport.height()),
+        );
+        let mut frags = self.0.rasterize(draw)?;
+        for f in &mut frags {
+            let v = draw.triangles[f.primitive as usize].map(|i| draw.positions[i as usize].map(f64::from));
+            let p = v.map(|c| [(c[0] / c[3] + 1.0) / 2.0 * w, (1.0 - c[1] / c[3]) / 2.0 * h]);
+            let s = [f64::from(f.x) + 0.5, f64::from(f.y) + 0.5];
+            let e = |a: [f64; 2], b: [f64; 2]| (b[0] - a[0]) * (s[1] - a[1]) - (b[1] - a[1]) * (s[0] - a[0]);
+            let q = [
+                e(p[1], p[2]) / v[0][3],
+                e(p[2], p[0]) / v[1][3],
+                e(p[0], p[1]) / v[2][3],
+            ];
+            let sum = q[0] + q[1] + q[2];
+            f.barycentric = q.map(|c| (c / sum) as f32);
+        }
+        Ok(frags)
+    }
 }
 
 /// A Skia-style scan converter (truncating to 26.6): a vertex shared by four triangles at
@@ -262,21 +305,6 @@ impl<R: Rasterizer> Rasterizer for Altered<R> {
         let mut fragments = self.0.rasterize(draw)?;
         fragments.iter_mut().for_each(self.1);
         Ok(fragments)
-    }
-}
-
-/// The inner rasterizer declaring a profile changed by `.1`.
-struct Declaring<R>(R, fn(&mut Profile));
-
-impl<R: Rasterizer> Rasterizer for Declaring<R> {
-    fn profile(&self) -> Profile {
-        let mut p = self.0.profile();
-        (self.1)(&mut p);
-        p
-    }
-
-    fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
-        self.0.rasterize(draw)
     }
 }
 

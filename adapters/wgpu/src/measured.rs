@@ -106,12 +106,12 @@ pub fn choose(spec: Spec, reported: Option<&Reported>, probes: &Probes) -> Measu
 /// What clipping does to points outside the viewport in x/y, with why: under Vulkan what the
 /// device reports (`pointClippingBehavior`; Vulkan 1.1 requires it, so a device that prints
 /// none is taken at the core's `ALL_CLIP_PLANES`), under OpenGL ES the specification's own
-/// rule (§12.4: a point is clipped by the near and far planes only).
+/// rule (§12.5: a point is clipped by the near and far planes only).
 fn point_clipping(spec: Spec, reported: Option<&Reported>) -> (PointClipping, String) {
     match (spec, reported.and_then(|r| r.point_clipping)) {
         (Spec::OpenGlEs, _) => (
             PointClipping::UserClipPlanesOnly,
-            "points clipped by the near and far planes only (OpenGL ES 3.2 §12.4)".to_owned(),
+            "points clipped by the near and far planes only (OpenGL ES 3.2 §12.5)".to_owned(),
         ),
         (_, Some(c)) => (c, format!("points {} (vulkaninfo)", c.name())),
         (_, None) => (

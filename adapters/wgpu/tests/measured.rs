@@ -10,7 +10,8 @@ use std::process::Command;
 use std::time::Instant;
 
 use refrast::{
-    FillConvention, LineRule, PrimitiveProfile, Rasterizer, SamplePattern, SnapAccuracy, Snapping,
+    FillConvention, LineRule, PointClipping, PrimitiveProfile, Rasterizer, SamplePattern, SnapAccuracy,
+    Snapping,
 };
 use refrast_wgpu::measured::{Measured, choose};
 use refrast_wgpu::{Driver, Gpu};
@@ -40,15 +41,18 @@ fn pinned(d: Driver) -> Option<Pinned> {
             multisample: SamplePattern::standard(4).into_iter().collect(),
             ..PrimitiveProfile::default()
         },
+        // OpenGL ES clips points by the near and far planes only (§12.5).
         Driver::Llvmpipe => PrimitiveProfile {
             lines: Some(LineRule::DiamondExit),
             points: true,
+            point_clipping: PointClipping::UserClipPlanesOnly,
             ..PrimitiveProfile::default()
         },
         Driver::Softpipe => PrimitiveProfile {
             lines: Some(LineRule::DiamondExit),
             points: true,
             point_snapping: Some(Snapping::Grid(1)),
+            point_clipping: PointClipping::UserClipPlanesOnly,
             ..PrimitiveProfile::default()
         },
     };

@@ -37,7 +37,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .d3d11(Level::NotCovered(NO_BARYCENTRICS))
             .run(|r, cfg| property(r, cfg, strategy::crossing_scene(), check_in_range)),
         Rule::invariant(Family::Bary, "bary.vertex.one")
-            .sentence("A covered sample exactly on a vertex has weight 1 for that vertex and 0 for the others (in either declared kind of barycentrics).")
+            .sentence("A covered sample exactly on a snapped vertex has weight 1 for that vertex and 0 for the others (in either declared kind of barycentrics); without a grid, a sample within 10^-3 px of a vertex has the exact weights there.")
             .source("Vulkan 1.4, Basic Polygon Rasterization (barycentric coordinates a = A(p p_b p_c)/A(p_a p_b p_c): 1 at p_a, 0 at the others)")
             .cases(10000)
             .needs(ANY_BARYCENTRICS)
@@ -250,51 +250,86 @@ pub fn check_in_range(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Viola
 /// A covered sample on a vertex has weight 1 there and 0 elsewhere, in each declared kind.
 pub fn check_vertex_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let profile = r.profile();
-    let eps = precision(&profile) as f32;
+    let eps = precision(&profile);
     let tri = scene.positions_of(0);
     let corners = scene.corners(0);
-    // A vertex is on a sample only exactly as the profile places it: on a grid, where every
-    // way the profile lets it snap puts it there (snapping within one step may move one a hair
-    // off the sample to the next grid point); without one, where its exact projection is the
-    // sample itself. A vertex a hair from the sample has a weight a hair from 1, which the
-    // claimed precision need not cover on a sliver (bary.perspective.matches-raycast judges it).
-    let on = |k: usize, x: u32, y: u32| match profile.snapping.grid_bits() {
+    let projected = tri.map(|v| project(scene.width, scene.height, v));
+    // On a grid, a vertex is on a sample exactly as the profile places it: where every way the
+    // profile lets it snap puts it there (snapping within one step may move one a hair off the
+    // sample to the next grid point); its weights there are (1, 0, 0) exactly, and never two
+    // vertices are on one sample (they would make a triangle with no area there).
+    let on_grid = |k: usize, x: u32, y: u32| match profile.snapping.grid_bits() {
         // A whole-pixel grid has no point on a sample centre (the rule is n/a there).
-        Some(0) => false,
+        Some(0) | None => false,
         Some(bits) => {
             let half = i128::from(1u32 << bits.min(16)) / 2;
             let sample = (i128::from(x) * 2 * half + half, i128::from(y) * 2 * half + half);
             snap_candidates(corners[k], scene.width, scene.height, &profile).is_some_and(|c| c == [sample])
         }
-        None => project(scene.width, scene.height, tri[k]) == sample_centre(x, y),
     };
-    // Never two vertices at once: two on one sample make a triangle with no area there.
-    let on_sample = |k: usize, x: u32, y: u32| on(k, x, y) && (0..3).filter(|&j| on(j, x, y)).count() == 1;
+    // Without a grid, a vertex within 1e-3 px of the sample is near enough to judge, against
+    // the exact weights at the sample (a vertex 3e-7 px off a sample on a sliver weighs 0.81
+    // there, not 1; two vertices may be that near at once).
+    let near = |k: usize, x: u32, y: u32| {
+        let (p, s) = (projected[k], sample_centre(x, y));
+        profile.snapping.grid_bits().is_none() && (p[0] - s[0]).abs() < 1e-3 && (p[1] - s[1]).abs() < 1e-3
+    };
     let mut found = Findings::new();
     let frags = fragments(r, scene)?;
     for kind in declared(&profile) {
         for f in &frags {
-            for k in 0..3 {
-                if on_sample(k, f.x, f.y) {
-                    // Missing or undefined ones are bary.sum.one's and bary.range.unit's to judge.
-                    let Weights::Judged(b) = weights(scene, f, kind) else {
-                        continue;
-                    };
-                    let ok = (0..3).all(|i| (b[i] - if i == k { 1.0 } else { 0.0 }).abs() <= eps);
-                    if !ok {
-                        found.add((f.x, f.y), || {
-                            format!(
-                                "{:?} lies on vertex {k} but has {} {b:?}",
-                                (f.x, f.y),
-                                kind.name()
-                            )
-                        });
-                    }
+            let s = sample_centre(f.x, f.y);
+            let want = if let Some(k) = (0..3).find(|&k| on_grid(k, f.x, f.y)) {
+                if (0..3).filter(|&j| on_grid(j, f.x, f.y)).count() > 1 {
+                    continue;
                 }
+                let mut unit = [0.0; 3];
+                unit[k] = 1.0;
+                unit
+            } else if (0..3).any(|k| near(k, f.x, f.y)) {
+                let Some(exact) = exact_weights(projected, tri.map(|v| v[3]), s, kind) else {
+                    continue;
+                };
+                exact
+            } else {
+                continue;
+            };
+            // Missing or undefined ones are bary.sum.one's and bary.range.unit's to judge.
+            let Weights::Judged(b) = weights(scene, f, kind) else {
+                continue;
+            };
+            if (0..3).any(|i| (f64::from(b[i]) - want[i]).abs() > eps) {
+                found.add((f.x, f.y), || {
+                    format!(
+                        "{:?} lies on a vertex, whose {} weights there are {want:?}, but has {b:?}",
+                        (f.x, f.y),
+                        kind.name()
+                    )
+                });
             }
         }
     }
     found.verdict(|n| format!("a vertex not weighted 1 at {} on it", plural(n, "sample")))
+}
+
+/// The exact barycentrics of kind `kind` at `s` in the triangle of projected vertices `p` with
+/// clip-space `w`s (all positive): screen-space ones from the projected triangle, perspective
+/// ones from those over `w`. `None` for a triangle with no area.
+fn exact_weights(p: [[f64; 2]; 3], w: [f64; 3], s: [f64; 2], kind: Kind) -> Option<[f64; 3]> {
+    let e = |a: [f64; 2], b: [f64; 2]| (b[0] - a[0]) * (s[1] - a[1]) - (b[1] - a[1]) * (s[0] - a[0]);
+    let area = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]);
+    if area == 0.0 || w.iter().any(|&w| w <= 0.0) {
+        return None;
+    }
+    let screen = [e(p[1], p[2]) / area, e(p[2], p[0]) / area, e(p[0], p[1]) / area];
+    Some(match kind {
+        Kind::Screen => screen,
+        Kind::Perspective => {
+            let q = [screen[0] / w[0], screen[1] / w[1], screen[2] / w[2]];
+            let sum = q[0] + q[1] + q[2];
+            q.map(|c| c / sum)
+        }
+    })
 }
 
 /// Perspective-correct barycentrics equal the ray cast's: of the snapped triangle, or for a

@@ -98,7 +98,7 @@ enum Outside {
 /// What a point outside the viewport in x/y must draw, for an implementation that claims
 /// `spec` and declares `clipping`; `cts` reads Vulkan as its conformance tests do (either).
 ///
-/// Declared `UserClipPlanesOnly`, and under OpenGL ES 3.2 (§12.4: a point is discarded only
+/// Declared `UserClipPlanesOnly`, and under OpenGL ES 3.2 (§12.5: a point is discarded only
 /// outside the near and far planes), it is kept. OpenGL 4.6 §13.7 lets an implementation keep
 /// it and D3D11.3 draws points as clipped quads (§3.4.6): either. Vulkan's text discards it
 /// under `ALL_CLIP_PLANES` (Primitive Clipping), as refrast does, but the CTS's own test of it

@@ -282,23 +282,30 @@ pub fn within_float_range(scene: &Scene) -> bool {
 
 /// [`within_float_range`] of the draw as an implementation with `profile` receives it: for one
 /// whose `z` arrives rewritten to `2z − w` in f32 ([`refrast::Features::z_rewritten_in_f32`]),
-/// the rewritten draw too, since that rounding may move a vertex across the near plane and
-/// leave a sliver at `w` far below 2^-32 where the exact volume leaves nothing.
+/// also no vertex that the rewrite's rounding moves across or onto the near plane, since that
+/// can leave a sliver at `w` far below 2^-32 where the exact volume leaves nothing.
 #[must_use]
 pub fn within_float_range_as_received(scene: &Scene, profile: &refrast::Profile) -> bool {
     exact_within_float_range(scene)
-        && (!profile.features.z_rewritten_in_f32 || exact_within_float_range(&gl_rewritten(scene)))
+        && (!profile.features.z_rewritten_in_f32
+            || scene
+                .positions
+                .iter()
+                .all(|&p| near_side_kept_by_rewrite(p, scene.state.depth_range)))
 }
 
-/// `scene` with every `z` rewritten to `fl(fl(2z) − w)` under the `−w ≤ z ≤ w` volume, as
-/// wgpu's OpenGL ES backend hands it to the driver.
-fn gl_rewritten(scene: &Scene) -> Scene {
-    let mut s = scene.clone();
-    for p in &mut s.positions {
-        p[2] = 2.0 * p[2] - p[3];
-    }
-    s.state.depth_range = refrast::DepthRange::NegativeOneToOne;
-    s
+/// Whether vertex `p` lies on the same side of the near plane (strictly inside, on it, or
+/// outside) after `z` is rewritten to `fl(fl(2z) − w)` under `−w ≤ z ≤ w`, as wgpu's OpenGL ES
+/// backend hands it to the driver, as before.
+fn near_side_kept_by_rewrite(p: [f32; 4], range: refrast::DepthRange) -> bool {
+    let [_, _, z, w] = p;
+    let (exact, rewritten) = match range {
+        // The rewrite's near distance `z' + w`, `z'` rounded to f32 once (2z is exact).
+        refrast::DepthRange::ZeroToOne => (f64::from(z), f64::from(2.0 * z - w) + f64::from(w)),
+        // Already in OpenGL's volume: nothing is rewritten.
+        refrast::DepthRange::NegativeOneToOne => return true,
+    };
+    exact.partial_cmp(&0.0) == rewritten.partial_cmp(&0.0)
 }
 
 fn exact_within_float_range(scene: &Scene) -> bool {

@@ -150,7 +150,7 @@ pub struct Profile {
 impl Profile {
     /// The tolerance band in pixels: never under one unit, because snapping to the nearest grid
     /// point alone moves an edge by up to √2/2 of a grid step; never under two where a vertex
-    /// may land on either neighbour ([`SnapAccuracy::WithinOneStep`]: up to √2 of a step).
+    /// may land on either neighbour ([`SnapAccuracy::WithinOneStep`](crate::SnapAccuracy::WithinOneStep): up to √2 of a step).
     #[must_use]
     pub fn band_px(&self) -> f64 {
         let least = self.features.snap.least_band();

@@ -317,12 +317,12 @@ impl Rasterizer for Sliver {
 }
 
 /// softpipe's "flat triangle, weights summing to 0", re-read: on 32×32 the triangle projects
-/// to y = 4.5000004…4.5000005 (1.2·10⁻⁸ px², which f32 cannot resolve), and the sample of
-/// (24, 4), 4·10⁻⁷ px outside it, within the band where coverage is not judged, is drawn
-/// weighted (0, 0, 0) in one vertex order and otherwise in another. A sample covered there is
-/// covered as if an edge had moved by the band, and its weights are that other triangle's: no
-/// specification bounds them, so `meta.rotation.same-coverage` and `meta.reversal.flips-facing`
-/// compare weights only outside the band for a profile without exact coverage.
+/// to y = 4.5000004…4.5000005 (1.2·10⁻⁸ px² across 2.3 px, which its 7 claimed bits cannot
+/// resolve), and the sample of (24, 4), 4·10⁻⁷ px outside it, within the band where coverage is
+/// not judged, is drawn weighted (0, 0, 0) in one vertex order and otherwise in another. Weights
+/// computed at a precision ε may be off by ε · extent² / area, here far more than their whole
+/// range, which no specification bounds: `meta.rotation.same-coverage` and
+/// `meta.reversal.flips-facing` compare weights only of triangles the claimed precision resolves.
 #[test]
 fn weights_in_the_band_of_a_sliver_are_not_compared() {
     use refrast_conformance::rules::meta;

@@ -45,8 +45,8 @@ const INNER_LAYERS: &[(&str, &[&[&str]])] = &[
     (
         "rules",
         &[
-            &["common", "level", "samples"],
-            &["cast", "mesh"],
+            &["common", "level", "samples", "reading"],
+            &["cast", "mesh", "weights"],
             &["fill"],
             &[
                 "bary",

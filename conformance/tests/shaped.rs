@@ -206,13 +206,14 @@ fn a_vertex_a_hair_from_a_sample_is_not_on_it() {
             [-0.1, 0.1, 0.0, 0.1],
         ],
     );
-    let mut student = ExactWeights(Reference::default());
+    let exact = exact_weights(&scene.draw(), 0, 3, 14);
+    assert!(
+        (exact[0] - 0.809).abs() < 1e-3 && (exact[1] - 0.191).abs() < 1e-3,
+        "{exact:?}"
+    );
+    let mut student = AtSample((3, 14), exact);
     bary::check_vertex_one(&mut student, &scene).expect("the exact weights at the sample");
-    let mut one = Altered(ExactWeights(Reference::default()), |f| {
-        if (f.x, f.y) == (3, 14) {
-            f.barycentric = [1.0, 0.0, 0.0];
-        }
-    });
+    let mut one = AtSample((3, 14), [1.0, 0.0, 0.0]);
     assert!(
         bary::check_vertex_one(&mut one, &scene).is_err(),
         "weight 1 is not exact there"
@@ -226,44 +227,53 @@ fn a_vertex_a_hair_from_a_sample_is_not_on_it() {
             [0.5, 0.5, 0.5, 1.0],
         ],
     );
-    bary::check_vertex_one(&mut student, &on).expect("exact");
-    let mut off = Altered(Reference::default(), |f| f.barycentric = [0.9, 0.05, 0.05]);
-    assert!(bary::check_vertex_one(&mut off, &on).is_err());
+    bary::check_vertex_one(&mut AtSample((3, 6), [1.0, 0.0, 0.0]), &on).expect("exact");
+    assert!(bary::check_vertex_one(&mut AtSample((3, 6), [0.9, 0.05, 0.05]), &on).is_err());
 }
 
-/// A float rasterizer as the student's: the reference's coverage, no grid declared, and the
-/// exact perspective-correct weights of the unsnapped triangle at each sample.
-struct ExactWeights(Reference);
+/// The exact perspective-correct weights of `draw`'s triangle `t`, unsnapped, at the sample of
+/// pixel `(x, y)`: what a float rasterizer with exact arithmetic gives.
+fn exact_weights(draw: &Draw, t: usize, x: u32, y: u32) -> [f32; 3] {
+    let (w, h) = (
+        f64::from(draw.viewport.width()),
+        f64::from(draw.viewport.height()),
+    );
+    let v = draw.triangles[t].map(|i| draw.positions[i as usize].map(f64::from));
+    let p = v.map(|c| [(c[0] / c[3] + 1.0) / 2.0 * w, (1.0 - c[1] / c[3]) / 2.0 * h]);
+    let s = [f64::from(x) + 0.5, f64::from(y) + 0.5];
+    let e = |a: [f64; 2], b: [f64; 2]| (b[0] - a[0]) * (s[1] - a[1]) - (b[1] - a[1]) * (s[0] - a[0]);
+    let q = [
+        e(p[1], p[2]) / v[0][3],
+        e(p[2], p[0]) / v[1][3],
+        e(p[0], p[1]) / v[2][3],
+    ];
+    let sum = q[0] + q[1] + q[2];
+    q.map(|c| (c / sum) as f32)
+}
 
-impl Rasterizer for ExactWeights {
+/// A float rasterizer (no grid, no tie rule, perspective weights only) that covers one sample,
+/// with the given weights: the student's, through the pipe.
+struct AtSample((u32, u32), [f32; 3]);
+
+impl Rasterizer for AtSample {
     fn profile(&self) -> Profile {
-        Profile {
-            snapping: Snapping::Float,
-            fill: None,
-            ..self.0.profile()
-        }
+        let mut p = Reference::default().profile();
+        p.snapping = Snapping::Float;
+        p.fill = None;
+        p.features.screen_barycentrics = false;
+        p
     }
 
-    fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
-        let (w, h) = (
-            f64::from(draw.viewport.width()),
-            f64::from(draw.viewport.height()),
-        );
-        let mut frags = self.0.rasterize(draw)?;
-        for f in &mut frags {
-            let v = draw.triangles[f.primitive as usize].map(|i| draw.positions[i as usize].map(f64::from));
-            let p = v.map(|c| [(c[0] / c[3] + 1.0) / 2.0 * w, (1.0 - c[1] / c[3]) / 2.0 * h]);
-            let s = [f64::from(f.x) + 0.5, f64::from(f.y) + 0.5];
-            let e = |a: [f64; 2], b: [f64; 2]| (b[0] - a[0]) * (s[1] - a[1]) - (b[1] - a[1]) * (s[0] - a[0]);
-            let q = [
-                e(p[1], p[2]) / v[0][3],
-                e(p[2], p[0]) / v[1][3],
-                e(p[0], p[1]) / v[2][3],
-            ];
-            let sum = q[0] + q[1] + q[2];
-            f.barycentric = q.map(|c| (c / sum) as f32);
-        }
-        Ok(frags)
+    fn rasterize(&mut self, _: &Draw) -> Result<Vec<Fragment>, DrawError> {
+        Ok(vec![Fragment {
+            x: self.0.0,
+            y: self.0.1,
+            primitive: 0,
+            depth: 0.0,
+            barycentric: self.1,
+            screen_barycentric: None,
+            front_facing: true,
+        }])
     }
 }
 

@@ -75,8 +75,8 @@ impl Turn {
 }
 
 /// The grid points an implementation with `profile` may snap a clip-space position to, per its
-/// snapping claims ([`SnapAccuracy::candidates`]): the nearest (both at an exact tie unless it
-/// rounds ties to even), either neighbour on each axis ([`SnapAccuracy::WithinOneStep`]), or
+/// snapping claims ([`SnapAccuracy::candidates`](refrast::SnapAccuracy::candidates)): the nearest (both at an exact tie unless it
+/// rounds ties to even), either neighbour on each axis ([`SnapAccuracy::WithinOneStep`](refrast::SnapAccuracy::WithinOneStep)), or
 /// the one floor or truncation gives; refrast's choice (nearest, half to even) first. `None` when the position does not project to a point [`on_grid`] or
 /// the profile has no grid.
 #[must_use]

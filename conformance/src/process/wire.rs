@@ -612,6 +612,61 @@ mod tests {
         parse_profile(&lines, "child", 1).map(|d| d.profile)
     }
 
+    /// Three NaN screen-barycentric words say "none" (a triangle with a vertex at w ≤ 0);
+    /// one NaN among finite words stays a value, which the rules judge.
+    #[test]
+    fn three_nan_screen_words_say_none() {
+        let record = |screen: [f32; 3]| {
+            let mut words: Vec<u32> = vec![1, 2, 0, 1];
+            words.extend([0.5f32, 1.0, 0.0, 0.0].map(f32::to_bits));
+            words.extend(screen.map(f32::to_bits));
+            words.push(0);
+            words.iter().flat_map(|w| w.to_le_bytes()).collect::<Vec<u8>>()
+        };
+        let none = fragment(&record([f32::NAN; 3]), true, 1).expect("a record");
+        assert_eq!(none.0.screen_barycentric, None);
+        let one = fragment(&record([f32::NAN, 0.5, 0.5]), true, 1).expect("a record");
+        assert!(one.0.screen_barycentric.is_some_and(|s| s[0].is_nan()));
+        let undeclared = fragment(&record([0.2, 0.3, 0.5]), false, 1).expect("a record");
+        assert_eq!(undeclared.0.screen_barycentric, None);
+        assert_eq!(
+            fragment(&record([0.2, 0.3, 0.5]), true, 1)
+                .expect("a record")
+                .0
+                .screen_barycentric,
+            Some([0.2, 0.3, 0.5])
+        );
+    }
+
+    /// `snap`, `clipping` and `point-clipping` read their words; a wrong one names the choices.
+    #[test]
+    fn the_new_profile_words_are_read() {
+        let p = parsed(&["snapping grid 6", "snap toward-zero", "clipping none"]).expect("a profile");
+        assert_eq!(p.features.snap, SnapAccuracy::TowardZero);
+        assert!(!p.features.clips_in_3d);
+        assert_eq!(
+            parsed(&["snap floor"]).expect("floor").features.snap,
+            SnapAccuracy::Floor
+        );
+        let why = parsed(&["clipping sometimes"]).expect_err("a bad word");
+        assert!(why.contains("homogeneous or none"), "{why}");
+        let why = parsed(&["snap truncate"]).expect_err("a bad word");
+        assert!(why.contains("toward-zero"), "{why}");
+        let lines: Vec<String> = [
+            "topology triangle-list point-list",
+            "point-clipping user-clip-planes-only",
+        ]
+        .iter()
+        .map(|&l| l.to_owned())
+        .collect();
+        let declared = parse_profile(&lines, "child", 2).expect("version 2");
+        assert_eq!(
+            declared.primitive_profile().point_clipping,
+            PointClipping::UserClipPlanesOnly
+        );
+        assert_eq!(parsed(&["spec opengles"]).expect("ES").spec, Spec::OpenGlEs);
+    }
+
     /// The guard band is a line with its reach, or the feature word alone for the reach the rule
     /// drew before it had a size; saying both is an error that names the fix.
     #[test]

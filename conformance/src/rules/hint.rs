@@ -11,31 +11,18 @@
 //! the difference it names undone), and must then pass. A guess that does not is worse than none.
 
 use refrast::{
-    DepthConvention, DepthRange, Draw, DrawError, FillConvention, Fragment, PrimitiveDraw, PrimitiveProfile,
-    Profile, Rasterizer, Resolved, SampleFragment, SampleResolved, SnapAccuracy, Snapping, Supported,
+    DepthConvention, DepthRange, FillConvention, Fragment, Profile, Rasterizer, SnapAccuracy, Snapping,
+    Supported,
 };
 
 use super::cast::{Expected, raycast_expectations, raycast_fragments};
 use super::common::{deep_sample, fragments, precision};
+use super::reading::{Read, Reading, other_range};
 use super::{Family, Rule};
 use crate::oracle::brute_force;
-use crate::oracle::facing::{Turn, snapped_variants, turn};
+use crate::oracle::facing::{Turn, snapped_variants};
 use crate::oracle::raster::{self, Point};
 use crate::scene::Scene;
-
-/// How the rasterizer reads under a hint: what it would declare (the case is fitted to that),
-/// or what difference it makes, undone.
-#[derive(Clone, Debug)]
-enum Reading {
-    /// It declares this profile instead.
-    Declares(Profile),
-    /// It drops triangles that turn this way: each is sent to it reversed, its weights put back.
-    Drops(Turn),
-    /// Its fragments' facing is inverted.
-    InvertedFacing,
-    /// Its perspective barycentrics go to vertex `order[k]` for weight `k`.
-    Permuted([usize; 3]),
-}
 
 /// A hint's text and the reading that must make the failing case pass.
 struct Suggestion {
@@ -89,103 +76,6 @@ pub fn diagnose(
         };
         verify(&mut read).then_some(suggestion.text)
     })
-}
-
-/// The rasterizer as a hint reads it ([`Reading`]).
-struct Read<'a> {
-    inner: &'a mut dyn Rasterizer,
-    reading: Reading,
-}
-
-impl Read<'_> {
-    /// The draw as the rasterizer is sent it under the reading, and which triangles were
-    /// reversed.
-    fn told(&self, draw: &Draw) -> (Draw, Vec<bool>) {
-        let mut told = draw.clone();
-        let mut reversed = vec![false; draw.triangles.len()];
-        if let Reading::Drops(lost) = self.reading {
-            let profile = self.inner.profile();
-            let (w, h) = (draw.viewport.width(), draw.viewport.height());
-            for (t, tri) in told.triangles.iter_mut().enumerate() {
-                let Some(corners) = tri
-                    .iter()
-                    .map(|&i| draw.positions.get(i as usize).copied())
-                    .collect::<Option<Vec<_>>>()
-                else {
-                    continue;
-                };
-                let corners = [corners[0], corners[1], corners[2]];
-                if turn(&corners, w, h, &draw.state, &profile) == lost {
-                    tri.swap(1, 2);
-                    reversed[t] = true;
-                }
-            }
-        }
-        (told, reversed)
-    }
-
-    /// A fragment as the reading undoes its difference.
-    fn undo(&self, f: &mut Fragment, reversed: &[bool]) {
-        match self.reading {
-            Reading::InvertedFacing => f.front_facing = !f.front_facing,
-            Reading::Permuted(order) => {
-                let b = f.barycentric;
-                for k in 0..3 {
-                    f.barycentric[order[k]] = b[k];
-                }
-            }
-            Reading::Drops(_) if reversed.get(f.primitive as usize) == Some(&true) => {
-                f.barycentric.swap(1, 2);
-                if let Some(s) = &mut f.screen_barycentric {
-                    s.swap(1, 2);
-                }
-            }
-            _ => {}
-        }
-    }
-}
-
-impl Rasterizer for Read<'_> {
-    fn profile(&self) -> Profile {
-        match &self.reading {
-            Reading::Declares(profile) => profile.clone(),
-            _ => self.inner.profile(),
-        }
-    }
-
-    fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
-        let (told, reversed) = self.told(draw);
-        let mut frags = self.inner.rasterize(&told)?;
-        frags.iter_mut().for_each(|f| self.undo(f, &reversed));
-        Ok(frags)
-    }
-
-    fn resolve(&mut self, draw: &Draw) -> Result<Resolved, DrawError> {
-        let (told, _) = self.told(draw);
-        self.inner.resolve(&told)
-    }
-
-    fn primitive_profile(&self) -> PrimitiveProfile {
-        self.inner.primitive_profile()
-    }
-
-    fn rasterize_primitives(&mut self, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> {
-        let mut frags = self.inner.rasterize_primitives(draw)?;
-        frags.iter_mut().for_each(|f| self.undo(&mut f.fragment, &[]));
-        Ok(frags)
-    }
-
-    fn resolve_primitives(&mut self, draw: &PrimitiveDraw) -> Result<SampleResolved, DrawError> {
-        self.inner.resolve_primitives(draw)
-    }
-}
-
-/// The other clip volume.
-fn other_range(range: DepthRange) -> DepthRange {
-    match range {
-        DepthRange::ZeroToOne => DepthRange::NegativeOneToOne,
-        DepthRange::NegativeOneToOne => DepthRange::ZeroToOne,
-    }
 }
 
 /// Every triangle of one winding that should draw is missing, each draws once reversed, and

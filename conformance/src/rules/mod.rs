@@ -13,9 +13,11 @@ pub mod mesh;
 pub mod meta;
 pub mod msaa;
 pub mod point;
+mod reading;
 pub mod robust;
 pub mod sample_depth;
 pub mod samples;
+mod weights;
 
 use std::fmt;
 

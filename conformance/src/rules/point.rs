@@ -167,7 +167,7 @@ pub fn check_square_exact(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Resu
 
 /// Each point covers the samples of the pixel holding it, the band around pixel edges aside;
 /// a point beyond the viewport (by more than the band) covers what its declared point clipping
-/// and claimed specification say ([`outside_xy`]).
+/// and claimed specification say (`outside_xy`).
 pub fn check_pixel_holding(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
     pixel_holding(r, case, false)
 }

@@ -154,7 +154,7 @@ fn on_plane(
 
 /// `resolve_primitives` equals the draw's sample fragments replayed through its depth test in
 /// primitive order, each with the depth the test must use: the triangle's own at that sample's
-/// position ([`DepthPlane`]), not the depth a fragment reports (Vulkan's FragCoord.z is free to
+/// position (its depth plane), not the depth a fragment reports (Vulkan's FragCoord.z is free to
 /// be the pixel centre's). Samples within the band of an edge are not judged (coverage there is
 /// the coverage rules' question), nor those where two depths the test compares are within
 /// their tolerance of each other (either may win).

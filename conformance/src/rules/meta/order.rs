@@ -33,10 +33,11 @@ fn compare_permuted(
     at_edges: bool,
 ) -> Result<(), Violation> {
     let Redrawn { map, flip, what } = how;
-    let exact = EXACT_COVERAGE
-        .check(profile, &PrimitiveProfile::triangles_only())
-        .is_ok();
-    if at_edges && exact {
+    if at_edges
+        && EXACT_COVERAGE
+            .check(profile, &PrimitiveProfile::triangles_only())
+            .is_ok()
+    {
         // With exact coverage the same edges give the same samples, whatever the vertex order.
         compare_sets(scene, other, base, what)?;
     } else {
@@ -68,14 +69,13 @@ fn compare_permuted(
     // A clipped triangle is drawn as a fan that starts at another vertex once rotated, and its
     // new vertices snap differently: only unclipped barycentrics must match. Each draw is within
     // the claimed precision of the exact values, so the two are within twice that of each other.
-    // Without exact coverage, a sample within the band is covered as if an edge had moved
-    // there, and its weights are those of that other triangle: on a sliver f32 cannot resolve
-    // (softpipe's, 1.2e-8 px² drawn at a sample 4e-7 px outside) any values at all, which no
-    // specification bounds; there they are not compared.
-    let band = profile.band_px() + translate::snap_slack(profile);
-    let judged = |f: &Fragment| exact || !translate::near_edge(scene, profile.snapping, f.x, f.y, band);
+    // On a triangle too thin for the claimed precision (its area below 2^-precision of its
+    // extent squared: softpipe's 1.2e-8 px² across 2.3 px), the weights two vertex orders give
+    // may differ by more than their whole range, which no specification bounds ("accurate to
+    // about 1 part in 10^5" per operation); there they are not compared.
     let p = scene.corners(0);
     let unclipped = raster::unclipped(&p, scene.state.depth_range, scene.state.clip_far);
+    let weighed = unclipped && profile.features.perspective_barycentrics && resolvable(scene, profile);
     // Fragment pairs by pixel (one triangle covers a pixel once), in row order.
     let by_pixel: HashMap<(u32, u32), &Fragment> = other.iter().map(|f| ((f.x, f.y), f)).collect();
     let mut base_sorted: Vec<&Fragment> = base.iter().collect();
@@ -94,7 +94,7 @@ fn compare_permuted(
         let moved_apart = map.iter().enumerate().any(|(k, &to)| {
             f64::from((a.barycentric[k] - b.barycentric[to]).abs()) > 2.0 * precision(profile)
         });
-        if unclipped && profile.features.perspective_barycentrics && moved_apart && judged(a) {
+        if weighed && moved_apart {
             weights.add((a.x, a.y), || {
                 format!(
                     "{:?} has {:?} then {:?}",
@@ -112,6 +112,21 @@ fn compare_permuted(
             plural(n, "fragment")
         )
     })
+}
+
+/// Whether triangle 0 of `scene`, as projected, is wide enough for the precision `profile`
+/// claims to give its weights meaning: its area at least `2^-precision` of its extent squared
+/// (the error of weights computed at that precision grows as extent² / area).
+fn resolvable(scene: &Scene, profile: &Profile) -> bool {
+    let p = scene
+        .positions_of(0)
+        .map(|v| raster::project(scene.width, scene.height, v));
+    let area =
+        ((p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0])).abs() / 2.0;
+    let extent = (0..3)
+        .map(|k| (p[k][0] - p[(k + 1) % 3][0]).hypot(p[k][1] - p[(k + 1) % 3][1]))
+        .fold(0.0, f64::max);
+    area >= precision(profile) * extent * extent
 }
 
 /// Rotating the vertex order keeps coverage and rotates barycentrics.

@@ -62,7 +62,10 @@ pub struct Fragment {
     pub depth: f32,
     /// Perspective-correct barycentrics of the sample in the input triangle.
     pub barycentric: [f32; 3],
-    /// Screen-space (affine) barycentrics, where the implementation can give them.
+    /// Screen-space (affine) barycentrics, where the implementation can give them. A profile
+    /// declaring them gives them for every triangle in front of the eye; for one with a vertex
+    /// at `w ≤ 0`, which has no shape on screen, `None` is an answer too, and values given are
+    /// judged for finiteness only (the reference gives none there).
     pub screen_barycentric: Option<[f32; 3]>,
     /// Whether the triangle faces the viewer under the draw's [`FrontFace`](crate::FrontFace).
     pub front_facing: bool,

@@ -112,31 +112,21 @@ pub(super) fn rules() -> Vec<Rule> {
             .cases(800)
             .needs(MULTISAMPLE_AREAS)
             .vulkan(Level::Partly {
-                part: |r, cfg| {
-                    property_declared(
-                        r,
-                        cfg,
-                        |_, d| {
-                            let scenes = if d.points { primitive::points().boxed() } else { primitive::lines().boxed() };
-                            primitive::multisampled_primitives(scenes, counts_of(d))
-                        },
-                        check_lines_points_as_cts,
-                    )
-                },
+                part: |r, cfg| property_declared(r, cfg, |_, d| areas(d), check_lines_points_as_cts),
                 note: super::point::POP_FREE,
             })
-            .run(|r, cfg| {
-                property_declared(
-                    r,
-                    cfg,
-                    |_, d| {
-                        let scenes = if d.points { primitive::points().boxed() } else { primitive::lines().boxed() };
-                        primitive::multisampled_primitives(scenes, counts_of(d))
-                    },
-                    check_lines_points,
-                )
-            }),
+            .run(|r, cfg| property_declared(r, cfg, |_, d| areas(d), check_lines_points)),
     ]
+}
+
+/// Points when the profile declares them, else lines, at each sample count above one it declares.
+fn areas(d: &refrast::PrimitiveProfile) -> impl Strategy<Value = PrimitiveScene> + use<> {
+    let scenes = if d.points {
+        primitive::points().boxed()
+    } else {
+        primitive::lines().boxed()
+    };
+    primitive::multisampled_primitives(scenes, counts_of(d))
 }
 
 /// Triangles on the grid at `w = 1`, inside a 16-px corner or anywhere near the viewport.

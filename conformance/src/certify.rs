@@ -1,79 +1,15 @@
 //! Certification: every applicable rule against one rasterizer, summed up as a report.
 
-use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Mutex, PoisonError};
 use std::thread;
-use std::time::{Duration, Instant};
 
 use refrast::Rasterizer;
 
-use crate::picture;
-use crate::report::{ProfileReport, Report, RuleReport, Status};
-use crate::rules::{Level, Rule, Run, catalogue, hint};
-use crate::runner::{Announce, DEFAULT_SEED, RunConfig, Verdict, guarded};
-
-/// How long one case may take by default: far more than any correct rasterizer needs for the
-/// suite's small scenes (a GPU through an API takes milliseconds), short enough that a hang
-/// costs a run little.
-pub const DEFAULT_CASE_TIMEOUT: Duration = Duration::from_secs(20);
-
-/// Cases of a failed rule a hint must pass, beside the failing one, before it is printed: one
-/// case can agree with a wrong reading by chance (a truncating rasterizer's small triangle with
-/// another tie rule's coverage), a hundred seldom do.
-const HINT_CASES: u32 = 100;
-
-/// What to run and where to write pictures.
-#[derive(Clone, Debug)]
-pub struct Options {
-    /// Cases per rule. `None` reads the `PROPTEST_CASES` environment variable (as proptest
-    /// itself does), and without it takes each rule's default: set `Some` to be independent of
-    /// the environment.
-    pub cases: Option<u32>,
-    /// Multiplies the cases per rule, whichever way they were chosen (for nightly runs at 10×).
-    pub scale: u32,
-    /// Seed of the case generator.
-    pub seed: u64,
-    /// Only rules whose ID matches one of these globs (`*` matches anything; no `*` means a
-    /// prefix); empty selects every rule.
-    pub rules: Vec<String>,
-    /// Only this part of the selected rules ([`Shard`]), for runs split across machines.
-    pub shard: Option<Shard>,
-    /// Where to write counterexample pictures; `None` writes none.
-    pub report_dir: Option<PathBuf>,
-    /// Called with every input before it is checked ([`RunConfig::announce`]).
-    pub announce: Option<Announce>,
-    /// How long one case may take before a rule run in a child process ([`crate::isolate`])
-    /// fails as hung.
-    pub case_timeout: Duration,
-    /// Wall time per rule after which no new case starts ([`RunConfig::budget`]); `None` runs
-    /// every case.
-    pub budget: Option<Duration>,
-    /// Stop at the first rule that fails: the rules after it are not run and are listed in
-    /// [`Report::not_run`] (for a quick answer, and for mutation testing).
-    pub fail_fast: bool,
-    /// The most data, in bytes, each rule's child process (and a `--exec` child) may allocate
-    /// ([`crate::contain`]); `None` sets no limit.
-    pub memory_limit: Option<u64>,
-}
-
-impl Default for Options {
-    fn default() -> Self {
-        Self {
-            cases: None,
-            scale: 1,
-            seed: DEFAULT_SEED,
-            rules: Vec::new(),
-            shard: None,
-            report_dir: None,
-            announce: None,
-            case_timeout: DEFAULT_CASE_TIMEOUT,
-            budget: None,
-            fail_fast: false,
-            memory_limit: Some(crate::contain::DEFAULT_MEMORY_LIMIT),
-        }
-    }
-}
+use crate::judge::{Options, run_rule};
+use crate::report::{ProfileReport, Report, RuleReport};
+use crate::rules::{Rule, catalogue};
+use crate::runner::guarded;
 
 /// Whether a rule ID matches a `--rule` pattern: a glob with `*`, or a prefix when there is none.
 #[must_use]
@@ -105,171 +41,6 @@ pub fn matches_glob(pattern: &str, id: &str) -> bool {
         }
     }
     true
-}
-
-/// Cases for a rule: the option, else `PROPTEST_CASES`, else the rule's default; times the scale.
-#[must_use]
-pub fn cases_for(rule: &Rule, options: &Options) -> u32 {
-    options
-        .cases
-        .or_else(|| std::env::var("PROPTEST_CASES").ok().and_then(|c| c.parse().ok()))
-        .unwrap_or(rule.default_cases)
-        .saturating_mul(options.scale.max(1))
-}
-
-/// Runs one rule against `rasterizer` and reports it, writing a picture on failure.
-pub fn run_rule(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options) -> RuleReport {
-    let start = Instant::now();
-    let mut report = judge(rule, rasterizer, options);
-    report.seconds = start.elapsed().as_secs_f64();
-    report
-}
-
-/// [`run_rule`] without the clock.
-fn judge(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options) -> RuleReport {
-    let profile = guarded(|| rasterizer.profile());
-    let mut report = RuleReport {
-        id: rule.id.to_owned(),
-        family: rule.family,
-        kind: rule.kind,
-        status: Status::Pass,
-        cases: 0,
-        planned: 0,
-        budget_spent: false,
-        seed: options.seed,
-        tolerance_subpixels: profile.as_ref().map_or(1, |p| p.tolerance_subpixels.max(1)),
-        message: None,
-        details: Vec::new(),
-        counts: None,
-        spec_note: None,
-        hint: None,
-        counterexample: None,
-        picture: None,
-        seconds: 0.0,
-    };
-    let profile = match profile {
-        Ok(profile) => profile,
-        Err(what) => {
-            report.status = Status::Crash;
-            report.message = Some(format!("profile() panicked: {what}"));
-            return report;
-        }
-    };
-    let primitives = match guarded(|| rasterizer.primitive_profile()) {
-        Ok(primitives) => primitives,
-        Err(what) => {
-            report.status = Status::Crash;
-            report.message = Some(format!("primitive_profile() panicked: {what}"));
-            return report;
-        }
-    };
-    if let Err(reason) = rule.applies(&profile, &primitives) {
-        report.status = Status::NotApplicable;
-        report.message = Some(reason.to_owned());
-        return report;
-    }
-    let cfg = RunConfig {
-        cases: cases_for(rule, options),
-        seed: options.seed,
-        announce: options.announce,
-        budget: options.budget,
-        orient: !rule.keeps_winding,
-    };
-    report.planned = cfg.cases;
-    // What the claimed specification requires runs first where it requires only part of the
-    // rule: a failure there is a failure; one only the whole rule finds is beyond it.
-    let level = rule.levels.of(profile.spec);
-    // What the required part ran, said with a failure beyond it (its cases are not the rule's).
-    let mut required_part = None;
-    let (verdict, beyond) = match level {
-        Level::Required => ((rule.run)(rasterizer, &cfg), false),
-        Level::Partly { part, .. } => match part(rasterizer, &cfg) {
-            failed @ Verdict::Fail { .. } => (failed, false),
-            Verdict::Pass { cases, budget_spent } => {
-                required_part = Some(if budget_spent {
-                    format!("; the required part passed {cases} cases before the time budget ran out")
-                } else {
-                    format!("; the required part passed all {cases} cases")
-                });
-                ((rule.run)(rasterizer, &cfg), true)
-            }
-        },
-        Level::Undefined(_) | Level::NotCovered(_) => ((rule.run)(rasterizer, &cfg), true),
-    };
-    match verdict {
-        Verdict::Pass { cases, budget_spent } => {
-            report.cases = cases;
-            report.budget_spent = budget_spent;
-        }
-        Verdict::Fail {
-            cases,
-            counterexample,
-            violation,
-            scene,
-            replay,
-        } => {
-            report.cases = cases;
-            // A crash, a hang or a flake is what it is under every specification.
-            report.status = violation.status;
-            if beyond
-                && violation.status == Status::Fail
-                && let Some(note) = level.note()
-            {
-                report.status = Status::BeyondSpec;
-                report.spec_note = Some(format!(
-                    "not required by {}: {note}{}",
-                    profile.spec.title(),
-                    required_part.unwrap_or_default()
-                ));
-            }
-            // The property that failed: the required part's, or the whole rule's.
-            let failed: Run = match level {
-                Level::Partly { part, .. } if !beyond => part,
-                _ => rule.run,
-            };
-            let mut verify = |r: &mut dyn Rasterizer| {
-                let more = RunConfig {
-                    cases: cfg.cases.min(HINT_CASES),
-                    announce: None,
-                    ..cfg
-                };
-                replay.as_ref().is_some_and(|replay| replay.run(r).is_ok())
-                    && matches!(failed(r, &more), Verdict::Pass { .. })
-            };
-            report.hint = scene.and_then(|s| {
-                guarded(|| hint::diagnose(rasterizer, rule, &s, &mut verify))
-                    .ok()
-                    .flatten()
-            });
-            report.message = Some(violation.to_string());
-            report.details = violation.details.clone();
-            report.counts = violation.counts.as_deref().copied();
-            report.counterexample = Some(counterexample);
-            if let (Some(dir), Some(pic)) = (&options.report_dir, &violation.picture) {
-                let mut caption = vec![format!("{} on {}: {violation}", rule.id, profile.name)];
-                caption.extend(violation.details.iter().skip(1).cloned());
-                report.picture = write_picture(dir, &profile.name, rule.id, pic, &caption);
-            }
-        }
-    }
-    report
-}
-
-fn write_picture(
-    dir: &Path,
-    implementation: &str,
-    id: &str,
-    pic: &crate::violation::Picture,
-    caption: &[String],
-) -> Option<PathBuf> {
-    let safe: String = implementation
-        .chars()
-        .map(|c| if c.is_alphanumeric() || c == '-' { c } else { '_' })
-        .collect();
-    let path = dir.join(format!("{safe}__{id}.png"));
-    std::fs::create_dir_all(dir).ok()?;
-    picture::save(pic, caption, &path).ok()?;
-    Some(path)
 }
 
 /// Certifies `rasterizer` against every rule selected by `options`, calling `progress` after each.
@@ -351,41 +122,6 @@ pub fn refusal(rasterizer: &dyn Rasterizer) -> Option<String> {
         .judgeable()
         .err()
         .map(|why| format!("{why}; nothing was run"))
-}
-
-/// Part `index` of `count` (1-based, as `--shard 2/3` says): every `count`-th of the selected
-/// rules in catalogue order, starting at the `index`-th, so that the parts are disjoint, cover
-/// every rule, and do not depend on anything but the selection.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-pub struct Shard {
-    /// Which part, from 1.
-    pub index: u32,
-    /// How many parts.
-    pub count: u32,
-}
-
-impl std::str::FromStr for Shard {
-    type Err = String;
-
-    /// `I/N` with 1 ≤ I ≤ N.
-    fn from_str(text: &str) -> Result<Self, String> {
-        let bad = || format!("'{text}' is not a shard; give I/N with 1 <= I <= N, e.g. 2/3");
-        let (i, n) = text.split_once('/').ok_or_else(bad)?;
-        let (index, count) = (
-            i.trim().parse().map_err(|_| bad())?,
-            n.trim().parse().map_err(|_| bad())?,
-        );
-        if index == 0 || index > count {
-            return Err(bad());
-        }
-        Ok(Self { index, count })
-    }
-}
-
-impl std::fmt::Display for Shard {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}/{}", self.index, self.count)
-    }
 }
 
 /// The rules `options` selects, in catalogue order: those matching any of its patterns (all

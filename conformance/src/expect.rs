@@ -13,7 +13,8 @@
 
 use std::fmt;
 
-use crate::certify::{Options, matches_glob};
+use crate::certify::matches_glob;
+use crate::judge::Options;
 use crate::report::{Report, Status};
 use crate::rules::catalogue;
 

@@ -21,8 +21,8 @@ use std::time::Duration;
 use libtest_mimic::{Arguments, Completion, Failed, Trial};
 use refrast::Rasterizer;
 
-use crate::certify::{DEFAULT_CASE_TIMEOUT, Options, run_rule};
 use crate::isolate::{Outcome, run_rule_isolated, serve_rule};
+use crate::judge::{DEFAULT_CASE_TIMEOUT, Options, run_rule};
 use crate::report::{RuleReport, Status};
 use crate::rules::catalogue;
 use crate::runner::{DEFAULT_SEED, guarded};

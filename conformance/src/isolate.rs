@@ -23,8 +23,9 @@ use std::time::{Duration, Instant};
 use refrast::{Rasterizer, Unavailable};
 use serde::{Deserialize, Serialize};
 
-use crate::certify::{Options, cases_for, refusal, run_rule, run_selected_jobs};
+use crate::certify::{refusal, run_selected_jobs};
 use crate::contain::{Contained, memory_note};
+use crate::judge::{Options, cases_for, run_rule};
 use crate::process::{Tail, for_each_line, status_words};
 use crate::report::{ProfileReport, Report, RuleReport, Status};
 use crate::rules::{Rule, catalogue};
@@ -182,23 +183,8 @@ enum Stop {
 /// A report of `rule` with nothing run yet.
 fn blank(rule: &Rule, options: &Options, tolerance_subpixels: u32) -> RuleReport {
     RuleReport {
-        id: rule.id.to_owned(),
-        family: rule.family,
-        kind: rule.kind,
-        status: Status::Pass,
-        cases: 0,
         planned: cases_for(rule, options),
-        budget_spent: false,
-        seed: options.seed,
-        tolerance_subpixels,
-        message: None,
-        details: Vec::new(),
-        counts: None,
-        spec_note: None,
-        hint: None,
-        counterexample: None,
-        picture: None,
-        seconds: 0.0,
+        ..RuleReport::new(rule, options.seed, tolerance_subpixels)
     }
 }
 

@@ -6,7 +6,7 @@
 //! |---|---|---|
 //! | 0 | `status`, [`contain`] | [`Status`]: pass, fail, crash, timeout, flake, beyond-spec, n/a; child processes in a process group of their own, under a memory limit |
 //! | 1 | [`oracle`] | the conventions' geometry ([`oracle::raster`]), brute force (i128 `orient2d`), ray casting (f64 with exact fallback, clip space), visible outlines, lines, points and samples ([`oracle::segment`]); no code shared with the reference |
-//! | 2 | `scene` | [`Scene`]: a draw whose `Debug` is pasteable Rust; [`Case`]: what a rule's input is |
+//! | 2 | `scene` | [`Scene`]: a draw whose `Debug` is pasteable Rust; [`Case`]: what a rule's input is; [`CaseData`]: an input as data, the draw in the pipe protocol's words |
 //! | 3 | `violation` | [`Violation`], [`Counts`], [`Expect`], [`Picture`] |
 //! | 4 | [`picture`] | the zoomed sample grid: missing purple, unexpected red, double blue, don't-care yellow; outlines |
 //! | 4½ | [`primitives`] | [`PrimitiveScene`]: a scene drawn as lines or points, or at several samples per pixel |
@@ -14,9 +14,10 @@
 //! | 6 | `runner` | [`property`]: one rule's property, seeded, shrunk, panics caught |
 //! | 7 | [`rules`] | [`catalogue`], [`Rule`], [`Family`], [`Kind`], [`Need`]: nine families, each rule a proptest property |
 //! | 8 | `report`, [`spec`] | [`Report`], [`RuleReport`], [`Status`], [`ProfileReport`]; [`SpecMap`]: each normative statement of Vulkan, D3D11.3, OpenGL and OpenGL ES, the seeds' results and refrast's conventions, with the rules that check it |
-//! | 9 | `certify` | [`certify`], [`Options`] |
-//! | 10 | [`isolate`], [`expect`] | rules in child processes: a hang is a `timeout`, an abort or a crash a `crash` of the rule it was running; expectation files |
-//! | 11 | `harness`, [`fuzz`] | [`run_as_tests`]: one test per rule in your own crate; the cargo-fuzz targets as functions on any rasterizer |
+//! | 9 | `judge` | [`run_rule`], [`replay`], [`Options`]: one rule on one rasterizer, its verdict read under the claimed specification, a hint, a picture, the case as data |
+//! | 10 | `certify` | [`certify`]: the selected rules, in order or on several workers |
+//! | 11 | [`isolate`], [`expect`] | rules in child processes: a hang is a `timeout`, an abort or a crash a `crash` of the rule it was running; expectation files |
+//! | 12 | `harness`, [`fuzz`] | [`run_as_tests`]: one test per rule in your own crate; the cargo-fuzz targets as functions on any rasterizer |
 //! | — | `named` | [`Named`]: the reference under another name and configuration |
 //! | — | [`restricted`] | the reference restricted to one setting or a few, declaring and using only those (refrast only) |
 //! | — | [`shaped`] | the reference shaped like the rasterizers that exposed false verdicts: a GPU, a 2D scan converter (uses `oracle::raster`) |
@@ -37,6 +38,7 @@ pub mod expect;
 pub mod fuzz;
 mod harness;
 pub mod isolate;
+mod judge;
 mod named;
 pub mod oracle;
 pub mod picture;
@@ -53,21 +55,19 @@ mod status;
 pub mod strategy;
 mod violation;
 
-pub use certify::{
-    DEFAULT_CASE_TIMEOUT, Options, Shard, cases_for, certify, certify_with, matches, matches_glob, refusal,
-    run_rule, selected,
-};
+pub use certify::{certify, certify_with, matches, matches_glob, refusal, selected};
 pub use harness::{failure_text, run_as_tests};
+pub use judge::{DEFAULT_CASE_TIMEOUT, Options, Shard, cases_for, replay, run_rule};
 pub use named::Named;
 pub use primitives::PrimitiveScene;
 pub use process::{Process, ProcessError};
-pub use report::{ProfileReport, Report, RuleReport, Status, feature_list, fill_name};
+pub use report::{CaseFile, Part, ProfileReport, Report, RuleReport, Status, feature_list, fill_name};
 pub use rules::meta::Translated;
 pub use rules::robust::Poisoned;
 pub use rules::{
     Family, Kind, Level, Levels, Need, Rule, RuleDraft, catalogue, levels_markdown, markdown_table, needs,
 };
 pub use runner::{DEFAULT_SEED, Replay, RunConfig, Verdict, property, property_declared, property_for};
-pub use scene::{Case, Scene, clip_of};
+pub use scene::{Case, CaseData, Coordinate, DrawData, Poison, Scene, clip_of};
 pub use spec::{Coverage, SpecMap, Statement, spec_map};
 pub use violation::{Class, Counts, Expect, Findings, Picture, Violation, compare_coverage, count_fragments};

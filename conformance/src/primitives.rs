@@ -5,7 +5,7 @@ use std::fmt;
 
 use refrast::{PrimitiveDraw, Topology};
 
-use crate::scene::{Case, Scene};
+use crate::scene::{Case, CaseData, DrawData, Scene};
 
 /// A scene drawn as `topology` at `samples` samples per pixel.
 ///
@@ -186,6 +186,26 @@ impl Case for PrimitiveScene {
 
     fn scene_mut(&mut self) -> &mut Scene {
         &mut self.scene
+    }
+
+    fn data(&self) -> CaseData {
+        CaseData::of_draw(DrawData::new(
+            &self.scene,
+            self.topology,
+            self.all_indices(),
+            self.samples,
+        ))
+    }
+
+    fn from_data(data: &CaseData) -> Result<Self, String> {
+        data.only_draw()?;
+        let (scene, topology, indices, samples) = data.draw.scene()?;
+        Ok(Self {
+            scene,
+            topology,
+            indices,
+            samples,
+        })
     }
 }
 

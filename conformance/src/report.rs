@@ -10,8 +10,9 @@ use refrast::{
 use serde::{Deserialize, Serialize};
 
 use crate::process::wire::{FAR_CLIPPING, Word, depth_word};
-use crate::rules::{Family, Kind};
+use crate::rules::{Family, Kind, Rule};
 use crate::runner::guarded;
+use crate::scene::CaseData;
 pub use crate::status::Status;
 use crate::violation::Counts;
 
@@ -55,12 +56,81 @@ pub struct RuleReport {
     pub hint: Option<String>,
     /// The shrunk failing input, as Rust.
     pub counterexample: Option<String>,
+    /// Why shrinking stopped before the counterexample was as small as it could be (the time
+    /// budget ran out, or the step limit); `None` when it is minimal.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shrinking_cut: Option<String>,
+    /// The shrunk failing input as data, in the form `refrast replay` reads.
+    #[serde(default, skip_serializing_if = "Option::is_none", rename = "case")]
+    pub case_file: Option<CaseFile>,
+    /// Where that case was written, if it was.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub case_path: Option<PathBuf>,
     /// The counterexample picture, if one was written.
     pub picture: Option<PathBuf>,
     /// Seconds the rule took where it ran (in its child process, for an isolated rule; from the
     /// parent's side when the child died without a report).
     #[serde(default)]
     pub seconds: f64,
+}
+
+impl RuleReport {
+    /// The report of `rule` before it runs: a pass of no case, with the `seed` and the band
+    /// (in grid steps) it runs under.
+    #[must_use]
+    pub fn new(rule: &Rule, seed: u64, tolerance_subpixels: u32) -> Self {
+        Self {
+            id: rule.id.to_owned(),
+            family: rule.family,
+            kind: rule.kind,
+            status: Status::Pass,
+            cases: 0,
+            planned: 0,
+            budget_spent: false,
+            seed,
+            tolerance_subpixels,
+            message: None,
+            details: Vec::new(),
+            counts: None,
+            spec_note: None,
+            hint: None,
+            counterexample: None,
+            shrinking_cut: None,
+            case_file: None,
+            case_path: None,
+            picture: None,
+            seconds: 0.0,
+        }
+    }
+}
+
+/// A counterexample as data: what `refrast replay` reads and a report's `case` holds
+/// (docs/json.md).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub struct CaseFile {
+    /// The rule it fails.
+    pub rule: String,
+    /// Which of the rule's properties failed on it.
+    pub part: Part,
+    /// The implementation it failed on, as its profile names it (for the reader).
+    #[serde(default)]
+    pub implementation: String,
+    /// The seed of the run that found it (for the reader).
+    #[serde(default)]
+    pub seed: u64,
+    /// The case: the draw in the pipe protocol's words, and what the rule does beside it.
+    pub case: CaseData,
+}
+
+/// Which property of a rule a case failed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Part {
+    /// The whole rule.
+    Rule,
+    /// The part of it that the claimed specification requires (docs/levels.md).
+    Required,
 }
 
 /// The profile as the report prints it.

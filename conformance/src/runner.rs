@@ -11,7 +11,7 @@ use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestError, Test
 use refrast::{PrimitiveProfile, Profile, Rasterizer};
 
 use crate::picture;
-use crate::scene::{Case, Scene};
+use crate::scene::{Case, CaseData, Scene};
 use crate::status::Status;
 use crate::violation::{Picture, Violation};
 
@@ -22,8 +22,13 @@ pub const DEFAULT_SEED: u64 = 0x5eed_2026_0001;
 /// name the case a rasterizer hung or crashed on.
 pub type Announce = fn(&dyn Debug);
 
+/// Shrinking steps after the first failure: each one runs a smaller case, so a slow rasterizer
+/// behind a pipe would otherwise shrink for minutes; past it the counterexample is said to be
+/// possibly not minimal.
+const SHRINK_STEPS: u32 = 2048;
+
 /// How many cases to try and from which seed.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct RunConfig {
     /// Random cases to generate (shrinking comes on top).
     pub cases: u32,
@@ -37,6 +42,9 @@ pub struct RunConfig {
     /// Turn the triangles a restricted cull mode would discard to face front before drawing
     /// ([`Scene::orient_to_face_front`]); off for the rules about facing and culling themselves.
     pub orient: bool,
+    /// Check this one case instead of generating any (`refrast replay`): the data of a case a
+    /// failure reported, fitted to the rasterizer as generated cases are.
+    pub replay: Option<Arc<CaseData>>,
 }
 
 /// How a property run ended.
@@ -49,12 +57,17 @@ pub enum Verdict {
         /// Whether the budget ran out before every case was tried.
         budget_spent: bool,
     },
-    /// A case failed: the shrunk input as Rust and why it failed.
+    /// A case failed: the shrunk input as Rust and as data, and why it failed.
     Fail {
         /// Cases tried, the failing one included.
         cases: u32,
         /// The minimal failing input, printed as Rust.
         counterexample: String,
+        /// The minimal failing input as data, to replay in any language (none when no case ran).
+        case: Option<Box<CaseData>>,
+        /// Why shrinking stopped before the input was as small as it could be (the time
+        /// budget, or [`SHRINK_STEPS`]); `None` when it is minimal.
+        shrinking_cut: Option<String>,
         /// Why it fails.
         violation: Violation,
         /// The scene the minimal input draws (none when no case ran).
@@ -63,6 +76,8 @@ pub enum Verdict {
         /// case ran): a hint is printed only if the case passes under what it suggests.
         replay: Option<Replay>,
     },
+    /// The case to replay ([`RunConfig::replay`]) is not an input of this property: why.
+    Unreadable(String),
 }
 
 /// A failing case's check, bound to its input: run on a rasterizer, it says whether that
@@ -147,34 +162,43 @@ where
     T: Debug + Clone + Case + Send + Sync + 'static,
     S: Strategy<Value = T>,
 {
-    let deadline = cfg.budget.map(|b| Instant::now() + b);
-    let spent = || deadline.is_some_and(|d| Instant::now() >= d);
-    let config = Config {
-        cases: cfg.cases,
-        failure_persistence: None,
-        max_shrink_iters: 2048,
-        // No rule rejects a case, so a reject means the budget is spent: stop at the first.
-        max_global_rejects: 0,
-        // Shrinking gets the budget as a whole too (0 means no limit).
-        max_shrink_time: cfg
-            .budget
-            .map_or(0, |b| u32::try_from(b.as_millis()).unwrap_or(u32::MAX).max(1)),
-        ..Config::default()
-    };
     // Every case asks only for draw states the rasterizer declares it supports, needs no 3D
     // clipping of one that does none, and under a cull mode it cannot switch off, draws its
     // triangles facing front.
     let (profile, primitives) = match guarded(|| (rasterizer.profile(), rasterizer.primitive_profile())) {
         Ok(declared) => declared,
         Err(what) => {
-            return Verdict::Fail {
-                cases: 0,
-                counterexample: String::new(),
-                violation: Violation::new(format!("profile() or primitive_profile() panicked: {what}")),
-                scene: None,
-                replay: None,
-            };
+            let violation = Violation::new(format!("profile() or primitive_profile() panicked: {what}"));
+            return failed_without_case(0, violation);
         }
+    };
+    if let Some(data) = &cfg.replay {
+        return match T::from_data(data) {
+            Ok(mut input) => {
+                fit(input.scene_mut(), &profile, cfg.orient);
+                match run_announced(rasterizer, check, &input, cfg.announce) {
+                    Ok(()) => Verdict::Pass {
+                        cases: 1,
+                        budget_spent: false,
+                    },
+                    Err(violation) => failure(rasterizer, check, input, violation, 1, None, cfg.orient),
+                }
+            }
+            Err(why) => Verdict::Unreadable(why),
+        };
+    }
+    let deadline = cfg.budget.map(|b| Instant::now() + b);
+    let spent = || deadline.is_some_and(|d| Instant::now() >= d);
+    let config = Config {
+        cases: cfg.cases,
+        failure_persistence: None,
+        // Shrinking is bounded here, by SHRINK_STEPS and the budget, not by proptest, which
+        // would print its own notice on stderr: both limits are effectively off.
+        max_shrink_iters: u32::MAX - 1,
+        max_shrink_time: 0,
+        // No rule rejects a case, so a reject means the budget is spent: stop at the first.
+        max_global_rejects: 0,
+        ..Config::default()
     };
     let orient = cfg.orient;
     let strategy = strategy_for(&profile, &primitives).prop_map(move |mut input| {
@@ -188,16 +212,21 @@ where
     // Cases tried before the first failure; shrinking comes after and is not counted.
     let tried = Cell::new(0u32);
     let failed = Cell::new(false);
+    let shrink_steps = Cell::new(0u32);
+    // Why shrinking stopped early, if it did.
+    let cut: RefCell<Option<String>> = RefCell::new(None);
     let result = runner.run(&strategy, |input| {
-        if spent() {
-            // Before a failure: stop generating cases. While shrinking: keep what failed last.
-            return if failed.get() {
-                Ok(())
-            } else {
-                Err(TestCaseError::reject("the time budget is spent"))
-            };
-        }
-        if !failed.get() {
+        if failed.get() {
+            // While shrinking: past the limits, keep what failed last.
+            if let Some(why) = shrink_limit(spent(), shrink_steps.get()) {
+                cut.borrow_mut().get_or_insert(why);
+                return Ok(());
+            }
+            shrink_steps.set(shrink_steps.get() + 1);
+        } else if spent() {
+            // Before a failure: stop generating cases.
+            return Err(TestCaseError::reject("the time budget is spent"));
+        } else {
             tried.set(tried.get() + 1);
         }
         let mut r = cell.borrow_mut();
@@ -217,9 +246,9 @@ where
         },
         Err(TestError::Fail(reason, input)) => {
             let mut r = cell.borrow_mut();
-            let input = reduce(&mut **r, check, input, announce, &spent);
+            let input = reduce(&mut **r, check, input, announce, &spent, &cut);
             // The shrunk case is replayed once more: one that passes now was a flake.
-            let mut violation = run_announced(&mut **r, check, &input, announce)
+            let violation = run_announced(&mut **r, check, &input, announce)
                 .err()
                 .unwrap_or_else(|| Violation {
                     status: Status::Flake,
@@ -228,28 +257,63 @@ where
                          another answer; is the rasterizer deterministic?)"
                     ))
                 });
-            if violation.picture.is_none() {
-                violation.picture = Some(Box::new(coverage_picture(
-                    &mut **r,
-                    input.scene(),
-                    &violation.samples,
-                )));
-            }
-            Verdict::Fail {
-                cases: tried.get(),
-                counterexample: format!("{input:?}"),
-                violation,
-                scene: Some(Box::new(input.scene().clone())),
-                replay: Some(Replay::of(check, input, orient)),
-            }
+            failure(&mut **r, check, input, violation, tried.get(), cut.take(), orient)
         }
-        Err(TestError::Abort(reason)) => Verdict::Fail {
-            cases: tried.get(),
-            counterexample: String::new(),
-            violation: Violation::new(format!("the case generator gave up: {reason}")),
-            scene: None,
-            replay: None,
-        },
+        Err(TestError::Abort(reason)) => failed_without_case(
+            tried.get(),
+            Violation::new(format!("the case generator gave up: {reason}")),
+        ),
+    }
+}
+
+/// Why shrinking must stop now, if it must: the budget is `spent`, or `steps` reached
+/// [`SHRINK_STEPS`].
+fn shrink_limit(spent: bool, steps: u32) -> Option<String> {
+    if spent {
+        Some("the time budget ran out while shrinking".to_owned())
+    } else if steps >= SHRINK_STEPS {
+        Some(format!("shrinking stopped after {SHRINK_STEPS} smaller cases"))
+    } else {
+        None
+    }
+}
+
+/// The verdict on `input`, which failed with `violation` after `cases` cases: the input as
+/// Rust and as data, a picture of the coverage when the check drew none, and the check bound
+/// to the input for hints.
+fn failure<T: Debug + Clone + Case + Send + Sync + 'static>(
+    r: &mut dyn Rasterizer,
+    check: Check<T>,
+    input: T,
+    mut violation: Violation,
+    cases: u32,
+    shrinking_cut: Option<String>,
+    orient: bool,
+) -> Verdict {
+    if violation.picture.is_none() {
+        violation.picture = Some(Box::new(coverage_picture(r, input.scene(), &violation.samples)));
+    }
+    Verdict::Fail {
+        cases,
+        counterexample: format!("{input:?}"),
+        case: Some(Box::new(input.data())),
+        shrinking_cut,
+        violation,
+        scene: Some(Box::new(input.scene().clone())),
+        replay: Some(Replay::of(check, input, orient)),
+    }
+}
+
+/// A failure with no case to show: the profile panicked, or the generator gave up.
+fn failed_without_case(cases: u32, violation: Violation) -> Verdict {
+    Verdict::Fail {
+        cases,
+        counterexample: String::new(),
+        case: None,
+        shrinking_cut: None,
+        violation,
+        scene: None,
+        replay: None,
     }
 }
 
@@ -264,17 +328,21 @@ fn fit(scene: &mut Scene, profile: &Profile, orient: bool) {
     }
 }
 
-/// Takes the first smaller input that still fails, until none does or the budget is spent.
+/// Takes the first smaller input that still fails, until none does or the budget is spent
+/// (then saying so in `cut`).
 fn reduce<T: Case + Debug>(
     r: &mut dyn Rasterizer,
     check: Check<T>,
     mut input: T,
     announce: Option<Announce>,
     spent: &dyn Fn() -> bool,
+    cut: &RefCell<Option<String>>,
 ) -> T {
     'outer: loop {
         for candidate in input.reductions() {
             if spent() {
+                cut.borrow_mut()
+                    .get_or_insert_with(|| "the time budget ran out while shrinking".to_owned());
                 return input;
             }
             if run_announced(r, check, &candidate, announce).is_err() {

@@ -3,7 +3,7 @@
 use refrast::{
     Draw, DrawError, FixedPoint, Fragment, Profile, Rasterizer, Reference, SubpixelBits, orient2d,
 };
-use refrast_conformance::{Options, Status, certify};
+use refrast_conformance::{CaseFile, Options, Status, certify, replay};
 
 /// Covers a sample when every edge function is `≥ 0`: samples on shared edges go to both sides.
 struct InclusiveEdges;
@@ -121,4 +121,51 @@ fn the_reference_passes_what_the_broken_one_fails() {
     };
     let report = certify(&mut Reference::default(), &options, |_| {});
     assert!(report.passed(), "{report:#?}");
+}
+
+/// A counterexample read back from its JSON replays alone: the same failure on the rasterizer
+/// that failed it, a pass on the reference, and a clear error for a case of another rule.
+#[test]
+fn a_counterexample_replays_from_its_json() {
+    let dir = std::env::temp_dir().join("refrast-replay-test");
+    let options = Options {
+        rules: vec!["fill.mesh.exactly-once".into()],
+        report_dir: Some(dir),
+        ..Options::default()
+    };
+    let report = certify(&mut InclusiveEdges, &options, |_| {});
+    let failed = &report.rules[0];
+    assert_eq!(failed.status, Status::Fail, "{failed:#?}");
+    let path = failed
+        .case_path
+        .as_ref()
+        .expect("the case is written beside the picture");
+    let text = std::fs::read_to_string(path).unwrap();
+    assert!(
+        text.contains("\"rule\": \"fill.mesh.exactly-once\"")
+            && text.contains("\"topology\": \"triangle-list\""),
+        "{text}"
+    );
+    let case: CaseFile = serde_json::from_str(&text).unwrap();
+    assert_eq!(Some(&case), failed.case_file.as_ref());
+
+    let again = replay(&case, &mut InclusiveEdges, &Options::default()).unwrap();
+    assert_eq!((again.status, again.cases), (Status::Fail, 1));
+    assert_eq!(again.message, failed.message);
+    assert_eq!(again.counterexample, failed.counterexample);
+    let reference = replay(&case, &mut Reference::default(), &Options::default()).unwrap();
+    assert_eq!(reference.status, Status::Pass, "{reference:#?}");
+
+    let translated = CaseFile {
+        rule: "meta.translate.whole-pixels".into(),
+        ..case.clone()
+    };
+    let err = replay(&translated, &mut InclusiveEdges, &Options::default()).unwrap_err();
+    assert!(err.contains("no translate"), "{err}");
+    let unknown = CaseFile {
+        rule: "fill.nothing".into(),
+        ..case
+    };
+    let err = replay(&unknown, &mut InclusiveEdges, &Options::default()).unwrap_err();
+    assert!(err.contains("no rule is called 'fill.nothing'"), "{err}");
 }

@@ -26,6 +26,9 @@ fn report(statuses: &[(&str, Status)]) -> Report {
                 spec_note: None,
                 hint: None,
                 counterexample: None,
+                shrinking_cut: None,
+                case_file: None,
+                case_path: None,
                 picture: None,
                 seconds: 0.0,
             })

@@ -26,6 +26,7 @@ const LAYERS: &[&[&str]] = &[
     &["runner"],
     &["rules"],
     &["spec", "report"],
+    &["judge"],
     &["certify"],
     &["isolate", "expect"],
     &["harness", "fuzz"],

@@ -11,8 +11,8 @@ use super::level::{
 use super::{Family, Rule};
 use crate::picture;
 use crate::runner::property;
-use crate::scene::Scene;
 use crate::scene::rust_f32;
+use crate::scene::{CaseData, Coordinate, Poison, Scene};
 use crate::strategy;
 use crate::violation::{Findings, Violation, plural};
 
@@ -56,6 +56,43 @@ impl crate::scene::Case for Poisoned {
 
     fn scene_mut(&mut self) -> &mut Scene {
         &mut self.scene
+    }
+
+    /// The scene before poisoning, and the coordinate poisoned.
+    fn data(&self) -> CaseData {
+        CaseData {
+            poison: Some(Poison {
+                vertex: self.at.0,
+                component: self.at.1,
+                value: Coordinate(self.value),
+            }),
+            ..CaseData::of_draw(self.scene.draw_data())
+        }
+    }
+
+    fn from_data(data: &CaseData) -> Result<Self, String> {
+        let poison = data
+            .poison
+            .ok_or("this rule's cases poison a coordinate: the case has no poison")?;
+        if poison.vertex > 2 || poison.component > 3 {
+            return Err(format!(
+                "poison names vertex {} and component {}: a triangle has vertices 0 to 2, each \
+                 with components 0 to 3",
+                poison.vertex, poison.component
+            ));
+        }
+        if data.translate.is_some() {
+            return Err("this rule's cases have no translate".into());
+        }
+        let scene = data.draw.triangle_scene()?;
+        if scene.triangles.is_empty() {
+            return Err("the poisoned triangle 0 is missing: the draw has no triangle".into());
+        }
+        Ok(Self {
+            scene,
+            at: (poison.vertex, poison.component),
+            value: poison.value.0,
+        })
     }
 }
 

@@ -9,7 +9,7 @@ use refrast::{Profile, Rasterizer, SnapAccuracy, Snapping};
 use crate::oracle::outline::segment_distance;
 use crate::oracle::raster::{self, sample_centre};
 use crate::rules::common::{coverage_set, fragments};
-use crate::scene::{Case, Scene};
+use crate::scene::{Case, CaseData, Scene};
 use crate::strategy;
 use crate::violation::{Findings, Violation, plural};
 
@@ -40,6 +40,24 @@ impl Case for Translated {
 
     fn scene_mut(&mut self) -> &mut Scene {
         &mut self.scene
+    }
+
+    fn data(&self) -> CaseData {
+        CaseData {
+            translate: Some([self.dx, self.dy]),
+            ..CaseData::of_draw(self.scene.draw_data())
+        }
+    }
+
+    fn from_data(data: &CaseData) -> Result<Self, String> {
+        let [dx, dy] = data
+            .translate
+            .ok_or("this rule's cases move the draw: the case has no translate")?;
+        if data.poison.is_some() {
+            return Err("this rule's cases have no poison".into());
+        }
+        let scene = data.draw.triangle_scene()?;
+        Ok(Self { scene, dx, dy })
     }
 }
 

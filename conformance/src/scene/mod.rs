@@ -1,4 +1,7 @@
-//! The suite's input: a draw that prints as pasteable Rust, and exact ways to build one.
+//! The suite's input: a draw that prints as pasteable Rust and reads and writes as data, and
+//! exact ways to build one.
+
+pub mod data;
 
 use std::fmt;
 
@@ -6,6 +9,7 @@ use refrast::{CullMode, DepthRange, Draw, DrawState, FrontFace, Profile, Viewpor
 
 use crate::oracle::facing::{Turn, turn};
 use crate::oracle::raster::to_ndc;
+pub use data::{CaseData, Coordinate, DrawData, Poison};
 
 /// A rule's input: it shows as a scene and can be made smaller after proptest has shrunk it.
 ///
@@ -21,6 +25,13 @@ pub trait Case: Sized {
 
     /// The scene drawn, to fit its state to what the rasterizer supports.
     fn scene_mut(&mut self) -> &mut Scene;
+
+    /// The input as data ([`CaseData`]): the draw in the pipe protocol's words, so that a
+    /// counterexample can be replayed in any language.
+    fn data(&self) -> CaseData;
+
+    /// The input `data` describes, or what in it does not fit this kind of input.
+    fn from_data(data: &CaseData) -> Result<Self, String>;
 }
 
 /// One draw call as the rules generate it; `Debug` prints Rust that rebuilds it.
@@ -247,6 +258,15 @@ impl Case for Scene {
 
     fn scene_mut(&mut self) -> &mut Scene {
         self
+    }
+
+    fn data(&self) -> CaseData {
+        CaseData::of_draw(self.draw_data())
+    }
+
+    fn from_data(data: &CaseData) -> Result<Self, String> {
+        data.only_draw()?;
+        data.draw.triangle_scene()
     }
 }
 

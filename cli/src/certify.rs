@@ -124,7 +124,7 @@ pub struct Args {
 }
 
 /// A finite, positive number of seconds.
-fn positive_seconds(text: &str) -> Result<f64, String> {
+pub fn positive_seconds(text: &str) -> Result<f64, String> {
     match text.parse::<f64>() {
         Ok(s) if s.is_finite() && s > 0.0 => Ok(s),
         _ => Err(format!("'{text}' is not a positive number of seconds")),
@@ -302,7 +302,7 @@ fn certify_in_process(b: &BuiltIn, options: &Options, out: &Progress) -> Outcome
             };
         }
     };
-    let report = one_at_a_time(&b.name, options, out, |progress| {
+    let report = one_at_a_time(&b.name, false, options, out, |progress| {
         refrast_conformance::certify(rasterizer.as_mut(), options, progress)
     });
     summarise(out, &report, start.elapsed().as_secs_f64());
@@ -341,7 +341,7 @@ fn certify_exec(command: &str, options: &Options, jobs: usize, out: &Progress) -
         out.line(&format!("  child {} {why}: {n} at a time", n + 1));
         break;
     }
-    let report = one_at_a_time(command, options, out, |progress| {
+    let report = one_at_a_time(command, true, options, out, |progress| {
         refrast_conformance::certify_with(&mut children, options, progress)
     });
     summarise(out, &report, start.elapsed().as_secs_f64());
@@ -358,6 +358,7 @@ fn certify_exec(command: &str, options: &Options, jobs: usize, out: &Progress) -
 /// for the rule in flight, printing each rule's result.
 fn one_at_a_time(
     name: &str,
+    is_exec: bool,
     options: &Options,
     out: &Progress,
     certify: impl FnOnce(&mut (dyn FnMut(&RuleReport) + Send)) -> Report,
@@ -366,8 +367,20 @@ fn one_at_a_time(
     let bar = out.implementation(name, rules.len());
     let mut line = rules.first().map(|r| out.rule(name, r.id, 0));
     let mut done = 0;
+    // Rules finish in any order on several children; they print in catalogue order, each as
+    // soon as every rule before it has printed.
+    let mut arrived: Vec<Option<RuleReport>> = vec![None; rules.len()];
+    let mut printed = 0;
+    let reach = reach(name, is_exec);
     let report = certify(&mut |report: &RuleReport| {
-        print_rule(out, report);
+        match rules.iter().position(|r| r.id == report.id) {
+            Some(i) => arrived[i] = Some(report.clone()),
+            None => print_rule(out, report, &reach),
+        }
+        while let Some(next) = arrived.get_mut(printed).and_then(Option::take) {
+            print_rule(out, &next, &reach);
+            printed += 1;
+        }
         bar.inc(1);
         done += 1;
         if let Some(line) = line.take() {
@@ -408,6 +421,20 @@ fn summarise(out: &Progress, report: &Report, seconds: f64) {
         out.line(&format!("  reports itself as: {}", p.about));
     }
     out.line(&format!("  features: {}", p.features.join("; ")));
+    let cut: Vec<&str> = report
+        .rules
+        .iter()
+        .filter(|r| r.budget_spent)
+        .map(|r| r.id.as_str())
+        .collect();
+    if !cut.is_empty() {
+        out.line(&format!(
+            "  the time budget cut {} short (fewer cases than planned; a pass there is weaker): {}; \
+             --budget SECONDS gives each rule more time",
+            plural(cut.len(), "rule"),
+            cut.join(", ")
+        ));
+    }
     if !report.not_run.is_empty() {
         out.line(&format!(
             "  --fail-fast: {} rules not run after the first failure: {}",
@@ -418,14 +445,41 @@ fn summarise(out: &Progress, report: &Report, seconds: f64) {
     out.line("");
 }
 
-/// One rule's line, and for a failure its message, details, picture and counterexample.
-fn print_rule(out: &Progress, r: &RuleReport) {
+/// How `refrast replay` reaches an implementation: `--impl NAME`, or `--exec 'COMMAND'`.
+pub fn reach(name: &str, is_exec: bool) -> String {
+    if is_exec {
+        format!("--exec {}", shell_words::quote(name))
+    } else {
+        format!("--impl {}", shell_words::quote(name))
+    }
+}
+
+/// `n` and a noun, singular or plural (`vertex`, `vertices`).
+pub fn plural(n: usize, noun: &str) -> String {
+    match (n, noun) {
+        (1, _) => format!("1 {noun}"),
+        (_, "vertex") => format!("{n} vertices"),
+        _ => format!("{n} {noun}s"),
+    }
+}
+
+/// One rule's line, and for a failure its message, details, picture, counterexample and the
+/// command that replays it (reaching the implementation with `reach`).
+pub fn print_rule(out: &Progress, r: &RuleReport, reach: &str) {
+    for line in rule_lines(r, reach) {
+        out.line(&line);
+    }
+}
+
+/// The lines [`print_rule`] prints.
+pub fn rule_lines(r: &RuleReport, reach: &str) -> Vec<String> {
+    let mut lines = Vec::new();
     let cases = if r.budget_spent {
         format!("{:>6} of {} cases (time budget spent)", r.cases, r.planned)
     } else {
         format!("{:>6} cases", r.cases)
     };
-    out.line(&format!(
+    lines.push(format!(
         "{:<4}  {:<38} {:<9} {cases}",
         r.status.label(),
         r.id,
@@ -433,30 +487,51 @@ fn print_rule(out: &Progress, r: &RuleReport) {
     ));
     match r.status {
         Status::Pass => {}
-        Status::NotApplicable => out.line(&format!(
+        Status::NotApplicable => lines.push(format!(
             "      not applicable: {}",
             r.message.as_deref().unwrap_or("")
         )),
         Status::Fail | Status::BeyondSpec | Status::Crash | Status::Timeout | Status::Flake => {
             if let Some(note) = &r.spec_note {
-                out.line(&format!("      beyond the specification: {note}"));
+                lines.push(format!("      beyond the specification: {note}"));
             }
-            out.line(&format!("      {}", r.message.as_deref().unwrap_or("")));
+            lines.push(format!("      {}", r.message.as_deref().unwrap_or("")));
             for detail in r.details.iter().skip(1) {
-                out.line(&format!("        {detail}"));
+                lines.push(format!("        {detail}"));
             }
             if let Some(hint) = &r.hint {
-                out.line(&format!("      hint: {hint}"));
+                lines.push(format!("      hint: {hint}"));
             }
             if let Some(p) = &r.picture {
-                out.line(&format!("      picture: {}", p.display()));
+                lines.push(format!("      picture: {}", p.display()));
             }
-            if let Some(input) = &r.counterexample {
-                out.line("      shrunk counterexample (after use refrast::*; use refrast_conformance::*;):");
-                for line in input.lines() {
-                    out.line(&format!("        {line}"));
+            if let Some(path) = &r.case_path {
+                lines.push(format!(
+                    "      the case as data (JSON): {}; replay it alone: refrast replay {reach} {}",
+                    path.display(),
+                    shell_words::quote(&path.to_string_lossy()),
+                ));
+            }
+            if let Some(why) = &r.shrinking_cut {
+                lines.push(format!("      the counterexample may not be minimal: {why}"));
+            }
+            // A child in another language gets the case as data; Rust gets code to paste.
+            let rust = r.counterexample.as_deref().filter(|c| !c.is_empty());
+            match (&r.case_file, rust) {
+                (Some(case), _) if reach.starts_with("--exec") => {
+                    lines.push("      shrunk counterexample, as data (docs/json.md):".to_owned());
+                    lines.extend(case.to_json().lines().map(|line| format!("        {line}")));
                 }
+                (_, Some(input)) => {
+                    lines.push(
+                        "      shrunk counterexample (after use refrast::*; use refrast_conformance::*;):"
+                            .to_owned(),
+                    );
+                    lines.extend(input.lines().map(|line| format!("        {line}")));
+                }
+                (_, None) => {}
             }
         }
     }
+    lines
 }

@@ -5,6 +5,7 @@ mod certify;
 mod listing;
 mod options;
 mod render;
+mod replay;
 mod results;
 mod view;
 
@@ -44,6 +45,10 @@ enum Command {
         #[arg(long, requires = "spec", value_name = "RULE")]
         rule: Option<String>,
     },
+    /// Replay one counterexample (the .case.json that certify writes beside a failure) on a
+    /// rasterizer in any language or a built-in: the rule's message, hint and picture for that
+    /// case alone; exit 0 when it passes, 1 when it fails.
+    Replay(replay::Args),
     /// List the built-in implementations and their profiles.
     Impls {
         /// Print them as JSON: an array of {name, origin, description, available, unavailable,
@@ -114,6 +119,7 @@ fn main() -> ExitCode {
             ExitCode::SUCCESS
         }
         Command::Render(args) => render::run(&args),
+        Command::Replay(args) => replay::run(&args),
         Command::View(args) => view::run(&args),
     }
 }

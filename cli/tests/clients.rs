@@ -93,6 +93,56 @@ fn same_as_port(client: &[Value], port: &str, cases: &str) {
     }
 }
 
+/// Every failure's counterexample, replayed alone through `reach` (`--exec CMD`, `--impl NAME`)
+/// from the `.case.json` certify wrote, fails again with the same message; the reference
+/// passes each.
+fn replays_alike(failures: &[Value], reach: &[&str]) {
+    let failed: Vec<&Value> = failures.iter().filter(|r| r["status"] == "fail").collect();
+    assert!(!failed.is_empty());
+    for r in failed {
+        let id = r["id"].as_str().unwrap_or("?");
+        assert_eq!(
+            r["case"]["rule"], r["id"],
+            "{id}: the report carries its case as data"
+        );
+        let path = r["case_path"]
+            .as_str()
+            .unwrap_or_else(|| panic!("{id}: no case file"));
+        let replay = |reach: &[&str]| {
+            let out = Command::new(REFRAST)
+                .current_dir(root())
+                .arg("replay")
+                .args(reach)
+                .arg(path)
+                .arg("--json")
+                .arg("--report")
+                .arg(Path::new(env!("CARGO_TARGET_TMPDIR")).join("replay"))
+                .output()
+                .expect("refrast runs");
+            let report: Value = serde_json::from_slice(&out.stdout).unwrap_or_else(|e| {
+                panic!(
+                    "{id}: replay printed no JSON ({e}): {}",
+                    String::from_utf8_lossy(&out.stderr)
+                )
+            });
+            (out.status.code(), report)
+        };
+        let (code, again) = replay(reach);
+        assert_eq!(
+            (code, &again["status"], &again["message"]),
+            (Some(1), &r["status"], &r["message"]),
+            "{id} replayed through {reach:?}"
+        );
+        assert!(again["picture"].is_string(), "{id}: the replay draws its picture");
+        let (code, reference) = replay(&["--impl", "reference"]);
+        assert_eq!(
+            (code, &reference["status"]),
+            (Some(0), &"pass".into()),
+            "{id} on the reference"
+        );
+    }
+}
+
 #[test]
 fn python_topleft_passes_every_rule() {
     if !have("python3") {
@@ -202,6 +252,7 @@ fn python_lab004_gets_the_verdicts_of_seed_004() {
          meta.degenerate.empty"
     );
     same_as_port(&rules, "lab004-lineeq", "200");
+    replays_alike(&rules, &["--exec", "python3 clients/python/lab004.py"]);
 }
 
 #[test]
@@ -235,6 +286,7 @@ fn cpp_lab000_gets_the_verdicts_of_seed_000() {
          meta.facing.from-winding"
     );
     same_as_port(&rules, "lab000", "200");
+    replays_alike(&rules, &["--exec", &command]);
 }
 
 #[test]

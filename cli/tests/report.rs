@@ -155,8 +155,8 @@ fn the_page_holds_tables_matrix_failures_and_escaped_text() {
         "a failure's statements"
     );
     let first = failures[0];
-    let (code, _) =
-        between(&page, 0, "<h4>Reproduce</h4>\n<pre><code>", "</code>").expect("a reproduce command");
+    let (code, _) = between(&page, 0, "<h4>Reproduce the rule</h4>\n<pre><code>", "</code>")
+        .expect("a reproduce command");
     let words = shell_words::split(&unescape(code)).expect("a shell command");
     let expected = [
         "refrast",

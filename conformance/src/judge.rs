@@ -274,8 +274,7 @@ fn file_stem(implementation: &str, id: &str) -> String {
 fn write_case(dir: &Path, stem: &str, file: &CaseFile) -> Option<PathBuf> {
     let path = dir.join(format!("{stem}.case.json"));
     std::fs::create_dir_all(dir).ok()?;
-    let text = serde_json::to_string_pretty(file).ok()?;
-    std::fs::write(&path, text + "\n").ok()?;
+    std::fs::write(&path, file.to_json() + "\n").ok()?;
     Some(path)
 }
 

@@ -123,6 +123,40 @@ pub struct CaseFile {
     pub case: CaseData,
 }
 
+impl CaseFile {
+    /// The file as `refrast replay` reads it: pretty JSON with each list of numbers (a vertex,
+    /// the indices) on one line.
+    #[must_use]
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self)
+            .map_or_else(|e| format!("{{\"error\": \"{e}\"}}"), |text| flat_lists(&text))
+    }
+}
+
+/// Pretty JSON with every list that holds no list or object written on one line.
+fn flat_lists(pretty: &str) -> String {
+    let mut out = String::with_capacity(pretty.len());
+    let mut rest = pretty;
+    while let Some(open) = rest.find('[') {
+        out.push_str(&rest[..=open]);
+        rest = &rest[open + 1..];
+        let close = rest.find(']').unwrap_or(rest.len());
+        let inner = &rest[..close];
+        if inner.contains(['[', '{']) {
+            continue;
+        }
+        let items: Vec<&str> = inner
+            .split(',')
+            .map(str::trim)
+            .filter(|i| !i.is_empty())
+            .collect();
+        out.push_str(&items.join(", "));
+        rest = &rest[close..];
+    }
+    out.push_str(rest);
+    out
+}
+
 /// Which property of a rule a case failed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]

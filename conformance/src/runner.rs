@@ -27,6 +27,9 @@ pub type Announce = fn(&dyn Debug);
 /// possibly not minimal.
 const SHRINK_STEPS: u32 = 2048;
 
+/// Why shrinking stopped when the time budget ran out.
+const BUDGET_CUT: &str = "the time budget ran out while shrinking (a larger --budget shrinks further)";
+
 /// How many cases to try and from which seed.
 #[derive(Clone, Debug)]
 pub struct RunConfig {
@@ -270,7 +273,7 @@ where
 /// [`SHRINK_STEPS`].
 fn shrink_limit(spent: bool, steps: u32) -> Option<String> {
     if spent {
-        Some("the time budget ran out while shrinking".to_owned())
+        Some(BUDGET_CUT.to_owned())
     } else if steps >= SHRINK_STEPS {
         Some(format!("shrinking stopped after {SHRINK_STEPS} smaller cases"))
     } else {
@@ -341,8 +344,7 @@ fn reduce<T: Case + Debug>(
     'outer: loop {
         for candidate in input.reductions() {
             if spent() {
-                cut.borrow_mut()
-                    .get_or_insert_with(|| "the time budget ran out while shrinking".to_owned());
+                cut.borrow_mut().get_or_insert_with(|| BUDGET_CUT.to_owned());
                 return input;
             }
             if run_announced(r, check, &candidate, announce).is_err() {

@@ -19,7 +19,7 @@ use refrast_registry::BuiltIn;
 
 use super::child::run_rule_command;
 use super::progress::Progress;
-use super::{print_rule, summarise};
+use super::{print_rule, reach, summarise};
 use crate::results::{Entry, Outcome as Certified, Subject};
 use refrast_conformance::selected;
 
@@ -210,7 +210,7 @@ impl Emitter {
         }
         match done {
             Done::Ran(report, profile, start, end) => {
-                print_rule(run.out, &report);
+                print_rule(run.out, &report, &reach(&b.name, false));
                 let failed = report.status.is_failure();
                 self.current.rules.push(*report);
                 self.current.profile = self.current.profile.take().or(profile);

@@ -11,7 +11,7 @@ use std::sync::OnceLock;
 use base64::Engine;
 use refrast_conformance::{ProfileReport, Report, Rule, RuleReport, SpecMap, Status};
 
-use super::{Document, Entry, Outcome, Subject, markup_entity, reproduce};
+use super::{Document, Entry, Outcome, Subject, markup_entity, replay_command, reproduce};
 
 /// The page's style: small, inline, no external fonts.
 const CSS: &str = include_str!("report.css");
@@ -392,15 +392,28 @@ fn failure(
         )),
         None => h.push_str("<p class=\"note\">No picture: this failure draws none.</p>\n"),
     }
-    if let Some(input) = &r.counterexample {
+    if let Some(case) = &r.case_file {
+        h.push_str(&format!(
+            "<h4>Counterexample <span class=\"why\">as data: the draw in the pipe protocol's words \
+             (docs/json.md)</span></h4>\n<pre><code>{}</code></pre>\n",
+            esc(&case.to_json())
+        ));
+    }
+    if let Some(input) = r.counterexample.as_deref().filter(|c| !c.is_empty()) {
         h.push_str(&format!(
             "<h4>Counterexample <span class=\"why\">Rust, after <code>use refrast::*; use \
              refrast_conformance::*;</code></span></h4>\n<pre><code>{}</code></pre>\n",
             esc(input)
         ));
     }
+    if let Some(command) = replay_command(subject, r) {
+        h.push_str(&format!(
+            "<h4>Replay this case alone</h4>\n<pre><code>{}</code></pre>\n",
+            esc(&command)
+        ));
+    }
     h.push_str(&format!(
-        "<h4>Reproduce</h4>\n<pre><code>{}</code></pre>\n</div>\n",
+        "<h4>Reproduce the rule</h4>\n<pre><code>{}</code></pre>\n</div>\n",
         esc(&reproduce(&page.doc.run.options, subject, r))
     ));
     h

@@ -253,6 +253,17 @@ pub fn reproduce(options: &RunOptions, subject: &Subject, r: &RuleReport) -> Str
     shell_words::join(words)
 }
 
+/// The command that replays `r`'s counterexample alone on `subject` (`refrast replay`), when
+/// its case was written.
+#[must_use]
+pub fn replay_command(subject: &Subject, r: &RuleReport) -> Option<String> {
+    let path = r.case_path.as_ref()?;
+    let mut words: Vec<String> = ["refrast", "replay"].into_iter().map(str::to_owned).collect();
+    words.extend(subject.flag().map(str::to_owned));
+    words.push(path.to_string_lossy().into_owned());
+    Some(shell_words::join(words))
+}
+
 /// The time budget per rule of an `--exec` rasterizer unless `--budget` says otherwise: a
 /// Python rasterizer gets through the catalogue in a few minutes.
 pub const DEFAULT_EXEC_BUDGET: std::time::Duration = std::time::Duration::from_secs(10);

@@ -1,7 +1,7 @@
 //! What a mesh should cover, sample by sample: once inside, never outside, either within the
 //! tolerance band of a boundary or a cut, and what a cull mode or a specification leaves open.
 
-use std::collections::HashMap;
+use std::collections::BTreeMap;
 
 use refrast::{CullMode, Profile, Rasterizer};
 
@@ -142,7 +142,7 @@ fn shared_edges(scene: &Scene) -> Vec<u8> {
         let (a, b) = (key(t[k]), key(t[(k + 1) % 3]));
         if a <= b { (a, b) } else { (b, a) }
     };
-    let mut edge_use: HashMap<([u32; 4], [u32; 4]), u32> = HashMap::new();
+    let mut edge_use: BTreeMap<([u32; 4], [u32; 4]), u32> = BTreeMap::new();
     for t in &scene.triangles {
         for k in 0..3 {
             *edge_use.entry(edge(t, k)).or_default() += 1;
@@ -264,7 +264,7 @@ fn area_sure(p: [[f64; 2]; 3]) -> bool {
 /// ([`snap_candidates`]), or without a grid its exact projection; vertices at `w ≤ 0` have none.
 #[must_use]
 pub fn vertices_of_three(scene: &Scene, profile: &Profile) -> Vec<[f64; 2]> {
-    let mut users: HashMap<[u32; 4], u32> = HashMap::new();
+    let mut users: BTreeMap<[u32; 4], u32> = BTreeMap::new();
     for t in &scene.triangles {
         for &i in t {
             if let Some(p) = scene.positions.get(i as usize) {

@@ -1,7 +1,7 @@
 //! Metamorphic relations of vertex and draw order: rotating a triangle's vertices, reversing its
 //! winding, drawing its triangles together, alone or in reverse order.
 
-use std::collections::{HashMap, HashSet};
+use std::collections::{BTreeSet, HashMap};
 
 use refrast::{CullMode, Fragment, FrontFace, PrimitiveProfile, Profile, Rasterizer};
 
@@ -44,7 +44,7 @@ fn compare_permuted(
         // Without it, a sample within the band of an edge may go either way, and which way may
         // depend on the order the vertices come in; farther in, coverage must not change.
         let covered =
-            |frags: &[Fragment]| -> HashSet<(u32, u32)> { frags.iter().map(|f| (f.x, f.y)).collect() };
+            |frags: &[Fragment]| -> BTreeSet<(u32, u32)> { frags.iter().map(|f| (f.x, f.y)).collect() };
         let (before, after) = (covered(base), covered(other));
         let mut found = Findings::new();
         for &(x, y) in before.symmetric_difference(&after) {
@@ -277,7 +277,7 @@ pub fn check_batch_away_from_edges(r: &mut dyn Rasterizer, scene: &Scene) -> Res
         let mut alone = scene.clone();
         alone.triangles = vec![*t];
         let alone = alone.compact();
-        let covered = |frags: &[Fragment], id: usize| -> HashSet<(u32, u32)> {
+        let covered = |frags: &[Fragment], id: usize| -> BTreeSet<(u32, u32)> {
             frags
                 .iter()
                 .filter(|f| f.primitive as usize == id)

@@ -1,7 +1,7 @@
 //! Moves that must leave coverage alone away from edges: whole pixels, one subpixel, a larger
 //! viewport.
 
-use std::collections::HashSet;
+use std::collections::BTreeSet;
 
 use proptest::prelude::*;
 use refrast::{Profile, Rasterizer, SnapAccuracy, Snapping};
@@ -127,12 +127,12 @@ pub fn check_translation(r: &mut dyn Rasterizer, t: &Translated) -> Result<(), V
         (x >= 0 && y >= 0 && x < i64::from(s.width) && y < i64::from(s.height))
             .then_some((x as u32, y as u32))
     };
-    let want: HashSet<(u32, u32)> = fragments(r, s)?
+    let want: BTreeSet<(u32, u32)> = fragments(r, s)?
         .iter()
         .filter_map(|f| shift(f.x, f.y, t.dx, t.dy))
         .collect();
     // Only samples whose pre-image is inside the viewport can be compared.
-    let got: HashSet<(u32, u32)> = fragments(r, &moved)?
+    let got: BTreeSet<(u32, u32)> = fragments(r, &moved)?
         .iter()
         .filter(|f| shift(f.x, f.y, -t.dx, -t.dy).is_some())
         .map(|f| (f.x, f.y))
@@ -205,8 +205,8 @@ pub fn check_viewport_neutral(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(
         p[0] = (nx * w) as f32;
         p[1] = (ny * w) as f32;
     }
-    let small: HashSet<(u32, u32)> = fragments(r, scene)?.iter().map(|f| (f.x, f.y)).collect();
-    let large: HashSet<(u32, u32)> = fragments(r, &big)?
+    let small: BTreeSet<(u32, u32)> = fragments(r, scene)?.iter().map(|f| (f.x, f.y)).collect();
+    let large: BTreeSet<(u32, u32)> = fragments(r, &big)?
         .iter()
         .filter(|f| f.x < scene.width && f.y < scene.height)
         .map(|f| (f.x, f.y))

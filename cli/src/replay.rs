@@ -1,0 +1,273 @@
+//! `refrast replay`: one counterexample, read from its JSON, run again through a rasterizer in
+//! any language or a built-in, with the same message, hint and picture as in `certify`.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Duration;
+
+use refrast::{PrimitiveDraw, Rasterizer, Viewport};
+use refrast_conformance::{CaseFile, Options, Process, RuleReport, Status, contain};
+
+use crate::certify::{plural, positive_seconds, reach, rule_lines};
+use crate::say;
+
+/// Arguments of `refrast replay`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// The case: a `.case.json` file that `certify` wrote beside a failure's picture, or a
+    /// `certify --json` report (then --rule says which failure).
+    case: PathBuf,
+    /// The rasterizer to replay it on: the command that starts it, speaking docs/protocol.md.
+    #[arg(
+        long = "exec",
+        value_name = "CMD",
+        conflicts_with = "implementation",
+        required_unless_present = "implementation"
+    )]
+    exec: Option<String>,
+    /// A built-in to replay it on (see `refrast impls`), run in this process.
+    #[arg(long = "impl", value_name = "NAME")]
+    implementation: Option<String>,
+    /// With a `certify --json` report: the rule whose counterexample to replay (of the first
+    /// implementation that failed it).
+    #[arg(long, value_name = "RULE")]
+    rule: Option<String>,
+    /// Folder for the picture (what was drawn against what is required) and the case again.
+    #[arg(long, value_name = "DIR", default_value = "refrast-replay")]
+    report: PathBuf,
+    /// Also print every fragment the rasterizer draws for the case's draw: x, y, primitive,
+    /// sample, facing, depth and barycentrics.
+    #[arg(long)]
+    fragments: bool,
+    /// Print the rule's report as JSON (docs/json.md, a rule's entry) instead of text.
+    #[arg(long)]
+    json: bool,
+    /// Seconds the draw may take before the child counts as hung.
+    #[arg(long, value_name = "SECONDS", default_value_t = refrast_conformance::DEFAULT_CASE_TIMEOUT.as_secs_f64(),
+          value_parser = positive_seconds)]
+    case_timeout: f64,
+    /// The most memory, in MiB, the --exec child may allocate (0 sets no limit).
+    #[arg(long, value_name = "MIB", default_value_t = contain::DEFAULT_MEMORY_LIMIT >> 20)]
+    memory_limit: u64,
+}
+
+/// Runs `refrast replay`: 0 when the case passes (or fails only beyond the specification the
+/// profile claims), 1 when it fails, crashes or hangs, 2 when the file, the rule or the
+/// rasterizer cannot be had.
+pub fn run(args: &Args) -> ExitCode {
+    match replay(args) {
+        Ok(report) => {
+            if report.status.is_failure() {
+                ExitCode::FAILURE
+            } else {
+                ExitCode::SUCCESS
+            }
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// Reads the case, builds the rasterizer, replays, prints.
+fn replay(args: &Args) -> Result<RuleReport, String> {
+    let case = read_case(&args.case, args.rule.as_deref())?;
+    let (mut rasterizer, name, is_exec): (Box<dyn Rasterizer>, String, bool) =
+        match (&args.exec, &args.implementation) {
+            (Some(command), _) => {
+                let limit = (args.memory_limit > 0).then(|| args.memory_limit.saturating_mul(1 << 20));
+                let process =
+                    Process::try_spawn_limited(command, Duration::from_secs_f64(args.case_timeout), limit)
+                        .map_err(|e| format!("--exec {command}: the child did not start: {e}"))?;
+                (Box::new(process), command.clone(), true)
+            }
+            (None, Some(name)) => {
+                let builtin = refrast_registry::find(name)?;
+                let built = builtin
+                    .build()
+                    .map_err(|why| format!("{name} is unavailable on this machine: {why}"))?;
+                (built, name.clone(), false)
+            }
+            (None, None) => return Err("give --exec CMD or --impl NAME: the rasterizer to replay on".into()),
+        };
+    let options = Options {
+        report_dir: Some(args.report.clone()),
+        ..Options::default()
+    };
+    let report = refrast_conformance::replay(&case, rasterizer.as_mut(), &options)?;
+    if args.json {
+        let text = serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?;
+        say(&text);
+        return Ok(report);
+    }
+    say(&format!(
+        "replay of {} (the case {} failed{}) on {name}",
+        case.rule,
+        if case.implementation.is_empty() {
+            "an implementation"
+        } else {
+            &case.implementation
+        },
+        if case.seed == 0 {
+            String::new()
+        } else {
+            format!(" with seed {}", case.seed)
+        },
+    ));
+    say(&format!("the draw: {}", describe(&case)));
+    for line in rule_lines(&report, &reach(&name, is_exec)) {
+        say(&line);
+    }
+    if report.status == Status::Pass {
+        say("      the case passes: what it checks is drawn as required");
+    }
+    if args.fragments {
+        print_fragments(rasterizer.as_mut(), &case)?;
+    }
+    Ok(report)
+}
+
+/// The case in `path`: a case file, or the counterexample of `rule` in a `certify --json`
+/// report.
+fn read_case(path: &Path, rule: Option<&str>) -> Result<CaseFile, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let value: serde_json::Value =
+        serde_json::from_str(&text).map_err(|e| format!("{}: not JSON: {e}", path.display()))?;
+    let case = match value.get("implementations") {
+        Some(implementations) => from_report(implementations, rule, path)?,
+        None => value,
+    };
+    serde_json::from_value(case).map_err(|e| {
+        format!(
+            "{}: not a case file ({e}); give a .case.json that certify wrote, or a certify --json report with --rule",
+            path.display()
+        )
+    })
+}
+
+/// The counterexample of `rule` in a report's implementations: the first one that has it.
+fn from_report(
+    implementations: &serde_json::Value,
+    rule: Option<&str>,
+    path: &Path,
+) -> Result<serde_json::Value, String> {
+    let cases: Vec<(&str, &serde_json::Value)> = implementations
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter_map(|i| i.get("rules")?.as_array())
+        .flatten()
+        .filter_map(|r| Some((r.get("id")?.as_str()?, r.get("case")?)))
+        .collect();
+    let ids = || {
+        let mut ids: Vec<&str> = cases.iter().map(|(id, _)| *id).collect();
+        ids.dedup();
+        ids.join(", ")
+    };
+    match rule {
+        Some(rule) => cases
+            .iter()
+            .find(|(id, _)| *id == rule)
+            .map(|(_, case)| (*case).clone())
+            .ok_or_else(|| match cases.len() {
+                0 => format!("{}: no failure in this report has a case", path.display()),
+                _ => format!(
+                    "{}: no case of {rule}; the cases are of {}",
+                    path.display(),
+                    ids()
+                ),
+            }),
+        None => match cases.as_slice() {
+            [(_, case)] => Ok((*case).clone()),
+            [] => Err(format!(
+                "{}: no failure in this report has a case",
+                path.display()
+            )),
+            _ => Err(format!(
+                "{}: several failures have cases; say which with --rule (one of {})",
+                path.display(),
+                ids()
+            )),
+        },
+    }
+}
+
+/// The case's draw in a line: size, topology, how many primitives and vertices, its state.
+fn describe(case: &CaseFile) -> String {
+    let d = &case.case.draw;
+    let per = match d.topology.as_str() {
+        "triangle-list" => 3,
+        "line-list" => 2,
+        _ => 1,
+    };
+    let mut text = format!(
+        "{}x{} pixels at {}, {} of {} over {}; cull {}, front-face {}, depth-compare {}, depth-write {}, depth-range {}, far-clipping {}",
+        d.width,
+        d.height,
+        plural(usize::from(d.samples), "sample"),
+        d.topology,
+        plural(d.indices.len() / per, "primitive"),
+        plural(d.positions.len(), "vertex"),
+        d.cull,
+        d.front_face,
+        d.depth_compare,
+        d.depth_write,
+        d.depth_range,
+        d.far_clipping
+    );
+    if let Some([dx, dy]) = case.case.translate {
+        text.push_str(&format!("; drawn again moved by ({dx}, {dy}) pixels"));
+    }
+    if let Some(p) = case.case.poison {
+        text.push_str(&format!(
+            "; drawn again with component {} of triangle 0's vertex {} set to {}",
+            p.component, p.vertex, p.value.0
+        ));
+    }
+    text
+}
+
+/// Prints every fragment `r` draws for the case's draw, one a line.
+fn print_fragments(r: &mut dyn Rasterizer, case: &CaseFile) -> Result<(), String> {
+    let (scene, topology, indices, samples) = case.case.draw.scene()?;
+    let viewport = Viewport::new(scene.width, scene.height).map_err(|e| e.to_string())?;
+    let indices = if indices.is_empty() {
+        scene.triangles.iter().flatten().copied().collect()
+    } else {
+        indices
+    };
+    let draw = PrimitiveDraw {
+        viewport,
+        positions: scene.positions.clone(),
+        topology,
+        indices,
+        samples,
+        state: scene.state,
+    };
+    match r.rasterize_primitives(&draw) {
+        Ok(fragments) => {
+            say(&format!(
+                "fragments drawn for the draw ({}): x y primitive sample front-facing depth barycentric",
+                fragments.len()
+            ));
+            for f in &fragments {
+                let b = f.fragment.barycentric;
+                say(&format!(
+                    "  {} {} {} {} {} {:?} [{:?}, {:?}, {:?}]",
+                    f.fragment.x,
+                    f.fragment.y,
+                    f.fragment.primitive,
+                    f.sample,
+                    f.fragment.front_facing,
+                    f.fragment.depth,
+                    b[0],
+                    b[1],
+                    b[2]
+                ));
+            }
+        }
+        Err(e) => say(&format!("the draw returned an error: {e}")),
+    }
+    Ok(())
+}

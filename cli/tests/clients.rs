@@ -162,6 +162,53 @@ fn python_topleft_passes_every_rule() {
     );
 }
 
+/// With two children the rules finish in any order, but print in catalogue order; the summary
+/// names the rules a short budget cut, and proptest prints nothing of its own.
+#[test]
+fn rules_print_in_catalogue_order_and_the_summary_names_budget_cuts() {
+    if !have("python3") {
+        return;
+    }
+    let out = Command::new(REFRAST)
+        .current_dir(root())
+        .args([
+            "certify",
+            "--exec",
+            "python3 clients/python/topleft.py",
+            "--rule",
+            "fill.",
+            "--rule",
+            "meta.",
+        ])
+        .args(["--jobs", "2", "--budget", "0.3", "--report"])
+        .arg(Path::new(env!("CARGO_TARGET_TMPDIR")).join("order"))
+        .output()
+        .expect("refrast runs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    let printed: Vec<&str> = text
+        .lines()
+        .filter(|l| {
+            ["pass ", "FAIL ", "n/a ", "BEYOND", "CRASH", "TIMEOUT", "FLAKE"]
+                .iter()
+                .any(|s| l.starts_with(s))
+        })
+        .filter_map(|l| l.split_whitespace().nth(1))
+        .collect();
+    let catalogue: Vec<&str> = refrast_conformance::catalogue()
+        .iter()
+        .map(|r| r.id)
+        .filter(|id| id.starts_with("fill.") || id.starts_with("meta."))
+        .collect();
+    assert_eq!(printed, catalogue, "{text}");
+    let summary = text
+        .lines()
+        .find(|l| l.contains("the time budget cut"))
+        .unwrap_or_else(|| panic!("no budget line in the summary:\n{text}"));
+    assert!(summary.contains("fill.mesh.exactly-once"), "{summary}");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("proptest:"), "{stderr}");
+}
+
 /// The Python client as a fixed-function rasterizer: one cull mode declared and used whatever a
 /// draw asks. It must still pass every rule, none of them n/a but the one that needs no culling
 /// (it failed a dozen when the rules expected the coverage of no culling, before every rule asked

@@ -478,15 +478,21 @@ pub fn parse_profile(lines: &[String], fallback_name: &str, version: u32) -> Res
                 };
             }
             GUARD_BAND => {
-                f.guard_band = rest
-                    .parse()
-                    .ok()
-                    .filter(|&px| px <= GUARD_BAND_LIMIT)
-                    .ok_or_else(|| {
-                        bad(&format!(
-                            "pixels beyond each side of the viewport, 0 to {GUARD_BAND_LIMIT}"
-                        ))
-                    })?;
+                // `unbounded`: no x/y clipping at all, so no edge ever moves (the Rust side's
+                // `u32::MAX`).
+                f.guard_band = if rest == "unbounded" {
+                    u32::MAX
+                } else {
+                    rest.parse()
+                        .ok()
+                        .filter(|&px| px <= GUARD_BAND_LIMIT)
+                        .ok_or_else(|| {
+                            bad(&format!(
+                                "pixels beyond each side of the viewport, 0 to {GUARD_BAND_LIMIT}, or \
+                             unbounded for a rasterizer that clips nothing in x and y"
+                            ))
+                        })?
+                };
             }
             CullMode::KEY => f.cull_modes = supported(&words, &bad)?,
             FrontFace::KEY => f.front_faces = supported(&words, &bad)?,
@@ -673,6 +679,10 @@ mod tests {
     fn the_guard_band_is_declared_with_its_reach() {
         assert_eq!(parsed(&[]).unwrap().features.guard_band, 0);
         assert_eq!(parsed(&["guard-band 8192"]).unwrap().features.guard_band, 8192);
+        assert_eq!(
+            parsed(&["guard-band unbounded"]).unwrap().features.guard_band,
+            u32::MAX
+        );
         let word = parsed(&["features depth-test guard-band"]).unwrap().features;
         assert_eq!((word.guard_band, word.depth_test), (LEGACY_GUARD_BAND, true));
         let both = parsed(&["features guard-band", "guard-band 8192"]).unwrap_err();

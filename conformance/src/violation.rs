@@ -126,6 +126,16 @@ impl Violation {
         }
     }
 
+    /// The violation with `context` before its message: what the draw was, so that a crash or
+    /// an error says what it happened on.
+    #[must_use]
+    pub fn on(self, context: &str) -> Self {
+        Self {
+            message: format!("{context}: {}", self.message),
+            ..self
+        }
+    }
+
     /// A violation about one sample, pixel `(x, y)`.
     #[must_use]
     pub fn at(sample: (u32, u32), message: impl Into<String>) -> Self {

@@ -117,10 +117,10 @@ pub(super) fn rules() -> Vec<Rule> {
                 note: IN_RANGE_ONLY,
             })
             .d3d11(Level::Partly {
-                part: |r, cfg| property(r, cfg, bit_pattern_scene(), check_well_formed_but_barycentrics),
+                part: |r, cfg| property(r, cfg, bit_pattern_scene(), check_raw_bits_but_barycentrics),
                 note: BARYCENTRICS_UNJUDGED,
             })
-            .run(|r, cfg| property(r, cfg, bit_pattern_scene(), check_well_formed)),
+            .run(|r, cfg| property(r, cfg, bit_pattern_scene(), check_raw_bits)),
         Rule::invariant(Family::Robust, "robust.output.well-formed")
             .sentence("Fragments lie in the viewport, name a real primitive, cover a pixel at most once per primitive, and have depth in [0, 1] within the claimed precision.")
             .source("the Rasterizer contract (src/rasterizer.rs: Fragment); Vulkan 1.4, Rasterization (no fragments outside the framebuffer) and Depth Clamping and Range Adjustment")
@@ -214,7 +214,14 @@ pub fn check_poisoned(r: &mut dyn Rasterizer, p: &Poisoned) -> Result<(), Violat
     bad.positions[vertex as usize][p.at.1] = p.value;
     let poisoned: Vec<bool> = p.scene.triangles.iter().map(|t| t.contains(&vertex)).collect();
     let is_poisoned = |f: &Fragment| poisoned.get(f.primitive as usize).copied().unwrap_or(false);
-    let got = fragments(r, &bad)?;
+    let got = fragments(r, &bad).map_err(|v| {
+        v.on(&format!(
+            "on a draw whose vertex {vertex} has {} = {} (a triangle using a NaN or infinite \
+             coordinate is to be skipped, the others drawn, and no error returned)",
+            ["x", "y", "z", "w"][p.at.1.min(3)],
+            p.value
+        ))
+    })?;
     let mut found = Findings::new();
     for f in got.iter().filter(|f| is_poisoned(f)) {
         found.add((f.x, f.y), || {
@@ -297,12 +304,27 @@ pub fn check_well_formed_but_depth(r: &mut dyn Rasterizer, scene: &Scene) -> Res
 /// arithmetic stays within 2^32 ([`within_float_range_as_received`]), well-formed values too,
 /// the depth range aside.
 pub fn check_sane_where_defined(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    if within_float_range_as_received(scene, &r.profile()) {
+    let result = if within_float_range_as_received(scene, &r.profile()) {
         check_well_formed_but_depth(r, scene)
     } else {
         fragments(r, scene).map(drop)
-    }
+    };
+    result.map_err(|v| v.on(RAW_BITS))
 }
+
+/// [`check_well_formed`] on a draw of raw bit patterns, saying so on failure.
+pub fn check_raw_bits(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    check_well_formed(r, scene).map_err(|v| v.on(RAW_BITS))
+}
+
+/// [`check_well_formed_but_barycentrics`] on a draw of raw bit patterns, saying so on failure.
+pub fn check_raw_bits_but_barycentrics(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    check_well_formed_but_barycentrics(r, scene).map_err(|v| v.on(RAW_BITS))
+}
+
+/// What a draw of raw bit patterns is, and what it asks.
+const RAW_BITS: &str = "on a draw of raw f32 bit patterns (NaN, infinities, huge values and w = 0 \
+                        must give no crash, no error and only well-formed fragments)";
 
 /// The magnitude Vulkan and OpenGL ask floats to represent at least (Floating-Point
 /// Computation; OpenGL 4.6 §2.3.4.1).
@@ -395,19 +417,40 @@ fn well_formed(r: &mut dyn Rasterizer, scene: &Scene, judged: Judged) -> Result<
     let frags = fragments(r, scene)?;
     let mut seen = std::collections::HashSet::new();
     let mut found = Findings::new();
+    // What to change for the first fragment found wrong.
+    let mut fix = None;
     for f in &frags {
-        let problem = if judged.depth && !(-eps..=1.0 + eps).contains(&f.depth) {
-            "has depth outside [0, 1] by more than the claimed precision"
+        let (problem, change) = if judged.depth && !(-eps..=1.0 + eps).contains(&f.depth) {
+            (
+                "has depth outside [0, 1] by more than the claimed precision",
+                "clip triangles against the near plane (z < 0, or z < -w under \
+                 negative-one-to-one) and the far plane when the draw asks for far clipping, \
+                 else clamp depth to [0, 1]",
+            )
         } else if declared && f.barycentric.iter().any(|b| !b.is_finite()) {
-            "has a non-finite barycentric"
+            (
+                "has a non-finite barycentric",
+                "a division by zero: a zero area, or a w of 0 that clipping should have removed",
+            )
         } else if !seen.insert((f.primitive, f.x, f.y)) {
-            "covers its pixel a second time"
+            (
+                "covers its pixel a second time",
+                "one triangle draws each pixel once: the triangles a clipped polygon is cut \
+                 into must not overlap",
+            )
         } else {
             continue;
         };
+        fix.get_or_insert(change);
         found.add((f.x, f.y), || format!("{f:?} {problem}"));
     }
-    found.verdict(|n| format!("{} not well formed", plural(n, "fragment")))
+    found.verdict(|n| {
+        format!(
+            "{} not well formed ({})",
+            plural(n, "fragment"),
+            fix.unwrap_or_default()
+        )
+    })
 }
 
 /// An out-of-range index is an error, not a panic.

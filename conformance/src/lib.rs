@@ -57,7 +57,7 @@ pub use certify::{
     DEFAULT_CASE_TIMEOUT, Options, Shard, cases_for, certify, certify_with, matches, matches_glob, refusal,
     run_rule, selected,
 };
-pub use harness::{failure_text, run_as_tests};
+pub use harness::{band_words, failure_text, run_as_tests};
 pub use named::Named;
 pub use primitives::PrimitiveScene;
 pub use process::{Process, ProcessError};

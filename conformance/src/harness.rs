@@ -19,13 +19,14 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use libtest_mimic::{Arguments, Completion, Failed, Trial};
-use refrast::Rasterizer;
+use refrast::{Profile, Rasterizer};
 
 use crate::isolate::{Outcome, run_rule_isolated, serve_rule};
 use crate::judge::{DEFAULT_CASE_TIMEOUT, Options, run_rule};
 use crate::report::{RuleReport, Status};
 use crate::rules::catalogue;
 use crate::runner::{DEFAULT_SEED, guarded};
+use crate::violation::plural;
 
 /// Set in a child of the harness: the one rule it runs.
 const RULE_ENV: &str = "REFRAST_RUN_RULE";
@@ -103,6 +104,7 @@ where
             let ignored = rule.applies(&profile, &primitives).is_err();
             let (id, family) = (rule.id, rule.family);
             let (make, options, failed) = (Arc::clone(&make), Arc::clone(&options), Arc::clone(&failed));
+            let declared = profile.clone();
             Trial::ignorable_test(id, move || {
                 if fail_fast && failed.load(Ordering::SeqCst) {
                     return Err(Failed::from(
@@ -136,11 +138,11 @@ where
                     Status::BeyondSpec => Ok(Completion::ignored_with(format!(
                         "beyond the specification ({}): {}",
                         report.spec_note.as_deref().unwrap_or(""),
-                        failure_text(&report)
+                        failure_text(&report, &declared)
                     ))),
                     Status::Fail | Status::Crash | Status::Timeout | Status::Flake => {
                         failed.store(true, Ordering::SeqCst);
-                        Err(Failed::from(failure_text(&report)))
+                        Err(Failed::from(failure_text(&report, &declared)))
                     }
                 }
             })
@@ -151,16 +153,17 @@ where
     libtest_mimic::run(&args, trials).exit()
 }
 
-/// A failed rule as a test failure message: what, the counts, the input as Rust, the picture.
+/// A failed rule as a test failure message: what, the counts, the band in the words of
+/// `profile` ([`band_words`]), the input as Rust, the picture.
 #[must_use]
-pub fn failure_text(report: &RuleReport) -> String {
+pub fn failure_text(report: &RuleReport, profile: &Profile) -> String {
     let mut text = format!(
-        "rule {} failed ({}; seed {}, {} cases, band {} subpixels): {}",
+        "rule {} failed ({}; seed {}, {} cases, {}): {}",
         report.id,
         report.status,
         report.seed,
         report.cases,
-        report.tolerance_subpixels,
+        band_words(profile),
         report.message.as_deref().unwrap_or("")
     );
     for detail in report.details.iter().skip(1) {
@@ -177,4 +180,41 @@ pub fn failure_text(report: &RuleReport) -> String {
         text.push_str(&format!("\npicture: {}", p.display()));
     }
     text
+}
+
+/// The tolerance band in the words of `profile`: in subpixels of its grid, or for a float
+/// profile (no grid) in the unit its tolerance counts.
+#[must_use]
+pub fn band_words(profile: &Profile) -> String {
+    let (px, steps) = (profile.band_px(), profile.tolerance_subpixels.max(1) as usize);
+    match profile.snapping.grid_bits() {
+        Some(bits) => format!(
+            "band {px} px: {} of the {bits}-bit grid",
+            plural(steps, "subpixel")
+        ),
+        None => format!(
+            "band {px} px: {steps} × {} px, a float profile's tolerance unit (no grid)",
+            profile.snapping.unit_px()
+        ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use refrast::{Profile, Rasterizer, Reference, Snapping};
+
+    use super::band_words;
+
+    /// A float profile's band names no subpixel; a gridded one's names its grid.
+    #[test]
+    fn the_band_is_said_in_the_profiles_words() {
+        let grid = Reference::default().profile();
+        let float = Profile {
+            snapping: Snapping::Float,
+            ..grid.clone()
+        };
+        let said = band_words(&float);
+        assert!(!said.contains("subpixel") && said.contains("no grid"), "{said}");
+        assert!(band_words(&grid).contains("subpixel"), "{}", band_words(&grid));
+    }
 }

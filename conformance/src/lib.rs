@@ -56,7 +56,7 @@ pub mod strategy;
 mod violation;
 
 pub use certify::{certify, certify_with, matches, matches_glob, refusal, selected};
-pub use harness::{failure_text, run_as_tests};
+pub use harness::{band_words, failure_text, run_as_tests};
 pub use judge::{DEFAULT_CASE_TIMEOUT, Options, Shard, cases_for, replay, run_rule};
 pub use named::Named;
 pub use primitives::PrimitiveScene;

@@ -171,9 +171,85 @@ const LEGEND: [(Class, &str); 6] = [
     (Class::DontCare, "don't care"),
 ];
 
-/// The picture with a caption below it: the legend, then `lines` wrapped to its width.
+/// Pixels of margin kept around the wrong samples when a picture is cropped to them: enough
+/// to see the edges that pass by them.
+const MARGIN: u32 = 4;
+
+/// The smallest side a cropped picture keeps, in pixels: so that a lone wrong sample is still
+/// shown among its neighbours.
+const LEAST_SIDE: u32 = 16;
+
+/// The part of a picture worth showing: a window around its wrong samples (missing, unexpected,
+/// double), with [`MARGIN`] pixels around them and sides of at least [`LEAST_SIDE`], when that
+/// window shows at most half of the viewport; `None` (show it whole) otherwise, and for a
+/// picture without wrong samples. Returns `[x0, y0, width, height]`.
+#[must_use]
+pub fn focus(picture: &Picture) -> Option<[u32; 4]> {
+    let (w, h) = (picture.width, picture.height);
+    let wrong = |c: &Class| matches!(c, Class::Missing | Class::Unexpected | Class::Double);
+    let mut bounds: Option<[u32; 4]> = None;
+    for (i, _) in picture.classes.iter().enumerate().filter(|(_, c)| wrong(c)) {
+        let (x, y) = (i as u32 % w, i as u32 / w);
+        let b = bounds.get_or_insert([x, y, x, y]);
+        *b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
+    }
+    let [x0, y0, x1, y1] = bounds?;
+    // One axis: the span [lo, hi] widened by the margin and to the least side, inside 0..side.
+    let span = |lo: u32, hi: u32, side: u32| {
+        let (mut a, mut b) = (lo.saturating_sub(MARGIN), (hi + MARGIN).min(side - 1));
+        while b - a + 1 < LEAST_SIDE.min(side) {
+            a = a.saturating_sub(1);
+            if b + 1 < side {
+                b += 1;
+            }
+        }
+        (a, b - a + 1)
+    };
+    let ((cx, cw), (cy, ch)) = (span(x0, x1, w), span(y0, y1, h));
+    (u64::from(cw) * u64::from(ch) * 2 <= u64::from(w) * u64::from(h)).then_some([cx, cy, cw, ch])
+}
+
+/// The window `[x0, y0, width, height]` of `picture`, its outlines moved with it.
+#[must_use]
+pub fn crop(picture: &Picture, [x0, y0, cw, ch]: [u32; 4]) -> Picture {
+    let classes = (y0..y0 + ch)
+        .flat_map(|y| (x0..x0 + cw).map(move |x| (x, y)))
+        .map(|(x, y)| picture.classes[(y * picture.width + x) as usize])
+        .collect();
+    let (dx, dy) = (f64::from(x0), f64::from(y0));
+    Picture {
+        width: cw,
+        height: ch,
+        classes,
+        outlines: picture
+            .outlines
+            .iter()
+            .map(|o| o.iter().map(|p| [p[0] - dx, p[1] - dy]).collect())
+            .collect(),
+    }
+}
+
+/// The picture with a caption below it: the legend, then `lines` wrapped to its width. Where
+/// the wrong samples lie in a small part of the viewport ([`focus`]), only that part is drawn,
+/// larger, and the caption's first line says which part it is.
 #[must_use]
 pub fn render_with_caption(picture: &Picture, lines: &[String]) -> RgbaImage {
+    if let Some(window @ [x0, y0, cw, ch]) = focus(picture) {
+        let mut said = vec![format!(
+            "shown: pixels x {x0}..{} and y {y0}..{} of the {}x{} viewport, around the wrong samples",
+            x0 + cw - 1,
+            y0 + ch - 1,
+            picture.width,
+            picture.height
+        )];
+        said.extend(lines.iter().cloned());
+        return render_whole(&crop(picture, window), &said);
+    }
+    render_whole(picture, lines)
+}
+
+/// [`render_with_caption`] of the whole picture.
+fn render_whole(picture: &Picture, lines: &[String]) -> RgbaImage {
     let grid = render(picture);
     // At least wide enough for the legend, so a small viewport still says what colours mean.
     let width = grid.width().max(8 * 70);
@@ -259,4 +335,43 @@ fn draw_text(img: &mut RgbaImage, x: u32, y: u32, text: &str, colour: [u8; 4]) -
 /// Writes the picture with its caption as a PNG.
 pub fn save(picture: &Picture, caption: &[String], path: &Path) -> Result<(), image::ImageError> {
     render_with_caption(picture, caption).save_with_format(path, image::ImageFormat::Png)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A `width`×`height` picture, empty but for `wrong` samples double-covered.
+    fn with_doubles(width: u32, height: u32, wrong: &[(u32, u32)]) -> Picture {
+        let mut classes = vec![Class::Empty; (width * height) as usize];
+        for &(x, y) in wrong {
+            classes[(y * width + x) as usize] = Class::Double;
+        }
+        Picture {
+            width,
+            height,
+            classes,
+            outlines: vec![vec![[0.0, 0.0], [16.0, 64.0], [0.0, 64.0]]],
+        }
+    }
+
+    /// One double-covered sample in a 16×64 viewport (issue 43's) is shown in a 16×17 window
+    /// around it, the sample and the outlines moved with the window.
+    #[test]
+    fn a_lone_wrong_sample_in_a_tall_viewport_is_cropped_to() {
+        let picture = with_doubles(16, 64, &[(5, 40)]);
+        let window = focus(&picture).expect("a window");
+        assert_eq!(window, [0, 32, 16, 17]);
+        let cropped = crop(&picture, window);
+        assert_eq!(cropped.classes[(8 * 16 + 5) as usize], Class::Double);
+        assert_eq!(cropped.outlines[0][1], [16.0, 32.0]);
+    }
+
+    /// A small viewport, and wrong samples spread over a large one, are shown whole.
+    #[test]
+    fn small_or_spread_pictures_are_shown_whole() {
+        assert_eq!(focus(&with_doubles(16, 16, &[(5, 5)])), None);
+        assert_eq!(focus(&with_doubles(64, 64, &[(2, 2), (60, 60)])), None);
+        assert_eq!(focus(&with_doubles(64, 64, &[])), None);
+    }
 }

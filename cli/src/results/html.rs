@@ -280,7 +280,12 @@ fn profile(p: &ProfileReport) -> String {
         ("depth", esc(&p.depth)),
         (
             "band",
-            format!("{} px ({} subpixels)", p.band_px, p.tolerance_subpixels),
+            // A float profile has no grid, so no subpixels: its band is in pixels alone.
+            if p.snapping.contains("subpixel") {
+                format!("{} px ({} subpixels)", p.band_px, p.tolerance_subpixels)
+            } else {
+                format!("{} px (no grid)", p.band_px)
+            },
         ),
         ("features", features),
     ]);

@@ -225,7 +225,8 @@ pub fn check_vertex_one(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Vio
 /// Perspective-correct barycentrics equal the ray cast's: of the snapped triangle, or for a
 /// clipped one within its spread over a grid step ([`raycast_fragments`]).
 pub fn check_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let eps = precision(&r.profile());
+    let profile = r.profile();
+    let eps = precision(&profile);
     let mut found = Findings::new();
     let cast = raycast_fragments(r, scene)?;
     let off = |f: &Fragment, want: &Expected| {
@@ -245,7 +246,7 @@ pub fn check_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<()
                     (f.x, f.y),
                     f.barycentric,
                     want.barycentric,
-                    slack_note(want.barycentric_slack)
+                    slack_note(want.barycentric_slack, &profile)
                 )
             });
         }

@@ -166,12 +166,22 @@ pub fn raycast_expectations(profile: &Profile, scene: &Scene, frags: Vec<Fragmen
     cast
 }
 
-/// ", allowed …" naming the slack a clipped triangle's snapped cut vertices earn, if any.
-pub fn slack_note(slack: f64) -> String {
-    if slack > 0.0 {
-        format!(", allowed {slack:.3e} more because the clipped polygon's vertices are snapped")
-    } else {
-        String::new()
+/// ", allowed …" naming the slack a triangle crossing a clip plane earns, if any, in the words
+/// of the profile: snapped cut vertices on a grid, the float tolerance's unit without one.
+pub fn slack_note(slack: f64, profile: &Profile) -> String {
+    if slack <= 0.0 {
+        return String::new();
+    }
+    match profile.snapping.grid_bits() {
+        Some(bits) => format!(
+            ", allowed {slack:.3e} more because the triangle crosses a clip plane and the vertices clipping makes are \
+             snapped to the {bits}-bit grid (the ray cast's spread over one grid step)"
+        ),
+        None => format!(
+            ", allowed {slack:.3e} more because the triangle crosses a clip plane and where clipping puts its vertices is \
+             only as exact as float arithmetic (the ray cast's spread over the float tolerance's unit, {} px)",
+            profile.snapping.unit_px()
+        ),
     }
 }
 
@@ -184,5 +194,33 @@ impl Expected {
             barycentric_slack: 0.0,
             depth_slack: 0.0,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use refrast::{Profile, Rasterizer, Reference, Snapping};
+
+    use super::slack_note;
+
+    /// A float profile is not told of snapping or a grid, a gridded one is; no slack, no words.
+    #[test]
+    fn slack_is_said_in_the_profiles_words() {
+        let base = Reference::default().profile();
+        let float = Profile {
+            snapping: Snapping::Float,
+            ..base.clone()
+        };
+        let grid = Profile {
+            snapping: Snapping::Grid(8),
+            ..base
+        };
+        let said = slack_note(1e-4, &float);
+        assert!(
+            !said.contains("snapped") && !said.contains("grid") && said.contains("float"),
+            "{said}"
+        );
+        assert!(slack_note(1e-4, &grid).contains("snapped to the 8-bit grid"));
+        assert_eq!(slack_note(0.0, &float), "");
     }
 }

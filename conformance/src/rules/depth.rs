@@ -190,7 +190,8 @@ pub fn check_within_vertices(r: &mut dyn Rasterizer, scene: &Scene) -> Result<()
 /// Depth equals z/w at the ray-cast hit: of the snapped triangle, or for a clipped one within
 /// its spread over a grid step ([`raycast_fragments`]).
 pub fn check_depth_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let eps = precision(&r.profile());
+    let profile = r.profile();
+    let eps = precision(&profile);
     let mut found = Findings::new();
     let cast = raycast_fragments(r, scene)?;
     // Clamping moves two values no further apart, so the slack still holds.
@@ -208,7 +209,7 @@ pub fn check_depth_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Res
                     "{:?} has depth {}, the ray cast {depth} (off by {off:.3e}{})",
                     (f.x, f.y),
                     f.depth,
-                    slack_note(want.depth_slack)
+                    slack_note(want.depth_slack, &profile)
                 )
             });
         }

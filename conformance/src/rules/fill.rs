@@ -93,12 +93,7 @@ pub(super) fn rules() -> Vec<Rule> {
 
 /// Every sample is covered as often as the ray-cast mesh says: once inside, never outside.
 pub fn check_exactly_once(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    check_mesh_coverage(
-        r,
-        scene,
-        "the ray-cast mesh (each sample inside exactly once)",
-        Relax::NONE,
-    )
+    check_mesh_coverage(r, scene, "each sample inside exactly once", Relax::NONE)
 }
 
 /// [`check_exactly_once`] but for samples exactly on a vertex three or more triangles share:
@@ -108,12 +103,7 @@ pub fn check_exactly_once_between_two(r: &mut dyn Rasterizer, scene: &Scene) -> 
         vertices_of_three: true,
         ..Relax::NONE
     };
-    check_mesh_coverage(
-        r,
-        scene,
-        "the ray-cast mesh (samples on shared edges exactly once)",
-        relax,
-    )
+    check_mesh_coverage(r, scene, "samples on shared edges exactly once", relax)
 }
 
 /// [`check_exactly_once`] with a shared edge ending at a cut vertex judged as a boundary: what
@@ -123,7 +113,7 @@ pub fn check_exactly_once_cuts_apart(r: &mut dyn Rasterizer, scene: &Scene) -> R
         cut_shared_edges: true,
         ..Relax::NONE
     };
-    check_mesh_coverage(r, scene, "the ray-cast mesh (away from cut shared edges)", relax)
+    check_mesh_coverage(r, scene, "away from cut shared edges", relax)
 }
 
 /// [`check_exactly_once_cuts_apart`] and [`check_exactly_once_between_two`] at once: what
@@ -139,7 +129,7 @@ pub fn check_exactly_once_between_two_cuts_apart(
     check_mesh_coverage(
         r,
         scene,
-        "the ray-cast mesh (away from cut shared edges, samples on shared edges exactly once)",
+        "away from cut shared edges, samples on shared edges exactly once",
         relax,
     )
 }

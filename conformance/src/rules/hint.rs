@@ -4,7 +4,8 @@
 //! every difference: the other winding (a front face or cull mode declared the wrong way round,
 //! or y pointing up), the facing inverted, another fill convention, another subpixel
 //! precision, another rounding of vertices to the grid, the other clip volume's window depth,
-//! the barycentrics of a vertex order other than the draw's. A hint names both readings, a
+//! the barycentrics of a vertex order other than the draw's, no tie rule at all (samples on
+//! edges covered by both triangles or by neither). A hint names both readings, a
 //! misdeclared profile or the bug that looks the same (the zoo's mutants have these shapes
 //! too). A hint is printed only once verified: the failing case, and more cases of the rule,
 //! are run again on the rasterizer as the hint reads it (declaring what it suggests, or with
@@ -18,6 +19,7 @@ use refrast::{
 use super::cast::{Expected, raycast_expectations, raycast_fragments};
 use super::common::{deep_sample, fragments, precision};
 use super::reading::{Read, Reading, other_range};
+use super::ties::{self, Ties};
 use super::{Family, Rule};
 use crate::oracle::brute_force;
 use crate::oracle::facing::{Turn, snapped_variants};
@@ -55,7 +57,13 @@ pub fn diagnose(
         "meta.facing.from-winding" | "meta.reversal.flips-facing" | "meta.cull.by-facing"
     );
     let detectors: Vec<Detector> = match rule.family {
-        Family::Fill | Family::Clip => vec![one_winding, other_rounding, mirrored_fill, other_bits],
+        Family::Fill | Family::Clip => vec![
+            one_winding,
+            other_rounding,
+            mirrored_fill,
+            other_bits,
+            no_tie_rule,
+        ],
         Family::Meta if facing => vec![one_winding, inverted_facing],
         Family::Meta => vec![
             one_winding,
@@ -173,6 +181,45 @@ fn mirrored_fill(
             ..profile.clone()
         }),
     })
+}
+
+/// Samples exactly on edges are covered as `e >= 0` (by both triangles sharing an edge) or
+/// `e > 0` (by neither) gives, not as the declared tie rule does.
+fn no_tie_rule(
+    _: &mut dyn Rasterizer,
+    profile: &Profile,
+    scene: &Scene,
+    frags: &[Fragment],
+) -> Option<Suggestion> {
+    let fill = profile.fill?;
+    let found = ties::explaining(&scene.draw(), frags, fill)?;
+    let what = match found {
+        Ties::Inclusive => {
+            "by every triangle whose edge passes through them, so a sample on an edge two triangles share is covered twice"
+        }
+        Ties::Exclusive => "by no triangle, so a sample on an edge two triangles share is covered by neither",
+    };
+    Some(Suggestion {
+        text: format!(
+            "samples exactly on an edge are covered {what}: the rasterizer has no tie rule (its edge test is `{}` on \
+             every edge). Give each such sample to exactly one triangle, as the declared {} convention does: count it \
+             only when the edge is a {} edge (`e > 0 || (e == 0 && owned)`)",
+            found.code(),
+            fill.name(),
+            owned_words(fill)
+        ),
+        reading: Reading::TieRule(found, fill),
+    })
+}
+
+/// The edges a fill convention owns, in words.
+fn owned_words(fill: FillConvention) -> &'static str {
+    match fill {
+        FillConvention::TopLeft => "top or a left",
+        FillConvention::TopRight => "top or a right",
+        FillConvention::BottomLeft => "bottom or a left",
+        FillConvention::BottomRight => "bottom or a right",
+    }
 }
 
 /// Coverage is exactly another subpixel precision's, not the declared one's.

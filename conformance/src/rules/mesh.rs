@@ -6,6 +6,7 @@ use std::collections::BTreeMap;
 use refrast::{CullMode, Profile, Rasterizer};
 
 use super::common::fragments;
+use super::why;
 use crate::oracle::facing::snap_candidates;
 use crate::oracle::outline::{OutlinePoint, distance_to_outline, visible_outline};
 use crate::oracle::raster::{sample_centre, sample_ndc};
@@ -355,7 +356,8 @@ pub fn drawn_expectation(
 }
 
 /// Checks a scene's coverage against [`drawn_expectation`], leaving to the implementation what
-/// `relax` says.
+/// `relax` says; `what` says what a mesh is expected to cover (a scene of one triangle is no
+/// mesh, and its message says so), and each wrong sample is described by [`why::describe`].
 pub fn check_mesh_coverage(
     r: &mut dyn Rasterizer,
     scene: &Scene,
@@ -371,7 +373,31 @@ pub fn check_mesh_coverage(
         }
     }
     let counts = count_fragments(&frags, scene.width, scene.height);
-    compare_coverage(&counts, &expected, scene.width, scene.height, outlines, what)
+    let what = expectation_words(scene, what);
+    compare_coverage(&counts, &expected, scene.width, scene.height, outlines, &what).map_err(|mut v| {
+        if let Some(picture) = &v.picture {
+            let found = why::describe(scene, &frags, &picture.classes);
+            if let Err(described) = found.verdict(|_| v.message.clone()) {
+                v.message = described.message;
+                v.samples = described.samples;
+                v.details = described.details;
+            }
+        }
+        v
+    })
+}
+
+/// What the ray cast expects of `scene`, in words: of a mesh, with `what` (which samples count
+/// once); of one triangle, that it covers the samples its ray cast hits, once each.
+fn expectation_words(scene: &Scene, what: &str) -> String {
+    if scene.triangles.len() == 1 {
+        "the ray cast of its one triangle (each sample it hits covered once, no other)".to_owned()
+    } else {
+        format!(
+            "the ray-cast mesh of {} triangles ({what})",
+            scene.triangles.len()
+        )
+    }
 }
 
 #[cfg(test)]

@@ -17,7 +17,9 @@ mod reading;
 pub mod robust;
 pub mod sample_depth;
 pub mod samples;
+pub mod ties;
 mod weights;
+pub mod why;
 
 use std::fmt;
 

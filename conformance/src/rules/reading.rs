@@ -2,10 +2,11 @@
 //! the hint names undone, so that the failing case can be run again to verify the hint.
 
 use refrast::{
-    DepthRange, Draw, DrawError, Fragment, PrimitiveDraw, PrimitiveProfile, Profile, Rasterizer, Resolved,
-    SampleFragment, SampleResolved,
+    DepthRange, Draw, DrawError, FillConvention, Fragment, PrimitiveDraw, PrimitiveProfile, Profile,
+    Rasterizer, Resolved, SampleFragment, SampleResolved,
 };
 
+use super::ties::{self, Ties};
 use crate::oracle::facing::{Turn, turn};
 
 /// How the rasterizer reads under a hint: what it would declare (the case is fitted to that),
@@ -20,6 +21,9 @@ pub(super) enum Reading {
     InvertedFacing,
     /// Its perspective barycentrics go to vertex `order[k]` for weight `k`.
     Permuted([usize; 3]),
+    /// It has no tie rule (samples on edges decided as `Ties` says): each is decided by this
+    /// fill convention instead ([`ties::with_tie_rule`]).
+    TieRule(Ties, FillConvention),
 }
 
 /// The rasterizer as a hint reads it ([`Reading`]).
@@ -90,6 +94,9 @@ impl Rasterizer for Read<'_> {
         let (told, reversed) = self.told(draw);
         let mut frags = self.inner.rasterize(&told)?;
         frags.iter_mut().for_each(|f| self.undo(f, &reversed));
+        if let Reading::TieRule(ties, fill) = self.reading {
+            frags = ties::with_tie_rule(draw, frags, ties, fill);
+        }
         Ok(frags)
     }
 

@@ -185,10 +185,20 @@ pub fn check_subpixel_translation(r: &mut dyn Rasterizer, scene: &Scene) -> Resu
     }
     found.verdict(|n| {
         format!(
-            "moving one subpixel right changed {} away from every edge",
+            "moving {} right changed {} away from every edge",
+            step_words(&profile),
             plural(n, "sample")
         )
     })
+}
+
+/// One step of the profile's unit in words: a subpixel of its grid, or without a grid the
+/// float tolerance's unit in pixels (a float profile has no subpixels).
+fn step_words(profile: &Profile) -> String {
+    match profile.snapping.grid_bits() {
+        Some(bits) => format!("one subpixel (1/{} px)", 1u32 << bits.min(16)),
+        None => format!("{} px (the float tolerance's unit)", profile.snapping.unit_px()),
+    }
 }
 
 /// A viewport twice as large changes coverage only near an edge.

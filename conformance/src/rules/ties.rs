@@ -1,0 +1,156 @@
+//! A missing tie rule: coverage that is exactly what `e ≥ 0` on every edge gives (samples on
+//! an edge belong to both triangles sharing it) or `e > 0` (to neither), not the declared fill
+//! convention's. Decided only where every vertex projects exactly onto the 2^-16 grid, so that
+//! "exactly on an edge" is exact arithmetic, not a guess.
+
+use refrast::{Draw, FillConvention, Fragment};
+
+use crate::oracle::brute_force::{orient2d, owns};
+use crate::oracle::raster::{Point, project, snap};
+
+/// The grid on which a vertex must lie exactly for ties to be decided here.
+const BITS: u8 = 16;
+
+/// How a rasterizer without a tie rule treats a sample exactly on an edge.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Ties {
+    /// Every edge owns it (`e >= 0`): a sample on a shared edge is covered twice.
+    Inclusive,
+    /// No edge owns it (`e > 0`): a sample on a shared edge is covered by neither.
+    Exclusive,
+}
+
+impl Ties {
+    /// The test a student wrote, as code.
+    #[must_use]
+    pub fn code(self) -> &'static str {
+        match self {
+            Ties::Inclusive => "e >= 0",
+            Ties::Exclusive => "e > 0",
+        }
+    }
+}
+
+/// Triangle `tri`'s vertices in 2^-16 px, when each projects exactly onto that grid (and lies
+/// in front of the eye); `None` otherwise.
+#[must_use]
+pub fn exact_points(positions: &[[f32; 4]], tri: [u32; 3], width: u32, height: u32) -> Option<[Point; 3]> {
+    let one = f64::from(1u32 << BITS);
+    let point = |i: u32| {
+        let p = *positions.get(i as usize)?;
+        let snapped = snap(p, width, height, BITS)?;
+        let exact = project(width, height, p.map(f64::from));
+        (exact[0] * one == snapped.0 as f64 && exact[1] * one == snapped.1 as f64).then_some(snapped)
+    };
+    Some([point(tri[0])?, point(tri[1])?, point(tri[2])?])
+}
+
+/// Whether sample `s` is covered by `t` with samples on edges decided by `ties`, or by `fill`
+/// when `ties` is `None`; `t` must not be degenerate.
+#[must_use]
+pub fn covers(t: [Point; 3], s: Point, ties: Option<Ties>, fill: FillConvention) -> bool {
+    (0..3).all(|i| {
+        let (p, q, r) = (t[i], t[(i + 1) % 3], t[(i + 2) % 3]);
+        let e = orient2d(p, q, s) * orient2d(p, q, r).signum();
+        e > 0
+            || (e == 0
+                && match ties {
+                    Some(Ties::Inclusive) => true,
+                    Some(Ties::Exclusive) => false,
+                    None => owns(p, q, r, fill),
+                })
+    })
+}
+
+/// Whether sample `s` lies exactly on an edge of `t`.
+fn on_edge(t: [Point; 3], s: Point) -> bool {
+    (0..3).any(|i| orient2d(t[i], t[(i + 1) % 3], s) == 0)
+}
+
+/// The sample of pixel `(x, y)` in 2^-16 px.
+fn sample(x: u32, y: u32) -> Point {
+    let one = 1i128 << BITS;
+    (i128::from(x) * one + one / 2, i128::from(y) * one + one / 2)
+}
+
+/// `frags` of `draw` as if the rasterizer, whose samples on edges `ties` decides, broke them by
+/// `fill` instead: on every exact triangle, a fragment on an edge it does not own is dropped,
+/// one on an edge it owns added (a copy of another of its fragments, at that sample).
+#[must_use]
+pub fn with_tie_rule(
+    draw: &Draw,
+    mut frags: Vec<Fragment>,
+    ties: Ties,
+    fill: FillConvention,
+) -> Vec<Fragment> {
+    let (w, h) = (draw.viewport.width(), draw.viewport.height());
+    for (t, &tri) in draw.triangles.iter().enumerate() {
+        let Some(pts) = exact_points(&draw.positions, tri, w, h) else {
+            continue;
+        };
+        if orient2d(pts[0], pts[1], pts[2]) == 0 {
+            continue;
+        }
+        let mine = |f: &Fragment| f.primitive as usize == t;
+        let Some(model) = frags.iter().find(|f| mine(f)).copied() else {
+            continue; // culled, or drew nothing: nothing to fix
+        };
+        let decided = |x: u32, y: u32| covers(pts, sample(x, y), None, fill);
+        match ties {
+            Ties::Inclusive => {
+                frags.retain(|f| !mine(f) || !on_edge(pts, sample(f.x, f.y)) || decided(f.x, f.y))
+            }
+            Ties::Exclusive => {
+                for y in 0..h {
+                    for x in 0..w {
+                        let s = sample(x, y);
+                        if on_edge(pts, s)
+                            && decided(x, y)
+                            && !frags.iter().any(|f| mine(f) && (f.x, f.y) == (x, y))
+                        {
+                            frags.push(Fragment { x, y, ..model });
+                        }
+                    }
+                }
+            }
+        }
+    }
+    frags
+}
+
+/// Which of the two, if either, explains every triangle's coverage in `frags` where the
+/// declared `fill` does not: `None` unless every triangle of the draw is exact, some sample
+/// lies on an edge, and the declared convention does not already explain it.
+#[must_use]
+pub fn explaining(draw: &Draw, frags: &[Fragment], fill: FillConvention) -> Option<Ties> {
+    let (w, h) = (draw.viewport.width(), draw.viewport.height());
+    let tris: Vec<[Point; 3]> = draw
+        .triangles
+        .iter()
+        .map(|&tri| exact_points(&draw.positions, tri, w, h))
+        .collect::<Option<_>>()?;
+    let mut got: Vec<Vec<(u32, u32)>> = vec![Vec::new(); tris.len()];
+    for f in frags {
+        got.get_mut(f.primitive as usize)?.push((f.x, f.y));
+    }
+    got.iter_mut().for_each(|g| g.sort_unstable());
+    let explains = |ties: Option<Ties>| {
+        tris.iter().zip(&got).all(|(&t, got)| {
+            if orient2d(t[0], t[1], t[2]) == 0 {
+                return got.is_empty();
+            }
+            // A triangle culled (drawing nothing) says nothing of ties.
+            let want: Vec<(u32, u32)> = (0..h)
+                .flat_map(|y| (0..w).map(move |x| (x, y)))
+                .filter(|&(x, y)| covers(t, sample(x, y), ties, fill))
+                .collect();
+            got.is_empty() || *got == want
+        })
+    };
+    if explains(None) {
+        return None;
+    }
+    [Ties::Inclusive, Ties::Exclusive]
+        .into_iter()
+        .find(|&ties| explains(Some(ties)))
+}

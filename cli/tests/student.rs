@@ -146,7 +146,20 @@ fn no_tie_rule_is_named() {
     let text = said(&report);
     assert_eq!(report["status"], "fail", "{text}");
     assert!(text.contains("exactly on the edge from vertex"), "{text}");
-    assert!(text.contains("tie rule"), "{text}");
+    let hint = report["hint"].as_str().unwrap_or("");
+    assert!(
+        hint.contains("no tie rule") && hint.contains("`e >= 0`"),
+        "{text}"
+    );
+    // With `e > 0` the samples on a shared edge are covered by neither.
+    let script = student("no-ties", &[("tie rule", "v > 0 or (v == 0 and tie)", "v > 0")]);
+    let report = certify(&script, TIES.0, TIES.1);
+    let hint = report["hint"].as_str().unwrap_or("");
+    assert!(
+        hint.contains("covered by neither") && hint.contains("`e > 0`"),
+        "{}",
+        said(&report)
+    );
 }
 
 /// (ii) A w-epsilon that discards a clipped polygon whose visible part has a tiny w.

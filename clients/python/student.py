@@ -12,6 +12,7 @@ cli/tests/student.rs breaks it at the lines marked `# MISTAKE:` to check that re
 Run it with refrast:  refrast certify --exec "python3 clients/python/student.py"
 """
 
+import math
 import os
 import struct
 import sys
@@ -117,7 +118,10 @@ def rasterize(draw):
     check_indices(draw)
     out = []
     for t, tri in enumerate(draw.triangles):
-        out += triangle_fragments(draw, t, [draw.positions[i] for i in tri])
+        corners = [draw.positions[i] for i in tri]
+        # A NaN or infinite coordinate has no place on screen: its triangles are skipped.
+        if all(math.isfinite(c) for p in corners for c in p):
+            out += triangle_fragments(draw, t, corners)
     return out
 
 

@@ -3,7 +3,8 @@
 use std::collections::BTreeMap;
 
 use refrast::{
-    Fragment, Profile, Rasterizer, Reference, ReferenceConfig, SnapAccuracy, SnapRounding, SubpixelBits,
+    DepthRange, Fragment, Profile, Rasterizer, Reference, ReferenceConfig, SnapAccuracy, SnapRounding,
+    SubpixelBits,
 };
 
 use crate::oracle::outline::{distance_to_outline, visible_outline};
@@ -98,14 +99,66 @@ pub fn check_draws_nothing(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), 
     let frags = fragments(r, scene)?;
     match frags.first() {
         None => Ok(()),
-        Some(f) => Err(Violation::at(
-            (f.x, f.y),
-            format!(
-                "{} fragments drawn where none should be, the first at {:?}",
-                frags.len(),
-                (f.x, f.y)
-            ),
-        )),
+        Some(f) => {
+            let why =
+                invisible(scene, f.primitive as usize).map_or_else(String::new, |why| format!(": {why}"));
+            Err(Violation::at(
+                (f.x, f.y),
+                format!(
+                    "{} fragments drawn where none should be, the first at {:?} by triangle {}{why}",
+                    frags.len(),
+                    (f.x, f.y),
+                    f.primitive
+                ),
+            ))
+        }
+    }
+}
+
+/// Why triangle `t` of `scene` draws nothing, and what draws it anyway, when the clip volume
+/// says so: wholly behind the eye, wholly before the near plane or beyond the far one; `None`
+/// for another reason (zero area, culling) or a triangle that is not there.
+fn invisible(scene: &Scene, t: usize) -> Option<String> {
+    let corners = scene
+        .triangles
+        .get(t)?
+        .map(|i| scene.positions.get(i as usize).copied());
+    let [Some(a), Some(b), Some(c)] = corners else {
+        return None;
+    };
+    let v = [a, b, c];
+    let near = |p: [f32; 4]| match scene.state.depth_range {
+        DepthRange::ZeroToOne => p[2] < 0.0,
+        DepthRange::NegativeOneToOne => p[2] < -p[3],
+    };
+    let plane = match scene.state.depth_range {
+        DepthRange::ZeroToOne => "z < 0",
+        DepthRange::NegativeOneToOne => "z < -w",
+    };
+    let listed = |f: fn([f32; 4]) -> f32| v.map(|p| format!("{:.4e}", f(p))).join(", ");
+    if v.iter().all(|p| p[3] < 0.0) {
+        Some(format!(
+            "its vertices all have w < 0 ({}): it lies behind the eye, where dividing by w \
+             mirrors it onto the screen; clip against the near plane (or drop a triangle wholly \
+             outside it) before dividing",
+            listed(|p| p[3])
+        ))
+    } else if v.iter().all(|&p| near(p)) {
+        Some(format!(
+            "its vertices all have {plane} (z = {}; w = {}): it lies wholly before the near \
+             plane; clip against the near plane (or drop a triangle wholly outside it)",
+            listed(|p| p[2]),
+            listed(|p| p[3])
+        ))
+    } else if scene.state.clip_far && v.iter().all(|p| p[2] > p[3]) {
+        Some(format!(
+            "its vertices all have z > w (z = {}; w = {}) and the draw asks for far clipping: \
+             it lies wholly beyond the far plane",
+            listed(|p| p[2]),
+            listed(|p| p[3])
+        ))
+    } else {
+        None
     }
 }
 

@@ -197,12 +197,17 @@ pub fn check_depth_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Res
     // Clamping moves two values no further apart, so the slack still holds.
     let off =
         |f: &refrast::Fragment, want: &Expected| (f64::from(f.depth) - want.depth.clamp(0.0, 1.0)).abs();
+    // Whether the first wrong fragment lies where the ray cast's depth is clamped, and its own
+    // is not: depth beyond the far plane (far clipping off) or before the near one.
+    let mut unclamped = None;
     for &(f, want) in &cast.pairs {
         let depth = want.depth.clamp(0.0, 1.0);
         let off_by = off(&f, &want);
         if off_by > eps + want.depth_slack
             && !cast.another_snap_accepts(&f, |w| off(&f, w) <= eps + w.depth_slack)
         {
+            unclamped
+                .get_or_insert((want.depth > 1.0 && f.depth > 1.0) || (want.depth < 0.0 && f.depth < 0.0));
             let off = off_by;
             found.add((f.x, f.y), || {
                 format!(
@@ -215,8 +220,14 @@ pub fn check_depth_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Res
         }
     }
     found.verdict(|n| {
+        let clamp = if unclamped == Some(true) {
+            " (the first lies outside the clip volume's depth range, which the draw does not clip \
+             at: there depth is clamped to [0, 1], so clamp the fragment's depth)"
+        } else {
+            ""
+        };
         format!(
-            "depth off the ray cast's by more than the claimed precision at {}",
+            "depth off the ray cast's by more than the claimed precision at {}{clamp}",
             plural(n, "fragment")
         )
     })

@@ -140,8 +140,9 @@ pub fn explaining(draw: &Draw, frags: &[Fragment], fill: FillConvention) -> Opti
                 return got.is_empty();
             }
             // A triangle culled (drawing nothing) says nothing of ties.
-            let want: Vec<(u32, u32)> = (0..h)
-                .flat_map(|y| (0..w).map(move |x| (x, y)))
+            // In the order of `got`: sorted by x, then y.
+            let want: Vec<(u32, u32)> = (0..w)
+                .flat_map(|x| (0..h).map(move |y| (x, y)))
                 .filter(|&(x, y)| covers(t, sample(x, y), ties, fill))
                 .collect();
             got.is_empty() || *got == want
@@ -153,4 +154,64 @@ pub fn explaining(draw: &Draw, frags: &[Fragment], fill: FillConvention) -> Opti
     [Ties::Inclusive, Ties::Exclusive]
         .into_iter()
         .find(|&ties| explains(Some(ties)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Scene;
+
+    /// Coverage of `scene`'s triangles with samples on edges decided by `ties`.
+    fn drawn(scene: &Scene, ties: Option<Ties>) -> Vec<Fragment> {
+        let draw = scene.draw();
+        let mut frags = Vec::new();
+        for (t, &tri) in draw.triangles.iter().enumerate() {
+            let pts = exact_points(&draw.positions, tri, scene.width, scene.height).expect("on the grid");
+            for y in 0..scene.height {
+                for x in 0..scene.width {
+                    if covers(pts, sample(x, y), ties, FillConvention::TopLeft) {
+                        frags.push(Fragment {
+                            x,
+                            y,
+                            primitive: t as u32,
+                            depth: 0.5,
+                            barycentric: [1.0, 0.0, 0.0],
+                            screen_barycentric: None,
+                            front_facing: true,
+                        });
+                    }
+                }
+            }
+        }
+        frags
+    }
+
+    /// The student's case of issue 43: two triangles sharing a diagonal through samples. Each
+    /// missing tie rule is recognised, and the declared one is not taken for one (the first
+    /// version compared coverage sorted two ways and recognised nothing).
+    #[test]
+    fn a_missing_tie_rule_is_recognised_on_a_shared_diagonal() {
+        let scene = Scene::new(
+            16,
+            16,
+            vec![
+                [-1.0, 1.0, 0.5, 1.0],
+                [1.0, -1.0, 0.5, 1.0],
+                [-1.0, -1.0, 0.5, 1.0],
+                [0.75, -0.25, 0.5, 1.0],
+            ],
+            vec![[1, 2, 3], [0, 3, 2]],
+        );
+        let draw = scene.draw();
+        for ties in [Ties::Inclusive, Ties::Exclusive] {
+            assert_eq!(
+                explaining(&draw, &drawn(&scene, Some(ties)), FillConvention::TopLeft),
+                Some(ties)
+            );
+        }
+        assert_eq!(
+            explaining(&draw, &drawn(&scene, None), FillConvention::TopLeft),
+            None
+        );
+    }
 }

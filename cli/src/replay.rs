@@ -116,7 +116,14 @@ fn replay(args: &Args) -> Result<RuleReport, String> {
         },
     ));
     say(&format!("the draw: {}", describe(&case)));
-    for line in rule_lines(&report, &reach(&name, is_exec)) {
+    // The case is the file given: its text is not printed again.
+    let shown = RuleReport {
+        counterexample: None,
+        case_file: None,
+        case_path: None,
+        ..report.clone()
+    };
+    for line in rule_lines(&shown, &reach(&name, is_exec)) {
         say(&line);
     }
     if report.status == Status::Pass {

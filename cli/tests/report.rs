@@ -180,10 +180,26 @@ fn the_page_holds_tables_matrix_failures_and_escaped_text() {
         rule["counterexample"], first["counterexample"],
         "the same counterexample"
     );
-    let (counterexample, _) = between(&page, 0, "<pre><code>", "</code>").expect("a counterexample");
+    let (case, at) = between(&page, 0, "<pre><code>", "</code>").expect("the case as data");
+    let case: Value = serde_json::from_str(&unescape(case)).expect("the page's case is JSON");
+    assert_eq!(case, first["case"], "the page shows the report's case");
+    let (counterexample, at) = between(&page, at, "<pre><code>", "</code>").expect("a counterexample");
     assert_eq!(
         unescape(counterexample),
         first["counterexample"].as_str().unwrap()
+    );
+    let (replay, _) = between(
+        &page,
+        at,
+        "<h4>Replay this case alone</h4>\n<pre><code>",
+        "</code>",
+    )
+    .expect("a replay command");
+    let replay = shell_words::split(&unescape(replay)).expect("one command line");
+    assert_eq!(&replay[..2], ["refrast", "replay"]);
+    assert_eq!(
+        replay.last(),
+        first["case_path"].as_str().map(str::to_owned).as_ref()
     );
 
     // Strings from reports and the command line are escaped, never markup.
@@ -210,6 +226,7 @@ fn verdicts(json: &Value) -> Vec<Value> {
             let rule = rule.as_object_mut().expect("a rule");
             rule.remove("seconds");
             rule.remove("picture");
+            rule.remove("case_path");
         }
     }
     entries

@@ -197,3 +197,89 @@ fn edge_function_not_antisymmetric_is_named() {
     assert!(text.contains("antisymmetric"), "{text}");
     assert!(text.contains("shared by triangles"), "{text}");
 }
+
+/// (iv) No near plane: the clip volume's near side missing, a triangle before it is drawn.
+#[test]
+fn a_missing_near_plane_is_named() {
+    if !have_python() {
+        return;
+    }
+    let script = student("no-near", &[("near plane", "[near, ", "[")]);
+    let report = certify(&script, "clip.behind-eye.empty", "100");
+    let text = said(&report);
+    assert_eq!(report["status"], "fail", "{text}");
+    assert!(text.contains("wholly before the near plane"), "{text}");
+    assert!(text.contains("clip against the near plane"), "{text}");
+}
+
+/// A first client written from the README alone (cli/tests/data/first_client.py: bounding box,
+/// float edge functions, the top-left rule, no clipping, no depth clamp, no guard against NaN):
+/// for every rule it fails, the first line of the message says what to change.
+#[test]
+fn a_first_client_from_the_readme_is_told_what_to_change() {
+    if !have_python() {
+        return;
+    }
+    let readme =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../README.md")).expect("README");
+    let starter = readme
+        .lines()
+        .find(|l| l.starts_with("serve({"))
+        .expect("the README's Python starter calls serve");
+    assert!(
+        starter.contains(r#""fill": "top-left""#),
+        "the starter declares a tie rule: {starter}"
+    );
+    let dir = scratch("first-client");
+    std::fs::copy(clients().join("refrast_pipe.py"), dir.join("refrast_pipe.py")).expect("copy the pipe");
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/first_client.py");
+    std::fs::copy(data, dir.join("raster.py")).expect("copy the client");
+    let json = dir.join("report.json");
+    let out = Command::new(REFRAST)
+        .current_dir(&dir)
+        .args([
+            "certify",
+            "--exec",
+            "python3 raster.py",
+            "--cases",
+            "60",
+            "--budget",
+            "3600",
+            "--json",
+        ])
+        .arg(&json)
+        .output()
+        .expect("refrast runs");
+    let text = std::fs::read_to_string(&json)
+        .unwrap_or_else(|e| panic!("no report ({e}): {}", String::from_utf8_lossy(&out.stderr)));
+    let report: Value = serde_json::from_str(&text).expect("JSON");
+    let rules = report["implementations"][0]["rules"]
+        .as_array()
+        .cloned()
+        .unwrap_or_default();
+    // What to change, in the words of each kind of failure the client has.
+    let advice = [
+        "clip against the near plane",
+        "must be clipped away",
+        "clamp",
+        "is to be skipped",
+        "must give no crash",
+    ];
+    let failed: Vec<&Value> = rules
+        .iter()
+        .filter(|r| r["status"] != "pass" && r["status"] != "n/a")
+        .collect();
+    assert!(
+        failed.len() >= 5,
+        "the client lacks clipping: {}",
+        String::from_utf8_lossy(&out.stdout)
+    );
+    for r in failed {
+        let first = r["message"].as_str().unwrap_or("").lines().next().unwrap_or("");
+        assert!(
+            advice.iter().any(|a| first.contains(a)),
+            "{}: the first line says nothing of what to change: {first}",
+            r["id"]
+        );
+    }
+}

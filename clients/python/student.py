@@ -51,7 +51,7 @@ def planes(draw):
     """Signed distances to the near plane and to a guard band 16384 px out (which keeps w > 0)."""
     kx, ky = 32768 / draw.width, 32768 / draw.height
     near = (lambda p: p[2]) if draw.depth_range == "zero-to-one" else (lambda p: p[2] + p[3])
-    return [near, lambda p: kx * p[3] + p[0], lambda p: kx * p[3] - p[0],
+    return [near, lambda p: kx * p[3] + p[0], lambda p: kx * p[3] - p[0],  # MISTAKE: near plane
             lambda p: ky * p[3] + p[1], lambda p: ky * p[3] - p[1]]
 
 

@@ -242,7 +242,7 @@ fn a_first_client_from_the_readme_is_told_what_to_change() {
             "--exec",
             "python3 raster.py",
             "--cases",
-            "60",
+            "30",
             "--budget",
             "3600",
             "--json",

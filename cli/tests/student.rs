@@ -176,6 +176,20 @@ fn discarded_tiny_w_is_named() {
     assert!(text.contains("vertices have w ="), "{text}");
 }
 
+/// The correct client computing in f32, as a GPU would: its antisymmetric edge functions cross
+/// every shared edge alike, and around a vertex three triangles share, where rounded signs of
+/// different edges can disagree within a hair, the band of the float profile leaves it alone
+/// (a false failure before: a sample 6.8e-7 px from such a vertex, covered twice).
+#[test]
+fn the_correct_client_in_f32_passes_the_meshes() {
+    if !have_python() {
+        return;
+    }
+    let script = student("f32", &[("precision", "ROUND = float", "ROUND = f32")]);
+    let report = certify(&script, SYMMETRY.0, "300");
+    assert_eq!(report["status"], "pass", "{}", said(&report));
+}
+
 /// (iii) An edge function evaluated from the edge's first vertex, in f32: not antisymmetric.
 #[test]
 fn edge_function_not_antisymmetric_is_named() {

@@ -46,7 +46,8 @@ const INNER_LAYERS: &[(&str, &[&[&str]])] = &[
     (
         "rules",
         &[
-            &["common", "level", "samples", "reading"],
+            &["common", "level", "samples", "ties"],
+            &["reading", "why"],
             &["cast", "mesh", "weights"],
             &["fill"],
             &[

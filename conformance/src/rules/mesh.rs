@@ -403,7 +403,7 @@ pub fn check_mesh_coverage(
     let what = expectation_words(scene, what);
     compare_coverage(&counts, &expected, scene.width, scene.height, outlines, &what).map_err(|mut v| {
         if let Some(picture) = &v.picture {
-            let found = why::describe(scene, &frags, &picture.classes);
+            let found = why::describe(scene, &frags, &picture.classes, profile.snapping.grid_bits());
             if let Err(described) = found.verdict(|_| v.message.clone()) {
                 v.message = described.message;
                 v.samples = described.samples;

@@ -35,14 +35,44 @@ impl Ties {
 /// in front of the eye); `None` otherwise.
 #[must_use]
 pub fn exact_points(positions: &[[f32; 4]], tri: [u32; 3], width: u32, height: u32) -> Option<[Point; 3]> {
-    let one = f64::from(1u32 << BITS);
-    let point = |i: u32| {
-        let p = *positions.get(i as usize)?;
-        let snapped = snap(p, width, height, BITS)?;
-        let exact = project(width, height, p.map(f64::from));
-        (exact[0] * one == snapped.0 as f64 && exact[1] * one == snapped.1 as f64).then_some(snapped)
-    };
+    let point = |i: u32| exact_point(*positions.get(i as usize)?, width, height);
     Some([point(tri[0])?, point(tri[1])?, point(tri[2])?])
+}
+
+/// Clip-space position `p` in 2^-16 px, when it projects exactly onto that grid (and lies in
+/// front of the eye); `None` otherwise.
+#[must_use]
+pub fn exact_point(p: [f32; 4], width: u32, height: u32) -> Option<Point> {
+    let one = f64::from(1u32 << BITS);
+    let snapped = snap(p, width, height, BITS)?;
+    let exact = project(width, height, p.map(f64::from));
+    (exact[0] * one == snapped.0 as f64 && exact[1] * one == snapped.1 as f64).then_some(snapped)
+}
+
+/// Whether the sample of pixel `(x, y)` lies exactly on the line through `a` and `b` as a
+/// rasterizer places them, decided in integers: snapped to its grid of `grid` bits, or without
+/// one, exactly projected; `None` when they do not project exactly onto the 2^-16 grid, where
+/// exactly on cannot be told from a hair off.
+#[must_use]
+pub fn exactly_on_line(
+    a: [f32; 4],
+    b: [f32; 4],
+    (width, height): (u32, u32),
+    grid: Option<u8>,
+    (x, y): (u32, u32),
+) -> Option<bool> {
+    let (ends, s) = match grid {
+        Some(bits) => {
+            let one = 1i128 << bits.min(16);
+            let s = (i128::from(x) * one + one / 2, i128::from(y) * one + one / 2);
+            ((snap(a, width, height, bits)?, snap(b, width, height, bits)?), s)
+        }
+        None => (
+            (exact_point(a, width, height)?, exact_point(b, width, height)?),
+            sample(x, y),
+        ),
+    };
+    Some(orient2d(ends.0, ends.1, s) == 0)
 }
 
 /// Whether sample `s` is covered by `t` with samples on edges decided by `ties`, or by `fill`

@@ -11,6 +11,7 @@ use std::collections::HashMap;
 
 use refrast::{DepthRange, Fragment};
 
+use super::ties;
 use crate::oracle::outline::{OutlinePoint, segment_distance, visible_outline};
 use crate::oracle::raster::{near_distance, project, sample_centre, sample_ndc};
 use crate::oracle::ray_cast::ray_cast;
@@ -21,15 +22,20 @@ use crate::violation::{Class, Findings};
 /// function resolves (2^-24 of a 64-px product is about 4·10^-6 px), though not exactly on it.
 const HAIR_PX: f64 = 1e-4;
 
+/// Below this many pixels from an edge whose ends do not project exactly, a sample may lie on it:
+/// a distance computed in doubles from a projection in doubles is off by about 10^-15 px.
+const ON_EDGE_PX: f64 = 1e-12;
+
 /// A hit whose `w` is below this fraction of the triangle's largest `|w|` is "tiny": a visible
 /// point so near the eye that a client's w-epsilon (often 10^-5 to 10^-3) may discard it.
 const TINY_W: f64 = 1e-4;
 
 /// Each wrong sample of a coverage comparison (`classes`, row-major) with what the oracles know
-/// about it: the first few described ([`Findings::DESCRIBED`]).
+/// about it, for a rasterizer snapping to a grid of `grid` bits (or none): the first few
+/// described ([`Findings::DESCRIBED`]).
 #[must_use]
-pub fn describe(scene: &Scene, frags: &[Fragment], classes: &[Class]) -> Findings {
-    let scene_view = View::of(scene);
+pub fn describe(scene: &Scene, frags: &[Fragment], classes: &[Class], grid: Option<u8>) -> Findings {
+    let scene_view = View::of(scene, grid);
     let mut by_sample: HashMap<(u32, u32), Vec<u32>> = HashMap::new();
     for f in frags {
         by_sample.entry((f.x, f.y)).or_default().push(f.primitive);
@@ -53,10 +59,12 @@ struct View<'a> {
     outlines: Vec<Vec<OutlinePoint>>,
     /// Per triangle and edge k, the other triangle sharing that edge (identical end points).
     partners: Vec<[Option<usize>; 3]>,
+    /// The bits of the rasterizer's grid, or none.
+    grid: Option<u8>,
 }
 
 impl<'a> View<'a> {
-    fn of(scene: &'a Scene) -> Self {
+    fn of(scene: &'a Scene, grid: Option<u8>) -> Self {
         let valid = |t: &[u32; 3]| t.iter().all(|&i| (i as usize) < scene.positions.len());
         let tris: Vec<[[f64; 4]; 3]> = (0..scene.triangles.len())
             .map(|t| {
@@ -93,6 +101,7 @@ impl<'a> View<'a> {
             tris,
             outlines,
             partners,
+            grid,
         }
     }
 
@@ -143,29 +152,51 @@ impl<'a> View<'a> {
                 px(d)
             );
         }
-        self.on_shared(at, "covered by both", t, u, &edge, d)
+        self.on_shared(at, (x, y), "covered by both", (t, k, u), d)
     }
 
-    /// The words for a sample on (or a hair from) the edge triangles `t` and `u` share.
-    fn on_shared(&self, at: &str, how: &str, t: usize, u: usize, edge: &str, d: f64) -> String {
-        if d == 0.0 {
-            format!(
-                "{at} lies exactly on the {edge}, shared by triangles {t} and {u}, and is {how}: a sample on a shared edge \
-                 belongs to exactly one of the two, as the tie rule decides (top-left: the triangle for which it is a top \
-                 or a left edge), so an edge test of `e >= 0` or `e > 0` alone is not enough"
-            )
-        } else if d < HAIR_PX {
-            format!(
-                "{at} lies {} from the {edge}, shared by triangles {t} and {u}, and is {how}: closer than rounding resolves, \
-                 so the two triangles' edge functions disagree about it; the edge function must be antisymmetric, \
-                 E_ab(p) = −E_ba(p) exactly, as it is when both evaluate it from the same end of the edge",
+    /// The words for sample `(x, y)` on (or a hair from) edge `k` of triangle `t`, which
+    /// triangle `u` shares, `d` px from it. Exactly on it is decided in integers where its ends
+    /// project exactly onto a fine grid (a distance in doubles is off by 10^-16 there); else a
+    /// sample closer than doubles resolve may be on it, and both mechanisms are named.
+    fn on_shared(
+        &self,
+        at: &str,
+        (x, y): (u32, u32),
+        how: &str,
+        (t, k, u): (usize, usize, usize),
+        d: f64,
+    ) -> String {
+        let edge = self.edge_name(t, k);
+        let ends = [k, (k + 1) % 3].map(|j| self.scene.positions[self.scene.triangles[t][j] as usize]);
+        let (w, h) = (self.scene.width, self.scene.height);
+        let tie = "a sample on a shared edge belongs to exactly one of the two, as the tie rule decides (top-left: the \
+                   triangle for which it is a top or a left edge), so an edge test of `e >= 0` or `e > 0` alone is not enough";
+        let antisymmetric = "the edge function must be antisymmetric, E_ab(p) = −E_ba(p) exactly, as it is when both \
+                             evaluate it from the same end of the edge";
+        match ties::exactly_on_line(ends[0], ends[1], (w, h), self.grid, (x, y)) {
+            Some(true) => format!(
+                "{at} lies exactly on the {edge}, shared by triangles {t} and {u}, and is {how}: {tie}"
+            ),
+            Some(false) if d < HAIR_PX => format!(
+                "{at} lies {} from the {edge} (not on it, as integers tell), shared by triangles {t} and {u}, and is {how}: \
+                 closer than rounding resolves, so the two triangles' edge functions disagree about it; {antisymmetric}",
                 px(d)
-            )
-        } else {
-            format!(
+            ),
+            None if d < ON_EDGE_PX => format!(
+                "{at} lies on the {edge} as far as doubles tell ({} from it), shared by triangles {t} and {u}, and is \
+                 {how}: {tie}; and for the tie rule to see the same zero from both triangles, {antisymmetric}",
+                px(d)
+            ),
+            None if d < HAIR_PX => format!(
+                "{at} lies {} from the {edge}, shared by triangles {t} and {u}, and is {how}: closer than rounding \
+                 resolves, so the two triangles' edge functions disagree about it; {antisymmetric}",
+                px(d)
+            ),
+            _ => format!(
                 "{at} lies {} from the {edge}, shared by triangles {t} and {u}, and is {how}",
                 px(d)
-            )
+            ),
         }
     }
 
@@ -204,8 +235,7 @@ impl<'a> View<'a> {
             && let Some(u) = self.partners[t][k]
             && d < HAIR_PX
         {
-            let edge = self.edge_name(t, k);
-            return self.on_shared(at, "covered by neither", t, u, &edge, d);
+            return self.on_shared(at, (x, y), "covered by neither", (t, k, u), d);
         }
         format!(
             "{at} is inside triangle {t} (the ray hits it at w = {w:.4}), but nothing covers it; {}{}",

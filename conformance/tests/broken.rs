@@ -93,8 +93,15 @@ fn inclusive_edges_fail_the_fill_rules_with_a_small_counterexample_and_a_picture
     let message = mesh.message.as_deref().unwrap_or("");
     // On the grid the samples lie exactly on the shared edge: the tie rule is named, not the
     // rounding of an edge function (a distance in doubles once said 1.6e-16 px and blamed it).
-    assert!(message.contains("lies exactly on the edge") && message.contains("tie rule"), "{message}");
-    assert!(!mesh.details.iter().any(|d| d.contains("antisymmetric")), "{:#?}", mesh.details);
+    assert!(
+        message.contains("lies exactly on the edge") && message.contains("tie rule"),
+        "{message}"
+    );
+    assert!(
+        !mesh.details.iter().any(|d| d.contains("antisymmetric")),
+        "{:#?}",
+        mesh.details
+    );
     let counts = mesh.counts.expect("coverage failures carry counts");
     assert!(
         counts.double > 0,

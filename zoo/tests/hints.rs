@@ -263,3 +263,20 @@ fn a_truncating_rasterizer_gets_no_wrong_hint() {
         }
     }
 }
+
+/// No tie rule, either way: `e >= 0` on every edge covers a sample on a shared edge twice,
+/// `e > 0` by neither; each is named with its edge test, and the correct reference gets none
+/// (`correct_profiles_pass_the_hinted_rules`).
+#[test]
+fn a_missing_tie_rule_is_hinted() {
+    for (bug, test) in [
+        (Bug::InclusiveEdges, "`e >= 0`"),
+        (Bug::ExclusiveEdges, "`e > 0`"),
+    ] {
+        let hint = hint(&mut Mutant::new(bug), "fill.mesh.exactly-once");
+        assert!(
+            hint.contains("no tie rule") && hint.contains(test),
+            "{bug:?}: {hint}"
+        );
+    }
+}

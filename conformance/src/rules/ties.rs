@@ -3,7 +3,7 @@
 //! convention's. Decided only where every vertex projects exactly onto the 2^-16 grid, so that
 //! "exactly on an edge" is exact arithmetic, not a guess.
 
-use refrast::{Draw, FillConvention, Fragment};
+use refrast::{CullMode, Draw, FillConvention, Fragment};
 
 use crate::oracle::brute_force::{orient2d, owns};
 use crate::oracle::raster::{Point, project, snap};
@@ -122,8 +122,22 @@ pub fn with_tie_rule(
             continue;
         }
         let mine = |f: &Fragment| f.primitive as usize == t;
-        let Some(model) = frags.iter().find(|f| mine(f)).copied() else {
-            continue; // culled, or drew nothing: nothing to fix
+        let model = match frags.iter().find(|f| mine(f)).copied() {
+            Some(model) => model,
+            // Culled: nothing to fix.
+            None if draw.state.cull != CullMode::None => continue,
+            // A sliver whose every sample lies on an edge draws nothing without a tie rule: its
+            // owned samples get a fragment of plain values (the rules these hints verify
+            // judge coverage).
+            None => Fragment {
+                x: 0,
+                y: 0,
+                primitive: t as u32,
+                depth: 0.5,
+                barycentric: [1.0 / 3.0; 3],
+                screen_barycentric: Some([1.0 / 3.0; 3]),
+                front_facing: true,
+            },
         };
         let decided = |x: u32, y: u32| covers(pts, sample(x, y), None, fill);
         match ties {

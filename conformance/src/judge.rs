@@ -49,7 +49,7 @@ pub struct Options {
     /// every case.
     pub budget: Option<Duration>,
     /// Stop at the first rule that fails: the rules after it are not run and are listed in
-    /// [`Report::not_run`] (for a quick answer, and for mutation testing).
+    /// [`crate::Report::not_run`] (for a quick answer, and for mutation testing).
     pub fail_fast: bool,
     /// The most data, in bytes, each rule's child process (and a `--exec` child) may allocate
     /// ([`crate::contain`]); `None` sets no limit.

@@ -173,11 +173,11 @@ const LEGEND: [(Class, &str); 6] = [
 
 /// Pixels of margin kept around the wrong samples when a picture is cropped to them: enough
 /// to see the edges that pass by them.
-const MARGIN: u32 = 4;
+pub const MARGIN: u32 = 4;
 
 /// The smallest side a cropped picture keeps, in pixels: so that a lone wrong sample is still
 /// shown among its neighbours.
-const LEAST_SIDE: u32 = 16;
+pub const LEAST_SIDE: u32 = 16;
 
 /// The part of a picture worth showing: a window around its wrong samples (missing, unexpected,
 /// double), with [`MARGIN`] pixels around them and sides of at least [`LEAST_SIDE`], when that

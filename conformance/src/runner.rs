@@ -69,7 +69,7 @@ pub enum Verdict {
         /// The minimal failing input as data, to replay in any language (none when no case ran).
         case: Option<Box<CaseData>>,
         /// Why shrinking stopped before the input was as small as it could be (the time
-        /// budget, or [`SHRINK_STEPS`]); `None` when it is minimal.
+        /// budget, or 2048 smaller cases); `None` when it is minimal.
         shrinking_cut: Option<String>,
         /// Why it fails.
         violation: Violation,

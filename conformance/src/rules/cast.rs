@@ -166,20 +166,23 @@ pub fn raycast_expectations(profile: &Profile, scene: &Scene, frags: Vec<Fragmen
     cast
 }
 
-/// ", allowed …" naming the slack a triangle crossing a clip plane earns, if any, in the words
-/// of the profile: snapped cut vertices on a grid, the float tolerance's unit without one.
+/// ", allowed …" naming the slack a triangle reaching outside the clip volume earns, if any, in
+/// the words of the profile: snapped cut vertices on a grid, the float tolerance's unit without
+/// one.
 pub fn slack_note(slack: f64, profile: &Profile) -> String {
     if slack <= 0.0 {
         return String::new();
     }
     match profile.snapping.grid_bits() {
         Some(bits) => format!(
-            ", allowed {slack:.3e} more because the triangle crosses a clip plane and the vertices clipping makes are \
-             snapped to the {bits}-bit grid (the ray cast's spread over one grid step)"
+            ", allowed {slack:.3e} more because the triangle reaches outside the clip volume (past a side of the \
+             viewport or a depth plane), where the vertices clipping may make are snapped to the {bits}-bit grid (the \
+             ray cast's spread over one grid step)"
         ),
         None => format!(
-            ", allowed {slack:.3e} more because the triangle crosses a clip plane and where clipping puts its vertices is \
-             only as exact as float arithmetic (the ray cast's spread over the float tolerance's unit, {} px)",
+            ", allowed {slack:.3e} more because the triangle reaches outside the clip volume (past a side of the \
+             viewport or a depth plane), where the vertices clipping may make are only as exact as float arithmetic \
+             (the ray cast's spread over the float tolerance's unit, {} px)",
             profile.snapping.unit_px()
         ),
     }

@@ -13,17 +13,13 @@ use crate::say;
 
 /// Arguments of `refrast replay`.
 #[derive(clap::Args, Debug)]
+#[command(group(clap::ArgGroup::new("rasterizer").required(true).args(["exec", "implementation"])))]
 pub struct Args {
     /// The case: a `.case.json` file that `certify` wrote beside a failure's picture, or a
     /// `certify --json` report (then --rule says which failure).
     case: PathBuf,
     /// The rasterizer to replay it on: the command that starts it, speaking docs/protocol.md.
-    #[arg(
-        long = "exec",
-        value_name = "CMD",
-        conflicts_with = "implementation",
-        required_unless_present = "implementation"
-    )]
+    #[arg(long = "exec", value_name = "CMD")]
     exec: Option<String>,
     /// A built-in to replay it on (see `refrast impls`), run in this process.
     #[arg(long = "impl", value_name = "NAME")]

@@ -326,3 +326,61 @@ fn rules_spec_prints_the_map_and_the_statements_of_one_rule() {
     assert_eq!(unknown.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&unknown.stderr).contains("no rule fill.no-such-rule"));
 }
+
+/// `refrast replay` takes a case certify wrote and says clearly what it cannot use: no
+/// rasterizer named, two named, a missing file, a file that is no case, a word the protocol
+/// does not have (exit 2 each); the reference passes the mutant's case (exit 0).
+#[test]
+fn replay_reads_a_written_case_and_refuses_what_it_cannot_use() {
+    let dir = scratch("replay-usage");
+    let (out, json) = certify(&dir, &["--impl", MUTANT, "--rule", "fill.mesh.exactly-once"]);
+    assert_eq!(out.status.code(), Some(1));
+    let case = json[0]["rules"][0]["case_path"]
+        .as_str()
+        .expect("a case file")
+        .to_owned();
+    let replay = |args: &[&str]| {
+        Command::new(REFRAST)
+            .arg("replay")
+            .args(args)
+            .output()
+            .expect("refrast runs")
+    };
+    let said = |o: &Output| String::from_utf8_lossy(&o.stderr).into_owned();
+    let out = replay(&[
+        "--impl",
+        MUTANT,
+        &case,
+        "--report",
+        &dir.join("again").to_string_lossy(),
+    ]);
+    assert_eq!(out.status.code(), Some(1), "{}", said(&out));
+    let out = replay(&["--impl", "reference", &case]);
+    assert_eq!(out.status.code(), Some(0), "{}", said(&out));
+    let out = replay(&[&case]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        said(&out).contains("--exec") && said(&out).contains("--impl"),
+        "{}",
+        said(&out)
+    );
+    let out = replay(&["--impl", "reference", "--exec", "true", &case]);
+    assert_eq!(out.status.code(), Some(2), "{}", said(&out));
+    let out = replay(&["--impl", "reference", "/nonexistent/case.json"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(said(&out).contains("/nonexistent/case.json"), "{}", said(&out));
+    let text = std::fs::read_to_string(&case).expect("the case");
+    let sideways = dir.join("sideways.json");
+    std::fs::write(
+        &sideways,
+        text.replace("\"cull\": \"none\"", "\"cull\": \"sideways\""),
+    )
+    .expect("write");
+    let out = replay(&["--impl", "reference", &sideways.to_string_lossy()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        said(&out).contains("cull 'sideways' is none of"),
+        "{}",
+        said(&out)
+    );
+}

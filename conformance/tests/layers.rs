@@ -47,7 +47,7 @@ const INNER_LAYERS: &[(&str, &[&[&str]])] = &[
         "rules",
         &[
             &["common", "level", "samples", "ties"],
-            &["reading", "why"],
+            &["reading", "why", "vertices"],
             &["cast", "mesh", "weights"],
             &["fill"],
             &[

@@ -18,6 +18,7 @@ pub mod robust;
 pub mod sample_depth;
 pub mod samples;
 pub mod ties;
+pub mod vertices;
 mod weights;
 pub mod why;
 

@@ -4,12 +4,12 @@
 use refrast::{FillConvention, Fragment, LineRule, Rasterizer};
 
 use super::level::{Level, NO_TIE_RULE, SHARED_EDGE_ONLY};
-use super::mesh::vertices_of_three;
 pub use super::sample_depth::{check_depth, check_depth_resolved, check_resolve};
 use super::samples::{
     cell, cells, compare_samples, counts, endpoint_bits, expect_covered, grid, positions, sample_fragments,
     within_guard_band,
 };
+use super::vertices::vertices_of_three;
 use super::{DEPTH_TEST, EXACT_COVERAGE, Family, Rule, needs_primitives};
 use crate::oracle::facing::{Turn, snapped_variants};
 use crate::oracle::outline::segment_distance;

@@ -60,17 +60,6 @@ impl PixelRect {
         };
         (rect.x0 < rect.x1 && rect.y0 < rect.y1).then_some(rect)
     }
-
-    /// The smallest rectangle holding both.
-    #[must_use]
-    pub fn union(self, other: Self) -> Self {
-        Self {
-            x0: self.x0.min(other.x0),
-            y0: self.y0.min(other.y0),
-            x1: self.x1.max(other.x1),
-            y1: self.y1.max(other.y1),
-        }
-    }
 }
 
 /// One triangle of a convex polygon's fan.

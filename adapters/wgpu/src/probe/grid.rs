@@ -40,12 +40,6 @@ impl Grid {
         (x == y).then_some(x).flatten()
     }
 
-    /// Whether every move changed coverage on both axes: no grid of 16 bits or fewer.
-    #[must_use]
-    pub fn finer_than_tried(&self) -> bool {
-        self.x.iter().chain(&self.y).all(|&m| m)
-    }
-
     /// What was seen, as a report says it.
     #[must_use]
     pub fn describe(&self) -> String {

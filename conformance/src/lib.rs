@@ -1,6 +1,6 @@
 //! The refrast conformance suite: a catalogue of rules that certifies any [`refrast::Rasterizer`].
 //!
-//! The modules form layers, each using only those above it (`tests/layers.rs` checks it):
+//! The modules form layers, each using only those above it (`tests/integration/layers.rs` checks it):
 //!
 //! | layer | module | what |
 //! |---|---|---|

@@ -2,7 +2,7 @@
 //! be: it declares only the restricted values and *uses* them whatever a draw asks, leaves out
 //! the outputs it does not declare, and rounds, snaps and clips as its claims allow. Each must
 //! pass or be `n/a` on every rule: the suite's own proof that a rule asks its question under
-//! whatever a profile supports (`tests/restricted.rs`, and `refrast certify --impl
+//! whatever a profile supports (`tests/integration/restricted.rs`, and `refrast certify --impl
 //! 'restricted:*'` at full cases).
 
 use refrast::{

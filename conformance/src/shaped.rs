@@ -4,7 +4,7 @@
 //! in Skia's style (truncating snap, bottom-right ties, no 3D clipping). Each is the reference
 //! differing only where the specification it claims leaves room, and declares what it does;
 //! each must pass, be `n/a` or be beyond the claimed specification on every rule
-//! (`tests/shaped.rs`), so that a class of false verdict, once fixed, stays fixed.
+//! (`tests/integration/shaped.rs`), so that a class of false verdict, once fixed, stays fixed.
 
 use refrast::{
     Draw, DrawError, FillConvention, Fragment, PointClipping, PrimitiveDraw, PrimitiveProfile, Profile,

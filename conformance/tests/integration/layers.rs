@@ -8,7 +8,7 @@
 use std::collections::BTreeSet;
 use std::path::Path;
 
-#[path = "../../tests/support/modules.rs"]
+#[path = "../../../tests/support/modules.rs"]
 mod modules;
 
 use modules::{code, module_of, resolve, rust_files, segments, use_paths, written_paths};

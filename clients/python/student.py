@@ -8,7 +8,7 @@ edge is a top or a left edge. Triangles are clipped in clip space against the ne
 cut computed from the inside end, so that two triangles sharing an edge cut it at one point.
 Barycentrics are perspective-correct and depth is z/w.
 
-cli/tests/student.rs breaks it at the lines marked `# MISTAKE:` to check that refrast says why.
+cli/tests/integration/student.rs breaks it at the lines marked `# MISTAKE:` to check that refrast says why.
 Run it with refrast:  refrast certify --exec "python3 clients/python/student.py"
 """
 

@@ -1,7 +1,7 @@
 //! JUnit XML for a CI's test tab: a `testsuite` per implementation, a `testcase` per rule.
 //!
 //! Valid against the Jenkins JUnit schema committed in `cli/tests/data/junit-10.xsd` (checked by
-//! `cli/tests/junit.rs` with xmllint). A failing rule is a `failure` (a `fail` or a `flake`) or
+//! `cli/tests/integration/results.rs` with xmllint). A failing rule is a `failure` (a `fail` or a `flake`) or
 //! an `error` (a `crash` or a `timeout`) with its message, counterexample and the command that
 //! reproduces it; `n/a` and `beyond-spec` are `skipped` with why. Under expectation files a
 //! verdict they accept is `skipped` ("expected fail: …"), so the tab shows only what changed,

@@ -6,7 +6,7 @@
 //!
 //! Needs `python3`; without it each test says so and passes, unless `REFRAST_REQUIRE_CLIENTS=1`.
 
-mod support;
+use crate::support;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -8,7 +8,7 @@ use std::process::{Command, Output};
 
 use refrast_conformance::expect::Expectations;
 
-mod support;
+use crate::support;
 
 use support::{REFRAST, scratch};
 

@@ -8,7 +8,7 @@ use std::process::{Command, Output};
 use base64::Engine;
 use serde_json::Value;
 
-mod support;
+use crate::support;
 
 use support::{REFRAST, scratch};
 

@@ -11,7 +11,8 @@
 #            goes to oracles/mutants.out/.
 #   REFRAST_MUTATE=lab mutates only the lab pipeline (camera, lines, the render pipeline, the
 #            scenes), which the Rasterizer trait does not reach, judged by the tests that do
-#            (the unit tests, tests/lines.rs, golden.rs and pipeline.rs) and not the catalogue, so each
+#            (the unit tests and tests/integration/, the lab's lines.rs, golden.rs and pipeline.rs
+#            among them) and not the catalogue, so each
 #            mutant takes seconds instead of a minute. Output goes to lab/mutants.out/.
 #   MINUTES  wall-time budget (default 240); when it runs out the mutants not yet tried are
 #            counted as untested, and the score covers those tried.
@@ -45,10 +46,10 @@ case "${REFRAST_MUTATE:-reference}" in
     mkdir -p "$out"
     ;;
   lab)
-    # .cargo/mutants.toml would add every integration test; name the lab's own instead.
+    # .cargo/mutants.toml would add the catalogue too; name the reference's own tests instead
+    # (the lab's among them: tests/integration/lines.rs, golden.rs and pipeline.rs).
     scope=(--no-config --package refrast --test-package refrast --profile mutants
-      --cargo-test-arg=--lib --cargo-test-arg=--test=lines --cargo-test-arg=--test=golden
-      --cargo-test-arg=--test=pipeline
+      --cargo-test-arg=--lib --cargo-test-arg=--test=integration
       -f src/camera.rs -f src/line.rs -f src/pipeline.rs -f src/scenes.rs)
     out=lab
     mkdir -p "$out"

@@ -1,5 +1,5 @@
 //! Reading a crate's module graph from its sources, for the tests that keep it one way down
-//! (`conformance/tests/integration/layers.rs`, `tests/architecture.rs`).
+//! (`conformance/tests/integration/layers.rs`, `tests/integration/architecture.rs`).
 //!
 //! Every path to an item of the crate (`use` trees, `crate::…`, `super::…` and `self::…` in
 //! code) is resolved from the module it is written in. Test modules (from `#[cfg(test)]` to the

@@ -1,8 +1,6 @@
 //! Bad numbers and bad input: NaN and infinities discard a triangle, huge and tiny values are
 //! clipped or snapped, bad indices and viewports are errors, and nothing panics.
 
-mod support;
-
 use proptest::prelude::*;
 use refrast::{ConfigError, Draw, DrawError, Rasterizer, Reference, Viewport};
 

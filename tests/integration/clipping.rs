@@ -1,7 +1,5 @@
 //! Clipping: behind the eye, across the near plane, across all six planes, and shared edges.
 
-mod support;
-
 use refrast::stage::{ClipOutcome, ClipPlane, ClipVertex, clip_planes, clip_polygon, clip_triangle};
 use refrast::{ClipMode, DepthRange, Draw, Rasterizer, Reference, ReferenceConfig, Viewport};
 use refrast_conformance::oracle::ray_cast::ray_cast;

@@ -2,7 +2,7 @@
 //!
 //! Coordinates are in pixels; samples sit at `k + ½`, so every vertex below is on a sample.
 
-mod support;
+use crate::support;
 
 use refrast::{FillConvention, FixedPoint, is_top_left};
 use support::{pixels, raster_draw};

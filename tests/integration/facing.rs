@@ -1,6 +1,6 @@
 //! Facing from the snapped signed area, front-face choice, cull modes, zero-area triangles.
 
-mod support;
+use crate::support;
 
 use refrast::{CullMode, FixedPoint, FrontFace, Reference, Winding, orient2d};
 use support::{fragments, raster_draw};

@@ -2,8 +2,6 @@
 //!
 //! Cases: `PROPTEST_CASES` when set, else 10 000 per property.
 
-mod support;
-
 use proptest::prelude::*;
 use refrast::stage::{FanTriangle, PixelRect, TriangleSetup, traverse};
 use refrast::{

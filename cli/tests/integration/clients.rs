@@ -322,7 +322,7 @@ fn cpp_lab000_gets_the_verdicts_of_seed_000() {
     assert_eq!(code, 1);
     // `≥ 0` on every edge, samples at pixel corners, clockwise only, no clipping
     // (zoo/src/course/lab000.rs says why each fails; the barycentric rules judge its
-    // screen-space weights, the kind it declares, as zoo/tests/course.rs says: those of a
+    // screen-space weights, the kind it declares, as zoo/tests/integration/course.rs says: those of a
     // triangle with a vertex behind the eye for finiteness only, so bary.range.unit passes).
     assert_eq!(
         with_status(&rules, "fail"),

@@ -13,7 +13,7 @@
 //!
 //! The labs of seeds 000, 002 and 004 have no fill convention and declare none; seed 003's scanline
 //! z-buffer has one by its half-open spans, and its painter draws with the reference's coverage.
-//! They are course code, not certified correct: each fails some rules (`tests/course.rs`).
+//! They are course code, not certified correct: each fails some rules (`tests/integration/course.rs`).
 
 pub mod area_average;
 pub mod dda;

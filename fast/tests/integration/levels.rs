@@ -3,7 +3,7 @@
 //! bit for bit with the best level's, on random scenes and meshes. Levels the CPU or the build
 //! lacks are skipped with a message.
 
-mod support;
+use crate::support;
 
 use proptest::prelude::*;
 use refrast::{Draw, Fragment, Rasterizer, Resolved};

@@ -294,7 +294,7 @@ const EXPECTED: [Expected; 7] = [
         first_failure: "depth.intersecting.nearest-wins",
         // Its resolve paints whole triangles in the order of their farthest vertices, with no
         // depth test: triangles through each other, or bars in a cycle, have no right order
-        // (zoo/tests/visibility.rs draws both); the replay also differs where a fragment lies
+        // (zoo/tests/integration/visibility.rs draws both); the replay also differs where a fragment lies
         // at the clear depth (painted over the background all the same) and where the
         // farthest-vertex key misorders triangles that neither intersect nor form a cycle.
         // Coverage and interpolation are the reference's.

@@ -4,7 +4,7 @@
 //! near plane, huge, tiny and degenerate; meshes with shared edges) under every cull mode, front
 //! face and depth state.
 
-mod support;
+use crate::support;
 
 use proptest::prelude::*;
 use refrast::{

@@ -21,7 +21,7 @@ use std::time::Duration;
 use libtest_mimic::{Arguments, Completion, Failed, Trial};
 use refrast::{Profile, Rasterizer};
 
-use crate::isolate::{Outcome, run_rule_isolated, serve_rule};
+use crate::isolate::{ChildRun, run_rule_isolated, serve_rule};
 use crate::judge::{DEFAULT_CASE_TIMEOUT, Options, run_rule};
 use crate::report::{RuleReport, Status};
 use crate::rules::catalogue;
@@ -119,13 +119,13 @@ where
                     let mut child = Command::new(exe);
                     child.env(RULE_ENV, rule.id);
                     match run_rule_isolated(&rule, child, &options) {
-                        Outcome::Ran(report, _) => *report,
-                        Outcome::Unavailable(why) => {
+                        ChildRun::Ran(report, _) => *report,
+                        ChildRun::Unavailable(why) => {
                             return Err(Failed::from(format!(
                                 "the rasterizer cannot be built in a child: {why}"
                             )));
                         }
-                        Outcome::Refused(why, _) => return Err(Failed::from(format!("refused: {why}"))),
+                        ChildRun::Refused(why, _) => return Err(Failed::from(format!("refused: {why}"))),
                     }
                 };
                 match report.status {

@@ -106,7 +106,7 @@ pub fn serve_rule(
 
 /// How one rule went in its child.
 #[derive(Debug)]
-pub enum Outcome {
+pub enum ChildRun {
     /// The rule ran (or found it does not apply), with the profile the child reported.
     Ran(Box<RuleReport>, Option<Box<ProfileReport>>),
     /// The rasterizer cannot be built where the child runs.
@@ -139,13 +139,13 @@ pub fn certify_isolated_jobs(
     let progress = Mutex::new(progress);
     let ran = run_selected_jobs(options, jobs, |_, rule| {
         match run_rule_isolated(rule, command(rule), options) {
-            Outcome::Unavailable(why) => Err(Stop::Unavailable(why)),
-            Outcome::Refused(why, reported) => {
+            ChildRun::Unavailable(why) => Err(Stop::Unavailable(why)),
+            ChildRun::Refused(why, reported) => {
                 *lock(&profile) = reported;
                 *lock(&refused) = Some(why);
                 Err(Stop::Refused)
             }
-            Outcome::Ran(report, reported) => {
+            ChildRun::Ran(report, reported) => {
                 let mut profile = lock(&profile);
                 *profile = profile.take().or(reported);
                 drop(profile);
@@ -197,7 +197,7 @@ enum Line {
 
 /// Runs one rule in a child started by `command`; a hang is a `timeout`, a child that dies
 /// without a report a `crash`.
-pub fn run_rule_isolated(rule: &Rule, command: Command, options: &Options) -> Outcome {
+pub fn run_rule_isolated(rule: &Rule, command: Command, options: &Options) -> ChildRun {
     run_rule_watched(rule, command, options, &mut |_| {})
 }
 
@@ -208,7 +208,7 @@ pub fn run_rule_watched(
     mut command: Command,
     options: &Options,
     on_case: &mut dyn FnMut(usize),
-) -> Outcome {
+) -> ChildRun {
     let started = Instant::now();
     let mut profile: Option<Box<ProfileReport>> = None;
     let failed = |status: Status,
@@ -226,7 +226,7 @@ pub fn run_rule_watched(
             seconds: started.elapsed().as_secs_f64(),
             ..blank(rule, options, tolerance)
         };
-        Outcome::Ran(Box::new(report), profile.clone())
+        ChildRun::Ran(Box::new(report), profile.clone())
     };
     let program = format!("{:?}", command.get_program());
     command
@@ -287,15 +287,15 @@ pub fn run_rule_watched(
             }
             Ok(Line::Message(Message::Unavailable(why))) => {
                 finish(&mut child);
-                return Outcome::Unavailable(Unavailable(why));
+                return ChildRun::Unavailable(Unavailable(why));
             }
             Ok(Line::Message(Message::Refused(why))) => {
                 finish(&mut child);
-                return Outcome::Refused(why, profile);
+                return ChildRun::Refused(why, profile);
             }
             Ok(Line::Message(Message::Report(report))) => {
                 finish(&mut child);
-                return Outcome::Ran(report, profile);
+                return ChildRun::Ran(report, profile);
             }
             Ok(Line::Other(line)) => own_output.push(&line),
             Ok(Line::Closed) | Err(RecvTimeoutError::Disconnected) => {

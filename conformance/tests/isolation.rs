@@ -11,7 +11,7 @@ use std::process::Command;
 use std::time::{Duration, Instant};
 
 use refrast::{Draw, DrawError, Fragment, Profile, Rasterizer, Reference, Supported};
-use refrast_conformance::isolate::{Outcome, run_rule_isolated, serve_rule};
+use refrast_conformance::isolate::{ChildRun, run_rule_isolated, serve_rule};
 use refrast_conformance::{Options, Status, catalogue, certify};
 
 mod support;
@@ -124,7 +124,7 @@ fn main() {
             .env("ISOLATION_CHILD", kind)
             .env("ISOLATION_PID_FILE", grandchild_file());
         let start = Instant::now();
-        let Outcome::Ran(report, _) = run_rule_isolated(&rule, child, options) else {
+        let ChildRun::Ran(report, _) = run_rule_isolated(&rule, child, options) else {
             panic!("the misbehaving rasterizer builds anywhere");
         };
         (*report, start.elapsed())
@@ -200,7 +200,7 @@ fn main() {
     // No cull mode at all: refused in the child, before the rule, and in this process alike.
     let mut child = Command::new(std::env::current_exe().expect("this test binary"));
     child.env("ISOLATION_CHILD", "unjudgeable");
-    let Outcome::Refused(why, profile) = run_rule_isolated(&rule, child, &options()) else {
+    let ChildRun::Refused(why, profile) = run_rule_isolated(&rule, child, &options()) else {
         panic!("a profile with no cull mode is refused");
     };
     assert!(why.contains("no value of cull_modes"), "{why}");

@@ -13,7 +13,7 @@
 use std::sync::{Mutex, OnceLock};
 
 use libfuzzer_sys::fuzz_target;
-use refrast_conformance::fuzz::{Outcome, Target};
+use refrast_conformance::fuzz::{Checked, Target};
 use refrast_conformance::Process;
 use refrast_registry::BuiltIn;
 
@@ -84,14 +84,14 @@ fuzz_target!(
         let (target, built_in) = chosen();
         if let Some(p) = process() {
             let mut p = p.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-            if let Outcome::Failed(failure) = target.run(&mut *p, data) {
+            if let Checked::Failed(failure) = target.run(&mut *p, data) {
                 panic!("`{}` fails the {} target: {failure}", p.command(), target.name());
             }
             return;
         }
         // Checked buildable in `chosen`; a build failing later is itself worth a crash report.
         let mut rasterizer = built_in.build().unwrap_or_else(|why| panic!("{} stopped building: {why}", built_in.name));
-        if let Outcome::Failed(failure) = target.run(&mut *rasterizer, data) {
+        if let Checked::Failed(failure) = target.run(&mut *rasterizer, data) {
             panic!("{} fails the {} target: {failure}", built_in.name, target.name());
         }
     }

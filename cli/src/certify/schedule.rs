@@ -13,14 +13,14 @@ use std::sync::{Mutex, PoisonError};
 use std::time::Instant;
 
 use indicatif::ProgressBar;
-use refrast_conformance::isolate::{Outcome, run_rule_watched};
+use refrast_conformance::isolate::{ChildRun, run_rule_watched};
 use refrast_conformance::{Options, ProfileReport, Report, Rule, RuleReport, cases_for};
 use refrast_registry::BuiltIn;
 
 use super::child::run_rule_command;
 use super::progress::Progress;
 use super::{print_rule, reach, summarise};
-use crate::results::{Entry, Outcome as Certified, Subject};
+use crate::results::{Entry, Outcome, Subject};
 use refrast_conformance::selected;
 
 /// What became of one (implementation, rule) task.
@@ -134,15 +134,15 @@ impl Run<'_> {
         let outcome = run_rule_watched(rule, command, self.options, &mut |n| line.set_position(n as u64));
         self.out.done(&line);
         match outcome {
-            Outcome::Unavailable(why) => {
+            ChildRun::Unavailable(why) => {
                 self.unavailable[i].store(true, Ordering::SeqCst);
                 Done::Unavailable(why.to_string())
             }
-            Outcome::Refused(why, profile) => {
+            ChildRun::Refused(why, profile) => {
                 self.unavailable[i].store(true, Ordering::SeqCst);
                 Done::Refused(why, profile)
             }
-            Outcome::Ran(report, profile) => {
+            ChildRun::Ran(report, profile) => {
                 if report.status.is_failure() && self.options.fail_fast {
                     self.stop_at.fetch_min(task + 1, Ordering::SeqCst);
                 }
@@ -228,7 +228,7 @@ impl Emitter {
                 run.bars[i].abandon_with_message("skipped");
                 self.entries.push(Entry {
                     subject: Subject::BuiltIn(b.name.clone()),
-                    outcome: Certified::Skipped {
+                    outcome: Outcome::Skipped {
                         implementation: b.name.clone(),
                         skipped: why,
                     },
@@ -249,7 +249,7 @@ impl Emitter {
                 };
                 self.entries.push(Entry {
                     subject: Subject::BuiltIn(b.name.clone()),
-                    outcome: Certified::Certified(Box::new(report)),
+                    outcome: Outcome::Certified(Box::new(report)),
                 });
                 self.current.skipped = true;
                 return;
@@ -289,7 +289,7 @@ impl Emitter {
         let name = run.builtins[i].name.clone();
         self.entries.push(Entry {
             subject: Subject::BuiltIn(name),
-            outcome: Certified::Certified(Box::new(report)),
+            outcome: Outcome::Certified(Box::new(report)),
         });
     }
 }

@@ -200,7 +200,7 @@ pub fn decode<'a, T: Arbitrary<'a>>(bytes: &'a [u8]) -> Option<T> {
 
 /// What one fuzz input did.
 #[derive(Debug)]
-pub enum Outcome {
+pub enum Checked {
     /// The bytes do not decode to an input (libFuzzer rejects them too).
     Skipped,
     /// The check held.
@@ -268,7 +268,7 @@ impl Target {
     }
 
     /// Decodes `bytes` as this target's `fuzz_target!` does and runs its check on `r`.
-    pub fn run(self, r: &mut dyn Rasterizer, bytes: &[u8]) -> Outcome {
+    pub fn run(self, r: &mut dyn Rasterizer, bytes: &[u8]) -> Checked {
         let result = match self {
             Self::Robustness => decode(bytes).map(|i| robustness(r, &i)),
             Self::Differential => decode(bytes).map(|i| differential(r, &i)),
@@ -279,9 +279,9 @@ impl Target {
             Self::Pipeline => decode(bytes).map(|i| pipeline(&i)),
         };
         match result {
-            None => Outcome::Skipped,
-            Some(Ok(())) => Outcome::Passed,
-            Some(Err(f)) => Outcome::Failed(f),
+            None => Checked::Skipped,
+            Some(Ok(())) => Checked::Passed,
+            Some(Err(f)) => Checked::Failed(f),
         }
     }
 }

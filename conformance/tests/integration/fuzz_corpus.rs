@@ -7,7 +7,7 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 
 use refrast::Reference;
-use refrast_conformance::fuzz::{Outcome, Target};
+use refrast_conformance::fuzz::{Checked, Target};
 
 /// The files of `fuzz/<kind>/<target>/`, sorted; none when the folder does not exist.
 fn files(kind: &str, target: Target) -> Vec<PathBuf> {
@@ -40,9 +40,9 @@ fn replay(target: Target) {
         let bytes = std::fs::read(path).expect("a corpus file is readable");
         let outcome = catch_unwind(AssertUnwindSafe(|| target.run(&mut Reference::default(), &bytes)));
         match outcome {
-            Ok(Outcome::Passed) => passed += 1,
-            Ok(Outcome::Skipped) => {}
-            Ok(Outcome::Failed(f)) => failures.push(format!("{}: {f}", path.display())),
+            Ok(Checked::Passed) => passed += 1,
+            Ok(Checked::Skipped) => {}
+            Ok(Checked::Failed(f)) => failures.push(format!("{}: {f}", path.display())),
             Err(_) => failures.push(format!("{}: panicked (message above)", path.display())),
         }
     }
@@ -121,7 +121,7 @@ fn replay_catches_an_inclusive_rasterizer() {
     let failed = seeds
         .iter()
         .map(|p| Target::Watertight.run(&mut Everything, &std::fs::read(p).expect("readable")))
-        .filter(|o| matches!(o, Outcome::Failed(_)))
+        .filter(|o| matches!(o, Checked::Failed(_)))
         .count();
     assert!(
         failed > 0,

@@ -127,7 +127,7 @@ fn shared_vertices_set_up_once_drop_and_clip_only_their_triangles() {
 /// `fast`, as the `fast` fuzz target runs them: on stable, without cargo-fuzz.
 #[test]
 fn differential_fuzz_seeds_pass() {
-    use refrast_conformance::fuzz::{Outcome, Target};
+    use refrast_conformance::fuzz::{Checked, Target};
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../fuzz/seeds/differential");
     let mut seeds: Vec<_> = std::fs::read_dir(&dir)
         .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
@@ -140,9 +140,9 @@ fn differential_fuzz_seeds_pass() {
     for seed in &seeds {
         let bytes = std::fs::read(seed).unwrap();
         match Target::Differential.run(&mut fast, &bytes) {
-            Outcome::Failed(failure) => panic!("{}: {failure}", seed.display()),
-            Outcome::Passed => passed += 1,
-            Outcome::Skipped => {}
+            Checked::Failed(failure) => panic!("{}: {failure}", seed.display()),
+            Checked::Passed => passed += 1,
+            Checked::Skipped => {}
         }
     }
     assert!(passed > 0, "no seed decoded");

@@ -5,8 +5,8 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Duration;
 
-use refrast::{PrimitiveDraw, Rasterizer, Viewport};
-use refrast_conformance::{CaseFile, Options, Process, RuleReport, Status, contain};
+use refrast::{Rasterizer, Topology};
+use refrast_conformance::{Case, CaseFile, Options, PrimitiveScene, Process, RuleReport, Status, contain};
 
 use crate::certify::{plural, positive_seconds, reach, rule_lines};
 use crate::say;
@@ -199,18 +199,16 @@ fn from_report(
 /// The case's draw in a line: size, topology, how many primitives and vertices, its state.
 fn describe(case: &CaseFile) -> String {
     let d = &case.case.draw;
-    let per = match d.topology.as_str() {
-        "triangle-list" => 3,
-        "line-list" => 2,
-        _ => 1,
-    };
+    let primitives = Topology::from_name(&d.topology)
+        .and_then(|t| t.primitive_count(d.indices.len()).ok())
+        .unwrap_or(0);
     let mut text = format!(
         "{}x{} pixels at {}, {} of {} over {}; cull {}, front-face {}, depth-compare {}, depth-write {}, depth-range {}, far-clipping {}",
         d.width,
         d.height,
         plural(usize::from(d.samples), "sample"),
         d.topology,
-        plural(d.indices.len() / per, "primitive"),
+        plural(primitives, "primitive"),
         plural(d.positions.len(), "vertex"),
         d.cull,
         d.front_face,
@@ -233,21 +231,8 @@ fn describe(case: &CaseFile) -> String {
 
 /// Prints every fragment `r` draws for the case's draw, one a line.
 fn print_fragments(r: &mut dyn Rasterizer, case: &CaseFile) -> Result<(), String> {
-    let (scene, topology, indices, samples) = case.case.draw.scene()?;
-    let viewport = Viewport::new(scene.width, scene.height).map_err(|e| e.to_string())?;
-    let indices = if indices.is_empty() {
-        scene.triangles.iter().flatten().copied().collect()
-    } else {
-        indices
-    };
-    let draw = PrimitiveDraw {
-        viewport,
-        positions: scene.positions.clone(),
-        topology,
-        indices,
-        samples,
-        state: scene.state,
-    };
+    // The case's data was read once already, so its viewport is in range.
+    let draw = PrimitiveScene::from_data(&case.case)?.draw();
     match r.rasterize_primitives(&draw) {
         Ok(fragments) => {
             say(&format!(

@@ -10,27 +10,13 @@ use std::process::Command;
 
 use serde_json::Value;
 
+use crate::support::have;
+
 const REFRAST: &str = env!("CARGO_BIN_EXE_refrast");
 
 /// The repository root (clients/ lives there).
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
-
-/// Whether `program --version` runs; if not, says why the test cannot run here.
-fn have(program: &str) -> bool {
-    let found = Command::new(program)
-        .arg("--version")
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !found {
-        assert!(
-            std::env::var("REFRAST_REQUIRE_CLIENTS").as_deref() != Ok("1"),
-            "{program} is missing, and REFRAST_REQUIRE_CLIENTS=1 requires it"
-        );
-        eprintln!("SKIPPED: {program} is not installed (apt-get install {program})");
-    }
-    found
 }
 
 /// Runs `refrast certify` with `args`, returning its exit code and its JSON report's rules.

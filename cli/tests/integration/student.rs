@@ -12,27 +12,11 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use serde_json::Value;
-use support::{REFRAST, scratch};
+use support::{REFRAST, have, scratch};
 
 /// The repository's Python clients.
 fn clients() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../clients/python")
-}
-
-/// Whether python3 runs; if not, says why the test cannot run here.
-fn have_python() -> bool {
-    let found = Command::new("python3")
-        .arg("--version")
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !found {
-        assert!(
-            std::env::var("REFRAST_REQUIRE_CLIENTS").as_deref() != Ok("1"),
-            "python3 is missing, and REFRAST_REQUIRE_CLIENTS=1 requires it"
-        );
-        eprintln!("SKIPPED: python3 is not installed");
-    }
-    found
 }
 
 /// student.py copied into a fresh folder with, for each `(mark, from, to)` of `mistakes`, the
@@ -125,7 +109,7 @@ const CUTS: (&str, &str) = ("clip.mesh.watertight", "100");
 /// mistake's.
 #[test]
 fn the_correct_client_passes() {
-    if !have_python() {
+    if !have("python3") {
         return;
     }
     let script = student("correct", &[]);
@@ -138,7 +122,7 @@ fn the_correct_client_passes() {
 /// (i) No tie rule: `e >= 0` on every edge covers a sample on a shared edge twice.
 #[test]
 fn no_tie_rule_is_named() {
-    if !have_python() {
+    if !have("python3") {
         return;
     }
     let script = student("ties", &[("tie rule", "v > 0 or (v == 0 and tie)", "v >= 0")]);
@@ -165,7 +149,7 @@ fn no_tie_rule_is_named() {
 /// (ii) A w-epsilon that discards a clipped polygon whose visible part has a tiny w.
 #[test]
 fn discarded_tiny_w_is_named() {
-    if !have_python() {
+    if !have("python3") {
         return;
     }
     let script = student("w-epsilon", &[("w epsilon", "v[0][3] > 0", "v[0][3] > 1e-3")]);
@@ -182,7 +166,7 @@ fn discarded_tiny_w_is_named() {
 /// (a false failure before: a sample 6.8e-7 px from such a vertex, covered twice).
 #[test]
 fn the_correct_client_in_f32_passes_the_meshes() {
-    if !have_python() {
+    if !have("python3") {
         return;
     }
     let script = student("f32", &[("precision", "ROUND = float", "ROUND = f32")]);
@@ -193,7 +177,7 @@ fn the_correct_client_in_f32_passes_the_meshes() {
 /// (iii) An edge function evaluated from the edge's first vertex, in f32: not antisymmetric.
 #[test]
 fn edge_function_not_antisymmetric_is_named() {
-    if !have_python() {
+    if !have("python3") {
         return;
     }
     let script = student(
@@ -215,7 +199,7 @@ fn edge_function_not_antisymmetric_is_named() {
 /// (iv) No near plane: the clip volume's near side missing, a triangle before it is drawn.
 #[test]
 fn a_missing_near_plane_is_named() {
-    if !have_python() {
+    if !have("python3") {
         return;
     }
     let script = student("no-near", &[("near plane", "[near, ", "[")]);
@@ -231,7 +215,7 @@ fn a_missing_near_plane_is_named() {
 /// for every rule it fails, the first line of the message says what to change.
 #[test]
 fn a_first_client_from_the_readme_is_told_what_to_change() {
-    if !have_python() {
+    if !have("python3") {
         return;
     }
     let readme =

@@ -3,7 +3,7 @@
 
 use std::fmt;
 
-use refrast::{CompareOp, CullMode, DepthRange, DepthState, DrawState, FrontFace, Topology};
+use refrast::{CompareOp, CullMode, DepthRange, DepthState, DrawState, FrontFace, Topology, Viewport};
 use serde::de::{self, Visitor};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
@@ -164,6 +164,9 @@ impl DrawData {
             depth_range: word(DepthRange::KEY, &self.depth_range)?,
             clip_far: word(FAR_CLIPPING, &self.far_clipping)?,
         };
+        // A draw needs a viewport in range; the rules build none other.
+        Viewport::new(self.width, self.height)
+            .map_err(|e| format!("width {} and height {}: {e}", self.width, self.height))?;
         let mut scene = Scene {
             width: self.width,
             height: self.height,
@@ -314,5 +317,8 @@ mod tests {
         data.cull = "none".into();
         data.indices.pop();
         assert!(data.triangle_scene().unwrap_err().contains("threes"));
+        data.indices.push(2);
+        data.width = 0;
+        assert!(data.triangle_scene().unwrap_err().contains("width 0"));
     }
 }

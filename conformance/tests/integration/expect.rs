@@ -2,7 +2,7 @@
 //! is expected to pass, and a written file reads back to the verdicts it was written from.
 
 use refrast_conformance::expect::{Expectations, MAY_FAIL, Taken, write};
-use refrast_conformance::{Family, Kind, ProfileReport, Report, RuleReport, Status};
+use refrast_conformance::{ProfileReport, Report, RuleReport, Status, catalogue};
 
 fn report(statuses: &[(&str, Status)]) -> Report {
     Report {
@@ -10,27 +10,18 @@ fn report(statuses: &[(&str, Status)]) -> Report {
         profile: ProfileReport::unknown(),
         rules: statuses
             .iter()
-            .map(|(id, status)| RuleReport {
-                id: (*id).to_owned(),
-                family: Family::Fill,
-                kind: Kind::Invariant,
-                status: *status,
-                cases: 1,
-                planned: 1,
-                budget_spent: false,
-                seed: 1,
-                tolerance_subpixels: 1,
-                message: Some("why it failed".into()),
-                details: Vec::new(),
-                counts: None,
-                spec_note: None,
-                hint: None,
-                counterexample: None,
-                shrinking_cut: None,
-                case_file: None,
-                case_path: None,
-                picture: None,
-                seconds: 0.0,
+            .map(|(id, status)| {
+                let rule = catalogue()
+                    .into_iter()
+                    .find(|r| r.id == *id)
+                    .expect("a rule of the catalogue");
+                RuleReport {
+                    status: *status,
+                    cases: 1,
+                    planned: 1,
+                    message: Some("why it failed".into()),
+                    ..RuleReport::new(&rule, 1, 1)
+                }
             })
             .collect(),
         not_run: Vec::new(),

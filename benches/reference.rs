@@ -9,43 +9,18 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use glam::{Mat4, Vec3, Vec4};
-use refrast::pipeline::{Framebuffer, Mesh, Renderer, Vertex};
+use glam::Mat4;
+use refrast::pipeline::{Framebuffer, Mesh, Renderer};
 
 #[path = "workload/baseline.rs"]
 mod baseline;
+#[path = "workload/mesh.rs"]
+mod mesh;
 mod workload;
 
 use baseline::baseline;
+use mesh::ndc_mesh;
 use workload::{HEIGHT, WIDTH, scene};
-
-/// The scene as a mesh in NDC (the renderer is given identity matrices).
-fn mesh(triangles: &[([Vec3; 3], Vec4)]) -> Mesh {
-    let to_ndc = |p: Vec3| {
-        Vec3::new(
-            p.x / WIDTH as f32 * 2.0 - 1.0,
-            1.0 - p.y / HEIGHT as f32 * 2.0,
-            p.z,
-        )
-    };
-    let vertices = triangles
-        .iter()
-        .flat_map(|(t, c)| {
-            t.map(|p| Vertex {
-                position: to_ndc(p),
-                color: *c,
-                ..Vertex::default()
-            })
-        })
-        .collect();
-    let indices = (0..triangles.len() as u32)
-        .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
-        .collect();
-    Mesh {
-        vertices,
-        triangles: indices,
-    }
-}
 
 /// The reference pipeline: clip, snap, set up, traverse, interpolate, shade, depth-test, write.
 fn reference(target: &mut Framebuffer, mesh: &Mesh) -> usize {
@@ -59,7 +34,7 @@ fn reference(target: &mut Framebuffer, mesh: &Mesh) -> usize {
 fn bench(c: &mut Criterion) {
     for (name, count, area) in [("small_10px", 100_000, 10.0), ("large_50kpx", 1_000, 50_000.0)] {
         let triangles = scene(count, area);
-        let mesh = mesh(&triangles);
+        let mesh = ndc_mesh(&triangles);
         let mut target = Framebuffer::new(WIDTH, HEIGHT).expect("1080p is a valid size");
         let (mut color, mut depth) = (target.color().to_vec(), target.depth().to_vec());
         let fragments = reference(&mut target, &mesh);

@@ -50,7 +50,7 @@ case "${REFRAST_MUTATE:-reference}" in
     # (the lab's among them: tests/integration/lines.rs, golden.rs and pipeline.rs).
     scope=(--no-config --package refrast --test-package refrast --profile mutants
       --cargo-test-arg=--lib --cargo-test-arg=--test=integration
-      -f src/camera.rs -f src/line.rs -f src/pipeline.rs -f src/scenes.rs)
+      -f src/camera.rs -f src/dda.rs -f src/pipeline.rs -f src/scenes.rs)
     out=lab
     mkdir -p "$out"
     ;;

@@ -1,45 +1,133 @@
-//! The contract's data: a draw of triangles, the fragments it covers, the buffers after the
-//! depth test. Apart from the trait so that the other topologies' types
-//! ([`crate::PrimitiveDraw`]) can build on them without a circle of modules.
+//! The contract's data: one draw of any topology at any sample count, the fragments it covers,
+//! the buffers after the depth test.
+//!
+//! A triangle rasterizer at one sample needs none of the rest: [`Draw::new`] builds a triangle
+//! list at one sample, [`Draw::triangles`] reads it back as triangles, a [`Fragment`] built with
+//! `sample: 0` (or `..Fragment::default()`) is at the pixel's one sample, and the suite sends
+//! other topologies and sample counts only to a profile that declares them
+//! ([`Profile::draws`](crate::Profile::draws)).
 
 use crate::error::DrawError;
+use crate::primitive::{SAMPLE_COUNTS, Topology};
 use crate::state::DrawState;
 use crate::viewport::Viewport;
 
-/// One draw call: clip-space vertices, triangles indexing them, and state.
+/// One draw call: clip-space vertices, indices making primitives of one topology, the samples
+/// per pixel, and state.
 ///
-/// Triangle `i` of `triangles` is primitive `i` in every output.
+/// Primitive `i` (triangle, segment or point, in index order; segment `i` of a strip joins
+/// indices `i` and `i + 1`) is [`Fragment::primitive`] `i` in every output.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Draw {
     /// The render target's size.
     pub viewport: Viewport,
     /// Clip-space positions `[x, y, z, w]`.
     pub positions: Vec<[f32; 4]>,
-    /// Vertex indices, three per triangle.
-    pub triangles: Vec<[u32; 3]>,
-    /// Culling, depth and clipping state.
+    /// How the indices make primitives.
+    pub topology: Topology,
+    /// Vertex indices: three per triangle of a list ([`Draw::triangles`] reads them so).
+    pub indices: Vec<u32>,
+    /// Samples per pixel (1, 2, 4, 8 or 16).
+    pub samples: u8,
+    /// Culling (triangles only), depth and clipping state.
     pub state: DrawState,
 }
 
 impl Draw {
-    /// A draw with default state (no culling, CCW front, LESS depth, far clipping off).
+    /// A triangle list at one sample with default state (no culling, CCW front, LESS depth, far
+    /// clipping off).
     #[must_use]
     pub fn new(viewport: Viewport, positions: Vec<[f32; 4]>, triangles: Vec<[u32; 3]>) -> Self {
+        Self::of(
+            viewport,
+            positions,
+            Topology::TriangleList,
+            triangles.into_flattened(),
+        )
+    }
+
+    /// A draw of `topology` at one sample with default state.
+    #[must_use]
+    pub fn of(viewport: Viewport, positions: Vec<[f32; 4]>, topology: Topology, indices: Vec<u32>) -> Self {
         Self {
             viewport,
             positions,
-            triangles,
+            topology,
+            indices,
+            samples: 1,
             state: DrawState::default(),
         }
     }
 
-    /// Checks every index, so rasterizers can index `positions` freely afterwards.
+    /// The same draw at `samples` samples per pixel.
+    #[must_use]
+    pub fn at_samples(self, samples: u8) -> Self {
+        Self { samples, ..self }
+    }
+
+    /// The triangles of a triangle list, three indices each (indices left over after the last
+    /// whole triangle are not one); empty for lines and points, whose primitives
+    /// [`Draw::primitive`] gives.
+    #[must_use]
+    pub fn triangles(&self) -> &[[u32; 3]] {
+        match self.topology {
+            Topology::TriangleList => self.indices.as_chunks::<3>().0,
+            _ => &[],
+        }
+    }
+
+    /// [`Draw::triangles`], to change in place (reversing one, say).
+    pub fn triangles_mut(&mut self) -> &mut [[u32; 3]] {
+        match self.topology {
+            Topology::TriangleList => self.indices.as_chunks_mut::<3>().0,
+            _ => &mut [],
+        }
+    }
+
+    /// Whether it is a triangle list at one sample: all a rasterizer that declares nothing more
+    /// is sent.
+    #[must_use]
+    pub fn is_triangles_at_one_sample(&self) -> bool {
+        self.topology == Topology::TriangleList && self.samples == 1
+    }
+
+    /// The vertex indices of primitive `i` (one, two or three of them); `None` past the last.
+    #[must_use]
+    pub fn primitive(&self, i: usize) -> Option<&[u32]> {
+        match self.topology {
+            Topology::TriangleList => self.indices.get(3 * i..3 * i + 3),
+            Topology::LineList => self.indices.get(2 * i..2 * i + 2),
+            Topology::LineStrip => self.indices.get(i..i + 2),
+            Topology::PointList => self.indices.get(i..=i),
+        }
+    }
+
+    /// How many primitives it draws (0 when [`validate`](Self::validate) refuses its count).
+    #[must_use]
+    pub fn primitive_count(&self) -> usize {
+        self.topology.primitive_count(self.indices.len()).unwrap_or(0)
+    }
+
+    /// Checks the sample count, the index count and every index, so that rasterizers can index
+    /// `positions` freely afterwards.
     pub fn validate(&self) -> Result<(), DrawError> {
+        if !SAMPLE_COUNTS.contains(&self.samples) {
+            return Err(DrawError::Unsupported(format!(
+                "{} samples per pixel: a draw asks for 1, 2, 4, 8 or 16",
+                self.samples
+            )));
+        }
+        self.topology
+            .primitive_count(self.indices.len())
+            .map_err(DrawError::Unsupported)?;
         let vertices = self.positions.len();
-        for (triangle, indices) in self.triangles.iter().enumerate() {
-            if let Some(&index) = indices.iter().find(|&&i| i as usize >= vertices) {
+        for i in 0..self.primitive_count() {
+            if let Some(&index) = self
+                .primitive(i)
+                .and_then(|p| p.iter().find(|&&v| v as usize >= vertices))
+            {
                 return Err(DrawError::IndexOutOfRange {
-                    triangle,
+                    triangle: i,
                     index,
                     vertices,
                 });
@@ -47,62 +135,169 @@ impl Draw {
         }
         Ok(())
     }
+
+    /// What it asks for in a few words: "line-strip at 4 samples per pixel".
+    #[must_use]
+    pub fn describe(&self) -> String {
+        let samples = if self.samples == 1 {
+            "1 sample".to_owned()
+        } else {
+            format!("{} samples", self.samples)
+        };
+        format!("{} at {samples} per pixel", self.topology)
+    }
 }
 
 /// A covered sample before the depth test.
-#[derive(Clone, Copy, Debug, PartialEq)]
+///
+/// A line's fragment has barycentrics `[1 − t, t, 0]` along its segment (perspective-correct
+/// and in screen space), a point's `[1, 0, 0]`; both face front (Vulkan: lines and points are
+/// always front-facing).
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct Fragment {
     /// Pixel column.
     pub x: u32,
     /// Pixel row.
     pub y: u32,
-    /// Index of the triangle in [`Draw::triangles`].
+    /// Which sample of the pixel it covers: its index in the draw's
+    /// [`SamplePattern`](crate::SamplePattern); always 0 at one sample per pixel.
+    pub sample: u8,
+    /// The primitive's index in the draw ([`Draw::primitive`]).
     pub primitive: u32,
-    /// Window depth in `[0, 1]`, linear in screen space.
+    /// Window depth in `[0, 1]`, linear in screen space. At several samples, the primitive's
+    /// depth at this sample's position under refrast's conventions and D3D11.3
+    /// (`msaa.depth.per-sample` checks it); Vulkan and OpenGL tie the depth a shader reads
+    /// (`FragCoord.z`) to no sample, so a GPU's may be the pixel centre's, judged beyond those
+    /// specifications. Whatever it reports, the depth test uses each sample's own depth:
+    /// [`Rasterizer::resolve`](crate::Rasterizer::resolve) is judged against a replay at each
+    /// sample's depth (`msaa.resolve.per-sample`).
     pub depth: f32,
-    /// Perspective-correct barycentrics of the sample in the input triangle.
+    /// Perspective-correct barycentrics of the sample in the input primitive.
     pub barycentric: [f32; 3],
     /// Screen-space (affine) barycentrics, where the implementation can give them. A profile
     /// declaring them gives them for every triangle in front of the eye; for one with a vertex
     /// at `w ≤ 0`, which has no shape on screen, `None` is an answer too, and values given are
     /// judged for finiteness only (the reference gives none there).
     pub screen_barycentric: Option<[f32; 3]>,
-    /// Whether the triangle faces the viewer under the draw's [`FrontFace`](crate::FrontFace).
+    /// Whether the primitive faces the viewer under the draw's [`FrontFace`](crate::FrontFace).
     pub front_facing: bool,
 }
 
-/// The depth and primitive-id buffers after the depth test, row-major.
+/// The depth and primitive-id buffers after the depth test, one value per sample: sample `s`
+/// of pixel `(x, y)` at index `(y · width + x) · samples + s` ([`Resolved::index`]), so at one
+/// sample per pixel they are row-major.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Resolved {
     /// The target's size.
     pub viewport: Viewport,
-    /// Depth per pixel.
+    /// Samples per pixel.
+    pub samples: u8,
+    /// Depth per sample.
     pub depth: Vec<f32>,
-    /// The primitive whose fragment last passed the depth test at each pixel (written or not), if any.
+    /// The primitive whose fragment last passed the depth test at each sample (written or
+    /// not), if any.
     pub primitive: Vec<Option<u32>>,
 }
 
 impl Resolved {
-    /// Replays fragments through the draw's depth test in primitive order (API order).
+    /// The index of sample `s` of pixel `(x, y)`.
+    #[must_use]
+    pub fn index(&self, x: u32, y: u32, s: u8) -> usize {
+        self.viewport.index(x, y) * usize::from(self.samples) + usize::from(s)
+    }
+
+    /// Replays fragments through the draw's depth test, sample by sample, in primitive order
+    /// (API order); fragments outside the target or past its samples are dropped.
     #[must_use]
     pub fn from_fragments(draw: &Draw, mut fragments: Vec<Fragment>) -> Self {
         let viewport = draw.viewport;
+        let n = viewport.pixel_count() * usize::from(draw.samples);
         let mut resolved = Self {
             viewport,
-            depth: vec![draw.state.depth.clear; viewport.pixel_count()],
-            primitive: vec![None; viewport.pixel_count()],
+            samples: draw.samples,
+            depth: vec![draw.state.depth.clear; n],
+            primitive: vec![None; n],
         };
         // Stable: fragments of one primitive keep their order.
         fragments.sort_by_key(|f| f.primitive);
         for f in fragments {
-            if f.x >= viewport.width() || f.y >= viewport.height() {
+            if f.x >= viewport.width() || f.y >= viewport.height() || f.sample >= draw.samples {
                 continue;
             }
-            let i = viewport.index(f.x, f.y);
+            let i = resolved.index(f.x, f.y, f.sample);
             if draw.state.depth.test_and_write(f.depth, &mut resolved.depth[i]) {
                 resolved.primitive[i] = Some(f.primitive);
             }
         }
         resolved
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Strips share end points; lists refuse a count that leaves indices over.
+    #[test]
+    fn primitives_follow_the_topology() {
+        let vp = Viewport::new(4, 4).expect("4×4");
+        let strip = Draw::of(vp, vec![[0.0; 4]; 3], Topology::LineStrip, vec![0, 1, 2]);
+        assert_eq!(strip.primitive_count(), 2);
+        assert_eq!(strip.primitive(1), Some(&[1, 2][..]));
+        assert!(strip.triangles().is_empty());
+        assert!(strip.validate().is_ok());
+        let list = Draw::of(vp, vec![[0.0; 4]; 3], Topology::LineList, vec![0, 1, 2]);
+        assert!(matches!(list.validate(), Err(DrawError::Unsupported(m)) if m.contains("multiple of 2")));
+        let bad = Draw::of(vp, vec![[0.0; 4]; 2], Topology::PointList, vec![0, 5]);
+        assert!(matches!(
+            bad.validate(),
+            Err(DrawError::IndexOutOfRange {
+                triangle: 1,
+                index: 5,
+                ..
+            })
+        ));
+        let odd = Draw::of(vp, Vec::new(), Topology::PointList, Vec::new()).at_samples(3);
+        assert!(odd.validate().is_err());
+    }
+
+    /// The easy path: triangles in, the same triangles read back, one sample.
+    #[test]
+    fn a_triangle_list_reads_back_as_triangles() {
+        let vp = Viewport::new(4, 4).expect("4×4");
+        let draw = Draw::new(vp, vec![[0.0; 4]; 4], vec![[0, 1, 2], [2, 1, 3]]);
+        assert_eq!(draw.triangles(), [[0, 1, 2], [2, 1, 3]]);
+        assert_eq!(draw.indices, [0, 1, 2, 2, 1, 3]);
+        assert!(draw.is_triangles_at_one_sample());
+        assert_eq!(draw.primitive(1), Some(&[2, 1, 3][..]));
+        assert!(!draw.clone().at_samples(4).is_triangles_at_one_sample());
+        assert_eq!(draw.describe(), "triangle-list at 1 sample per pixel");
+    }
+
+    /// Sample `s` of a pixel is its own depth-test slot; one sample is row-major.
+    #[test]
+    fn each_sample_is_tested_on_its_own() {
+        let vp = Viewport::new(2, 2).expect("2×2");
+        let draw = Draw::new(vp, Vec::new(), Vec::new()).at_samples(4);
+        let at = |sample, primitive, depth| Fragment {
+            x: 1,
+            y: 0,
+            sample,
+            primitive,
+            depth,
+            ..Fragment::default()
+        };
+        let resolved = Resolved::from_fragments(
+            &draw,
+            vec![at(2, 0, 0.5), at(2, 1, 0.25), at(3, 1, 0.5), at(4, 0, 0.0)],
+        );
+        assert_eq!(resolved.index(1, 0, 2), 6);
+        assert_eq!(resolved.primitive[4..8], [None, None, Some(1), Some(1)]);
+        assert_eq!(resolved.depth[6], 0.25);
+        assert_eq!(
+            resolved.primitive.iter().flatten().count(),
+            2,
+            "sample 4 of 4 is dropped"
+        );
     }
 }

@@ -86,7 +86,7 @@ impl<'d> FrontSetup<'d> {
     #[must_use]
     #[inline]
     pub fn corners(&self, primitive: usize) -> [Corner; 3] {
-        self.draw.triangles[primitive]
+        self.draw.triangles()[primitive]
             .map(|i| Corner::new(self.draw.positions[i as usize], &self.planes, &self.transform))
     }
 }
@@ -166,8 +166,8 @@ pub fn front_end(
             kept(setup, winding, positions, Some(triangle))
         }
         ClipOutcome::Clipped => {
-            let input =
-                assemble(&setup.draw.positions, setup.draw.triangles[primitive]).ok_or(Discard::NonFinite)?;
+            let input = assemble(&setup.draw.positions, setup.draw.triangles()[primitive])
+                .ok_or(Discard::NonFinite)?;
             // The outcodes said cut; what is cut can still leave less than a triangle.
             if clip_triangle(&input, &setup.planes, &mut scratch.polygon, &mut scratch.clip)
                 != ClipOutcome::Clipped

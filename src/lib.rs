@@ -22,7 +22,7 @@
 //! | what | where | key items |
 //! |---|---|---|
 //! | the contract | `rasterizer.rs`, `draw.rs` | [`Rasterizer`], [`Draw`], [`Fragment`], [`Resolved`] |
-//! | lines, points, samples in the contract | `primitive.rs` | [`PrimitiveDraw`], [`Topology`], [`PrimitiveProfile`], [`LineRule`], [`PointClipping`], [`SamplePattern`], [`SampleFragment`], [`SampleResolved`] |
+//! | lines, points, samples | `primitive.rs` | [`Topology`], [`LineRule`], [`PointClipping`], [`SamplePattern`], [`SAMPLE_COUNTS`] |
 //! | what an implementation declares | `profile.rs`, `features.rs` | [`Profile`], [`Snapping`], [`Spec`], [`Features`], [`Supported`], [`SnapAccuracy`] |
 //! | state | `state.rs`, `setup.rs`, `depth.rs` | [`DrawState`], [`CullMode`], [`FrontFace`], [`DepthState`], [`CompareOp`], [`DepthRange`] |
 //! | the reference | `reference.rs` | [`Reference`], [`ReferenceConfig`], [`Traversal`], [`ClipMode`], [`DrawStats`], [`Sample`] |
@@ -35,9 +35,9 @@
 //! | setup, facing | `setup.rs` | [`stage::snap_before_clipping`], [`stage::drawn_winding`], [`stage::clipped_winding`], [`Winding`], [`stage::TriangleSetup`] |
 //! | traversal | `traverse.rs` | [`stage::build_fan`], [`stage::traverse`], [`stage::PixelRect`] |
 //! | interpolation | `interp.rs` | [`stage::Varyings`], [`stage::interpolate`], [`stage::interpolate_depth`] |
-//! | lines, points (the labs' DDA) | `line.rs` | [`stage::rasterize_line`], [`stage::rasterize_point`] |
+//! | lines, points (the labs' DDA) | `dda.rs` | [`stage::rasterize_line`], [`stage::rasterize_point`] |
 //! | exact lines, points | `segment.rs` | [`stage::diamond_exit`], [`stage::in_rectangle`], [`stage::in_parallelogram`], [`stage::in_point_square`] |
-//! | other topologies, samples | `topology.rs` | [`Reference::draw_primitives`] |
+//! | the reference's lines, points and samples | `lines_points_samples.rs` | [`Reference::draw_with_pattern`] |
 //! | camera, projection | `camera.rs` | [`camera::Camera`], [`camera::Projection`] |
 //! | mesh pipeline, PNG | `pipeline.rs` | [`pipeline::Renderer`], [`pipeline::Mesh`], [`pipeline::Framebuffer`] |
 //! | lab scenes | `scenes.rs` | [`scenes::SCENES`], [`scenes::render`] |
@@ -93,6 +93,7 @@
 pub mod camera;
 mod clip;
 mod config;
+mod dda;
 mod depth;
 mod draw;
 mod edge;
@@ -101,7 +102,7 @@ mod features;
 mod fixed;
 mod front;
 mod interp;
-mod line;
+mod lines_points_samples;
 pub mod pipeline;
 mod primitive;
 mod profile;
@@ -113,7 +114,6 @@ mod segment;
 mod setup;
 pub mod stage;
 mod state;
-mod topology;
 mod traverse;
 mod viewport;
 
@@ -125,12 +125,9 @@ pub use edge::{FillConvention, is_top_left, orient2d};
 pub use error::{ConfigError, DrawError, Unavailable};
 pub use features::{Features, Setting, SnapAccuracy, Supported};
 pub use fixed::{COORD_LIMIT, FixedPoint, SnapRounding, SubpixelBits, snap};
-pub use primitive::{
-    LineRule, PointClipping, PrimitiveDraw, PrimitiveProfile, SAMPLE_COUNTS, SampleFragment, SamplePattern,
-    SampleResolved, Topology,
-};
+pub use primitive::{LineRule, PointClipping, SAMPLE_COUNTS, SamplePattern, Topology};
 pub use profile::{DepthConvention, Profile, Snapping, Spec};
-pub use rasterizer::{Rasterizer, rasterize_as_triangles, resolve_by_replay};
+pub use rasterizer::Rasterizer;
 pub use reference::{DrawStats, Reference, Sample};
 pub use setup::{CullMode, FrontFace, Winding};
 pub use state::DrawState;

@@ -5,7 +5,7 @@ use glam::{Mat4, Vec2, Vec3, Vec4};
 
 use crate::draw::{Draw, Fragment};
 use crate::error::{ConfigError, DrawError};
-use crate::primitive::{PrimitiveDraw, SamplePattern, Topology};
+use crate::primitive::Topology;
 use crate::reference::{DrawStats, Reference};
 use crate::state::DrawState;
 use crate::viewport::Viewport;
@@ -229,14 +229,15 @@ impl Renderer {
     #[must_use]
     pub fn mesh_draw(&self, viewport: Viewport, mesh: &Mesh, mvp: Mat4) -> Draw {
         Draw {
-            viewport,
-            positions: mesh
-                .vertices
-                .iter()
-                .map(|v| (mvp * v.position.extend(1.0)).to_array())
-                .collect(),
-            triangles: mesh.triangles.clone(),
             state: self.state,
+            ..Draw::new(
+                viewport,
+                mesh.vertices
+                    .iter()
+                    .map(|v| (mvp * v.position.extend(1.0)).to_array())
+                    .collect(),
+                mesh.triangles.clone(),
+            )
         }
     }
 
@@ -293,24 +294,17 @@ impl Renderer {
         color: impl Fn(&Fragment) -> Vec4,
     ) -> usize {
         let viewport = target.viewport;
-        let draw = PrimitiveDraw {
-            viewport,
-            positions: vertices
-                .iter()
-                .map(|v| (mvp * v.position.extend(1.0)).to_array())
-                .collect(),
-            topology,
-            indices,
-            samples: 1,
+        let positions = vertices
+            .iter()
+            .map(|v| (mvp * v.position.extend(1.0)).to_array())
+            .collect();
+        let draw = Draw {
             state: self.state,
-        };
-        let Some(centre) = SamplePattern::standard(1) else {
-            return 0;
+            ..Draw::of(viewport, positions, topology, indices)
         };
         let mut written = 0;
         // The draw is valid by construction (indices checked, one sample), so it cannot fail.
-        let _ = self.reference.draw_primitives(&draw, &centre, |s| {
-            let f = s.fragment;
+        let _ = self.reference.draw(&draw, |f| {
             let i = viewport.index(f.x, f.y);
             if self.state.depth.test_and_write(f.depth, &mut target.depth[i]) {
                 target.color[i] = to_rgba8(color(&f));

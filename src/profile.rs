@@ -6,6 +6,7 @@ use std::fmt;
 
 use crate::edge::FillConvention;
 use crate::features::Features;
+use crate::primitive::{LineRule, PointClipping, SAMPLE_COUNTS, SamplePattern, Topology};
 use crate::state::DrawState;
 
 /// How an implementation places vertices before it decides coverage.
@@ -123,6 +124,11 @@ impl Spec {
 /// breaks ties on edges by no rule (`w ≥ 0` on every edge, say), `fill: None`: the exact rules
 /// are then not applicable, and the invariant rules still judge it, samples within
 /// `tolerance_subpixels` (in 1/256 px) of an edge aside.
+///
+/// The last six fields declare lines, points and multisampling. Left at their defaults
+/// (`..Profile::default()`) they declare a triangle rasterizer at one sample per pixel, at the
+/// pixel's centre; the rules of the `line.`, `point.` and `msaa.` families are then not
+/// applicable, and the suite sends it nothing but triangle lists at one sample.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub struct Profile {
     /// A short name, as `--impl` takes it.
@@ -145,6 +151,45 @@ pub struct Profile {
     pub features: Features,
     /// The specification it claims to follow.
     pub spec: Spec,
+    /// How it draws lines of width one, if it draws lines (list and strip).
+    pub lines: Option<LineRule>,
+    /// Whether it draws points of size one: a square one pixel wide centred on the point,
+    /// covered as a polygon.
+    pub points: bool,
+    /// Where line and point end points are snapped; `None` for the grid of triangles
+    /// ([`snapping`](Self::snapping)).
+    pub endpoint_snapping: Option<Snapping>,
+    /// Where points alone are snapped, when on another grid than line ends (softpipe snaps
+    /// points to a quarter pixel, its lines and triangles to none); `None` for
+    /// [`endpoint_snapping`](Self::endpoint_snapping)'s.
+    pub point_snapping: Option<Snapping>,
+    /// The sample counts above one it supports, each with its positions.
+    pub multisample: Vec<SamplePattern>,
+    /// What clipping does to a point whose centre lies outside the viewport in x or y.
+    pub point_clipping: PointClipping,
+}
+
+impl Default for Profile {
+    /// refrast's conventions with no name: an 8-bit grid, the top-left rule, screen-linear
+    /// depth, the reference's tolerance and precision, every state, triangles at one sample.
+    fn default() -> Self {
+        Self {
+            name: String::new(),
+            snapping: Snapping::Grid(8),
+            fill: Some(FillConvention::TopLeft),
+            depth: DepthConvention::ScreenLinearZOverW,
+            tolerance_subpixels: 1,
+            precision_bits: 18,
+            features: Features::ALL,
+            spec: Spec::Refrast,
+            lines: None,
+            points: false,
+            endpoint_snapping: None,
+            point_snapping: None,
+            multisample: Vec::new(),
+            point_clipping: PointClipping::AllClipPlanes,
+        }
+    }
 }
 
 impl Profile {
@@ -179,6 +224,58 @@ impl Profile {
         } else {
             Err(format!("the profile declares {}", problems.join("; ")))
         }
+    }
+
+    /// These declarations for triangle lists at one sample alone: lines, points and sample
+    /// counts above one left out. For a rasterizer that borrows another's profile
+    /// (`..Reference::default().profile()`, which declares all three) but draws only triangles.
+    #[must_use]
+    pub fn triangles_only(self) -> Self {
+        let none = Self::default();
+        Self {
+            lines: none.lines,
+            points: none.points,
+            endpoint_snapping: none.endpoint_snapping,
+            point_snapping: none.point_snapping,
+            multisample: none.multisample,
+            point_clipping: none.point_clipping,
+            ..self
+        }
+    }
+
+    /// The pattern of `samples` samples per pixel: the centre for one, else the declared one.
+    #[must_use]
+    pub fn pattern(&self, samples: u8) -> Option<SamplePattern> {
+        if samples == 1 {
+            return SamplePattern::standard(1);
+        }
+        self.multisample.iter().find(|p| p.count() == samples).copied()
+    }
+
+    /// Whether it draws `topology` at `samples` samples per pixel.
+    #[must_use]
+    pub fn draws(&self, topology: Topology, samples: u8) -> bool {
+        let drawn = match topology {
+            Topology::TriangleList => true,
+            Topology::LineList | Topology::LineStrip => self.lines.is_some(),
+            Topology::PointList => self.points,
+        };
+        drawn && self.pattern(samples).is_some()
+    }
+
+    /// The topologies it draws, triangles first.
+    #[must_use]
+    pub fn topologies(&self) -> Vec<Topology> {
+        Topology::ALL.into_iter().filter(|&t| self.draws(t, 1)).collect()
+    }
+
+    /// The sample counts it supports, 1 first.
+    #[must_use]
+    pub fn sample_counts(&self) -> Vec<u8> {
+        SAMPLE_COUNTS
+            .into_iter()
+            .filter(|&n| self.pattern(n).is_some())
+            .collect()
     }
 
     /// Whether every setting of `state` is supported.
@@ -226,7 +323,38 @@ mod tests {
             precision_bits: 18,
             features,
             spec: Spec::Vulkan,
+            ..Profile::default()
         }
+    }
+
+    /// Nothing declared: triangles at one sample, nothing else.
+    #[test]
+    fn the_default_profile_is_triangles_at_one_sample() {
+        let p = Profile::default();
+        assert_eq!(p.topologies(), [Topology::TriangleList]);
+        assert_eq!(p.sample_counts(), [1]);
+        assert!(!p.draws(Topology::LineList, 1));
+        assert!(!p.draws(Topology::TriangleList, 4));
+        let more = Profile {
+            lines: Some(LineRule::DiamondExit),
+            multisample: vec![SamplePattern::standard(4).expect("4")],
+            ..p
+        };
+        assert!(more.draws(Topology::LineStrip, 4));
+        assert_eq!(more.sample_counts(), [1, 4]);
+        let fewer = more.clone().triangles_only();
+        assert_eq!(fewer.topologies(), [Topology::TriangleList]);
+        assert_eq!(fewer.sample_counts(), [1]);
+        assert_eq!(
+            Profile {
+                name: "x".into(),
+                ..fewer
+            },
+            Profile {
+                name: "x".into(),
+                ..Profile::default()
+            }
+        );
     }
 
     #[test]

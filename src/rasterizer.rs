@@ -1,15 +1,16 @@
 //! The `Rasterizer` trait: the contract the conformance suite certifies (its data types are
-//! in `draw.rs` and `primitive.rs`).
+//! in `draw.rs`, its declarations in `profile.rs`).
 
 use crate::draw::{Draw, Fragment, Resolved};
 use crate::error::DrawError;
-use crate::primitive::{PrimitiveDraw, PrimitiveProfile, SampleFragment, SampleResolved};
 use crate::profile::Profile;
 
-/// A triangle rasterizer that the conformance suite can certify.
+/// A rasterizer that the conformance suite can certify.
 ///
 /// Batch-oriented so that a GPU behind an API can implement it as well as a CPU loop: a
 /// [`Draw`] goes in, fragments (before the depth test) and resolved buffers (after) come out.
+/// It is sent only what its [`Profile`] declares: a triangle list at one sample per pixel
+/// unless it declares lines, points or sample counts ([`Profile::draws`]).
 ///
 /// # Implementing it
 ///
@@ -55,10 +56,11 @@ pub trait Rasterizer {
         String::new()
     }
 
-    /// Every covered sample of the draw, before the depth test, in any order.
+    /// Every covered sample of the draw, before the depth test, in any order: at one sample per
+    /// pixel, a fragment per covered pixel, with [`Fragment::sample`] 0.
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError>;
 
-    /// Depth and primitive-id buffers after the depth test.
+    /// Depth and primitive-id buffers after the depth test, one value per sample.
     ///
     /// The default replays [`rasterize`](Rasterizer::rasterize) in primitive order; an
     /// implementation with its own depth test overrides it so that test is what gets certified.
@@ -66,69 +68,6 @@ pub trait Rasterizer {
         let fragments = self.rasterize(draw)?;
         Ok(Resolved::from_fragments(draw, fragments))
     }
-
-    /// What it declares about lines, points and multisampling; by default nothing: triangles at
-    /// one sample per pixel.
-    fn primitive_profile(&self) -> PrimitiveProfile {
-        PrimitiveProfile::triangles_only()
-    }
-
-    /// Every covered sample of a draw of any topology and sample count, before the depth test.
-    ///
-    /// The default draws a triangle list at one sample through [`rasterize`](Rasterizer::rasterize)
-    /// and refuses anything else as [`DrawError::Unsupported`]; an implementation declaring
-    /// lines, points or samples in [`primitive_profile`](Rasterizer::primitive_profile)
-    /// overrides it.
-    fn rasterize_primitives(&mut self, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> {
-        rasterize_as_triangles(self, draw)
-    }
-
-    /// Depth and primitive-id buffers per sample after the depth test.
-    ///
-    /// The default resolves a triangle list at one sample through [`resolve`](Rasterizer::resolve)
-    /// and replays [`rasterize_primitives`](Rasterizer::rasterize_primitives) sample by sample
-    /// otherwise.
-    fn resolve_primitives(&mut self, draw: &PrimitiveDraw) -> Result<SampleResolved, DrawError> {
-        resolve_by_replay(self, draw)
-    }
-}
-
-/// [`Rasterizer::rasterize_primitives`] for an implementation that declares nothing beyond
-/// triangles: a triangle list at one sample through [`Rasterizer::rasterize`], anything else
-/// refused as unsupported.
-pub fn rasterize_as_triangles<R: Rasterizer + ?Sized>(
-    r: &mut R,
-    draw: &PrimitiveDraw,
-) -> Result<Vec<SampleFragment>, DrawError> {
-    draw.validate()?;
-    let Some(triangles) = draw.as_triangle_draw() else {
-        return Err(DrawError::Unsupported(draw.describe()));
-    };
-    Ok(r.rasterize(&triangles)?
-        .into_iter()
-        .map(|fragment| SampleFragment { fragment, sample: 0 })
-        .collect())
-}
-
-/// [`Rasterizer::resolve_primitives`] by default: a triangle list at one sample through the
-/// implementation's own [`Rasterizer::resolve`] (so its depth test is what gets judged), anything
-/// else replayed from [`Rasterizer::rasterize_primitives`].
-pub fn resolve_by_replay<R: Rasterizer + ?Sized>(
-    r: &mut R,
-    draw: &PrimitiveDraw,
-) -> Result<SampleResolved, DrawError> {
-    draw.validate()?;
-    if let Some(triangles) = draw.as_triangle_draw() {
-        let resolved = r.resolve(&triangles)?;
-        return Ok(SampleResolved {
-            viewport: resolved.viewport,
-            samples: 1,
-            depth: resolved.depth,
-            primitive: resolved.primitive,
-        });
-    }
-    let fragments = r.rasterize_primitives(draw)?;
-    Ok(SampleResolved::from_fragments(draw, fragments))
 }
 
 #[cfg(test)]
@@ -153,6 +92,7 @@ mod tests {
         Fragment {
             x,
             y,
+            sample: 0,
             primitive: 0,
             depth: 0.25,
             barycentric: [1.0, 0.0, 0.0],

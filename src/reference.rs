@@ -8,7 +8,7 @@ use crate::features::{Features, SnapAccuracy};
 use crate::fixed::SnapRounding;
 use crate::front::{Discard, FrontScratch, FrontSetup, front_end};
 use crate::interp::{Varyings, interpolate, interpolate_depth, screen_weights};
-use crate::primitive::{PrimitiveDraw, PrimitiveProfile, SAMPLE_COUNTS, SampleFragment, SamplePattern};
+use crate::primitive::{SAMPLE_COUNTS, SamplePattern};
 use crate::profile::{DepthConvention, Profile, Snapping, Spec};
 use crate::project::RasterVertex;
 use crate::rasterizer::Rasterizer;
@@ -73,28 +73,44 @@ impl Reference {
         self.config
     }
 
-    /// Rasterizes `draw`, handing each fragment to `emit` in primitive order.
+    /// Rasterizes `draw` of any topology, with Vulkan's standard sample locations, handing each
+    /// fragment to `emit` in primitive order.
     pub fn draw(&self, draw: &Draw, mut emit: impl FnMut(Fragment)) -> Result<DrawStats, DrawError> {
-        self.draw_samples(draw, |sample| emit(sample.fragment()))
+        if draw.is_triangles_at_one_sample() {
+            return self.draw_samples(draw, |sample| emit(sample.fragment()));
+        }
+        let pattern = SamplePattern::standard(draw.samples).ok_or_else(|| {
+            DrawError::Unsupported(format!(
+                "{} samples per pixel: a draw asks for 1, 2, 4, 8 or 16",
+                draw.samples
+            ))
+        })?;
+        self.draw_with_pattern(draw, &pattern, emit)
     }
 
     /// Rasterizes `draw`, handing each covered [`Sample`] to `visit` in primitive order.
     ///
     /// A sample carries its depth; its barycentrics are computed only when asked for, so a
-    /// depth test can reject it first.
+    /// depth test can reject it first. `Err` unless `draw` is a triangle list at one sample.
     pub fn draw_samples(
         &self,
         draw: &Draw,
         mut visit: impl FnMut(&Sample<'_>),
     ) -> Result<DrawStats, DrawError> {
         draw.validate()?;
+        if !draw.is_triangles_at_one_sample() {
+            return Err(DrawError::Unsupported(format!(
+                "{}: samples are visited for triangle lists at one sample",
+                draw.describe()
+            )));
+        }
         let setup = FrontSetup::new(draw, self.config);
         let mut scratch = Scratch::default();
         let mut stats = DrawStats {
-            triangles: draw.triangles.len(),
+            triangles: draw.triangles().len(),
             ..DrawStats::default()
         };
-        for primitive in 0..draw.triangles.len() {
+        for primitive in 0..draw.triangles().len() {
             match self.draw_triangle(&setup, primitive, &mut scratch, &mut visit) {
                 Ok(fragments) => {
                     stats.traversed += 1;
@@ -193,6 +209,7 @@ impl<'a> Sample<'a> {
         Fragment {
             x: self.x,
             y: self.y,
+            sample: 0,
             primitive: self.primitive,
             depth: self.depth,
             barycentric: b.perspective.as_vec3().to_array(),
@@ -224,42 +241,24 @@ impl Rasterizer for Reference {
                 ..Features::ALL
             },
             spec: Spec::Refrast,
-        }
-    }
-
-    fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
-        let mut fragments = Vec::new();
-        self.draw(draw, |f| fragments.push(f))?;
-        Ok(fragments)
-    }
-
-    /// Lines by the configured rule, points, and Vulkan's standard sample locations where the
-    /// grid holds sixteenths of a pixel (4 subpixel bits or more).
-    fn primitive_profile(&self) -> PrimitiveProfile {
-        let on_grid = self.config.subpixel_bits.get() >= 4;
-        PrimitiveProfile {
+            // Lines by the configured rule, points, and Vulkan's standard sample locations where
+            // the grid holds sixteenths of a pixel (4 subpixel bits or more).
             lines: Some(self.config.line),
             points: true,
             endpoint_snapping: None,
             point_snapping: None,
             multisample: SAMPLE_COUNTS[1..]
                 .iter()
-                .filter(|_| on_grid)
+                .filter(|_| self.config.subpixel_bits.get() >= 4)
                 .filter_map(|&n| SamplePattern::standard(n))
                 .collect(),
             point_clipping: self.config.point_clipping,
         }
     }
 
-    fn rasterize_primitives(&mut self, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> {
-        let pattern = SamplePattern::standard(draw.samples).ok_or_else(|| {
-            DrawError::Unsupported(format!(
-                "{} samples per pixel: a draw asks for 1, 2, 4, 8 or 16",
-                draw.samples
-            ))
-        })?;
+    fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
         let mut fragments = Vec::new();
-        self.draw_primitives(draw, &pattern, |f| fragments.push(f))?;
+        self.draw(draw, |f| fragments.push(f))?;
         Ok(fragments)
     }
 }

@@ -24,18 +24,18 @@
 //!
 //! Lines and points have stages of their own: [`clip_segment`], then the exact coverage of
 //! [`diamond_exit`], [`in_rectangle`], [`in_parallelogram`] and [`in_point_square`] on snapped
-//! ends ([`Reference::draw_primitives`](crate::Reference::draw_primitives)); the labs' DDA,
+//! ends ([`Reference::draw_with_pattern`](crate::Reference::draw_with_pattern)); the labs' DDA,
 //! [`rasterize_line`] and [`rasterize_point`], stays for the course implementations.
 
 pub use crate::clip::{
     ClipOutcome, ClipPlane, ClipVertex, assemble, classify, clip_planes, clip_polygon, clip_segment,
     clip_triangle, intersect, outcode,
 };
+pub use crate::dda::{LineFragment, LineVertex, rasterize_line, rasterize_point};
 pub use crate::depth::fragment_depth;
 pub use crate::edge::EdgeFunction;
 pub use crate::front::{Corner, Discard, FrontScratch, FrontSetup, Kept, front_end};
 pub use crate::interp::{Barycentrics, Varyings, interpolate, interpolate_depth, screen_weights};
-pub use crate::line::{LineFragment, LineVertex, rasterize_line, rasterize_point};
 pub use crate::project::{ProjectedPoint, RasterVertex, ViewportTransform, input_w};
 pub use crate::segment::{
     diamond_exit, in_diamond, in_parallelogram, in_point_square, in_rectangle, meets_diamond,

@@ -12,7 +12,8 @@ use std::time::{Duration, Instant, SystemTime};
 
 use refrast::Rasterizer;
 
-use refrast_conformance::{Options, Process, Report, RuleReport, Shard, catalogue, matches, selected};
+use refrast_conformance::{Options, Report, RuleReport, Shard, catalogue, matches, selected};
+use refrast_pipe::Process;
 
 pub use child::{RunRuleArgs, run_rule, this_program};
 pub use lines::{plural, print_rule, reach, rule_lines, summarise};
@@ -46,7 +47,7 @@ fn find_builtins(pattern: &str) -> Result<Vec<BuiltIn>, String> {
 
 /// Arguments of `refrast certify`.
 #[derive(clap::Args, Debug)]
-pub struct Args {
+pub struct CertifyArgs {
     /// Implementation to certify (repeatable; see `refrast impls`), or a glob of their names
     /// (`'restricted:*'`, `'mutant:*'`) [default: every correct built-in, unless --exec is given].
     #[arg(long = "impl", value_name = "NAME")]
@@ -104,7 +105,7 @@ pub struct Args {
     /// The most memory, in MiB, each rule's child process and each --exec child may allocate
     /// (its data: heap and private mappings; 0 sets no limit). A child over it fails its rule
     /// as a crash that says so.
-    #[arg(long, value_name = "MIB", default_value_t = refrast_conformance::contain::DEFAULT_MEMORY_LIMIT >> 20)]
+    #[arg(long, value_name = "MIB", default_value_t = refrast_pipe::contain::DEFAULT_MEMORY_LIMIT >> 20)]
     memory_limit: u64,
     /// Stop at the first failing rule: no rule starts after it, and the rules and implementations
     /// after it are listed as not run (results of later rules already running are dropped).
@@ -133,7 +134,7 @@ pub fn positive_seconds(text: &str) -> Result<f64, String> {
 
 /// Runs `refrast certify`: 0 when every applicable rule passes (under --expect: when every
 /// verdict is as expected), 1 when one fails (or surprises), 2 on a usage error.
-pub fn run(args: &Args) -> ExitCode {
+pub fn run(args: &CertifyArgs) -> ExitCode {
     let when = SystemTime::now();
     let clock = Instant::now();
     let chosen = match choose(args) {
@@ -262,9 +263,9 @@ pub fn run(args: &Args) -> ExitCode {
 
 /// The built-ins `--impl` names (every correct one when none is named and no `--exec` is
 /// given), after checking `--exec` command lines and `--rule` patterns.
-fn choose(args: &Args) -> Result<Vec<BuiltIn>, String> {
+fn choose(args: &CertifyArgs) -> Result<Vec<BuiltIn>, String> {
     for command in &args.execs {
-        refrast_conformance::process::split_command(command).map_err(|e| format!("--exec: {e}"))?;
+        refrast_pipe::split_command(command).map_err(|e| format!("--exec: {e}"))?;
     }
     for pattern in &args.rule {
         if !catalogue().iter().any(|r| matches(pattern, r.id)) {

@@ -24,7 +24,7 @@ struct Cli {
 #[derive(Subcommand, Debug)]
 enum Command {
     /// Certify rasterizers against the rule catalogue.
-    Certify(certify::Args),
+    Certify(certify::CertifyArgs),
     /// List the rules: ID, kind, family, source, sentence.
     Rules {
         /// Print the table of docs/rules.md instead: `| rule | kind | sentence |`.
@@ -48,7 +48,7 @@ enum Command {
     /// Replay one counterexample (the .case.json that certify writes beside a failure) on a
     /// rasterizer in any language or a built-in: the rule's message, hint and picture for that
     /// case alone; exit 0 when it passes, 1 when it fails.
-    Replay(replay::Args),
+    Replay(replay::ReplayArgs),
     /// List the built-in implementations and their profiles.
     Impls {
         /// Print them as JSON: an array of {name, origin, description, available, unavailable,
@@ -61,19 +61,19 @@ enum Command {
     },
     /// Compare two `certify --json` reports: per implementation, the rules that regressed, got
     /// fixed or changed status; exit 1 on a regression.
-    Compare(results::compare::Args),
+    Compare(results::compare::CompareArgs),
     /// Join the `certify --json` reports of a run's shards (`--shard I/N`) into one report:
     /// text, JSON, HTML and JUnit, as the run would have made in one piece.
-    Merge(results::merge::Args),
+    Merge(results::merge::MergeArgs),
     /// Render a built-in scene or a mesh file (PLY, OBJ) to a PNG, in any mode, through any rasterizer.
     #[command(allow_negative_numbers = true)]
-    Render(render::Args),
+    Render(render::RenderArgs),
     /// List the built-in scenes.
     Scenes,
     /// Open a window on a scene or mesh file, drawn every frame: fly the camera, switch the
     /// mode with 1-7 and the implementation with I, save with P.
     #[command(allow_negative_numbers = true)]
-    View(view::Args),
+    View(view::ViewArgs),
     /// Run one rule for `certify` and speak to it on stdout (not for people).
     #[command(hide = true)]
     RunRule(certify::RunRuleArgs),
@@ -84,7 +84,7 @@ fn main() -> ExitCode {
     // does not reach: on an interrupt (or SIGTERM), end them, and whatever they started, first.
     // Exit status 130, a shell's for an interrupted command.
     if let Err(e) = ctrlc::set_handler(|| {
-        refrast_conformance::contain::end_all();
+        refrast_pipe::contain::end_all();
         std::process::exit(130);
     }) {
         eprintln!("warning: no interrupt handler ({e}): an interrupted run may leave its children running");

@@ -13,7 +13,7 @@ use crate::say;
 
 /// Arguments of `refrast render`.
 #[derive(clap::Args, Debug)]
-pub struct Args {
+pub struct RenderArgs {
     /// The scene, its size, camera, light and rasterizer.
     #[command(flatten)]
     scene: SceneArgs,
@@ -54,7 +54,7 @@ fn parse_modes(s: &str) -> Result<Modes, String> {
 
 /// Runs `refrast render`: 0 when every picture is written, 2 on bad input (an argument, a
 /// file, a mesh, a texture), 1 when the rasterizer refuses the draw.
-pub fn run(args: &Args) -> ExitCode {
+pub fn run(args: &RenderArgs) -> ExitCode {
     match render(args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(Failure(message, code)) => {
@@ -64,7 +64,7 @@ pub fn run(args: &Args) -> ExitCode {
     }
 }
 
-fn render(args: &Args) -> Result<(), Failure> {
+fn render(args: &RenderArgs) -> Result<(), Failure> {
     let prepared = prepare(&args.scene)?;
     let (setup, stem) = (&prepared.setup, &prepared.stem);
     let (width, height) = prepared.size;

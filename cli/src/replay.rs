@@ -6,7 +6,8 @@ use std::process::ExitCode;
 use std::time::Duration;
 
 use refrast::{Rasterizer, Topology};
-use refrast_conformance::{Case, CaseFile, Options, PrimitiveScene, Process, RuleReport, Status, contain};
+use refrast_conformance::{Case, CaseFile, Options, PrimitiveScene, RuleReport, Status};
+use refrast_pipe::{Process, contain};
 
 use crate::certify::{plural, positive_seconds, reach, rule_lines};
 use crate::say;
@@ -14,7 +15,7 @@ use crate::say;
 /// Arguments of `refrast replay`.
 #[derive(clap::Args, Debug)]
 #[command(group(clap::ArgGroup::new("rasterizer").required(true).args(["exec", "implementation"])))]
-pub struct Args {
+pub struct ReplayArgs {
     /// The case: a `.case.json` file that `certify` wrote beside a failure's picture, or a
     /// `certify --json` report (then --rule says which failure).
     case: PathBuf,
@@ -50,7 +51,7 @@ pub struct Args {
 /// Runs `refrast replay`: 0 when the case passes (or fails only beyond the specification the
 /// profile claims), 1 when it fails, crashes or hangs, 2 when the file, the rule or the
 /// rasterizer cannot be had.
-pub fn run(args: &Args) -> ExitCode {
+pub fn run(args: &ReplayArgs) -> ExitCode {
     match replay(args) {
         Ok(report) => {
             if report.status.is_failure() {
@@ -67,7 +68,7 @@ pub fn run(args: &Args) -> ExitCode {
 }
 
 /// Reads the case, builds the rasterizer, replays, prints.
-fn replay(args: &Args) -> Result<RuleReport, String> {
+fn replay(args: &ReplayArgs) -> Result<RuleReport, String> {
     let case = read_case(&args.case, args.rule.as_deref())?;
     let (mut rasterizer, name, is_exec): (Box<dyn Rasterizer>, String, bool) =
         match (&args.exec, &args.implementation) {
@@ -233,25 +234,17 @@ fn describe(case: &CaseFile) -> String {
 fn print_fragments(r: &mut dyn Rasterizer, case: &CaseFile) -> Result<(), String> {
     // The case's data was read once already, so its viewport is in range.
     let draw = PrimitiveScene::from_data(&case.case)?.draw();
-    match r.rasterize_primitives(&draw) {
+    match r.rasterize(&draw) {
         Ok(fragments) => {
             say(&format!(
                 "fragments drawn for the draw ({}): x y primitive sample front-facing depth barycentric",
                 fragments.len()
             ));
             for f in &fragments {
-                let b = f.fragment.barycentric;
+                let b = f.barycentric;
                 say(&format!(
                     "  {} {} {} {} {} {:?} [{:?}, {:?}, {:?}]",
-                    f.fragment.x,
-                    f.fragment.y,
-                    f.fragment.primitive,
-                    f.sample,
-                    f.fragment.front_facing,
-                    f.fragment.depth,
-                    b[0],
-                    b[1],
-                    b[2]
+                    f.x, f.y, f.primitive, f.sample, f.front_facing, f.depth, b[0], b[1], b[2]
                 ));
             }
         }

@@ -10,7 +10,7 @@ use std::process::Command;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use refrast::{Draw, Rasterizer, Reference, Viewport};
-use refrast_conformance::Process;
+use refrast_pipe::Process;
 
 /// `n` small triangles on a 64×64 target, each a few pixels.
 fn draw(n: u32) -> Draw {

@@ -61,7 +61,7 @@ fn options_from_env() -> Options {
 /// `REFRAST_SEED` the seed; `REFRAST_REPORT` where counterexample pictures go (default
 /// `target/refrast-report`); `REFRAST_CASE_TIMEOUT` the seconds one case may take (default 20);
 /// `REFRAST_BUDGET` the seconds per rule after which no new case starts (for a slow rasterizer,
-/// such as a [`crate::Process`] running Python); `REFRAST_FAIL_FAST=1` fails every rule not yet
+/// such as a `refrast_pipe::Process` running Python); `REFRAST_FAIL_FAST=1` fails every rule not yet
 /// started once one has failed, without running it (for a quick answer, and for mutation
 /// testing); `REFRAST_IN_PROCESS=1` runs the rules in this process instead (for a debugger or a
 /// profiler; a hang then hangs the test).
@@ -80,10 +80,7 @@ where
     let failed = Arc::new(AtomicBool::new(false));
     let args = Arguments::from_args();
     let make = Arc::new(make);
-    let (profile, primitives) = match guarded(|| {
-        let r = make();
-        (r.profile(), r.primitive_profile())
-    }) {
+    let profile = match guarded(|| make().profile()) {
         Ok(declared) => declared,
         Err(what) => {
             eprintln!("error: the rasterizer's constructor or profile() panicked: {what}");
@@ -101,7 +98,7 @@ where
     let trials = catalogue()
         .into_iter()
         .map(|rule| {
-            let ignored = rule.applies(&profile, &primitives).is_err();
+            let ignored = rule.applies(&profile).is_err();
             let (id, family) = (rule.id, rule.family);
             let (make, options, failed) = (Arc::clone(&make), Arc::clone(&options), Arc::clone(&failed));
             let declared = profile.clone();

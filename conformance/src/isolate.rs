@@ -24,11 +24,11 @@ use refrast::{Rasterizer, Unavailable};
 use serde::{Deserialize, Serialize};
 
 use crate::certify::{refusal, run_selected_jobs};
-use crate::contain::{Contained, memory_note};
 use crate::judge::{Options, cases_for, run_rule};
-use crate::process::{Tail, for_each_line, status_words};
 use crate::report::{ProfileReport, Report, RuleReport, Status};
 use crate::rules::{Rule, catalogue};
+use refrast_pipe::contain::{Contained, memory_note};
+use refrast_pipe::{Tail, for_each_line, status_words};
 
 /// The prefix of every protocol line on the child's stdout.
 pub const MARK: &str = "@refrast-rule ";
@@ -349,7 +349,7 @@ fn collect_tail(stream: impl Read + Send + 'static) -> mpsc::Receiver<String> {
     let (tx, rx) = mpsc::channel();
     thread::spawn(move || {
         let mut tail = Tail::default();
-        for_each_line(stream, 2 * crate::process::KEPT_OUTPUT, |line, _| {
+        for_each_line(stream, 2 * refrast_pipe::KEPT_OUTPUT, |line, _| {
             tail.push(&String::from_utf8_lossy(line));
             true
         });

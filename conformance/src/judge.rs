@@ -52,7 +52,7 @@ pub struct Options {
     /// [`crate::Report::not_run`] (for a quick answer, and for mutation testing).
     pub fail_fast: bool,
     /// The most data, in bytes, each rule's child process (and a `--exec` child) may allocate
-    /// ([`crate::contain`]); `None` sets no limit.
+    /// ([`refrast_pipe::contain`]); `None` sets no limit.
     pub memory_limit: Option<u64>,
 }
 
@@ -69,7 +69,7 @@ impl Default for Options {
             case_timeout: DEFAULT_CASE_TIMEOUT,
             budget: None,
             fail_fast: false,
-            memory_limit: Some(crate::contain::DEFAULT_MEMORY_LIMIT),
+            memory_limit: Some(refrast_pipe::contain::DEFAULT_MEMORY_LIMIT),
         }
     }
 }
@@ -137,11 +137,7 @@ fn judge(
         Ok(profile) => profile,
         Err(what) => return crash(report, format!("profile() panicked: {what}")),
     };
-    let primitives = match guarded(|| rasterizer.primitive_profile()) {
-        Ok(primitives) => primitives,
-        Err(what) => return crash(report, format!("primitive_profile() panicked: {what}")),
-    };
-    if let Err(reason) = rule.applies(&profile, &primitives) {
+    if let Err(reason) = rule.applies(&profile) {
         report.status = Status::NotApplicable;
         report.message = Some(reason.to_owned());
         return Ok(report);

@@ -4,12 +4,11 @@
 //!
 //! | layer | module | what |
 //! |---|---|---|
-//! | 0 | `status`, [`contain`] | [`Status`]: pass, fail, crash, timeout, flake, beyond-spec, n/a; child processes in a process group of their own, under a memory limit |
+//! | 0 | `status` | [`Status`]: pass, fail, crash, timeout, flake, beyond-spec, n/a |
 //! | 1 | [`oracle`] | the conventions' geometry ([`oracle::raster`]), brute force (i128 `orient2d`), ray casting (f64 with exact fallback, clip space), visible outlines, lines, points and samples ([`oracle::segment`]); no code shared with the reference |
-//! | 2 | `scene` | [`Scene`]: a draw whose `Debug` is pasteable Rust; [`Case`]: what a rule's input is; [`CaseData`]: an input as data, the draw in the pipe protocol's words |
+//! | 2 | `scene` | [`Scene`]: a draw whose `Debug` is pasteable Rust; [`PrimitiveScene`]: a scene drawn as lines or points, or at several samples per pixel; [`Case`]: what a rule's input is; [`CaseData`]: an input as data, the draw in the pipe protocol's words |
 //! | 3 | `violation` | [`Violation`], [`Counts`], [`Expect`], [`Picture`] |
 //! | 4 | [`picture`] | the zoomed sample grid: missing purple, unexpected red, double blue, don't-care yellow; outlines |
-//! | 4½ | [`primitives`] | [`PrimitiveScene`]: a scene drawn as lines or points, or at several samples per pixel |
 //! | 5 | [`strategy`] | free functions that build valid scenes: grid triangles, spade meshes, fans, quads, clip crossings |
 //! | 6 | `runner` | [`property`]: one rule's property, seeded, shrunk, panics caught |
 //! | 7 | [`rules`] | [`catalogue`], [`Rule`], [`Family`], [`Kind`], [`Need`]: nine families, each rule a proptest property |
@@ -18,10 +17,6 @@
 //! | 10 | `certify` | [`certify`]: the selected rules, in order or on several workers |
 //! | 11 | [`isolate`], [`expect`] | rules in child processes: a hang is a `timeout`, an abort or a crash a `crash` of the rule it was running; expectation files |
 //! | 12 | `harness`, [`fuzz`] | [`run_as_tests`]: one test per rule in your own crate; the cargo-fuzz targets as functions on any rasterizer |
-//! | — | `named` | [`Named`]: the reference under another name and configuration |
-//! | — | [`restricted`] | the reference restricted to one setting or a few, declaring and using only those (refrast only) |
-//! | — | [`shaped`] | the reference shaped like the rasterizers that exposed false verdicts: a GPU, a 2D scan converter (uses `oracle::raster`) |
-//! | — | [`process`] | [`Process`]: a rasterizer in any language, in a child speaking `docs/protocol.md` (refrast only) |
 //!
 //! # Kinds and tolerance
 //!
@@ -33,23 +28,17 @@
 #![forbid(unsafe_code)]
 
 mod certify;
-pub mod contain;
 pub mod expect;
 pub mod fuzz;
 mod harness;
 pub mod isolate;
 mod judge;
-mod named;
 pub mod oracle;
 pub mod picture;
-pub mod primitives;
-pub mod process;
 mod report;
-pub mod restricted;
 pub mod rules;
 mod runner;
 mod scene;
-pub mod shaped;
 pub mod spec;
 mod status;
 pub mod strategy;
@@ -58,16 +47,13 @@ mod violation;
 pub use certify::{certify, certify_with, matches, matches_glob, refusal, selected};
 pub use harness::{band_words, failure_text, run_as_tests};
 pub use judge::{DEFAULT_CASE_TIMEOUT, Options, Shard, cases_for, replay, run_rule};
-pub use named::Named;
-pub use primitives::PrimitiveScene;
-pub use process::{Process, ProcessError};
 pub use report::{CaseFile, Part, ProfileReport, Report, RuleReport, Status, feature_list, fill_name};
 pub use rules::meta::Translated;
 pub use rules::robust::Poisoned;
 pub use rules::{
     Family, Kind, Level, Levels, Need, Rule, RuleDraft, catalogue, levels_markdown, markdown_table, needs,
 };
-pub use runner::{DEFAULT_SEED, Replay, RunConfig, Verdict, property, property_declared, property_for};
-pub use scene::{Case, CaseData, Coordinate, DrawData, Poison, Scene, clip_of};
+pub use runner::{DEFAULT_SEED, Replay, RunConfig, Verdict, property, property_for};
+pub use scene::{Case, CaseData, Coordinate, DrawData, Poison, PrimitiveScene, Scene, clip_of};
 pub use spec::{Coverage, SpecMap, Statement, spec_map};
 pub use violation::{Class, Counts, Expect, Findings, Picture, Violation, compare_coverage, count_fragments};

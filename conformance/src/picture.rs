@@ -12,7 +12,9 @@ use refrast::stage::{LineVertex, rasterize_line};
 use refrast::{Fragment, Viewport};
 
 use crate::oracle::outline::{OutlinePoint, visible_outline};
-use crate::scene::Scene;
+use refrast::Topology;
+
+use crate::scene::{PrimitiveScene, Scene};
 use crate::violation::{Class, Picture, count_fragments};
 
 /// Colour of a sample class.
@@ -49,6 +51,40 @@ pub fn scene_outlines(scene: &Scene) -> Vec<Vec<[f64; 2]>> {
         .map(|t| visible_outline(&scene.positions_of(t), scene.width, scene.height, &scene.state))
         .collect();
     finite_outlines(&outlines)
+}
+
+/// The outlines a picture of `case` draws: its triangles', each segment, or each point's square,
+/// in pixels.
+#[must_use]
+pub fn primitive_outlines(case: &PrimitiveScene) -> Vec<Vec<[f64; 2]>> {
+    let (w, h) = (case.scene.width, case.scene.height);
+    let raster = |p: [f32; 4]| {
+        let p = p.map(f64::from);
+        crate::oracle::raster::project(w, h, p)
+    };
+    match case.topology {
+        Topology::TriangleList => scene_outlines(&case.scene),
+        Topology::LineList | Topology::LineStrip => (0..case.primitive_count())
+            .filter_map(|i| case.segment(i))
+            .filter(|ends| ends.iter().all(|p| p[3] > 0.0))
+            .map(|ends| ends.map(raster).to_vec())
+            .collect(),
+        Topology::PointList => case
+            .indices
+            .iter()
+            .map(|&i| case.scene.positions[i as usize])
+            .filter(|p| p[3] > 0.0)
+            .map(|p| {
+                let [x, y] = raster(p);
+                vec![
+                    [x - 0.5, y - 0.5],
+                    [x + 0.5, y - 0.5],
+                    [x + 0.5, y + 0.5],
+                    [x - 0.5, y + 0.5],
+                ]
+            })
+            .collect(),
+    }
 }
 
 /// A picture of `fragments` of `scene`: covered once grey, more often blue, `samples` (those a

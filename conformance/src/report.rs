@@ -9,12 +9,12 @@ use refrast::{
 };
 use serde::{Deserialize, Serialize};
 
-use crate::process::wire::{FAR_CLIPPING, Word, depth_word};
 use crate::rules::{Family, Kind, Rule};
 use crate::runner::guarded;
 use crate::scene::CaseData;
 pub use crate::status::Status;
 use crate::violation::Counts;
+use refrast_pipe::wire::{FAR_CLIPPING, Word, depth_word};
 
 /// One rule's line in the report.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

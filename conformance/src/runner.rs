@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 
 use proptest::strategy::Strategy;
 use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestError, TestRng, TestRunner};
-use refrast::{PrimitiveProfile, Profile, Rasterizer};
+use refrast::{Profile, Rasterizer};
 
 use crate::picture;
 use crate::scene::{Case, CaseData, Scene};
@@ -139,7 +139,8 @@ where
 }
 
 /// [`property`] with the strategy built from the rasterizer's profile, for inputs that depend on
-/// a claim: snap ties only for a declared tie rule, reach only as far as the declared guard band.
+/// a claim: snap ties only for a declared tie rule, reach only as far as the declared guard band,
+/// the sample counts it supports.
 pub fn property_for<T, S>(
     rasterizer: &mut dyn Rasterizer,
     cfg: &RunConfig,
@@ -150,28 +151,13 @@ where
     T: Debug + Clone + Case + Send + Sync + 'static,
     S: Strategy<Value = T>,
 {
-    property_declared(rasterizer, cfg, |profile, _| strategy_for(profile), check)
-}
-
-/// [`property_for`] with the strategy built from what the rasterizer declares about lines,
-/// points and samples as well: the sample counts it supports, say.
-pub fn property_declared<T, S>(
-    rasterizer: &mut dyn Rasterizer,
-    cfg: &RunConfig,
-    strategy_for: impl FnOnce(&Profile, &PrimitiveProfile) -> S,
-    check: Check<T>,
-) -> Verdict
-where
-    T: Debug + Clone + Case + Send + Sync + 'static,
-    S: Strategy<Value = T>,
-{
     // Every case asks only for draw states the rasterizer declares it supports, needs no 3D
     // clipping of one that does none, and under a cull mode it cannot switch off, draws its
     // triangles facing front.
-    let (profile, primitives) = match guarded(|| (rasterizer.profile(), rasterizer.primitive_profile())) {
+    let profile = match guarded(|| rasterizer.profile()) {
         Ok(declared) => declared,
         Err(what) => {
-            let violation = Violation::new(format!("profile() or primitive_profile() panicked: {what}"));
+            let violation = Violation::new(format!("profile() panicked: {what}"));
             return failed_without_case(0, violation);
         }
     };
@@ -204,7 +190,7 @@ where
         ..Config::default()
     };
     let orient = cfg.orient;
-    let strategy = strategy_for(&profile, &primitives).prop_map(move |mut input| {
+    let strategy = strategy_for(&profile).prop_map(move |mut input| {
         fit(input.scene_mut(), &profile, orient);
         input
     });

@@ -4,8 +4,8 @@ use std::fmt;
 
 use refrast::{DrawError, Fragment};
 
-use crate::process::Misbehaviour;
 use crate::status::Status;
+use refrast_pipe::Misbehaviour;
 
 /// How one sample came out against what was expected.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

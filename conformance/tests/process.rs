@@ -10,11 +10,11 @@ use std::time::{Duration, Instant};
 
 use libtest_mimic::{Arguments, Failed, Trial};
 use refrast::{
-    CompareOp, CullMode, DepthRange, Draw, DrawError, FrontFace, PrimitiveDraw, Rasterizer, Reference,
-    Topology, Viewport,
+    CompareOp, CullMode, DepthRange, Draw, DrawError, FrontFace, Rasterizer, Reference, Topology, Viewport,
 };
-use refrast_conformance::process::wire::{self, Word};
-use refrast_conformance::{Options, Process, ProcessError, Status, certify};
+use refrast_conformance::{Options, Status, certify};
+use refrast_pipe::wire::{self, Word};
+use refrast_pipe::{Process, ProcessError};
 
 mod support;
 
@@ -148,7 +148,7 @@ fn a_version_2_child_draws_what_the_reference_draws() -> Result<(), String> {
 /// them as the reference does; a version 1 child is never sent them (refused here, unasked).
 fn a_version_2_child_draws_lines_points_and_samples() -> Result<(), String> {
     let mut p = spawn("v2", 10.0);
-    let declared = p.primitive_profile();
+    let declared = p.profile();
     if declared.lines != Some(refrast::LineRule::DiamondExit)
         || !declared.points
         || declared.sample_counts() != [1, 4]
@@ -157,43 +157,41 @@ fn a_version_2_child_draws_lines_points_and_samples() -> Result<(), String> {
     }
     let mut reference = Reference::default();
     let d = draw(2);
-    let strip = PrimitiveDraw::new(
+    let strip = Draw::of(
         d.viewport,
         d.positions.clone(),
         Topology::LineStrip,
         vec![0, 1, 3, 2],
     );
     let draws = [
-        PrimitiveDraw::new(
+        Draw::of(
             d.viewport,
             d.positions.clone(),
             Topology::LineList,
             vec![0, 3, 1, 2],
         ),
         strip.clone(),
-        PrimitiveDraw::new(
+        Draw::of(
             d.viewport,
             d.positions.clone(),
             Topology::PointList,
             vec![0, 1, 2, 3],
         ),
-        PrimitiveDraw::of_triangles(&d, 4),
-        PrimitiveDraw { samples: 4, ..strip },
+        d.clone().at_samples(4),
+        strip.at_samples(4),
     ];
     for d in &draws {
         let what = d.describe();
-        let got = p.rasterize_primitives(d).map_err(|e| format!("{what}: {e}"))?;
-        if got != reference.rasterize_primitives(d).map_err(|e| e.to_string())? {
+        let got = p.rasterize(d).map_err(|e| format!("{what}: {e}"))?;
+        if got != reference.rasterize(d).map_err(|e| e.to_string())? {
             return Err(format!("{what}: fragments differ"));
         }
-        if p.resolve_primitives(d).map_err(|e| e.to_string())?
-            != reference.resolve_primitives(d).map_err(|e| e.to_string())?
-        {
+        if p.resolve(d).map_err(|e| e.to_string())? != reference.resolve(d).map_err(|e| e.to_string())? {
             return Err(format!("{what}: resolve differs"));
         }
     }
     let mut v1 = spawn("good", 10.0);
-    match v1.rasterize_primitives(&draws[0]) {
+    match v1.rasterize(&draws[0]) {
         Err(DrawError::Unsupported(why)) if why.contains("does not declare") => Ok(()),
         other => Err(format!("a version 1 child was sent a line list: {other:?}")),
     }
@@ -383,7 +381,7 @@ fn wrong_size() -> Result<(), String> {
 fn refusal() -> Result<(), String> {
     let mut p = spawn("good", 10.0);
     let mut d = draw(1);
-    d.triangles.push([0, 9, 1]);
+    d.indices.extend([0, 9, 1]);
     match p.rasterize(&d) {
         Err(DrawError::Backend(why)) if why.contains("vertex 9") => {}
         other => return Err(format!("expected the child's refusal, got {other:?}")),
@@ -529,11 +527,7 @@ fn protocol_md_example() -> Result<(), String> {
         [-1.0, -1.0, 0.5, 1.0],
     ];
     let d = Draw::new(viewport, positions, vec![[0, 1, 2]]);
-    let bytes = wire::request(
-        wire::Op::Rasterize,
-        &PrimitiveDraw::of_triangles(&d, 1),
-        wire::VERSION,
-    );
+    let bytes = wire::request(wire::Op::Rasterize, &d.clone().at_samples(1), wire::VERSION);
     let header =
         String::from_utf8_lossy(&bytes[..bytes.iter().position(|&b| b == b'\n').unwrap_or(0)]).into_owned();
     if !doc.contains(&format!("→ {header}\n")) {
@@ -613,7 +607,7 @@ fn fake_child(mode: &str) {
         };
         let mut reply = Vec::new();
         if op == "resolve" {
-            let r = reference.resolve_primitives(&d).expect("valid");
+            let r = reference.resolve(&d).expect("valid");
             let (w, h) = (d.viewport.width(), d.viewport.height());
             let w = if mode == "wrong-size" { w + 1 } else { w };
             reply.extend(format!("resolved {w} {h}\n").bytes());
@@ -623,7 +617,7 @@ fn fake_child(mode: &str) {
                 .for_each(|p| reply.extend(p.unwrap_or(u32::MAX).to_le_bytes()));
             reply.extend(b"end\n");
         } else {
-            let fragments = match reference.rasterize_primitives(&d) {
+            let fragments = match reference.rasterize(&d) {
                 Ok(f) => f,
                 Err(e) => {
                     let _ = writeln!(out, "error {e}");
@@ -658,10 +652,7 @@ fn fake_child(mode: &str) {
                 }
                 _ => {}
             }
-            let mut records: Vec<Vec<u8>> = fragments
-                .iter()
-                .map(|f| record(&f.fragment, f.sample, version))
-                .collect();
+            let mut records: Vec<Vec<u8>> = fragments.iter().map(|f| record(f, f.sample, version)).collect();
             match mode {
                 "outside" => records[0][0..4].copy_from_slice(&d.viewport.width().to_le_bytes()),
                 "bad-primitive" => records[0][8..12].copy_from_slice(&1u32.to_le_bytes()),
@@ -722,7 +713,7 @@ fn record(f: &refrast::Fragment, sample: u8, version: u32) -> Vec<u8> {
 /// Parses a request as a child must: the header's `key=value` words, then the arrays; version 2
 /// says the topology and the samples (version 1: a triangle list at one sample a pixel), and
 /// `triangles=T` counts its primitives.
-fn read_draw(header: &str, input: &mut impl Read, version: u32) -> Option<(String, PrimitiveDraw)> {
+fn read_draw(header: &str, input: &mut impl Read, version: u32) -> Option<(String, Draw)> {
     let mut words = header.split_whitespace();
     let op = words.next()?.to_owned();
     let fields: std::collections::HashMap<&str, &str> = words.filter_map(|w| w.split_once('=')).collect();
@@ -753,7 +744,7 @@ fn read_draw(header: &str, input: &mut impl Read, version: u32) -> Option<(Strin
     let indices = (0..indices)
         .map(|i| wire::f32_at(&bytes[vertices * 16..], i).to_bits())
         .collect();
-    let mut d = PrimitiveDraw::new(viewport, positions, topology, indices);
+    let mut d = Draw::of(viewport, positions, topology, indices);
     d.samples = samples;
     let word = |key: &str| fields.get(key).copied().unwrap_or("");
     d.state.cull = CullMode::parse(word("cull"))?;

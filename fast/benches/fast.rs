@@ -29,10 +29,13 @@ use refrast_wgpu::{Driver, Gpu};
 
 #[path = "../../benches/workload/baseline.rs"]
 mod baseline;
+#[path = "../../benches/workload/mesh.rs"]
+mod mesh;
 #[path = "../../benches/workload/mod.rs"]
 mod workload;
 
 use baseline::baseline;
+use mesh::ndc_mesh;
 use workload::{HEIGHT, WIDTH, scene};
 
 /// A scene: the mesh and matrix the renderers draw, and the same triangles in raster space
@@ -45,31 +48,8 @@ struct Scene {
 
 /// A workload scene as a mesh in NDC, drawn with the identity.
 fn flat(triangles: Vec<([Vec3; 3], Vec4)>) -> Scene {
-    let to_ndc = |p: Vec3| {
-        Vec3::new(
-            p.x / WIDTH as f32 * 2.0 - 1.0,
-            1.0 - p.y / HEIGHT as f32 * 2.0,
-            p.z,
-        )
-    };
-    let vertices = triangles
-        .iter()
-        .flat_map(|(t, c)| {
-            t.map(|p| Vertex {
-                position: to_ndc(p),
-                color: *c,
-                ..Vertex::default()
-            })
-        })
-        .collect();
-    let indices = (0..triangles.len() as u32)
-        .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
-        .collect();
     Scene {
-        mesh: Mesh {
-            vertices,
-            triangles: indices,
-        },
+        mesh: ndc_mesh(&triangles),
         mvp: Mat4::IDENTITY,
         raster: triangles,
     }

@@ -136,6 +136,19 @@ impl Fast {
         SimdLevel::of(self.level())
     }
 
+    /// Draws `draw` into `sinks`, one per band of tiles, with this rasterizer's configuration,
+    /// SIMD level, threads and buffers.
+    fn drive<K: sink::Sink>(&mut self, draw: &Draw, sinks: &mut [K]) -> Result<(), DrawError> {
+        drive::run(
+            self.config.reference,
+            self.level(),
+            self.pool.as_deref(),
+            &mut self.buffers,
+            draw,
+            sinks,
+        )
+    }
+
     /// The level handed to the back end.
     fn level(&self) -> fearless_simd::Level {
         self.config.simd.level().unwrap_or_else(fearless_simd::Level::new)
@@ -180,14 +193,7 @@ impl Fast {
                 shade: &shade,
             })
             .collect();
-        drive::run(
-            self.config.reference,
-            self.level(),
-            self.pool.as_deref(),
-            &mut self.buffers,
-            draw,
-            &mut sinks,
-        )
+        self.drive(draw, &mut sinks)
     }
 }
 
@@ -196,7 +202,8 @@ impl Rasterizer for Fast {
         Profile {
             name: "fast".into(),
             precision_bits: PRECISION_BITS,
-            ..Reference::new(self.config.reference).profile()
+            // Triangles at one sample: fast draws nothing else.
+            ..Reference::new(self.config.reference).profile().triangles_only()
         }
     }
 
@@ -212,14 +219,7 @@ impl Rasterizer for Fast {
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
         let bands = draw.viewport.height().div_ceil(TILE) as usize;
         let mut sinks: Vec<Vec<Fragment>> = vec![Vec::new(); bands];
-        drive::run(
-            self.config.reference,
-            self.level(),
-            self.pool.as_deref(),
-            &mut self.buffers,
-            draw,
-            &mut sinks,
-        )?;
+        self.drive(draw, &mut sinks)?;
         Ok(sinks.concat())
     }
 
@@ -242,16 +242,10 @@ impl Rasterizer for Fast {
                 primitive,
             })
             .collect();
-        drive::run(
-            self.config.reference,
-            self.level(),
-            self.pool.as_deref(),
-            &mut self.buffers,
-            draw,
-            &mut sinks,
-        )?;
+        self.drive(draw, &mut sinks)?;
         Ok(Resolved {
             viewport,
+            samples: 1,
             depth,
             primitive,
         })

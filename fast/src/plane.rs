@@ -144,6 +144,7 @@ impl Planes {
         let fragment = |lane: usize, (barycentric, screen): ([f32; 3], [f32; 3])| Fragment {
             x: row.x0 + lane as u32,
             y: row.y,
+            sample: 0,
             primitive: self.primitive,
             depth: depth[lane],
             barycentric,

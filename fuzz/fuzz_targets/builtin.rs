@@ -14,7 +14,7 @@ use std::sync::{Mutex, OnceLock};
 
 use libfuzzer_sys::fuzz_target;
 use refrast_conformance::fuzz::{Checked, Target};
-use refrast_conformance::Process;
+use refrast_pipe::Process;
 use refrast_registry::BuiltIn;
 
 /// The child named by `REFRAST_FUZZ_EXEC`, if any; exits 2 saying why when it cannot start.

@@ -2,11 +2,11 @@
 //! zoo, the third parties, `fast`.
 
 use refrast::{ClipMode, LineRule, Rasterizer, Reference, ReferenceConfig, SubpixelBits};
-use refrast_conformance::Named;
-use refrast_conformance::restricted::restrictions;
-use refrast_conformance::shaped::{Shape, Shaped};
+use refrast_zoo::Named;
 use refrast_zoo::course;
 use refrast_zoo::mutant::{Bug, Mutant};
+use refrast_zoo::restricted::restrictions;
+use refrast_zoo::shaped::{Shape, Shaped};
 
 use crate::{BuiltIn, Origin};
 
@@ -80,7 +80,7 @@ fn reference() -> Vec<BuiltIn> {
     ]
 }
 
-/// The reference restricted to each setting ([`refrast_conformance::restricted`]).
+/// The reference restricted to each setting ([`refrast_zoo::restricted`]).
 fn restricted() -> Vec<BuiltIn> {
     restrictions()
         .into_iter()
@@ -97,7 +97,7 @@ fn restricted() -> Vec<BuiltIn> {
 }
 
 /// The reference shaped like the rasterizers that exposed false verdicts
-/// ([`refrast_conformance::shaped`]).
+/// ([`refrast_zoo::shaped`]).
 fn shaped() -> Vec<BuiltIn> {
     Shape::ALL
         .into_iter()
@@ -119,7 +119,7 @@ fn mutants() -> Vec<BuiltIn> {
         .map(|&bug| {
             BuiltIn::new(
                 format!("mutant:{}", bug.name()),
-                format!("the {} rules must catch it", bug.caught_by().name()),
+                format!("the {} rules must catch it", bug.caught_by()),
                 Origin::Mutant,
                 move || Box::new(Mutant::new(bug)),
             )

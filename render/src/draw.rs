@@ -212,6 +212,23 @@ pub trait ShadingRasterizer {
         F: Fn(&Fragment) -> Option<C> + Sync;
 }
 
+/// refrast-fast depth-tests and shades as it rasterizes, into the buffers given.
+impl ShadingRasterizer for refrast_fast::Fast {
+    fn rasterize_shaded<C, F>(
+        &mut self,
+        draw: &Draw,
+        depth: &mut [f32],
+        color: &mut [C],
+        shade: F,
+    ) -> Result<(), DrawError>
+    where
+        C: Send,
+        F: Fn(&Fragment) -> Option<C> + Sync,
+    {
+        self.render(draw, depth, color, shade)
+    }
+}
+
 /// What a pixel shows after the depth test: the last fragment that passed, as much of it as
 /// the shader reads; `primitive == u32::MAX` where none did.
 #[derive(Clone, Copy)]

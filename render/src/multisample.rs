@@ -3,13 +3,13 @@
 //! target is in seed 001's memory sums.
 
 use refrast::pipeline::{Framebuffer, Renderer, to_rgba8};
-use refrast::{DrawError, PrimitiveDraw, Rasterizer, Reference, Topology};
+use refrast::{DrawError, Rasterizer, Reference, Topology};
 
 use crate::draw::{Job, Shader, Stats, render};
 use crate::mode::{Mode, depth_greys, overdraw_color};
 
 /// Clears `target` and draws `job` into it at `samples` samples per pixel through
-/// [`Rasterizer::rasterize_primitives`], each pixel the mean of its samples.
+/// [`Rasterizer::rasterize`], each pixel the mean of its samples.
 ///
 /// One sample draws as [`render`] does; so do the points and wire modes, whose lines are drawn
 /// at one sample whatever `samples` says. `Err(Unsupported)` naming the sample counts the
@@ -23,8 +23,8 @@ pub fn render_multisampled(
     if samples <= 1 || !job.mode.uses_triangles() {
         return render(rasterizer, job, target);
     }
-    let declared = rasterizer.primitive_profile();
-    if !declared.supports(Topology::TriangleList, samples) {
+    let declared = rasterizer.profile();
+    if !declared.draws(Topology::TriangleList, samples) {
         return Err(DrawError::Unsupported(format!(
             "{samples} samples per pixel (it declares {:?})",
             declared.sample_counts()
@@ -38,9 +38,9 @@ pub fn render_multisampled(
     };
     let draw = pipeline.mesh_draw(viewport, job.mesh, job.view_projection);
     draw.validate()?;
-    let mut fragments = rasterizer.rasterize_primitives(&PrimitiveDraw::of_triangles(&draw, samples))?;
+    let mut fragments = rasterizer.rasterize(&draw.at_samples(samples))?;
     // API order, as the depth test replays them: stable, so each primitive keeps its own.
-    fragments.sort_by_key(|f| f.fragment.primitive);
+    fragments.sort_by_key(|f| f.primitive);
     let n = usize::from(samples);
     let triangles = job.mesh.triangles.len();
     let mut depth = vec![job.state.depth.clear; viewport.pixel_count() * n];
@@ -52,19 +52,18 @@ pub fn render_multisampled(
         fragments: 0,
         written: 0,
     };
-    for s in &fragments {
-        let f = s.fragment;
+    for f in &fragments {
         // A misbehaving implementation's fragment outside the target, of a sample or a
         // primitive the draw does not have, is skipped.
         if f.x >= viewport.width()
             || f.y >= viewport.height()
-            || s.sample >= samples
+            || f.sample >= samples
             || f.primitive as usize >= triangles
         {
             continue;
         }
         stats.fragments += 1;
-        let i = viewport.index(f.x, f.y) * n + usize::from(s.sample);
+        let i = viewport.index(f.x, f.y) * n + usize::from(f.sample);
         counts[i] += 1;
         if job.mode != Mode::Overdraw && job.state.depth.test_and_write(f.depth, &mut depth[i]) {
             color[i] = to_rgba8(shader.color(f.primitive, f.barycentric));

@@ -182,7 +182,7 @@ fn shared_edges_crossing_the_near_plane_stay_watertight() {
 fn ray_cast_count(draw: &Draw) -> usize {
     let (w, h) = (draw.viewport.width(), draw.viewport.height());
     let tris: Vec<[[f64; 4]; 3]> = draw
-        .triangles
+        .triangles()
         .iter()
         .map(|t| t.map(|i| draw.positions[i as usize].map(f64::from)))
         .collect();

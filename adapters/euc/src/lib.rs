@@ -150,6 +150,7 @@ impl Rasterizer for Euc {
                 z_rewritten_in_f32: false,
             },
             spec: Spec::Refrast,
+            ..Profile::default()
         }
     }
 
@@ -158,7 +159,7 @@ impl Rasterizer for Euc {
         let size = [draw.viewport.width() as usize, draw.viewport.height() as usize];
         let cull_back = draw.state.cull == CullMode::Back;
         let mut fragments = Vec::new();
-        for (primitive, &indices) in draw.triangles.iter().enumerate() {
+        for (primitive, &indices) in draw.triangles().iter().enumerate() {
             let vertices = triangle(draw, indices);
             let mut weights = Buffer2d::new(size, None);
             let barycentric = Capture {
@@ -196,6 +197,7 @@ impl Rasterizer for Euc {
                 fragments.push(Fragment {
                     x: (i % size[0]) as u32,
                     y: (i / size[0]) as u32,
+                    sample: 0,
                     primitive: primitive as u32,
                     depth: z,
                     barycentric,
@@ -215,7 +217,7 @@ impl Rasterizer for Euc {
         let mut ids = Buffer2d::new(size, None);
         let mut depth = Buffer2d::new(size, draw.state.depth.clear);
         // One triangle at a time onto the same targets: euc draws a vertex list in order anyway.
-        for (primitive, &indices) in draw.triangles.iter().enumerate() {
+        for (primitive, &indices) in draw.triangles().iter().enumerate() {
             let id = Capture {
                 depth: depth_strategy,
                 pixel: move |_| primitive as u32,
@@ -230,6 +232,7 @@ impl Rasterizer for Euc {
         }
         Ok(Resolved {
             viewport: draw.viewport,
+            samples: 1,
             depth: depth.as_ref().to_vec(),
             primitive: ids.as_ref().to_vec(),
         })

@@ -78,7 +78,7 @@ fn a_triangle_behind_the_eye_is_drawn() {
         ],
         vec![[0, 1, 2]],
     );
-    let tri = Scene::new(16, 16, d.positions.clone(), d.triangles.clone()).positions_of(0);
+    let tri = Scene::new(16, 16, d.positions.clone(), d.triangles().to_vec()).positions_of(0);
     let frags = fragments(&d);
     assert_eq!(frags.len(), 32);
     for f in &frags {
@@ -174,7 +174,7 @@ fn barycentrics_are_off_by_a_thousandth() {
         vec![[0, 1, 2]],
     );
     let exact = [0.7731570408577654, 0.06279682679569522, 0.16404613234653942];
-    let tri = Scene::new(16, 16, d.positions.clone(), d.triangles.clone()).positions_of(0);
+    let tri = Scene::new(16, 16, d.positions.clone(), d.triangles().to_vec()).positions_of(0);
     let [nx, ny] = sample_ndc(16, 16, 2, 1);
     let hit = ray_cast(&tri, nx, ny, &d.state).expect("the sample is inside");
     for (got, want) in hit.barycentric.iter().zip(exact) {

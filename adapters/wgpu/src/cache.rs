@@ -14,10 +14,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, OnceLock};
 
-use refrast::{
-    FillConvention, LineRule, PointClipping, PrimitiveProfile, SamplePattern, SnapAccuracy, Snapping,
-    Unavailable,
-};
+use refrast::{FillConvention, LineRule, PointClipping, SamplePattern, SnapAccuracy, Snapping, Unavailable};
 
 use crate::device::{Context, Driver};
 use crate::measured::Measured;
@@ -165,32 +162,29 @@ fn load(file: &Path, key: &str) -> Option<Measured> {
         guard_band: get("guard_band")?.parse().ok()?,
         precision_bits: get("precision_bits")?.parse().ok()?,
         tolerance_subpixels: get("tolerance_subpixels")?.parse().ok()?,
-        primitives: PrimitiveProfile {
-            lines: match get("lines")? {
-                "none" => None,
-                name => Some(LineRule::from_name(name)?),
-            },
-            points: get("points")?.parse().ok()?,
-            endpoint_snapping: None,
-            point_snapping: match get("point_snapping")? {
-                "triangles" => None,
-                "float" => Some(Snapping::Float),
-                bits => Some(Snapping::Grid(bits.parse().ok()?)),
-            },
-            point_clipping: PointClipping::from_name(get("point_clipping")?)?,
-            multisample: match get("samples")? {
-                "none" => Vec::new(),
-                list => {
-                    let positions: Option<Vec<[u8; 2]>> = list
-                        .split(' ')
-                        .map(|p| {
-                            let (x, y) = p.split_once(',')?;
-                            Some([x.parse().ok()?, y.parse().ok()?])
-                        })
-                        .collect();
-                    vec![SamplePattern::new(&positions?).ok()?]
-                }
-            },
+        lines: match get("lines")? {
+            "none" => None,
+            name => Some(LineRule::from_name(name)?),
+        },
+        points: get("points")?.parse().ok()?,
+        point_snapping: match get("point_snapping")? {
+            "triangles" => None,
+            "float" => Some(Snapping::Float),
+            bits => Some(Snapping::Grid(bits.parse().ok()?)),
+        },
+        point_clipping: PointClipping::from_name(get("point_clipping")?)?,
+        multisample: match get("samples")? {
+            "none" => Vec::new(),
+            list => {
+                let positions: Option<Vec<[u8; 2]>> = list
+                    .split(' ')
+                    .map(|p| {
+                        let (x, y) = p.split_once(',')?;
+                        Some([x.parse().ok()?, y.parse().ok()?])
+                    })
+                    .collect();
+                vec![SamplePattern::new(&positions?).ok()?]
+            }
         },
         reported: get("reported")?.to_owned(),
         why: get("why")?.to_owned(),
@@ -198,8 +192,8 @@ fn load(file: &Path, key: &str) -> Option<Measured> {
 }
 
 /// The sample pattern as the file holds it: `x,y` per sample, or `none`.
-fn samples(p: &PrimitiveProfile) -> String {
-    match p.multisample.first() {
+fn samples(m: &Measured) -> String {
+    match m.multisample.first() {
         Some(pattern) => pattern
             .positions()
             .iter()
@@ -227,15 +221,15 @@ fn store(file: &Path, key: &str, m: &Measured) {
         m.guard_band,
         m.precision_bits,
         m.tolerance_subpixels,
-        m.primitives.lines.map_or("none", LineRule::name),
-        m.primitives.points,
-        match m.primitives.point_snapping {
+        m.lines.map_or("none", LineRule::name),
+        m.points,
+        match m.point_snapping {
             None => "triangles".to_owned(),
             Some(Snapping::Float) => "float".to_owned(),
             Some(Snapping::Grid(bits)) => bits.to_string(),
         },
-        samples(&m.primitives),
-        m.primitives.point_clipping.name(),
+        samples(m),
+        m.point_clipping.name(),
         m.reported,
         m.why
     );
@@ -267,14 +261,11 @@ mod tests {
             guard_band: 0,
             precision_bits: 11,
             tolerance_subpixels: 1,
-            primitives: PrimitiveProfile {
-                lines: Some(LineRule::Parallelogram),
-                points: true,
-                endpoint_snapping: None,
-                point_snapping: None,
-                multisample: SamplePattern::standard(4).into_iter().collect(),
-                point_clipping: PointClipping::AllClipPlanes,
-            },
+            lines: Some(LineRule::Parallelogram),
+            points: true,
+            point_snapping: None,
+            multisample: SamplePattern::standard(4).into_iter().collect(),
+            point_clipping: PointClipping::AllClipPlanes,
             reported: "SwiftShader driver (driverVersion 5.0.0)".into(),
             why: "4 subpixel bits (vulkaninfo; probe agrees), top-left (38/38)".into(),
         };
@@ -284,14 +275,11 @@ mod tests {
         let float = Measured {
             snapping: Snapping::Float,
             fill: None,
-            primitives: PrimitiveProfile {
-                lines: None,
-                points: false,
-                endpoint_snapping: None,
-                point_snapping: Some(Snapping::Grid(4)),
-                multisample: vec![SamplePattern::new(&[[1, 2], [3, 4], [5, 6], [7, 8]]).expect("4 samples")],
-                point_clipping: PointClipping::UserClipPlanesOnly,
-            },
+            lines: None,
+            points: false,
+            point_snapping: Some(Snapping::Grid(4)),
+            multisample: vec![SamplePattern::new(&[[1, 2], [3, 4], [5, 6], [7, 8]]).expect("4 samples")],
+            point_clipping: PointClipping::UserClipPlanesOnly,
             ..m
         };
         store(&file, "the key", &float);

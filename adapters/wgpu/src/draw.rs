@@ -3,7 +3,7 @@
 //! count.
 
 use bytemuck::{Pod, Zeroable};
-use refrast::{DrawError, Fragment, PrimitiveDraw, SampleFragment, Topology};
+use refrast::{Draw, DrawError, Fragment, Topology};
 use wgpu::util::DeviceExt;
 
 use std::time::{Duration, Instant};
@@ -29,11 +29,7 @@ pub struct RawSample {
 }
 
 /// Every covered sample of every primitive of `draw`, as the driver rasterized them.
-pub fn capture(
-    ctx: &Context,
-    pipelines: &mut Pipelines,
-    draw: &PrimitiveDraw,
-) -> Result<Vec<SampleFragment>, DrawError> {
+pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
     let primitives = draw.primitive_count();
     if primitives == 0 {
         return Ok(Vec::new());
@@ -60,10 +56,7 @@ pub fn capture(
                 .map(|s| {
                     let mut f = fragment(s);
                     f.primitive = f.primitive.wrapping_sub(offset);
-                    SampleFragment {
-                        fragment: along(draw.topology, f),
-                        sample: u8::try_from(s.sample).unwrap_or(u8::MAX),
-                    }
+                    along(draw.topology, f)
                 })
                 .collect());
         }
@@ -83,7 +76,7 @@ fn strip_offset(ctx: &Context, pipelines: &mut Pipelines, topology: Topology) ->
     }
     let viewport = refrast::Viewport::new(4, 1).map_err(|e| DrawError::Backend(e.to_string()))?;
     let ends = vec![[-0.75, 0.0, 0.5, 1.0], [0.75, 0.0, 0.5, 1.0]];
-    let probe = PrimitiveDraw::new(viewport, ends.clone(), Topology::LineStrip, vec![0, 1]);
+    let probe = Draw::of(viewport, ends.clone(), Topology::LineStrip, vec![0, 1]);
     let (_, samples) = capture_pass(ctx, pipelines, &probe, &ends, 16)?;
     let offset = match samples.first().map(|s| s.primitive) {
         Some(first) if samples.iter().all(|s| s.primitive == first) && first <= 1 => first,
@@ -112,6 +105,7 @@ fn fragment(s: &RawSample) -> Fragment {
     Fragment {
         x: pixel(s.x),
         y: pixel(s.y),
+        sample: u8::try_from(s.sample).unwrap_or(u8::MAX),
         primitive: s.primitive,
         depth: s.depth,
         barycentric: s.perspective,
@@ -124,7 +118,7 @@ fn fragment(s: &RawSample) -> Fragment {
 fn capture_pass(
     ctx: &Context,
     pipelines: &mut Pipelines,
-    draw: &PrimitiveDraw,
+    draw: &Draw,
     vertices: &[[f32; 4]],
     capacity: usize,
 ) -> Result<(usize, Vec<RawSample>), DrawError> {
@@ -224,7 +218,7 @@ fn read_buffer(
 
 /// The driver's depth test: the depth buffer and the id of the last fragment that passed, one
 /// value per sample.
-pub fn resolve(ctx: &Context, pipelines: &mut Pipelines, draw: &PrimitiveDraw) -> Result<Resolve, DrawError> {
+pub fn resolve(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<Resolve, DrawError> {
     let n = draw.viewport.pixel_count() * usize::from(draw.samples);
     let clear = draw.state.depth.clear;
     if draw.primitive_count() == 0 {
@@ -318,7 +312,7 @@ fn colour(view: &wgpu::TextureView, clear: wgpu::Color) -> Option<wgpu::RenderPa
 /// The depths and ids (plus one) of a resolve at one sample, copied back.
 fn read_single(
     ctx: &Context,
-    draw: &PrimitiveDraw,
+    draw: &Draw,
     ids: &wgpu::Texture,
     depth: &wgpu::Texture,
     depths: &wgpu::Texture,
@@ -357,7 +351,7 @@ fn read_single(
 fn read_samples(
     ctx: &Context,
     pipelines: &mut Pipelines,
-    draw: &PrimitiveDraw,
+    draw: &Draw,
     ids: &wgpu::TextureView,
     depth: &wgpu::TextureView,
 ) -> Result<(Vec<f32>, Vec<u32>), DrawError> {

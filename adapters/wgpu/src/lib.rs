@@ -86,8 +86,8 @@ mod targets;
 use std::sync::{Arc, Mutex};
 
 use refrast::{
-    CompareOp, DepthConvention, DepthRange, Draw, DrawError, Features, Fragment, PrimitiveDraw,
-    PrimitiveProfile, Profile, Rasterizer, Resolved, SampleFragment, SampleResolved, Supported, Unavailable,
+    CompareOp, DepthConvention, DepthRange, Draw, DrawError, Features, Fragment, Profile, Rasterizer,
+    Resolved, Supported, Unavailable,
 };
 
 pub use device::Driver;
@@ -154,13 +154,10 @@ impl Gpu {
     /// the targets back took, apart (the side-by-side benchmark reports both).
     pub fn resolve_timed(&mut self, draw: &Draw) -> Result<(Resolved, Timings), DrawError> {
         self.check(draw)?;
-        let r = draw::resolve(
-            &self.context,
-            &mut self.pipelines(),
-            &PrimitiveDraw::of_triangles(draw, 1),
-        )?;
+        let r = draw::resolve(&self.context, &mut self.pipelines(), draw)?;
         let resolved = Resolved {
             viewport: draw.viewport,
+            samples: draw.samples,
             depth: r.depth,
             primitive: r.primitive,
         };
@@ -173,18 +170,12 @@ impl Gpu {
         &self.context.info
     }
 
-    /// Refuses a draw the driver cannot do as asked, rather than draw something else.
+    /// Refuses a draw the driver cannot do as asked, rather than draw something else: lines,
+    /// points or samples its measured profile does not declare, and what
+    /// [`Gpu::check_target`] refuses.
     fn check(&self, draw: &Draw) -> Result<(), DrawError> {
         draw.validate()?;
-        self.check_target(draw.viewport, &draw.state)
-    }
-
-    /// Refuses a draw of lines, points or samples the driver cannot do as asked: what its
-    /// measured profile does not declare, and what [`Gpu::check_target`] refuses.
-    fn check_primitives(&self, draw: &PrimitiveDraw) -> Result<(), DrawError> {
-        draw.validate()?;
-        let declared = &self.measured.primitives;
-        if !declared.supports(draw.topology, draw.samples) {
+        if !self.profile().draws(draw.topology, draw.samples) {
             return Err(DrawError::Unsupported(format!(
                 "{} draws no {} (measured: {})",
                 self.driver.name(),
@@ -273,6 +264,13 @@ impl Rasterizer for Gpu {
                 z_rewritten_in_f32: self.driver.backends() == wgpu::Backends::GL,
             },
             spec: self.driver.spec(),
+            // What the probes measured: the line rule, points, and the 4 samples' positions.
+            lines: m.lines,
+            points: m.points,
+            endpoint_snapping: None,
+            point_snapping: m.point_snapping,
+            multisample: m.multisample.clone(),
+            point_clipping: m.point_clipping,
         }
     }
 
@@ -298,37 +296,10 @@ impl Rasterizer for Gpu {
 
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
         self.check(draw)?;
-        let all = draw::capture(
-            &self.context,
-            &mut self.pipelines(),
-            &PrimitiveDraw::of_triangles(draw, 1),
-        )?;
-        Ok(all.into_iter().map(|s| s.fragment).collect())
+        draw::capture(&self.context, &mut self.pipelines(), draw)
     }
 
     fn resolve(&mut self, draw: &Draw) -> Result<Resolved, DrawError> {
         self.resolve_timed(draw).map(|(resolved, _)| resolved)
-    }
-
-    /// What the probes measured: the line rule, points, and the 4 samples' positions.
-    fn primitive_profile(&self) -> PrimitiveProfile {
-        self.measured.primitives.clone()
-    }
-
-    fn rasterize_primitives(&mut self, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> {
-        self.check_primitives(draw)?;
-        draw::capture(&self.context, &mut self.pipelines(), draw)
-    }
-
-    /// The driver's own depth test at every sample, read back sample by sample.
-    fn resolve_primitives(&mut self, draw: &PrimitiveDraw) -> Result<SampleResolved, DrawError> {
-        self.check_primitives(draw)?;
-        let r = draw::resolve(&self.context, &mut self.pipelines(), draw)?;
-        Ok(SampleResolved {
-            viewport: draw.viewport,
-            samples: draw.samples,
-            depth: r.depth,
-            primitive: r.primitive,
-        })
     }
 }

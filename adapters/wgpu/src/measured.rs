@@ -2,7 +2,7 @@
 //! probe measures (OpenGL, which reports nothing through wgpu), and each probe's choice among the
 //! declarations the specification permits, with why.
 
-use refrast::{FillConvention, PointClipping, PrimitiveProfile, SnapAccuracy, Snapping, Spec};
+use refrast::{FillConvention, LineRule, PointClipping, SamplePattern, SnapAccuracy, Snapping, Spec};
 
 use crate::probe::{Probes, fill_name};
 use crate::reported::Reported;
@@ -32,8 +32,16 @@ pub struct Measured {
     pub precision_bits: u8,
     /// The tolerance band, in grid steps (1/256 px without a grid).
     pub tolerance_subpixels: u32,
-    /// Lines, points and sample positions.
-    pub primitives: PrimitiveProfile,
+    /// The line rule the probe saw, if the driver draws lines.
+    pub lines: Option<LineRule>,
+    /// Whether it draws points.
+    pub points: bool,
+    /// The grid points are snapped to, when coarser than the triangles'.
+    pub point_snapping: Option<Snapping>,
+    /// The sample positions the probe found (4 samples), if any.
+    pub multisample: Vec<SamplePattern>,
+    /// What clipping does to a point outside the viewport in x or y.
+    pub point_clipping: PointClipping,
     /// What the driver reported through `vulkaninfo`, if anything.
     pub reported: String,
     /// Why each declaration, one clause each.
@@ -84,15 +92,21 @@ pub fn choose(spec: Spec, reported: Option<&Reported>, probes: &Probes) -> Measu
         ));
         band
     };
-    let mut primitives = primitive_profile(probes, snapping);
-    why.push(probes.primitives.describe());
+    let p = &probes.primitives;
+    why.push(p.describe());
     let (point_clipping, clipping_why) = point_clipping(spec, reported);
-    primitives.point_clipping = point_clipping;
     why.push(clipping_why);
     Measured {
         snapping,
         fill,
-        primitives,
+        // Lines by the rule the probe saw (the nearest when none fits every probe segment: the
+        // `line.` rules then show where), points when the driver draws them, and the 4 samples
+        // where the probe found them.
+        lines: p.line_rule().or(p.nearest_rule()),
+        points: p.points.is_ok(),
+        point_snapping: point_grid(probes, snapping),
+        multisample: p.pattern().into_iter().collect(),
+        point_clipping,
         ties_to_even,
         snap,
         guard_band,
@@ -121,26 +135,16 @@ fn point_clipping(spec: Spec, reported: Option<&Reported>) -> (PointClipping, St
     }
 }
 
-/// Lines by the rule the probe saw (the nearest when none fits every probe segment: the `line.`
-/// rules then show where), points when the driver draws them, and the 4 samples where the
-/// probe found them; end points on the triangles' grid unless points move on a coarser one.
-fn primitive_profile(probes: &Probes, triangles: Snapping) -> PrimitiveProfile {
-    let p = &probes.primitives;
-    // The point probe reads one bit coarse at worst (a half step is a tie), so only a grid
-    // coarser than that is a grid of its own. Line ends stay on the triangles' grid: no probe
-    // measures theirs apart.
-    let point_snapping = match (p.point_bits(), triangles.grid_bits()) {
+/// The grid points are snapped to when it is coarser than the triangles' (`None`: theirs).
+///
+/// The point probe reads one bit coarse at worst (a half step is a tie), so only a grid coarser
+/// than that is a grid of its own. Line ends stay on the triangles' grid: no probe measures
+/// theirs apart.
+fn point_grid(probes: &Probes, triangles: Snapping) -> Option<Snapping> {
+    match (probes.primitives.point_bits(), triangles.grid_bits()) {
         (Some(points), Some(bits)) if points + 1 >= bits => None,
         (Some(points), _) => Some(Snapping::Grid(points.max(1))),
         (None, _) => None,
-    };
-    PrimitiveProfile {
-        lines: p.line_rule().or(p.nearest_rule()),
-        points: p.points.is_ok(),
-        endpoint_snapping: None,
-        point_snapping,
-        multisample: p.pattern().into_iter().collect(),
-        point_clipping: PointClipping::AllClipPlanes,
     }
 }
 
@@ -176,8 +180,8 @@ impl Measured {
     /// The declarations as reports list them: "top-left" and so on.
     #[must_use]
     pub fn summary(&self) -> String {
-        let lines = self.primitives.lines.map_or("no lines", |r| r.name());
-        let samples = if self.primitives.multisample.is_empty() {
+        let lines = self.lines.map_or("no lines", |r| r.name());
+        let samples = if self.multisample.is_empty() {
             "1 sample"
         } else {
             "1 or 4 samples"

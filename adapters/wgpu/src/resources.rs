@@ -2,7 +2,7 @@
 //! reading textures and buffers back to the CPU.
 
 use bytemuck::Pod;
-use refrast::{DrawError, Fragment, PrimitiveDraw, Topology, Viewport};
+use refrast::{Draw, DrawError, Fragment, Topology, Viewport};
 
 use crate::device::Context;
 
@@ -10,7 +10,7 @@ use crate::device::Context;
 /// index buffer: vertex `i` of a list is corner `i % n` of primitive `i / n` (`n` the
 /// primitive's vertices); of a strip, vertex `i` starts segment `i`. A draw the adapter has
 /// validated indexes within `positions`.
-pub fn vertex_list(draw: &PrimitiveDraw) -> Vec<[f32; 4]> {
+pub fn vertex_list(draw: &Draw) -> Vec<[f32; 4]> {
     draw.indices.iter().map(|&i| draw.positions[i as usize]).collect()
 }
 

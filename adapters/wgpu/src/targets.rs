@@ -2,7 +2,7 @@
 //! driver whose fragment shaders cannot write storage buffers (softpipe's OpenGL ES). A
 //! primitive covers a sample at most once, so one pass per primitive loses nothing.
 
-use refrast::{DrawError, Fragment, PrimitiveDraw, SampleFragment, Topology};
+use refrast::{Draw, DrawError, Fragment, Topology};
 use wgpu::util::DeviceExt;
 
 use crate::device::Context;
@@ -11,11 +11,7 @@ use crate::resources::{Readback, along, depth_attachment, target, vertex_list};
 
 /// Every covered sample of every primitive of `draw` (at one sample per pixel), one primitive
 /// per pass.
-pub fn capture(
-    ctx: &Context,
-    pipelines: &mut Pipelines,
-    draw: &PrimitiveDraw,
-) -> Result<Vec<SampleFragment>, DrawError> {
+pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
     let device = &ctx.device;
     if !ctx.renders_floats {
         return Err(DrawError::Unsupported(format!(
@@ -86,21 +82,19 @@ pub fn capture(
             if s[3] == 0.0 {
                 continue;
             }
-            fragments.push(SampleFragment {
-                fragment: along(
-                    draw.topology,
-                    Fragment {
-                        x: i as u32 % w,
-                        y: i as u32 / w,
-                        primitive,
-                        depth: p[3],
-                        barycentric: [p[0], p[1], p[2]],
-                        screen_barycentric: Some([s[0], s[1], s[2]]),
-                        front_facing: s[3] == 1.0,
-                    },
-                ),
-                sample: 0,
-            });
+            fragments.push(along(
+                draw.topology,
+                Fragment {
+                    x: i as u32 % w,
+                    y: i as u32 / w,
+                    sample: 0,
+                    primitive,
+                    depth: p[3],
+                    barycentric: [p[0], p[1], p[2]],
+                    screen_barycentric: Some([s[0], s[1], s[2]]),
+                    front_facing: s[3] == 1.0,
+                },
+            ));
         }
     }
     Ok(fragments)

@@ -10,8 +10,7 @@ use std::process::Command;
 use std::time::Instant;
 
 use refrast::{
-    FillConvention, LineRule, PointClipping, PrimitiveProfile, Rasterizer, SamplePattern, SnapAccuracy,
-    Snapping,
+    FillConvention, LineRule, PointClipping, Profile, Rasterizer, SamplePattern, SnapAccuracy, Snapping,
 };
 use refrast_wgpu::measured::{Measured, choose};
 use refrast_wgpu::{Driver, Gpu};
@@ -29,31 +28,43 @@ struct Pinned {
     covered_twice: bool,
 }
 
+/// What a measurement declares about lines, points and samples, as a profile says it.
+fn primitives(m: &Measured) -> Profile {
+    Profile {
+        lines: m.lines,
+        points: m.points,
+        point_snapping: m.point_snapping,
+        multisample: m.multisample.clone(),
+        point_clipping: m.point_clipping,
+        ..Profile::default()
+    }
+}
+
 fn pinned(d: Driver) -> Option<Pinned> {
     // Lines by the rule the probe fits (Vulkan's strictLines rectangles on lavapipe and
     // SwiftShader; OpenGL's diamond-exit rule on llvmpipe and softpipe), points, Vulkan's
     // standard 4 sample locations where the capture at 4 samples works, and softpipe's points on
     // a grid of their own (a quarter pixel, read one bit coarse).
     let primitives = match d {
-        Driver::Lavapipe | Driver::Swiftshader | Driver::Vulkan => PrimitiveProfile {
+        Driver::Lavapipe | Driver::Swiftshader | Driver::Vulkan => Profile {
             lines: Some(LineRule::Rectangle),
             points: true,
             multisample: SamplePattern::standard(4).into_iter().collect(),
-            ..PrimitiveProfile::default()
+            ..Profile::default()
         },
         // OpenGL ES clips points by the near and far planes only (§12.5).
-        Driver::Llvmpipe => PrimitiveProfile {
+        Driver::Llvmpipe => Profile {
             lines: Some(LineRule::DiamondExit),
             points: true,
             point_clipping: PointClipping::UserClipPlanesOnly,
-            ..PrimitiveProfile::default()
+            ..Profile::default()
         },
-        Driver::Softpipe => PrimitiveProfile {
+        Driver::Softpipe => Profile {
             lines: Some(LineRule::DiamondExit),
             points: true,
             point_snapping: Some(Snapping::Grid(1)),
             point_clipping: PointClipping::UserClipPlanesOnly,
-            ..PrimitiveProfile::default()
+            ..Profile::default()
         },
     };
     let pin = |snapping, fill, snap, ties_to_even, precision_bits, fewest_bits| Pinned {
@@ -65,7 +76,11 @@ fn pinned(d: Driver) -> Option<Pinned> {
             guard_band: 0,
             precision_bits,
             tolerance_subpixels: 1,
-            primitives: primitives.clone(),
+            lines: primitives.lines,
+            points: primitives.points,
+            point_snapping: primitives.point_snapping,
+            multisample: primitives.multisample.clone(),
+            point_clipping: primitives.point_clipping,
             reported: String::new(),
             why: String::new(),
         },
@@ -227,14 +242,20 @@ fn child(d: Driver) {
         probes.precision.describe()
     );
     assert_eq!(
-        fresh.primitives,
-        want.primitives,
+        primitives(&fresh),
+        primitives(&want),
         "{name}: {}",
         probes.primitives.describe()
     );
+    let declared = gpu.profile();
     assert_eq!(
-        gpu.primitive_profile(),
-        fresh.primitives,
+        (declared.lines, declared.points, declared.point_snapping),
+        (fresh.lines, fresh.points, fresh.point_snapping),
+        "{name}: the profile declares it"
+    );
+    assert_eq!(
+        (&declared.multisample, declared.point_clipping),
+        (&fresh.multisample, fresh.point_clipping),
         "{name}: the profile declares it"
     );
     println!("{name}: every measured choice is the pinned one");

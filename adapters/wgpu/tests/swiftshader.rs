@@ -13,20 +13,14 @@ mod common;
 #[path = "swiftshader/findings.rs"]
 mod findings;
 
-use std::process::Command;
 use std::time::Duration;
 
 use refrast::{ClipMode, Draw, Fragment, Rasterizer, Reference, ReferenceConfig, SubpixelBits, Viewport};
 use refrast_conformance::Options;
-use refrast_conformance::isolate::{certify_isolated_jobs, serve_rule};
-use refrast_wgpu::{Driver, Gpu};
+use refrast_wgpu::Driver;
 
-use common::{jobs, moved, tally};
+use common::{Certification, run};
 
-const CHILD_ENV: &str = "SWIFTSHADER_TEST_DRIVER";
-const RULE_ENV: &str = "SWIFTSHADER_TEST_RULE";
-/// The exit code of a child whose driver is missing.
-const UNAVAILABLE: i32 = 3;
 /// Cases per rule; the verdicts that differ from `.ci/run`'s (each rule's default cases, two
 /// minutes a rule) are `may-fail` in `expectations/swiftshader.txt`, which says why each
 /// failure is what it is.
@@ -44,65 +38,13 @@ fn options() -> Options {
 }
 
 fn main() {
-    if let Ok(id) = std::env::var(RULE_ENV) {
-        let served = serve_rule(
-            &id,
-            || Ok(Box::new(Gpu::new(Driver::Swiftshader)?) as Box<dyn Rasterizer>),
-            &options(),
-        );
-        std::process::exit(if served { 0 } else { 2 });
-    }
-    if std::env::var(CHILD_ENV).is_ok() {
-        let mut gpu = match Gpu::new(Driver::Swiftshader) {
-            Ok(gpu) => gpu,
-            Err(why) => {
-                println!("{why}");
-                std::process::exit(UNAVAILABLE);
-            }
-        };
-        findings::swiftshader(&mut gpu);
-        std::process::exit(0);
-    }
-    let required = std::env::var("REFRAST_REQUIRE_SWIFTSHADER").as_deref() == Ok("1");
-    let exe = std::env::current_exe().expect("this test binary");
-    let with_env = || {
-        let mut c = Command::new(&exe);
-        for (name, value) in Driver::Swiftshader.env() {
-            c.env(name, value);
-        }
-        c
-    };
-    let output = with_env().env(CHILD_ENV, "1").output().expect("the child starts");
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    if output.status.code() == Some(UNAVAILABLE) {
-        assert!(!required, "REFRAST_REQUIRE_SWIFTSHADER is set, but {stdout}");
-        println!("swiftshader: SKIPPED: {stdout}");
-        return;
-    }
-    assert!(
-        output.status.success(),
-        "swiftshader: a hand-checked finding moved:\n{stdout}\n{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    print!("{stdout}");
-    verdicts(&|rule| {
-        let mut c = with_env();
-        c.env(RULE_ENV, rule.id);
-        c
+    run(&Certification {
+        drivers: &[Driver::Swiftshader],
+        required: "REFRAST_REQUIRE_SWIFTSHADER",
+        cases: CASES,
+        options,
+        findings: |_, gpu| findings::swiftshader(gpu),
     });
-}
-
-/// Certifies SwiftShader rule by rule in child processes; each verdict must be as expected.
-fn verdicts(command: &(dyn Fn(&refrast_conformance::Rule) -> Command + Sync)) {
-    let report = certify_isolated_jobs(command, &options(), jobs(), |_| {})
-        .expect("SwiftShader was there a moment ago");
-    println!("{}", tally("swiftshader", &report, CASES));
-    let moved = moved("swiftshader", &report);
-    assert!(
-        moved.is_empty(),
-        "swiftshader's verdicts moved:\n{}",
-        moved.join("\n")
-    );
 }
 
 /// A draw of `positions` three at a time on a `width`×`height` target, far clipping on (WebGPU

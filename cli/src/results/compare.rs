@@ -245,7 +245,7 @@ pub fn warnings(old: &Document, new: &Document) -> Vec<String> {
 
 /// Arguments of `refrast compare`.
 #[derive(clap::Args, Debug)]
-pub struct Args {
+pub struct CompareArgs {
     /// The earlier run's `certify --json` report (the baseline).
     old: std::path::PathBuf,
     /// The later run's.
@@ -254,7 +254,7 @@ pub struct Args {
 
 /// Runs `refrast compare`: 0 when nothing regressed, 1 when something did, 2 when a report
 /// cannot be read.
-pub fn run(args: &Args) -> std::process::ExitCode {
+pub fn run(args: &CompareArgs) -> std::process::ExitCode {
     let (old, new) = match (Document::load(&args.old), Document::load(&args.new)) {
         (Ok(old), Ok(new)) => (old, new),
         (Err(e), _) | (_, Err(e)) => {

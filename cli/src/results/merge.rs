@@ -121,7 +121,7 @@ fn add_rules(a: &mut Report, b: &Report, name: &str) -> Result<(), String> {
 
 /// Arguments of `refrast merge`.
 #[derive(clap::Args, Debug)]
-pub struct Args {
+pub struct MergeArgs {
     /// The shards' `certify --json` reports.
     #[arg(required = true, value_name = "REPORT.json")]
     reports: Vec<PathBuf>,
@@ -141,7 +141,7 @@ pub struct Args {
 
 /// Runs `refrast merge`: the exit code `certify` would have given the run in one piece; 2
 /// when the reports cannot be read or are not shards of one run.
-pub fn run(args: &Args) -> ExitCode {
+pub fn run(args: &MergeArgs) -> ExitCode {
     let mut docs = Vec::new();
     for path in &args.reports {
         match Document::load(path) {

@@ -2,9 +2,9 @@
 //! refrast-render's visibility buffer, any other through its list of fragments.
 
 use refrast::pipeline::Framebuffer;
-use refrast::{Draw, DrawError, Fragment, Rasterizer, ReferenceConfig};
+use refrast::{DrawError, Rasterizer, ReferenceConfig};
 use refrast_fast::{Fast, FastConfig};
-use refrast_render::{Job, ShadingRasterizer};
+use refrast_render::Job;
 
 use crate::options::{Failure, Prepared, rasterizer};
 
@@ -23,26 +23,6 @@ pub const CYCLE: [&str; 10] = [
     "mutant:inclusive-edges",
     "mutant:exclusive-edges",
 ];
-
-/// refrast-fast's `Fast::render`, which depth-tests and shades as it rasterizes, as
-/// refrast-render's [`ShadingRasterizer`].
-struct FastShading<'a>(&'a mut Fast);
-
-impl ShadingRasterizer for FastShading<'_> {
-    fn rasterize_shaded<C, F>(
-        &mut self,
-        draw: &Draw,
-        depth: &mut [f32],
-        color: &mut [C],
-        shade: F,
-    ) -> Result<(), DrawError>
-    where
-        C: Send,
-        F: Fn(&Fragment) -> Option<C> + Sync,
-    {
-        self.0.render(draw, depth, color, shade)
-    }
-}
 
 /// How a frame gets its triangles drawn.
 pub enum Drawer {
@@ -78,7 +58,7 @@ impl Drawer {
         match self {
             // The same pixels as `render` (refrast-render's tests compare them), with no list
             // of fragments to build and sort, and each pixel shaded once.
-            Self::Fast(fast) => refrast_render::render_shaded(&mut FastShading(fast), job, target),
+            Self::Fast(fast) => refrast_render::render_shaded(fast, job, target),
             Self::Fragments(r) => refrast_render::render(r.as_mut(), job, target).map(|_| ()),
         }
     }

@@ -31,7 +31,7 @@ use crate::say;
 
 /// Arguments of `refrast view`.
 #[derive(clap::Args, Debug)]
-pub struct Args {
+pub struct ViewArgs {
     /// The scene, its size, camera, light and first rasterizer (`--impl`, default fast).
     #[command(flatten)]
     scene: SceneArgs,
@@ -58,7 +58,7 @@ const FRAME_BUDGET: Duration = Duration::from_nanos(1_000_000_000 / 60);
 
 /// Runs `refrast view`: 0 when the window is closed (or `--frames` are drawn), 2 on bad input or
 /// without a display, 1 when a frame cannot be shown or a measured draw is refused.
-pub fn run(args: &Args) -> ExitCode {
+pub fn run(args: &ViewArgs) -> ExitCode {
     match view(args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(Failure(message, code)) => {
@@ -68,7 +68,7 @@ pub fn run(args: &Args) -> ExitCode {
     }
 }
 
-fn view(args: &Args) -> Result<(), Failure> {
+fn view(args: &ViewArgs) -> Result<(), Failure> {
     let scene = prepare(&args.scene)?;
     let implementation = args.scene.implementation.as_deref().unwrap_or("fast");
     if !args.output.is_dir() {
@@ -160,7 +160,7 @@ fn input(screen: &mut Screen, viewer: &mut Viewer<'_>, dt: f32) -> bool {
 }
 
 /// Prints `--frames`' measurement: render and whole-frame medians and means, and the rate.
-fn report(times: &FrameTimes, viewer: &Viewer<'_>, args: &Args) {
+fn report(times: &FrameTimes, viewer: &Viewer<'_>, args: &ViewArgs) {
     let warmup = if times.summary(WARMUP).is_some() {
         WARMUP
     } else {

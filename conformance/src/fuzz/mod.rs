@@ -12,7 +12,7 @@ use std::fmt;
 use arbitrary::{Arbitrary, Unstructured};
 use glam::{Mat4, Vec3};
 use refrast::pipeline::{Framebuffer, Mesh, Renderer, Vertex};
-use refrast::{PrimitiveProfile, Profile, Rasterizer};
+use refrast::{Profile, Rasterizer};
 
 pub use input::{Clipping, GridTriangles, Overlapping, Perspective, Points, RawDraw, RawPipeline};
 
@@ -46,8 +46,7 @@ impl std::error::Error for Failure {}
 /// Whether the profile has everything `needs` asks for (else the target does not judge it);
 /// the fuzz targets draw triangles at one sample, which every implementation declares.
 fn applies(needs: &[Need], profile: &Profile) -> bool {
-    let triangles = PrimitiveProfile::triangles_only();
-    needs.iter().all(|n| n.check(profile, &triangles).is_ok())
+    needs.iter().all(|n| n.check(profile).is_ok())
 }
 
 /// Runs `check` and attaches the input's `Debug` to a violation.

@@ -319,6 +319,7 @@ pub fn check_resolve(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violat
     let (depths, ids) = replay_depth(draw.state.depth, scene.width, scene.height, &fragments(r, scene)?);
     let want = Resolved {
         viewport: draw.viewport,
+        samples: 1,
         depth: depths,
         primitive: ids,
     };

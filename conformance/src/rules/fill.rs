@@ -220,11 +220,8 @@ fn compare_brute_force(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Viol
             .map(|(x, y)| Fragment {
                 x,
                 y,
-                primitive: 0,
-                depth: 0.0,
-                barycentric: [0.0; 3],
-                screen_barycentric: None,
                 front_facing: true,
+                ..Fragment::default()
             })
             .collect()
     };

@@ -1,7 +1,7 @@
 //! Lines of width one: exact coverage under the declared rule, strips, clipping, depth and
 //! barycentrics along the segment, and what reversing a segment may change.
 
-use refrast::{FillConvention, LineRule, PrimitiveProfile, Profile, Rasterizer, SampleFragment, Topology};
+use refrast::{FillConvention, Fragment, LineRule, Profile, Rasterizer, Topology};
 
 use super::common::precision;
 use super::level::Level;
@@ -9,32 +9,32 @@ use super::samples::{
     compare_samples, counts, endpoint_bits, expect_covered, grid, positions, sample_fragments,
     within_guard_band,
 };
-use super::{CLIPS_IN_3D, Family, PERSPECTIVE_BARYCENTRICS, Rule, needs_primitives};
+use super::{CLIPS_IN_3D, Family, PERSPECTIVE_BARYCENTRICS, Rule, needs};
 use crate::oracle::raster::{Point, near_distance, project, snap, window_depth};
 use crate::oracle::segment::SampleGrid;
-use crate::primitives::PrimitiveScene;
 use crate::runner::property;
+use crate::scene::PrimitiveScene;
 use crate::strategy::primitive as lines;
 use crate::violation::{Expect, Findings, Violation, plural};
 
 /// The implementation draws lines by the diamond-exit rule.
-const DIAMOND_EXIT: super::Need = needs_primitives(
-    |p, d| d.lines == Some(LineRule::DiamondExit) && endpoint_grid(p, d),
+const DIAMOND_EXIT: super::Need = needs(
+    |p| p.lines == Some(LineRule::DiamondExit) && endpoint_grid(p),
     "no lines by the diamond-exit rule on a snapping grid",
 );
 /// The implementation draws lines as rectangles or parallelograms.
-const AREA_LINES: super::Need = needs_primitives(
-    |p, d| matches!(d.lines, Some(LineRule::Rectangle | LineRule::Parallelogram)) && endpoint_grid(p, d),
+const AREA_LINES: super::Need = needs(
+    |p| matches!(p.lines, Some(LineRule::Rectangle | LineRule::Parallelogram)) && endpoint_grid(p),
     "no lines as rectangles or parallelograms on a snapping grid",
 );
 /// The implementation draws lines of any rule.
-const LINES: super::Need = needs_primitives(
-    |p, d| d.lines.is_some() && endpoint_grid(p, d),
+const LINES: super::Need = needs(
+    |p| p.lines.is_some() && endpoint_grid(p),
     "no lines on a snapping grid",
 );
 
-fn endpoint_grid(p: &Profile, d: &PrimitiveProfile) -> bool {
-    endpoint_bits(p, d).is_some()
+fn endpoint_grid(p: &Profile) -> bool {
+    endpoint_bits(p).is_some()
 }
 
 /// Vulkan's and OpenGL's allowance for other algorithms than the diamond-exit rule itself.
@@ -117,10 +117,10 @@ struct Declared {
 }
 
 fn declared(r: &dyn Rasterizer) -> Option<Declared> {
-    let (profile, primitives) = (r.profile(), r.primitive_profile());
+    let profile = r.profile();
     Some(Declared {
-        rule: primitives.lines?,
-        bits: endpoint_bits(&profile, &primitives)?,
+        rule: profile.lines?,
+        bits: endpoint_bits(&profile)?,
         fill: profile.fill.unwrap_or_default(),
         profile,
     })
@@ -260,8 +260,8 @@ pub fn check_diamond_allowance(r: &mut dyn Rasterizer, case: &PrimitiveScene) ->
         let outside = want.len() - want_in;
         let mut got: Vec<(u32, u32)> = frags
             .iter()
-            .filter(|f| f.fragment.primitive == i as u32 && f.sample == 0)
-            .map(|f| (f.fragment.x, f.fragment.y))
+            .filter(|f| f.primitive == i as u32 && f.sample == 0)
+            .map(|f| (f.x, f.y))
             .collect();
         got.sort_unstable();
         let x_major = (b.0 - a.0).abs() >= (b.1 - a.1).abs();
@@ -327,11 +327,8 @@ pub fn check_diamond_allowance(r: &mut dyn Rasterizer, case: &PrimitiveScene) ->
 }
 
 /// `(primitive, x, y, sample)` of every fragment, sorted.
-fn keys(frags: &[SampleFragment]) -> Vec<(u32, u32, u32, u8)> {
-    let mut k: Vec<_> = frags
-        .iter()
-        .map(|f| (f.fragment.primitive, f.fragment.y, f.fragment.x, f.sample))
-        .collect();
+fn keys(frags: &[Fragment]) -> Vec<(u32, u32, u32, u8)> {
+    let mut k: Vec<_> = frags.iter().map(|f| (f.primitive, f.y, f.x, f.sample)).collect();
     k.sort_unstable();
     k
 }
@@ -369,8 +366,8 @@ pub fn check_shared_end_once(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> R
     let pixels = |i: usize| -> Vec<(u32, u32)> {
         frags
             .iter()
-            .filter(|f| f.fragment.primitive == i as u32)
-            .map(|f| (f.fragment.x, f.fragment.y))
+            .filter(|f| f.primitive == i as u32)
+            .map(|f| (f.x, f.y))
             .collect()
     };
     // The major axis and direction as the implementation sees them, on its snapped ends; none
@@ -425,7 +422,7 @@ pub fn check_clip(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), V
 /// the area rules are judged whole): every fragment within a pixel of the visible part's, and
 /// every pixel of the visible part 2 px from the cut within a pixel of a fragment.
 pub fn check_clip_allowance(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
-    if r.primitive_profile().lines != Some(LineRule::DiamondExit) {
+    if r.profile().lines != Some(LineRule::DiamondExit) {
         return check_clip(r, case);
     }
     let Some((frags, expected, cut)) = clip_expectations(r, case)? else {
@@ -436,7 +433,7 @@ pub fn check_clip_allowance(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Re
     let near = |(x, y): (u32, u32), set: &[(u32, u32)]| {
         set.iter().any(|&(u, v)| x.abs_diff(u) <= 1 && y.abs_diff(v) <= 1)
     };
-    let got: Vec<(u32, u32)> = frags.iter().map(|f| (f.fragment.x, f.fragment.y)).collect();
+    let got: Vec<(u32, u32)> = frags.iter().map(|f| (f.x, f.y)).collect();
     let may: Vec<(u32, u32)> = (0..expected.len())
         .filter(|&i| expected[i] != Expect::Zero)
         .map(at)
@@ -472,7 +469,7 @@ pub fn check_clip_allowance(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Re
 
 /// What [`check_clip`] judges: the rasterizer's fragments, the expectations per sample, and
 /// where the segment meets the near plane (pixels).
-type ClipJudged = (Vec<SampleFragment>, Vec<Expect>, [f64; 2]);
+type ClipJudged = (Vec<Fragment>, Vec<Expect>, [f64; 2]);
 
 /// [`ClipJudged`] of a case, `None` for a case the rule does not judge.
 fn clip_expectations(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<Option<ClipJudged>, Violation> {
@@ -535,12 +532,7 @@ fn clip_expectations(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<Op
 /// For each fragment of segment 0: where on the snapped segment's line its sample projects
 /// (`t`, below 0 or above 1 for a sample beyond an end), and the span of `t` a pixel makes (so a
 /// rule evaluating at another point of the pixel, such as the labs' DDA, is not failed).
-fn along(
-    case: &PrimitiveScene,
-    d: &Declared,
-    positions: &[[u8; 2]],
-    f: &SampleFragment,
-) -> Option<(f64, f64)> {
+fn along(case: &PrimitiveScene, d: &Declared, positions: &[[u8; 2]], f: &Fragment) -> Option<(f64, f64)> {
     let [a, b] = snapped_ends(case, 0, d)?;
     let one = f64::from(1u32 << d.bits);
     let (ax, ay, dx, dy) = (
@@ -555,8 +547,8 @@ fn along(
     }
     let [u, v] = positions.get(usize::from(f.sample)).copied().unwrap_or([8, 8]);
     let s = [
-        f64::from(f.fragment.x) + f64::from(u) / 16.0,
-        f64::from(f.fragment.y) + f64::from(v) / 16.0,
+        f64::from(f.x) + f64::from(u) / 16.0,
+        f64::from(f.y) + f64::from(v) / 16.0,
     ];
     let t = ((s[0] - ax) * dx + (s[1] - ay) * dy) / length2;
     // A pixel spans 1/length of t, however short the segment: extrapolated, t can be anything.
@@ -593,12 +585,12 @@ pub fn check_depth_linear(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Resu
             continue;
         };
         let (lo, hi) = either_side(t, span, |t| za + (zb - za) * t);
-        let z = f64::from(f.fragment.depth);
+        let z = f64::from(f.depth);
         if z < lo - 2.0 * p || z > hi + 2.0 * p {
-            found.add((f.fragment.x, f.fragment.y), || {
+            found.add((f.x, f.y), || {
                 format!(
                     "({}, {}) sample {}: depth {z}, expected {lo}..={hi} (t = {t:.4} between depths {za} and {zb})",
-                    f.fragment.x, f.fragment.y, f.sample
+                    f.x, f.y, f.sample
                 )
             });
         }
@@ -623,7 +615,7 @@ pub fn check_bary_perspective(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> 
         let Some((t, span)) = along(case, &d, &positions, f) else {
             continue;
         };
-        let [b0, b1, b2] = f.fragment.barycentric.map(f64::from);
+        let [b0, b1, b2] = f.barycentric.map(f64::from);
         // Extrapolated far enough beyond an end, t′ passes a pole (1/w reaches 0 on the line):
         // no value is then out of range.
         let (lo, hi) = if denominator(t - span) * denominator(t + span) <= 0.0 {
@@ -632,10 +624,10 @@ pub fn check_bary_perspective(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> 
             either_side(t, span, correct)
         };
         if b1 < lo - p || b1 > hi + p || b2.abs() > p || (b0 + b1 - 1.0).abs() > 3.0 * p {
-            found.add((f.fragment.x, f.fragment.y), || {
+            found.add((f.x, f.y), || {
                 format!(
                     "({}, {}) sample {}: barycentrics {:?}, expected (1 − t′, t′, 0) with t′ in {lo}..={hi}",
-                    f.fragment.x, f.fragment.y, f.sample, f.fragment.barycentric
+                    f.x, f.y, f.sample, f.barycentric
                 )
             });
         }
@@ -675,11 +667,11 @@ pub fn check_reversal(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(
             continue;
         };
         let [a, b] = ends.map(|p| [p.0 as f64 / one, p.1 as f64 / one]);
-        let set = |frags: &[SampleFragment], p: usize| -> Vec<(u32, u32, u8)> {
+        let set = |frags: &[Fragment], p: usize| -> Vec<(u32, u32, u8)> {
             let mut v: Vec<_> = frags
                 .iter()
-                .filter(|f| f.fragment.primitive == p as u32)
-                .map(|f| (f.fragment.x, f.fragment.y, f.sample))
+                .filter(|f| f.primitive == p as u32)
+                .map(|f| (f.x, f.y, f.sample))
                 .collect();
             v.sort_unstable();
             v

@@ -24,9 +24,7 @@ pub mod why;
 
 use std::fmt;
 
-use refrast::{
-    CompareOp, CullMode, DepthConvention, DepthRange, PrimitiveProfile, Profile, Rasterizer, SubpixelBits,
-};
+use refrast::{CompareOp, CullMode, DepthConvention, DepthRange, Profile, Rasterizer, SubpixelBits};
 
 use crate::runner::{RunConfig, Verdict};
 pub use level::{Level, Levels};
@@ -135,12 +133,10 @@ impl Rule {
         RuleDraft::new(family, Kind::Exact, id)
     }
 
-    /// `Err(reason)` when the rule does not apply to an implementation declaring `profile`
-    /// and `primitives`: the first need it lacks.
-    pub fn applies(&self, profile: &Profile, primitives: &PrimitiveProfile) -> Result<(), &'static str> {
-        self.needs
-            .iter()
-            .try_for_each(|need| need.check(profile, primitives))
+    /// `Err(reason)` when the rule does not apply to an implementation declaring `profile`:
+    /// the first need it lacks.
+    pub fn applies(&self, profile: &Profile) -> Result<(), &'static str> {
+        self.needs.iter().try_for_each(|need| need.check(profile))
     }
 }
 
@@ -279,25 +275,18 @@ impl RuleDraft {
 /// Something a rule needs a profile to declare; without it the rule is n/a, with the reason.
 #[derive(Clone, Copy)]
 pub struct Need {
-    has: Has,
+    has: fn(&Profile) -> bool,
     lacking: &'static str,
 }
 
-/// Where a need is declared: the profile, or what it declares about lines, points and samples.
-#[derive(Clone, Copy)]
-enum Has {
-    Profile(fn(&Profile) -> bool),
-    Primitives(fn(&Profile, &PrimitiveProfile) -> bool),
-}
-
 impl Need {
-    /// `Err(reason)` when an implementation declaring `profile` and `primitives` lacks it.
-    pub fn check(&self, profile: &Profile, primitives: &PrimitiveProfile) -> Result<(), &'static str> {
-        let has = match self.has {
-            Has::Profile(has) => has(profile),
-            Has::Primitives(has) => has(profile, primitives),
-        };
-        if has { Ok(()) } else { Err(self.lacking) }
+    /// `Err(reason)` when an implementation declaring `profile` lacks it.
+    pub fn check(&self, profile: &Profile) -> Result<(), &'static str> {
+        if (self.has)(profile) {
+            Ok(())
+        } else {
+            Err(self.lacking)
+        }
     }
 
     /// Why a rule needing it does not apply to a profile without it.
@@ -317,20 +306,7 @@ impl fmt::Debug for Need {
 /// is the reason the rule is n/a when it does not.
 #[must_use]
 pub const fn needs(has: fn(&Profile) -> bool, lacking: &'static str) -> Need {
-    Need {
-        has: Has::Profile(has),
-        lacking,
-    }
-}
-
-/// [`needs`] for what is declared about lines, points and samples
-/// ([`refrast::Rasterizer::primitive_profile`]).
-#[must_use]
-pub const fn needs_primitives(has: fn(&Profile, &PrimitiveProfile) -> bool, lacking: &'static str) -> Need {
-    Need {
-        has: Has::Primitives(has),
-        lacking,
-    }
+    Need { has, lacking }
 }
 
 /// Fragments carry perspective-correct barycentrics.

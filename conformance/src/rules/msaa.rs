@@ -1,7 +1,7 @@
 //! Multisampling: coverage at each declared sample position, per-sample watertightness, samples
 //! where the pattern puts them, per-sample depth and depth test, lines and points per sample.
 
-use refrast::{FillConvention, Fragment, LineRule, Rasterizer};
+use refrast::{FillConvention, Fragment, LineRule, Profile, Rasterizer};
 
 use super::level::{Level, NO_TIE_RULE, SHARED_EDGE_ONLY};
 pub use super::sample_depth::{check_depth, check_depth_resolved, check_resolve};
@@ -10,13 +10,13 @@ use super::samples::{
     within_guard_band,
 };
 use super::vertices::vertices_of_three;
-use super::{DEPTH_TEST, EXACT_COVERAGE, Family, Rule, needs_primitives};
+use super::{DEPTH_TEST, EXACT_COVERAGE, Family, Rule, needs};
 use crate::oracle::facing::{Turn, snapped_variants};
 use crate::oracle::outline::segment_distance;
 use crate::oracle::raster::{Point, ndc_offset, project};
 use crate::oracle::segment::SampleGrid;
-use crate::primitives::PrimitiveScene;
-use crate::runner::property_declared;
+use crate::runner::property_for;
+use crate::scene::PrimitiveScene;
 use crate::scene::Scene;
 use proptest::strategy::Strategy;
 
@@ -27,20 +27,19 @@ use crate::violation::{Expect, Violation};
 const FRAGCOORD_Z: &str = "Vulkan (FragCoord: \"the z component of FragCoord is the interpolated depth value of the primitive\") and OpenGL 4.6 (gl_FragCoord) move only x and y to the sample under sample shading, and name no location for z, so a GPU's sample fragments, read from the shader, may carry one depth for every sample; the depth test's own values are each sample's (Vulkan, Depth Test: \"the sample's depth value z_f\"): only the depth buffer is required";
 
 /// The implementation declares a sample count above one.
-const MULTISAMPLE: super::Need =
-    needs_primitives(|_, d| !d.multisample.is_empty(), "no sample count above one");
+const MULTISAMPLE: super::Need = needs(|p| !p.multisample.is_empty(), "no sample count above one");
 /// Lines as rectangles or parallelograms, or points, at a sample count above one.
-const MULTISAMPLE_AREAS: super::Need = needs_primitives(
-    |p, d| {
-        !d.multisample.is_empty()
-            && endpoint_bits(p, d).is_some()
-            && (d.points || matches!(d.lines, Some(LineRule::Rectangle | LineRule::Parallelogram)))
+const MULTISAMPLE_AREAS: super::Need = needs(
+    |p| {
+        !p.multisample.is_empty()
+            && endpoint_bits(p).is_some()
+            && (p.points || matches!(p.lines, Some(LineRule::Rectangle | LineRule::Parallelogram)))
     },
     "no points, rectangle or parallelogram lines at a sample count above one",
 );
 
 /// The counts above one a rasterizer declares.
-fn counts_of(d: &refrast::PrimitiveProfile) -> Vec<u8> {
+fn counts_of(d: &Profile) -> Vec<u8> {
     d.sample_counts().into_iter().filter(|&n| n > 1).collect()
 }
 
@@ -53,32 +52,32 @@ pub(super) fn rules() -> Vec<Rule> {
             .needs(MULTISAMPLE)
             .needs(EXACT_COVERAGE)
             .vulkan_and_opengl(Level::Partly {
-                part: |r, cfg| property_declared(r, cfg, |_, d| primitive::multisampled(triangles(), counts_of(d)), check_coverage_away_from_edges),
+                part: |r, cfg| property_for(r, cfg, |d| primitive::multisampled(triangles(), counts_of(d)), check_coverage_away_from_edges),
                 note: NO_TIE_RULE,
             })
-            .run(|r, cfg| property_declared(r, cfg, |_, d| primitive::multisampled(triangles(), counts_of(d)), check_coverage_exact)),
+            .run(|r, cfg| property_for(r, cfg, |d| primitive::multisampled(triangles(), counts_of(d)), check_coverage_exact)),
         Rule::invariant(Family::Msaa, "msaa.mesh.exactly-once")
             .sentence("At each declared sample count, a mesh covering the viewport covers every sample exactly once.")
             .source("Vulkan 1.4, Basic Polygon Rasterization (shared edges, per sample); dEQP-VK.rasterization.fill_rules.*multisample*")
             .cases(800)
             .needs(MULTISAMPLE)
             .vulkan_and_opengl(Level::Partly {
-                part: |r, cfg| property_declared(r, cfg, |_, d| primitive::multisampled(strategy::mesh_scene(), counts_of(d)), check_mesh_between_two),
+                part: |r, cfg| property_for(r, cfg, |d| primitive::multisampled(strategy::mesh_scene(), counts_of(d)), check_mesh_between_two),
                 note: SHARED_EDGE_ONLY,
             })
-            .run(|r, cfg| property_declared(r, cfg, |_, d| primitive::multisampled(strategy::mesh_scene(), counts_of(d)), check_mesh_once)),
+            .run(|r, cfg| property_for(r, cfg, |d| primitive::multisampled(strategy::mesh_scene(), counts_of(d)), check_mesh_once)),
         Rule::invariant(Family::Msaa, "msaa.sample.where-declared")
             .sentence("Sample k's coverage equals the one-sample coverage of the triangle moved by the pixel centre minus sample k's declared position.")
             .source("Vulkan 1.4, Multisampling (sample locations); dEQP-VK.multisample.sample_locations")
             .cases(1500)
             .needs(MULTISAMPLE)
             .run(|r, cfg| {
-                property_declared(
+                property_for(
                     r,
                     cfg,
-                    |p, d| {
+                    |p| {
                         let bits = p.snapping.grid_bits().unwrap_or(8);
-                        primitive::multisampled(triangles().prop_map(move |s| primitive::on_grid(s, bits)), counts_of(d))
+                        primitive::multisampled(triangles().prop_map(move |s| primitive::on_grid(s, bits)), counts_of(p))
                     },
                     check_positions,
                 )
@@ -90,21 +89,21 @@ pub(super) fn rules() -> Vec<Rule> {
             .needs(MULTISAMPLE)
             .vulkan_and_opengl(Level::Partly {
                 part: |r, cfg| {
-                    property_declared(r, cfg, |_, d| primitive::multisampled(strategy::perspective_inside_scene(), counts_of(d)), check_depth_resolved)
+                    property_for(r, cfg, |d| primitive::multisampled(strategy::perspective_inside_scene(), counts_of(d)), check_depth_resolved)
                 },
                 note: FRAGCOORD_Z,
             })
             .run(|r, cfg| {
-                property_declared(r, cfg, |_, d| primitive::multisampled(strategy::perspective_inside_scene(), counts_of(d)), check_depth)
+                property_for(r, cfg, |d| primitive::multisampled(strategy::perspective_inside_scene(), counts_of(d)), check_depth)
             }),
         Rule::invariant(Family::Msaa, "msaa.resolve.per-sample")
-            .sentence("resolve_primitives at several samples equals the draw's sample fragments replayed through its depth test one sample at a time, each at the triangle's own depth at that sample (not the depth a fragment reports), samples within the band of an edge or where two compared depths are within precision aside.")
+            .sentence("The depth and primitive buffers resolved at several samples equal the draw's sample fragments replayed through its depth test one sample at a time, each at the triangle's own depth at that sample (not the depth a fragment reports), samples within the band of an edge or where two compared depths are within precision aside.")
             .source("Vulkan 1.4, Depth Test (per sample); seed 001 (4× supersampled depth buffer)")
             .cases(500)
             .needs(MULTISAMPLE)
             .needs(DEPTH_TEST)
             .run(|r, cfg| {
-                property_declared(r, cfg, |_, d| primitive::multisampled(strategy::overlapping_scene(), counts_of(d)), check_resolve)
+                property_for(r, cfg, |d| primitive::multisampled(strategy::overlapping_scene(), counts_of(d)), check_resolve)
             }),
         Rule::invariant(Family::Msaa, "msaa.lines-points.per-sample")
             .sentence("At each declared sample count, points and rectangle or parallelogram lines cover the samples inside their shapes at the declared positions, the tolerance band aside.")
@@ -112,15 +111,15 @@ pub(super) fn rules() -> Vec<Rule> {
             .cases(800)
             .needs(MULTISAMPLE_AREAS)
             .vulkan(Level::Partly {
-                part: |r, cfg| property_declared(r, cfg, |_, d| areas(d), check_lines_points_as_cts),
+                part: |r, cfg| property_for(r, cfg, areas, check_lines_points_as_cts),
                 note: super::point::POP_FREE,
             })
-            .run(|r, cfg| property_declared(r, cfg, |_, d| areas(d), check_lines_points)),
+            .run(|r, cfg| property_for(r, cfg, areas, check_lines_points)),
     ]
 }
 
 /// Points when the profile declares them, else lines, at each sample count above one it declares.
-fn areas(d: &refrast::PrimitiveProfile) -> impl Strategy<Value = PrimitiveScene> + use<> {
+fn areas(d: &Profile) -> impl Strategy<Value = PrimitiveScene> + use<> {
     let scenes = if d.points {
         primitive::points().boxed()
     } else {
@@ -301,7 +300,7 @@ pub fn check_mesh_between_two(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> 
 /// `centre − position(k)`; samples within the band of a moved edge aside unless coverage is exact.
 pub fn check_positions(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
     let profile = r.profile();
-    let exact = EXACT_COVERAGE.check(&profile, &r.primitive_profile()).is_ok();
+    let exact = EXACT_COVERAGE.check(&profile).is_ok();
     let band = if exact { 0.0 } else { profile.band_px() };
     if !within_guard_band(case, &profile) {
         return Ok(());
@@ -375,7 +374,7 @@ pub fn check_lines_points_as_cts(r: &mut dyn Rasterizer, case: &PrimitiveScene) 
 
 /// Rectangle and parallelogram lines against their area oracle; diamond-exit ones are not.
 fn check_area_lines(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
-    if matches!(r.primitive_profile().lines, Some(LineRule::DiamondExit) | None) {
+    if matches!(r.profile().lines, Some(LineRule::DiamondExit) | None) {
         return Ok(());
     }
     super::line::check_area(r, case)

@@ -1,25 +1,25 @@
 //! Points of size one: the pixel holding the point, exact ties on pixel edges, and depth.
 
-use refrast::{PointClipping, Profile, Rasterizer, SampleFragment, Spec};
+use refrast::{PointClipping, Profile, Rasterizer, Spec};
 
 use super::common::precision;
 use super::level::Level;
 use super::samples::{
     cell, compare_samples, counts, expect_covered, grid, point_bits, positions, sample_fragments,
 };
-use super::{Family, Rule, needs_primitives};
+use super::{Family, Rule, needs};
 use crate::oracle::facing::snap_candidates;
 use crate::oracle::raster::{Point, near_distance, project, window_depth};
-use crate::primitives::PrimitiveScene;
 use crate::runner::property;
+use crate::scene::PrimitiveScene;
 use crate::strategy::primitive as points;
 use crate::violation::{Expect, Findings, Violation, plural};
 
 /// The implementation draws points.
-const POINTS: super::Need = needs_primitives(|_, d| d.points, "no points");
+const POINTS: super::Need = needs(|p| p.points, "no points");
 /// Points on a snapping grid with a tie rule: their coverage has one exact answer.
-const EXACT_POINTS: super::Need = needs_primitives(
-    |p, d| d.points && point_bits(p, d).is_some() && p.fill.is_some(),
+const EXACT_POINTS: super::Need = needs(
+    |p| p.points && point_bits(p).is_some() && p.fill.is_some(),
     "no points on a snapping grid with a tie rule",
 );
 
@@ -128,8 +128,8 @@ fn in_view(case: &PrimitiveScene, i: usize, xy: bool) -> bool {
 
 /// Each point's samples equal the square oracle's on its snapped position.
 pub fn check_square_exact(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
-    let (profile, primitives) = (r.profile(), r.primitive_profile());
-    let (Some(bits), Some(fill)) = (point_bits(&profile, &primitives), profile.fill) else {
+    let profile = r.profile();
+    let (Some(bits), Some(fill)) = (point_bits(&profile), profile.fill) else {
         return Ok(());
     };
     let frags = sample_fragments(r, case)?;
@@ -147,7 +147,7 @@ pub fn check_square_exact(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Resu
         };
         let got = counts(case, &frags, Some(i as u32));
         let what = format!("the point square oracle for point {i}");
-        let xy = outside_xy(profile.spec, primitives.point_clipping, false) != Outside::Square;
+        let xy = outside_xy(profile.spec, profile.point_clipping, false) != Outside::Square;
         let judged = |p: Point| {
             let covered = if in_view(case, i, xy) {
                 g.point(p, fill)
@@ -181,8 +181,8 @@ pub fn check_pixel_holding_as_cts(r: &mut dyn Rasterizer, case: &PrimitiveScene)
 fn pixel_holding(r: &mut dyn Rasterizer, case: &PrimitiveScene, cts: bool) -> Result<(), Violation> {
     // A point snapped to a coarser grid than the triangles' (softpipe's are, its triangles
     // not) moves up to half a step of it, which the triangles' band may not cover.
-    let (profile, primitives) = (r.profile(), r.primitive_profile());
-    let band = match point_bits(&profile, &primitives) {
+    let profile = r.profile();
+    let band = match point_bits(&profile) {
         Some(bits) => profile.band_px().max((-f64::from(bits) - 1.0).exp2()),
         None => profile.band_px(),
     };
@@ -197,7 +197,7 @@ fn pixel_holding(r: &mut dyn Rasterizer, case: &PrimitiveScene, cts: bool) -> Re
         let [px, py] = project(w, h, p.map(f64::from));
         let outside = px < -band || py < -band || px > f64::from(w) + band || py > f64::from(h) + band;
         let drawn = if outside {
-            outside_xy(profile.spec, primitives.point_clipping, cts)
+            outside_xy(profile.spec, profile.point_clipping, cts)
         } else {
             Outside::Square
         };
@@ -241,7 +241,7 @@ pub fn check_depth(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), 
     let frags = sample_fragments(r, case)?;
     let p = precision(&profile);
     let mut found = Findings::new();
-    for SampleFragment { fragment: f, sample } in &frags {
+    for f in &frags {
         let v = point(case, f.primitive as usize);
         let want =
             window_depth(case.scene.state.depth_range, f64::from(v[2]) / f64::from(v[3])).clamp(0.0, 1.0);
@@ -254,8 +254,8 @@ pub fn check_depth(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), 
         if (f64::from(f.depth) - want).abs() > 2.0 * p || bary_off {
             found.add((f.x, f.y), || {
                 format!(
-                    "({}, {}) sample {sample} of point {}: depth {}, barycentrics {:?}; expected depth {want}, (1, 0, 0)",
-                    f.x, f.y, f.primitive, f.depth, f.barycentric
+                    "({}, {}) sample {} of point {}: depth {}, barycentrics {:?}; expected depth {want}, (1, 0, 0)",
+                    f.x, f.y, f.sample, f.primitive, f.depth, f.barycentric
                 )
             });
         }

@@ -1,10 +1,7 @@
 //! The rasterizer as a hint reads it: declaring what the hint suggests, or with the difference
 //! the hint names undone, so that the failing case can be run again to verify the hint.
 
-use refrast::{
-    DepthRange, Draw, DrawError, FillConvention, Fragment, PrimitiveDraw, PrimitiveProfile, Profile,
-    Rasterizer, Resolved, SampleFragment, SampleResolved,
-};
+use refrast::{DepthRange, Draw, DrawError, FillConvention, Fragment, Profile, Rasterizer, Resolved};
 
 use super::ties::{self, Ties};
 use crate::oracle::facing::{Turn, turn};
@@ -39,11 +36,11 @@ impl Read<'_> {
     /// reversed.
     fn told(&self, draw: &Draw) -> (Draw, Vec<bool>) {
         let mut told = draw.clone();
-        let mut reversed = vec![false; draw.triangles.len()];
+        let mut reversed = vec![false; draw.triangles().len()];
         if let Reading::Drops(lost) = self.reading {
             let profile = self.inner.profile();
             let (w, h) = (draw.viewport.width(), draw.viewport.height());
-            for (t, tri) in told.triangles.iter_mut().enumerate() {
+            for (t, tri) in told.triangles_mut().iter_mut().enumerate() {
                 let Some(corners) = tri
                     .iter()
                     .map(|&i| draw.positions.get(i as usize).copied())
@@ -90,7 +87,14 @@ impl Rasterizer for Read<'_> {
         }
     }
 
+    /// Lines, points and samples are read only for facing and weights: no triangle is reversed
+    /// and no tie rule applied.
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+        if !draw.is_triangles_at_one_sample() {
+            let mut frags = self.inner.rasterize(draw)?;
+            frags.iter_mut().for_each(|f| self.undo(f, &[]));
+            return Ok(frags);
+        }
         let (told, reversed) = self.told(draw);
         let mut frags = self.inner.rasterize(&told)?;
         frags.iter_mut().for_each(|f| self.undo(f, &reversed));
@@ -101,22 +105,11 @@ impl Rasterizer for Read<'_> {
     }
 
     fn resolve(&mut self, draw: &Draw) -> Result<Resolved, DrawError> {
+        if !draw.is_triangles_at_one_sample() {
+            return self.inner.resolve(draw);
+        }
         let (told, _) = self.told(draw);
         self.inner.resolve(&told)
-    }
-
-    fn primitive_profile(&self) -> PrimitiveProfile {
-        self.inner.primitive_profile()
-    }
-
-    fn rasterize_primitives(&mut self, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> {
-        let mut frags = self.inner.rasterize_primitives(draw)?;
-        frags.iter_mut().for_each(|f| self.undo(&mut f.fragment, &[]));
-        Ok(frags)
-    }
-
-    fn resolve_primitives(&mut self, draw: &PrimitiveDraw) -> Result<SampleResolved, DrawError> {
-        self.inner.resolve_primitives(draw)
     }
 }
 

@@ -9,17 +9,14 @@ use super::samples::{positions, sample_fragments};
 use crate::oracle::facing::snapped_variants;
 use crate::oracle::outline::segment_distance;
 use crate::oracle::raster::{project, window_depth};
-use crate::primitives::PrimitiveScene;
+use crate::scene::PrimitiveScene;
 use crate::scene::Scene;
 use crate::violation::{Findings, Violation, plural};
 
 /// Each sample's depth is the snapped triangle's depth plane at the sample's position.
 pub fn check_depth(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
     let frags = sample_fragments(r, case)?;
-    let depths: Vec<_> = frags
-        .iter()
-        .map(|f| (f.fragment.x, f.fragment.y, f.sample, f.fragment.depth))
-        .collect();
+    let depths: Vec<_> = frags.iter().map(|f| (f.x, f.y, f.sample, f.depth)).collect();
     on_plane(r, case, &depths, "sample fragments")?;
     check_depth_resolved(r, case)
 }
@@ -32,8 +29,8 @@ pub fn check_depth_resolved(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Re
     }
     let draw = case.draw();
     let resolved = r
-        .resolve_primitives(&draw)
-        .map_err(|e| Violation::of_draw_error("resolve_primitives", &e))?;
+        .resolve(&draw)
+        .map_err(|e| Violation::of_draw_error("resolve", &e))?;
     let n = usize::from(resolved.samples.max(1));
     let w = case.scene.width as usize;
     let written: Vec<_> = (0..resolved.depth.len().min(resolved.primitive.len()))
@@ -152,7 +149,7 @@ fn on_plane(
     })
 }
 
-/// `resolve_primitives` equals the draw's sample fragments replayed through its depth test in
+/// `resolve` equals the draw's sample fragments replayed through its depth test in
 /// primitive order, each with the depth the test must use: the triangle's own at that sample's
 /// position (its depth plane), not the depth a fragment reports (Vulkan's FragCoord.z is free to
 /// be the pixel centre's). Samples within the band of an edge are not judged (coverage there is
@@ -161,15 +158,15 @@ fn on_plane(
 pub fn check_resolve(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
     let draw = case.draw();
     let got = r
-        .resolve_primitives(&draw)
-        .map_err(|e| Violation::of_draw_error("resolve_primitives", &e))?;
+        .resolve(&draw)
+        .map_err(|e| Violation::of_draw_error("resolve", &e))?;
     let frags = sample_fragments(r, case)?;
     let n = usize::from(case.samples);
     let (w, h) = (case.scene.width, case.scene.height);
     let cells = (w * h) as usize * n;
     if got.depth.len() != cells || got.primitive.len() != cells {
         return Err(Violation::new(format!(
-            "resolve_primitives gave {} depths and {} primitives for {cells} samples",
+            "resolve gave {} depths and {} primitives for {cells} samples",
             got.depth.len(),
             got.primitive.len(),
         )));
@@ -183,8 +180,7 @@ pub fn check_resolve(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<()
         .collect();
     let mut covering: Vec<Vec<u32>> = vec![Vec::new(); cells];
     for f in &frags {
-        let g = f.fragment;
-        covering[(g.y * w + g.x) as usize * n + usize::from(f.sample)].push(g.primitive);
+        covering[(f.y * w + f.x) as usize * n + usize::from(f.sample)].push(f.primitive);
     }
     let depth = scene.state.depth;
     let mut found = Findings::new();

@@ -5,11 +5,11 @@
 //! 2 × 2, 4 × 2, 4 × 4), sample `k` at column `k mod cols`, row `k div cols`, so one cell of the
 //! picture is one sample.
 
-use refrast::{PrimitiveProfile, Profile, Rasterizer, SampleFragment, Snapping};
+use refrast::{Fragment, Profile, Rasterizer, Snapping};
 
 use crate::oracle::segment::SampleGrid;
 
-use crate::primitives::PrimitiveScene;
+use crate::scene::PrimitiveScene;
 use crate::violation::{Expect, Violation, compare_coverage};
 
 /// The columns and rows a pixel's samples take in a picture.
@@ -42,17 +42,17 @@ pub fn cells(case: &PrimitiveScene) -> usize {
 
 /// The grid bits a profile snaps line and point ends to, if it snaps them to a grid.
 #[must_use]
-pub fn endpoint_bits(profile: &Profile, primitives: &PrimitiveProfile) -> Option<u8> {
-    snapping_bits(primitives.endpoint_snapping.unwrap_or(profile.snapping))
+pub fn endpoint_bits(profile: &Profile) -> Option<u8> {
+    snapping_bits(profile.endpoint_snapping.unwrap_or(profile.snapping))
 }
 
-/// The grid points are snapped to, in bits: [`PrimitiveProfile::point_snapping`], else the line
-/// ends' grid ([`endpoint_bits`]).
+/// The grid points are snapped to, in bits: [`Profile::point_snapping`], else the line ends'
+/// grid ([`endpoint_bits`]).
 #[must_use]
-pub fn point_bits(profile: &Profile, primitives: &PrimitiveProfile) -> Option<u8> {
-    match primitives.point_snapping {
+pub fn point_bits(profile: &Profile) -> Option<u8> {
+    match profile.point_snapping {
         Some(snapping) => snapping_bits(snapping),
-        None => endpoint_bits(profile, primitives),
+        None => endpoint_bits(profile),
     }
 }
 
@@ -63,17 +63,14 @@ fn snapping_bits(snapping: Snapping) -> Option<u8> {
 
 /// The rasterizer's fragments for `case`; an error, a fragment outside the viewport, a sample
 /// index past the draw's count or a primitive the draw does not have becomes a violation.
-pub fn sample_fragments(
-    r: &mut dyn Rasterizer,
-    case: &PrimitiveScene,
-) -> Result<Vec<SampleFragment>, Violation> {
+pub fn sample_fragments(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<Vec<Fragment>, Violation> {
     let draw = case.draw();
     let frags = r
-        .rasterize_primitives(&draw)
-        .map_err(|e| Violation::of_draw_error(&format!("rasterize_primitives ({})", draw.describe()), &e))?;
+        .rasterize(&draw)
+        .map_err(|e| Violation::of_draw_error(&format!("rasterize ({})", draw.describe()), &e))?;
     let (w, h, n) = (case.scene.width, case.scene.height, case.primitive_count());
     for f in &frags {
-        let SampleFragment { fragment: g, sample } = *f;
+        let (g, sample) = (f, f.sample);
         let wrong = if g.x >= w || g.y >= h {
             Some(format!("outside the {w}×{h} viewport"))
         } else if sample >= case.samples {
@@ -99,11 +96,11 @@ pub fn sample_fragments(
 
 /// Fragments per picture cell (sample), of primitive `primitive` or of all when `None`.
 #[must_use]
-pub fn counts(case: &PrimitiveScene, frags: &[SampleFragment], primitive: Option<u32>) -> Vec<u32> {
+pub fn counts(case: &PrimitiveScene, frags: &[Fragment], primitive: Option<u32>) -> Vec<u32> {
     let mut counts = vec![0; cells(case)];
     for f in frags {
-        if primitive.is_none_or(|p| p == f.fragment.primitive) {
-            counts[cell(case, f.fragment.x, f.fragment.y, f.sample)] += 1;
+        if primitive.is_none_or(|p| p == f.primitive) {
+            counts[cell(case, f.x, f.y, f.sample)] += 1;
         }
     }
     counts
@@ -128,8 +125,7 @@ pub fn compare_samples(
     what: &str,
 ) -> Result<(), Violation> {
     let (cols, rows) = layout(case.samples);
-    let outlines = case
-        .outlines()
+    let outlines = crate::picture::primitive_outlines(case)
         .into_iter()
         .map(|o| {
             o.into_iter()
@@ -169,7 +165,7 @@ pub fn within_guard_band(case: &PrimitiveScene, profile: &Profile) -> bool {
 /// The declared positions of the case's sample count, or the pixel centre.
 #[must_use]
 pub fn positions(r: &dyn Rasterizer, case: &PrimitiveScene) -> Vec<[u8; 2]> {
-    r.primitive_profile()
+    r.profile()
         .pattern(case.samples)
         .map_or(vec![[8, 8]], |p| p.positions().to_vec())
 }

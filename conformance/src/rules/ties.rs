@@ -114,7 +114,7 @@ pub fn with_tie_rule(
     fill: FillConvention,
 ) -> Vec<Fragment> {
     let (w, h) = (draw.viewport.width(), draw.viewport.height());
-    for (t, &tri) in draw.triangles.iter().enumerate() {
+    for (t, &tri) in draw.triangles().iter().enumerate() {
         let Some(pts) = exact_points(&draw.positions, tri, w, h) else {
             continue;
         };
@@ -132,6 +132,7 @@ pub fn with_tie_rule(
             None => Fragment {
                 x: 0,
                 y: 0,
+                sample: 0,
                 primitive: t as u32,
                 depth: 0.5,
                 barycentric: [1.0 / 3.0; 3],
@@ -169,7 +170,7 @@ pub fn with_tie_rule(
 pub fn explaining(draw: &Draw, frags: &[Fragment], fill: FillConvention) -> Option<Ties> {
     let (w, h) = (draw.viewport.width(), draw.viewport.height());
     let tris: Vec<[Point; 3]> = draw
-        .triangles
+        .triangles()
         .iter()
         .map(|&tri| exact_points(&draw.positions, tri, w, h))
         .collect::<Option<_>>()?;
@@ -209,7 +210,7 @@ mod tests {
     fn drawn(scene: &Scene, ties: Option<Ties>) -> Vec<Fragment> {
         let draw = scene.draw();
         let mut frags = Vec::new();
-        for (t, &tri) in draw.triangles.iter().enumerate() {
+        for (t, &tri) in draw.triangles().iter().enumerate() {
             let pts = exact_points(&draw.positions, tri, scene.width, scene.height).expect("on the grid");
             for y in 0..scene.height {
                 for x in 0..scene.width {
@@ -217,6 +218,7 @@ mod tests {
                         frags.push(Fragment {
                             x,
                             y,
+                            sample: 0,
                             primitive: t as u32,
                             depth: 0.5,
                             barycentric: [1.0, 0.0, 0.0],

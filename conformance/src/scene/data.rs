@@ -8,7 +8,7 @@ use serde::de::{self, Visitor};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::Scene;
-use crate::process::wire::{FAR_CLIPPING, Word};
+use refrast_pipe::wire::{FAR_CLIPPING, Word};
 
 /// One f32 of a draw: a JSON number when finite (the shortest decimal that reads back to the
 /// same f32); a string otherwise, which JSON has no number for: `"NaN"`, `"Infinity"`,

@@ -2,6 +2,7 @@
 //! exact ways to build one.
 
 pub mod data;
+mod primitive;
 
 use std::fmt;
 
@@ -10,6 +11,7 @@ use refrast::{CullMode, DepthRange, Draw, DrawState, FrontFace, Profile, Viewpor
 use crate::oracle::facing::{Turn, turn};
 use crate::oracle::raster::to_ndc;
 pub use data::{CaseData, Coordinate, DrawData, Poison};
+pub use primitive::PrimitiveScene;
 
 /// A rule's input: it shows as a scene and can be made smaller after proptest has shrunk it.
 ///
@@ -185,10 +187,12 @@ impl Scene {
     #[must_use]
     pub fn draw(&self) -> Draw {
         Draw {
-            viewport: self.viewport().expect("strategies build valid viewports"),
-            positions: self.positions.clone(),
-            triangles: self.triangles.clone(),
             state: self.state,
+            ..Draw::new(
+                self.viewport().expect("strategies build valid viewports"),
+                self.positions.clone(),
+                self.triangles.clone(),
+            )
         }
     }
 }

@@ -136,7 +136,7 @@ impl Statement {
 
 /// One specification's statements.
 #[derive(Clone, Debug, Serialize)]
-pub struct Spec {
+pub struct SpecDocument {
     /// Short key: `vulkan`, `d3d11`, `opengl`, `opengles`, `course`, `refrast`.
     pub key: String,
     /// Its title.
@@ -153,7 +153,7 @@ pub struct Spec {
     pub sections: Vec<Section>,
 }
 
-impl Spec {
+impl SpecDocument {
     /// A link to `statement`'s section, when the specification is published with anchors.
     #[must_use]
     pub fn link(&self, statement: &Statement) -> Option<String> {
@@ -214,7 +214,7 @@ struct Header {
 #[derive(Clone, Debug, Serialize)]
 pub struct SpecMap {
     /// In this order: Vulkan, D3D11.3, OpenGL, OpenGL ES, the course, refrast's conventions.
-    pub specs: Vec<Spec>,
+    pub specs: Vec<SpecDocument>,
 }
 
 /// The map compiled into the crate; `Err` names the file and what in it does not parse.
@@ -241,7 +241,7 @@ pub fn spec_map() -> Result<SpecMap, String> {
 }
 
 /// One file of the map, each statement's coverage filled in.
-fn parse(text: &str) -> Result<Spec, String> {
+fn parse(text: &str) -> Result<SpecDocument, String> {
     let file: File = toml::from_str(text).map_err(|e| e.to_string())?;
     let mut statements = file.statement;
     for s in &mut statements {
@@ -253,7 +253,7 @@ fn parse(text: &str) -> Result<Spec, String> {
         version,
         url,
     } = file.spec;
-    Ok(Spec {
+    Ok(SpecDocument {
         key,
         title,
         version,
@@ -265,7 +265,10 @@ fn parse(text: &str) -> Result<Spec, String> {
 
 impl SpecMap {
     /// The statements that name `rule`, with their specifications.
-    pub fn statements_for<'a>(&'a self, rule: &'a str) -> impl Iterator<Item = (&'a Spec, &'a Statement)> {
+    pub fn statements_for<'a>(
+        &'a self,
+        rule: &'a str,
+    ) -> impl Iterator<Item = (&'a SpecDocument, &'a Statement)> {
         self.specs.iter().flat_map(move |spec| {
             spec.statements
                 .iter()

@@ -11,7 +11,7 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use serde::Serialize;
 
-use super::{Spec, SpecMap, Statement};
+use super::{SpecDocument, SpecMap, Statement};
 
 /// One section of a pinned source: the anchor or number that names it, and its title.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
@@ -43,7 +43,7 @@ pub fn parse(text: &str) -> Result<Vec<Section>, String> {
         .collect()
 }
 
-impl Spec {
+impl SpecDocument {
     /// Whether its section list names sections by number (`§…`) rather than by anchor.
     fn numbered(&self) -> bool {
         self.sections.iter().all(|s| s.key.starts_with('§'))

@@ -5,7 +5,7 @@ use proptest::prelude::*;
 use refrast::Topology;
 
 use super::{GRID, side};
-use crate::primitives::PrimitiveScene;
+use crate::scene::PrimitiveScene;
 use crate::scene::{Scene, clip_of};
 
 /// A line end or point coordinate: on sample centres, pixel corners and half-way (the ties

@@ -21,7 +21,7 @@ impl Rasterizer for InclusiveEdges {
         let bits = SubpixelBits::DEFAULT;
         let vp = draw.viewport;
         let mut out = Vec::new();
-        for (primitive, t) in draw.triangles.iter().enumerate() {
+        for (primitive, t) in draw.triangles().iter().enumerate() {
             let clip = t.map(|i| draw.positions[i as usize]);
             // No clipping: only triangles wholly in front of the eye are drawn.
             if clip
@@ -57,6 +57,7 @@ impl Rasterizer for InclusiveEdges {
                         out.push(Fragment {
                             x,
                             y,
+                            sample: 0,
                             primitive: primitive as u32,
                             depth,
                             barycentric: w,

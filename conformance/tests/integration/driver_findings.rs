@@ -3,8 +3,8 @@
 //! a nearby wrong answer the rule still fails.
 
 use refrast::{
-    Draw, DrawError, Fragment, LineRule, PrimitiveDraw, PrimitiveProfile, Profile, Rasterizer, Reference,
-    SampleFragment, SamplePattern, SampleResolved, Snapping, Spec, Topology,
+    Draw, DrawError, Fragment, LineRule, Profile, Rasterizer, Reference, Resolved, SamplePattern, Snapping,
+    Spec, Topology,
 };
 use refrast_conformance::rules::{line, msaa, point};
 use refrast_conformance::{PrimitiveScene, Scene};
@@ -14,7 +14,7 @@ use refrast_conformance::{PrimitiveScene, Scene};
 struct Returned {
     spec: Spec,
     points_on: Option<Snapping>,
-    fragments: Vec<SampleFragment>,
+    fragments: Vec<Fragment>,
     /// The depth buffer per sample its resolve returns; `None` replays the fragments.
     depth_buffer: Option<Vec<f32>>,
 }
@@ -24,17 +24,15 @@ impl Returned {
     fn new(spec: Spec, fragments: &[(u32, u32, f32, [f32; 3])]) -> Self {
         let fragments = fragments
             .iter()
-            .map(|&(x, y, depth, barycentric)| SampleFragment {
-                fragment: Fragment {
-                    x,
-                    y,
-                    primitive: 0,
-                    depth,
-                    barycentric,
-                    screen_barycentric: None,
-                    front_facing: true,
-                },
+            .map(|&(x, y, depth, barycentric)| Fragment {
+                x,
+                y,
                 sample: 0,
+                primitive: 0,
+                depth,
+                barycentric,
+                screen_barycentric: None,
+                front_facing: true,
             })
             .collect();
         Self {
@@ -52,30 +50,24 @@ impl Rasterizer for Returned {
             name: "returned".into(),
             spec: self.spec,
             precision_bits: 7,
-            ..Reference::default().profile()
-        }
-    }
-
-    fn rasterize(&mut self, _: &Draw) -> Result<Vec<Fragment>, DrawError> {
-        Ok(Vec::new())
-    }
-
-    fn primitive_profile(&self) -> PrimitiveProfile {
-        PrimitiveProfile {
             lines: Some(LineRule::DiamondExit),
             points: true,
             point_snapping: self.points_on,
             multisample: SamplePattern::standard(4).into_iter().collect(),
-            ..PrimitiveProfile::default()
+            ..Reference::default().profile().triangles_only()
         }
     }
 
-    fn rasterize_primitives(&mut self, _: &PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> {
+    fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+        // Triangles at one sample draw nothing here; every other draw returns the driver's.
+        if draw.is_triangles_at_one_sample() {
+            return Ok(Vec::new());
+        }
         Ok(self.fragments.clone())
     }
 
-    fn resolve_primitives(&mut self, draw: &PrimitiveDraw) -> Result<SampleResolved, DrawError> {
-        let mut resolved = SampleResolved::from_fragments(draw, self.fragments.clone());
+    fn resolve(&mut self, draw: &Draw) -> Result<Resolved, DrawError> {
+        let mut resolved = Resolved::from_fragments(draw, self.rasterize(draw)?);
         if let Some(depth) = &self.depth_buffer {
             resolved.depth.clone_from(depth);
         }
@@ -208,17 +200,15 @@ fn per_sample_depth_is_required_of_the_depth_buffer_not_of_fragcoord_z() {
     let at = |x16: f32| 0.1 + 0.4 * x16 / 16.0;
     let mut swiftshader = Returned::new(Spec::Vulkan, &[]);
     swiftshader.fragments = (0..4)
-        .map(|sample| SampleFragment {
-            fragment: Fragment {
-                x: 0,
-                y: 0,
-                primitive: 0,
-                depth: at(10.0),
-                barycentric: BARY,
-                screen_barycentric: None,
-                front_facing: true,
-            },
+        .map(|sample| Fragment {
+            x: 0,
+            y: 0,
             sample,
+            primitive: 0,
+            depth: at(10.0),
+            barycentric: BARY,
+            screen_barycentric: None,
+            front_facing: true,
         })
         .collect();
     swiftshader.depth_buffer = Some([6.0, 14.0, 2.0, 10.0].map(at).to_vec());
@@ -307,6 +297,7 @@ impl Rasterizer for Sliver {
         Ok(vec![Fragment {
             x: 4,
             y: 0,
+            sample: 0,
             primitive: 0,
             depth: 0.0,
             barycentric: [f32::NAN, f32::INFINITY, f32::INFINITY],
@@ -356,11 +347,12 @@ impl Rasterizer for Flat {
     }
 
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
-        let first = draw.triangles.first().map_or(0, |t| t[0]);
+        let first = draw.triangles().first().map_or(0, |t| t[0]);
         let weight = if first == 0 { 0.0 } else { 1.0 / 3.0 };
         Ok(vec![Fragment {
             x: 24,
             y: 4,
+            sample: 0,
             primitive: 0,
             depth: 0.0,
             barycentric: [weight; 3],

@@ -14,14 +14,14 @@ impl Rasterizer for FacingByDivision {
     fn profile(&self) -> Profile {
         Profile {
             name: "facing-by-division".into(),
-            ..Reference::default().profile()
+            ..Reference::default().profile().triangles_only()
         }
     }
 
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
         let mut fragments = Reference::default().rasterize(draw)?;
         for f in &mut fragments {
-            let p = draw.triangles[f.primitive as usize].map(|i| draw.positions[i as usize].map(f64::from));
+            let p = draw.triangles()[f.primitive as usize].map(|i| draw.positions[i as usize].map(f64::from));
             if p.iter().all(|v| v[3] > 0.0) {
                 continue;
             }
@@ -72,22 +72,13 @@ impl Rasterizer for CarelessPoints {
         Reference::default().profile()
     }
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
-        Reference::default().rasterize(draw)
-    }
-    fn primitive_profile(&self) -> refrast::PrimitiveProfile {
-        Reference::default().primitive_profile()
-    }
-    fn rasterize_primitives(
-        &mut self,
-        draw: &refrast::PrimitiveDraw,
-    ) -> Result<Vec<refrast::SampleFragment>, DrawError> {
-        let mut out = Reference::default().rasterize_primitives(draw)?;
+        let mut out = Reference::default().rasterize(draw)?;
         if draw.topology != refrast::Topology::TriangleList {
             if self.cull_points && draw.state.cull != refrast::CullMode::None {
                 out.clear();
             }
             for f in &mut out {
-                f.fragment.front_facing ^= self.flip;
+                f.front_facing ^= self.flip;
             }
         }
         Ok(out)

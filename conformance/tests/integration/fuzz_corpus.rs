@@ -104,9 +104,10 @@ fn replay_catches_an_inclusive_rasterizer() {
             Ok((0..v.height())
                 .flat_map(|y| (0..v.width()).map(move |x| (x, y)))
                 .flat_map(|(x, y)| {
-                    (0..draw.triangles.len() as u32).map(move |primitive| Fragment {
+                    (0..draw.triangles().len() as u32).map(move |primitive| Fragment {
                         x,
                         y,
+                        sample: 0,
                         primitive,
                         depth: 0.5,
                         barycentric: [1.0 / 3.0; 3],

@@ -13,15 +13,13 @@ mod modules;
 
 use modules::{code, module_of, resolve, rust_files, segments, use_paths, written_paths};
 
-/// Top-level modules, lowest layer first; `process`, `restricted` and `named` stand apart: they
-/// use only refrast (and `status`, which uses nothing); `shaped` uses the oracles' geometry.
+/// Top-level modules, lowest layer first.
 const LAYERS: &[&[&str]] = &[
-    &["status", "contain"],
-    &["oracle", "process", "restricted"],
-    &["scene", "named", "shaped"],
+    &["status"],
+    &["oracle"],
+    &["scene"],
     &["violation"],
     &["picture"],
-    &["primitives"],
     &["strategy"],
     &["runner"],
     &["rules"],

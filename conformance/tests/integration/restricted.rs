@@ -8,8 +8,8 @@
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
-use refrast_conformance::restricted::restrictions;
 use refrast_conformance::{Options, Status, certify};
+use refrast_zoo::restricted::restrictions;
 
 /// Cases per rule: few, since the matrix is wide; the nightly run takes each rule's default.
 fn cases() -> u32 {
@@ -83,7 +83,7 @@ fn every_restricted_reference_passes_or_is_not_applicable() {
 }
 
 /// The reference snapping down (within one grid step of x/w), by name.
-fn snapping_down() -> refrast_conformance::restricted::Restricted {
+fn snapping_down() -> refrast_zoo::restricted::Restricted {
     let r = restrictions()
         .into_iter()
         .find(|r| r.name == "snap=floor")

@@ -90,7 +90,8 @@ proptest! {
 #[test]
 fn a_point_outside_the_view_volume_is_discarded_though_it_snaps_onto_the_edge() {
     use refrast::{ReferenceConfig, SubpixelBits};
-    use refrast_conformance::{Named, PrimitiveScene, Scene};
+    use refrast_conformance::{PrimitiveScene, Scene};
+    use refrast_zoo::Named;
     let config = ReferenceConfig {
         subpixel_bits: SubpixelBits::new(4).expect("4 bits"),
         ..ReferenceConfig::default()
@@ -116,7 +117,8 @@ fn a_point_outside_the_view_volume_is_discarded_though_it_snaps_onto_the_edge() 
 #[test]
 fn a_strip_is_classified_by_its_snapped_ends() {
     use refrast::{ReferenceConfig, SubpixelBits};
-    use refrast_conformance::{Named, PrimitiveScene, Scene};
+    use refrast_conformance::{PrimitiveScene, Scene};
+    use refrast_zoo::Named;
     let config = ReferenceConfig {
         subpixel_bits: SubpixelBits::new(4).expect("4 bits"),
         ..ReferenceConfig::default()

@@ -4,12 +4,11 @@
 //! scan converter and a student's float rasterizer through the pipe, are named regression tests.
 
 use refrast::{
-    Draw, DrawError, Fragment, PrimitiveProfile, Profile, Rasterizer, Reference, SampleFragment, Snapping,
-    Spec, Topology,
+    Draw, DrawError, Fragment, Profile, Rasterizer, Reference, Resolved, Snapping, Spec, Topology,
 };
 use refrast_conformance::rules::{bary, fill, msaa};
-use refrast_conformance::shaped::{Shape, Shaped, shapes};
 use refrast_conformance::{Options, PrimitiveScene, Scene, Status, certify};
+use refrast_zoo::shaped::{Shape, Shaped, shapes};
 
 /// Cases per rule: few, as in the restricted matrix (`REFRAST_MATRIX_CASES`).
 fn cases() -> u32 {
@@ -178,11 +177,9 @@ fn a_point_drawn_pop_free_is_beyond_vulkan_not_a_failure() {
         samples: 4,
     };
     let mut gpu = Shaped::new(Shape::PopFreePoints);
-    let drawn = gpu.rasterize_primitives(&case.draw()).expect("draws");
+    let drawn = gpu.rasterize(&case.draw()).expect("draws");
     assert!(
-        drawn
-            .iter()
-            .any(|f| (f.fragment.x, f.fragment.y, f.sample) == (0, 31, 2)),
+        drawn.iter().any(|f| (f.x, f.y, f.sample) == (0, 31, 2)),
         "{drawn:?}"
     );
     msaa::check_lines_points_as_cts(&mut gpu, &case).expect("what Vulkan's CTS checks");
@@ -238,7 +235,7 @@ fn exact_weights(draw: &Draw, t: usize, x: u32, y: u32) -> [f32; 3] {
         f64::from(draw.viewport.width()),
         f64::from(draw.viewport.height()),
     );
-    let v = draw.triangles[t].map(|i| draw.positions[i as usize].map(f64::from));
+    let v = draw.triangles()[t].map(|i| draw.positions[i as usize].map(f64::from));
     let p = v.map(|c| [(c[0] / c[3] + 1.0) / 2.0 * w, (1.0 - c[1] / c[3]) / 2.0 * h]);
     let s = [f64::from(x) + 0.5, f64::from(y) + 0.5];
     let e = |a: [f64; 2], b: [f64; 2]| (b[0] - a[0]) * (s[1] - a[1]) - (b[1] - a[1]) * (s[0] - a[0]);
@@ -268,6 +265,7 @@ impl Rasterizer for AtSample {
         Ok(vec![Fragment {
             x: self.0.0,
             y: self.0.1,
+            sample: 0,
             primitive: 0,
             depth: 0.0,
             barycentric: self.1,
@@ -330,7 +328,7 @@ impl<R: Rasterizer> Rasterizer for Doubling<R> {
         let mut fragments = self.0.rasterize(draw)?;
         if let Some(&f) = fragments.iter().find(|f| (f.x, f.y) == self.1) {
             fragments.push(Fragment {
-                primitive: (f.primitive + 1) % draw.triangles.len() as u32,
+                primitive: (f.primitive + 1) % draw.triangles().len() as u32,
                 ..f
             });
         }
@@ -350,25 +348,8 @@ impl Rasterizer for CentreTested {
         self.0.rasterize(draw)
     }
 
-    fn primitive_profile(&self) -> PrimitiveProfile {
-        self.0.primitive_profile()
-    }
-
-    fn rasterize_primitives(
-        &mut self,
-        draw: &refrast::PrimitiveDraw,
-    ) -> Result<Vec<SampleFragment>, DrawError> {
-        self.0.rasterize_primitives(draw)
-    }
-
-    fn resolve_primitives(
-        &mut self,
-        draw: &refrast::PrimitiveDraw,
-    ) -> Result<refrast::SampleResolved, DrawError> {
-        Ok(refrast::SampleResolved::from_fragments(
-            draw,
-            self.0.rasterize_primitives(draw)?,
-        ))
+    fn resolve(&mut self, draw: &Draw) -> Result<Resolved, DrawError> {
+        Ok(Resolved::from_fragments(draw, self.0.rasterize(draw)?))
     }
 }
 

@@ -137,10 +137,8 @@ pub fn soup() -> impl Strategy<Value = Draw> {
                 .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
                 .collect();
             Draw {
-                viewport,
-                positions,
-                triangles: indices,
                 state,
+                ..Draw::new(viewport, positions, indices)
             }
         },
     )
@@ -157,10 +155,8 @@ pub fn mesh_draw() -> impl Strategy<Value = Draw> {
                 positions
             };
             Draw {
-                viewport,
-                positions,
-                triangles,
                 state,
+                ..Draw::new(viewport, positions, triangles)
             }
         },
     )

@@ -9,9 +9,7 @@ use refrast::{
 };
 use refrast_fast::contract::{Recording, check_pictures, ties, tolerance};
 use refrast_render::scene::{self, Setup};
-use refrast_render::{
-    Job, Mode, Overrides, Sampling, Shading, ShadingRasterizer, Texture, mode::overdraw_color,
-};
+use refrast_render::{Job, Mode, Overrides, Sampling, Shading, Texture, mode::overdraw_color};
 use refrast_zoo::mutant::{Bug, Mutant};
 
 /// Renders a built-in scene at its size with `rasterizer`, with the scene's defaults.
@@ -44,25 +42,6 @@ fn picture_of(
     let mut target = Framebuffer::new(w, h).unwrap();
     refrast_render::render(rasterizer, &job, &mut target).unwrap();
     target
-}
-
-/// refrast-fast's `Fast::render` as a [`ShadingRasterizer`].
-struct FastShading<'a>(&'a mut refrast_fast::Fast);
-
-impl ShadingRasterizer for FastShading<'_> {
-    fn rasterize_shaded<C, F>(
-        &mut self,
-        draw: &Draw,
-        depth: &mut [f32],
-        color: &mut [C],
-        shade: F,
-    ) -> Result<(), DrawError>
-    where
-        C: Send,
-        F: Fn(&Fragment) -> Option<C> + Sync,
-    {
-        self.0.render(draw, depth, color, shade)
-    }
 }
 
 #[test]
@@ -115,7 +94,7 @@ fn render_shaded_through_fast_is_render_through_the_reference_within_fasts_preci
             };
             refrast_render::render(&mut recording, &job, &mut expected).unwrap();
             let mut shaded = Framebuffer::new(w, h).unwrap();
-            refrast_render::render_shaded(&mut FastShading(&mut fast), &job, &mut shaded).unwrap();
+            refrast_render::render_shaded(&mut fast, &job, &mut shaded).unwrap();
             // `fast` covers the same samples with its own interpolation: within its precision,
             // except where two depths tie within it.
             let tied = ties(&recording.fragments, w, h, tolerance());
@@ -288,6 +267,7 @@ impl Rasterizer for Misbehaving {
         let f = |x, y, primitive| Fragment {
             x,
             y,
+            sample: 0,
             primitive,
             depth: 0.5,
             barycentric: [f32::NAN, 1.0, 0.0],

@@ -22,8 +22,7 @@
 //! It has no depth test of its own: the colours it would blend are not part of the contract.
 
 use refrast::{
-    DepthConvention, Draw, DrawError, Fragment, PrimitiveDraw, PrimitiveProfile, Profile, Rasterizer,
-    SampleFragment, SamplePattern, Snapping, Spec, Topology,
+    DepthConvention, Draw, DrawError, Fragment, Profile, Rasterizer, SamplePattern, Snapping, Spec, Topology,
 };
 
 use super::screen::{self, ScreenPolygon, area2};
@@ -102,12 +101,7 @@ fn depth_inside(corners: &[[f64; 2]], x: f64, y: f64) -> f64 {
 }
 
 /// The sample fragments of one polygon at `pattern`'s positions.
-fn draw_polygon(
-    poly: &ScreenPolygon,
-    draw: &PrimitiveDraw,
-    pattern: SamplePattern,
-    out: &mut Vec<SampleFragment>,
-) {
+fn draw_polygon(poly: &ScreenPolygon, draw: &Draw, pattern: SamplePattern, out: &mut Vec<Fragment>) {
     let vp = draw.viewport;
     let bound = |axis: usize, size: u32| {
         let (lo, hi) = poly
@@ -147,17 +141,15 @@ fn draw_polygon(
                 depth_inside(&poly.corners, dj.0, dj.1).total_cmp(&depth_inside(&poly.corners, di.0, di.1))
             });
             for &s in &order[..count] {
-                out.push(SampleFragment {
-                    fragment: Fragment {
-                        x,
-                        y,
-                        primitive: poly.primitive,
-                        depth,
-                        barycentric,
-                        screen_barycentric: None,
-                        front_facing: poly.front_facing,
-                    },
+                out.push(Fragment {
+                    x,
+                    y,
                     sample: s as u8,
+                    primitive: poly.primitive,
+                    depth,
+                    barycentric,
+                    screen_barycentric: None,
+                    front_facing: poly.front_facing,
                 });
             }
         }
@@ -178,42 +170,22 @@ impl Rasterizer for AreaAverage {
             precision_bits: 18,
             features: screen::features(false),
             spec: Spec::Refrast,
-        }
-    }
-
-    fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
-        let primitive = PrimitiveDraw::of_triangles(draw, 1);
-        Ok(self
-            .rasterize_primitives(&primitive)?
-            .into_iter()
-            .map(|s| s.fragment)
-            .collect())
-    }
-
-    fn primitive_profile(&self) -> PrimitiveProfile {
-        PrimitiveProfile {
             multisample: COUNTS
                 .iter()
                 .filter_map(|&n| SamplePattern::standard(n))
                 .collect(),
-            ..PrimitiveProfile::triangles_only()
+            ..Profile::default()
         }
     }
 
-    fn rasterize_primitives(&mut self, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> {
+    fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
         draw.validate()?;
-        let pattern = self.primitive_profile().pattern(draw.samples);
-        let triangles = (draw.topology == Topology::TriangleList).then(|| Draw {
-            viewport: draw.viewport,
-            positions: draw.positions.clone(),
-            triangles: draw.indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
-            state: draw.state,
-        });
-        let (Some(pattern), Some(triangles)) = (pattern, triangles) else {
+        let pattern = self.profile().pattern(draw.samples);
+        let (Some(pattern), Topology::TriangleList) = (pattern, draw.topology) else {
             return Err(DrawError::Unsupported(draw.describe()));
         };
         let mut out = Vec::new();
-        for poly in screen::polygons(&triangles) {
+        for poly in screen::polygons(draw) {
             draw_polygon(&poly, draw, pattern, &mut out);
         }
         Ok(out)

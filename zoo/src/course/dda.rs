@@ -16,8 +16,7 @@
 use glam::{DVec3, DVec4};
 use refrast::stage::{ClipVertex, LineVertex, clip_planes, clip_segment, rasterize_line, rasterize_point};
 use refrast::{
-    ClipMode, Draw, DrawError, Fragment, LineRule, PrimitiveDraw, PrimitiveProfile, Profile, Rasterizer,
-    Reference, SampleFragment, Topology, Viewport,
+    ClipMode, Draw, DrawError, Fragment, LineRule, Profile, Rasterizer, Reference, Topology, Viewport,
 };
 
 /// The labs' line and point drawing over the reference's triangles.
@@ -28,23 +27,13 @@ impl Rasterizer for Dda {
     fn profile(&self) -> Profile {
         Profile {
             name: "lab004-dda".into(),
-            ..Reference::default().profile()
+            lines: Some(LineRule::DiamondExit),
+            points: true,
+            ..Reference::default().profile().triangles_only()
         }
     }
 
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
-        Reference::default().rasterize(draw)
-    }
-
-    fn primitive_profile(&self) -> PrimitiveProfile {
-        PrimitiveProfile {
-            lines: Some(LineRule::DiamondExit),
-            points: true,
-            ..PrimitiveProfile::triangles_only()
-        }
-    }
-
-    fn rasterize_primitives(&mut self, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> {
         draw.validate()?;
         if draw.samples != 1 {
             return Err(DrawError::Unsupported(draw.describe()));
@@ -53,21 +42,19 @@ impl Rasterizer for Dda {
         let state = &draw.state;
         let mut out = Vec::new();
         let mut emit = |primitive: usize, x: u32, y: u32, depth: f64, t: f64| {
-            out.push(SampleFragment {
-                fragment: Fragment {
-                    x,
-                    y,
-                    primitive: primitive as u32,
-                    depth: depth.clamp(0.0, 1.0) as f32,
-                    barycentric: [(1.0 - t) as f32, t as f32, 0.0],
-                    screen_barycentric: Some([(1.0 - t) as f32, t as f32, 0.0]),
-                    front_facing: true,
-                },
+            out.push(Fragment {
+                x,
+                y,
                 sample: 0,
+                primitive: primitive as u32,
+                depth: depth.clamp(0.0, 1.0) as f32,
+                barycentric: [(1.0 - t) as f32, t as f32, 0.0],
+                screen_barycentric: Some([(1.0 - t) as f32, t as f32, 0.0]),
+                front_facing: true,
             });
         };
         match draw.topology {
-            Topology::TriangleList => return refrast::rasterize_as_triangles(self, draw),
+            Topology::TriangleList => return Reference::default().rasterize(draw),
             Topology::PointList => {
                 let planes = clip_planes(ClipMode::Full, vp, state.clip_far, state.depth_range);
                 for (i, &index) in draw.indices.iter().enumerate() {

@@ -77,7 +77,7 @@ impl Lab000 {
             .is_front(Winding::Clockwise)
             .unwrap_or(false);
         let mut out = Vec::new();
-        for (t, indices) in draw.triangles.iter().enumerate() {
+        for (t, indices) in draw.triangles().iter().enumerate() {
             let projected = indices.map(|i| project(draw.positions[i as usize], wf, hf));
             let [Some((v0, z0)), Some((v1, z1)), Some((v2, z2))] = projected else {
                 continue;
@@ -115,6 +115,7 @@ impl Lab000 {
                     let fragment = Fragment {
                         x: px,
                         y: py,
+                        sample: 0,
                         primitive: t as u32,
                         depth: window_depth(z),
                         barycentric: weights,
@@ -163,6 +164,7 @@ impl Rasterizer for Lab000 {
                 z_rewritten_in_f32: false,
             },
             spec: Spec::Refrast,
+            ..Profile::default()
         }
     }
 
@@ -184,6 +186,7 @@ impl Rasterizer for Lab000 {
         }
         Ok(Resolved {
             viewport,
+            samples: 1,
             depth: depth.into_iter().map(window_depth).collect(),
             primitive,
         })

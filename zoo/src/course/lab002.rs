@@ -171,7 +171,7 @@ impl Lab002 {
         draw.validate()?;
         let (width, height) = (draw.viewport.width(), draw.viewport.height());
         let mut out = Vec::new();
-        for (t, indices) in draw.triangles.iter().enumerate() {
+        for (t, indices) in draw.triangles().iter().enumerate() {
             let mut vertices = [Pixel::at(0, 0); 3];
             let mut ok = true;
             for (k, &i) in indices.iter().enumerate() {
@@ -207,6 +207,7 @@ impl Lab002 {
                     let fragment = Fragment {
                         x: p.x as u32,
                         y: p.y as u32,
+                        sample: 0,
                         primitive: t as u32,
                         depth: window_depth(p.zinv),
                         barycentric,
@@ -258,6 +259,7 @@ impl Rasterizer for Lab002 {
                 z_rewritten_in_f32: false,
             },
             spec: Spec::Refrast,
+            ..Profile::default()
         }
     }
 
@@ -279,6 +281,7 @@ impl Rasterizer for Lab002 {
         }
         Ok(Resolved {
             viewport,
+            samples: 1,
             depth: zinv.into_iter().map(window_depth).collect(),
             primitive,
         })

@@ -237,6 +237,7 @@ impl Rasterizer for Lab004 {
                 z_rewritten_in_f32: false,
             },
             spec: Spec::Refrast,
+            ..Profile::default()
         }
     }
 
@@ -252,7 +253,7 @@ impl Rasterizer for Lab004 {
             .is_front(Winding::CounterClockwise)
             .unwrap_or(false);
         let mut out = Vec::new();
-        for (t, indices) in draw.triangles.iter().enumerate() {
+        for (t, indices) in draw.triangles().iter().enumerate() {
             let input = indices.map(|i| draw.positions[i as usize]);
             if input.iter().flatten().any(|c| !c.is_finite()) {
                 continue;
@@ -290,6 +291,7 @@ impl Rasterizer for Lab004 {
                         out.push(Fragment {
                             x,
                             y,
+                            sample: 0,
                             primitive: t as u32,
                             depth: depth.clamp(0.0, 1.0) as f32,
                             barycentric: weights,

@@ -32,7 +32,7 @@ pub struct Painter;
 /// the eye (`w > 0`), or `None` when no vertex is (such a triangle draws nothing after clipping).
 #[must_use]
 pub fn sort_key(draw: &Draw, triangle: usize) -> Option<f64> {
-    let indices = draw.triangles.get(triangle)?;
+    let indices = draw.triangles().get(triangle)?;
     indices
         .iter()
         .filter_map(|&i| draw.positions.get(i as usize))
@@ -48,7 +48,7 @@ pub fn sort_key(draw: &Draw, triangle: usize) -> Option<f64> {
 /// The painting order: triangle indices from the farthest key to the nearest, stably.
 #[must_use]
 pub fn painting_order(draw: &Draw) -> Vec<usize> {
-    let mut order: Vec<(usize, f64)> = (0..draw.triangles.len())
+    let mut order: Vec<(usize, f64)> = (0..draw.triangles().len())
         .filter_map(|t| sort_key(draw, t).map(|key| (t, key)))
         .collect();
     order.sort_by(|a, b| b.1.total_cmp(&a.1));
@@ -57,7 +57,7 @@ pub fn painting_order(draw: &Draw) -> Vec<usize> {
 
 impl Rasterizer for Painter {
     fn profile(&self) -> Profile {
-        let reference = Reference::default().profile();
+        let reference = Reference::default().profile().triangles_only();
         Profile {
             name: "lab003-painter".into(),
             features: Features {
@@ -78,7 +78,7 @@ impl Rasterizer for Painter {
     fn resolve(&mut self, draw: &Draw) -> Result<Resolved, DrawError> {
         let fragments = self.rasterize(draw)?;
         let viewport = draw.viewport;
-        let mut by_triangle: Vec<Vec<Fragment>> = vec![Vec::new(); draw.triangles.len()];
+        let mut by_triangle: Vec<Vec<Fragment>> = vec![Vec::new(); draw.triangles().len()];
         for f in fragments {
             if let Some(list) = by_triangle.get_mut(f.primitive as usize) {
                 list.push(f);
@@ -86,6 +86,7 @@ impl Rasterizer for Painter {
         }
         let mut resolved = Resolved {
             viewport,
+            samples: 1,
             depth: vec![draw.state.depth.clear; viewport.pixel_count()],
             primitive: vec![None; viewport.pixel_count()],
         };

@@ -83,6 +83,7 @@ fn span(poly: &ScreenPolygon, y: u32, width: u32, out: &mut Vec<Fragment>) {
         out.push(Fragment {
             x,
             y,
+            sample: 0,
             primitive: poly.primitive,
             depth: z.clamp(0.0, 1.0),
             barycentric,
@@ -136,6 +137,7 @@ impl Rasterizer for ScanlineZBuffer {
             precision_bits: 14,
             features: screen::features(true),
             spec: Spec::Refrast,
+            ..Profile::default()
         }
     }
 
@@ -152,6 +154,7 @@ impl Rasterizer for ScanlineZBuffer {
         let width = viewport.width() as usize;
         let mut resolved = Resolved {
             viewport,
+            samples: 1,
             depth: Vec::with_capacity(viewport.pixel_count()),
             primitive: Vec::with_capacity(viewport.pixel_count()),
         };

@@ -130,7 +130,7 @@ pub fn polygons(draw: &Draw) -> Vec<ScreenPolygon> {
     let planes = clip_planes(ClipMode::Full, vp, state.clip_far, state.depth_range);
     let (mut polygon, mut scratch) = (Vec::new(), Vec::new());
     let mut out = Vec::new();
-    for (t, &indices) in draw.triangles.iter().enumerate() {
+    for (t, &indices) in draw.triangles().iter().enumerate() {
         let Some(triangle) = assemble(&draw.positions, indices) else {
             continue;
         };

@@ -7,8 +7,8 @@
 use glam::{DVec3, DVec4};
 use refrast::stage::{ClipOutcome, ClipPlane, ClipVertex, clip_planes, clip_triangle};
 use refrast::{
-    ClipMode, CompareOp, Draw, DrawError, FillConvention, FixedPoint, Fragment, FrontFace, PrimitiveDraw,
-    PrimitiveProfile, Profile, Rasterizer, Reference, Resolved, SampleFragment, Viewport, is_top_left,
+    ClipMode, CompareOp, Draw, DrawError, FillConvention, FixedPoint, Fragment, FrontFace, Profile,
+    Rasterizer, Reference, Resolved, Viewport, is_top_left,
 };
 
 mod bug;
@@ -43,17 +43,24 @@ struct Vert {
 }
 
 impl Rasterizer for Mutant {
+    /// The reference's lines, points and standard samples for a bug among them, triangles at
+    /// one sample for the others.
     fn profile(&self) -> Profile {
+        let reference = Reference::default().profile();
         Profile {
             name: format!("mutant:{}", self.bug.name()),
-            ..Reference::default().profile()
+            ..if self.bug.is_primitive() {
+                reference
+            } else {
+                reference.triangles_only()
+            }
         }
     }
 
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
         if self.bug.is_primitive() {
             // Its bug is in lines, points or samples: triangles at one sample are the reference's.
-            return Reference::default().rasterize(draw);
+            return primitive::rasterize(self.bug, draw);
         }
         draw.validate()?;
         let state = &draw.state;
@@ -64,7 +71,7 @@ impl Rasterizer for Mutant {
             state.depth_range,
         );
         let mut out = Vec::new();
-        for (primitive, t) in draw.triangles.iter().enumerate() {
+        for (primitive, t) in draw.triangles().iter().enumerate() {
             let p = t.map(|i| draw.positions[i as usize]);
             if p.iter().flatten().any(|c| !c.is_finite()) {
                 continue;
@@ -160,6 +167,7 @@ impl Rasterizer for Mutant {
         let vp = draw.viewport;
         let mut resolved = Resolved {
             viewport: vp,
+            samples: 1,
             depth: vec![draw.state.depth.clear; vp.pixel_count()],
             primitive: vec![None; vp.pixel_count()],
         };
@@ -169,23 +177,6 @@ impl Rasterizer for Mutant {
             resolved.primitive[i] = Some(f.primitive);
         }
         Ok(resolved)
-    }
-
-    fn primitive_profile(&self) -> PrimitiveProfile {
-        if self.bug.is_primitive() {
-            primitive::declared()
-        } else {
-            PrimitiveProfile::triangles_only()
-        }
-    }
-
-    fn rasterize_primitives(&mut self, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> {
-        if self.bug.is_primitive() {
-            draw.validate()?;
-            primitive::rasterize(self.bug, draw)
-        } else {
-            refrast::rasterize_as_triangles(self, draw)
-        }
     }
 }
 
@@ -317,6 +308,7 @@ impl Mutant {
                 out.push(Fragment {
                     x: px as u32,
                     y: py as u32,
+                    sample: 0,
                     primitive,
                     depth: depth as f32,
                     barycentric: bary.as_vec3().to_array(),

@@ -1,27 +1,19 @@
 //! The bugs of lines, points and multisampling: the reference's own drawing with one thing
 //! wrong, so that every failure is that thing's doing.
 
-use refrast::{
-    DrawError, Fragment, PrimitiveDraw, PrimitiveProfile, Rasterizer, Reference, SampleFragment,
-    SamplePattern, Topology,
-};
+use refrast::{Draw, DrawError, Fragment, Rasterizer, Reference, SamplePattern, Topology};
 
 use super::Bug;
 
-/// What the primitive mutants declare: the reference's lines, points and standard samples.
-#[must_use]
-pub fn declared() -> PrimitiveProfile {
-    Reference::default().primitive_profile()
-}
-
 /// Draws `draw` as the reference does, with `bug`.
-pub fn rasterize(bug: Bug, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> {
+pub fn rasterize(bug: Bug, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+    draw.validate()?;
     let reference = Reference::default();
     let standard =
         || SamplePattern::standard(draw.samples).ok_or_else(|| DrawError::Unsupported(draw.describe()));
     let drawn = |pattern: &SamplePattern| {
         let mut out = Vec::new();
-        reference.draw_primitives(draw, pattern, |f| out.push(f))?;
+        reference.draw_with_pattern(draw, pattern, |f| out.push(f))?;
         Ok::<_, DrawError>(out)
     };
     match bug {
@@ -57,13 +49,10 @@ pub fn rasterize(bug: Bug, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, 
             drawn(&SamplePattern::new(&grid).map_err(DrawError::Unsupported)?)
         }
         Bug::CentreOnlyCoverage => {
-            let centre = PrimitiveDraw {
-                samples: 1,
-                ..draw.clone()
-            };
+            let centre = draw.clone().at_samples(1);
             let mut out = Vec::new();
-            reference.draw_primitives(&centre, &SamplePattern::standard(1).expect("one sample"), |f| {
-                out.extend((0..draw.samples).map(|sample| SampleFragment { sample, ..f }));
+            reference.draw_with_pattern(&centre, &SamplePattern::standard(1).expect("one sample"), |f| {
+                out.extend((0..draw.samples).map(|sample| Fragment { sample, ..f }));
             })?;
             Ok(out)
         }
@@ -72,12 +61,10 @@ pub fn rasterize(bug: Bug, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, 
             // One depth per pixel and primitive: its first covered sample's, for every sample.
             let mut first: std::collections::HashMap<(u32, u32, u32), f32> = std::collections::HashMap::new();
             for f in &out {
-                let g = f.fragment;
-                first.entry((g.x, g.y, g.primitive)).or_insert(g.depth);
+                first.entry((f.x, f.y, f.primitive)).or_insert(f.depth);
             }
             for f in &mut out {
-                let g = &mut f.fragment;
-                g.depth = first[&(g.x, g.y, g.primitive)];
+                f.depth = first[&(f.x, f.y, f.primitive)];
             }
             Ok(out)
         }
@@ -100,20 +87,16 @@ pub fn rasterize(bug: Bug, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, 
                 }
             }
             let mut out = Vec::new();
-            reference.draw_primitives(&moved, &standard()?, |f| out.push(f))?;
+            reference.draw_with_pattern(&moved, &standard()?, |f| out.push(f))?;
             Ok(out)
         }
-        _ => refrast::rasterize_as_triangles(&mut reference.clone(), draw),
+        _ => reference.clone().rasterize(draw),
     }
 }
 
 /// The reference's fragments plus, for each segment `i` with `also(i)`, the pixel holding its
 /// last end when not drawn already.
-fn with_last_pixels(
-    draw: &PrimitiveDraw,
-    mut out: Vec<SampleFragment>,
-    also: impl Fn(usize) -> bool,
-) -> Vec<SampleFragment> {
+fn with_last_pixels(draw: &Draw, mut out: Vec<Fragment>, also: impl Fn(usize) -> bool) -> Vec<Fragment> {
     if !draw.topology.is_lines() {
         return out;
     }
@@ -137,22 +120,20 @@ fn with_last_pixels(
         let (px, py) = (x as u32, y as u32);
         if out
             .iter()
-            .any(|f| f.fragment.primitive == i as u32 && (f.fragment.x, f.fragment.y) == (px, py))
+            .any(|f| f.primitive == i as u32 && (f.x, f.y) == (px, py))
         {
             continue;
         }
         let depth = (end[2] / end[3]).clamp(0.0, 1.0);
-        out.extend((0..draw.samples).map(|sample| SampleFragment {
-            fragment: Fragment {
-                x: px,
-                y: py,
-                primitive: i as u32,
-                depth,
-                barycentric: [0.0, 1.0, 0.0],
-                screen_barycentric: Some([0.0, 1.0, 0.0]),
-                front_facing: true,
-            },
+        out.extend((0..draw.samples).map(|sample| Fragment {
+            x: px,
+            y: py,
             sample,
+            primitive: i as u32,
+            depth,
+            barycentric: [0.0, 1.0, 0.0],
+            screen_barycentric: Some([0.0, 1.0, 0.0]),
+            front_facing: true,
         }));
     }
     out

@@ -3,7 +3,7 @@
 
 use std::time::Instant;
 
-use refrast_conformance::{Options, Status, certify_with};
+use refrast_conformance::{Family, Options, Status, certify_with};
 use refrast_zoo::mutant::{Bug, Mutant};
 
 /// One copy of a rasterizer per core, for [`certify_with`] to run that many rules at once.
@@ -34,14 +34,14 @@ fn every_mutant_is_caught_by_its_family_with_a_small_counterexample() {
         // The family's failing rule with the smallest counterexample: the one to read first.
         let by_family = failed
             .iter()
-            .filter(|r| r.family == family)
+            .filter(|r| r.family.name() == family)
             .min_by_key(|r| triangles_of(r.counterexample.as_deref().unwrap_or("")));
         let Some(rule) = by_family else {
             let ids: Vec<_> = failed.iter().map(|r| r.id.as_str()).collect();
             problems.push(format!(
                 "mutant {} not caught by a {} rule; failed: {ids:?}",
                 bug.name(),
-                family.name()
+                family
             ));
             continue;
         };
@@ -67,6 +67,28 @@ fn every_mutant_is_caught_by_its_family_with_a_small_counterexample() {
         println!("| `mutant:{name}` | `{rule}` | {n} | {failed} | {secs:.1} s |");
     }
     assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+/// Each mutant names a family the catalogue has, and its primitive bugs (lines, points, samples)
+/// are exactly those of the three families the mutant then declares.
+#[test]
+fn every_mutant_names_a_family_of_the_catalogue() {
+    let families: Vec<&str> = refrast_conformance::catalogue()
+        .iter()
+        .map(|r| r.family.name())
+        .collect();
+    for bug in Bug::ALL {
+        assert!(
+            families.contains(&bug.caught_by()),
+            "mutant {} names the family `{}`, which no rule of the catalogue has",
+            bug.name(),
+            bug.caught_by()
+        );
+        let primitive = [Family::Line, Family::Point, Family::Msaa]
+            .iter()
+            .any(|f| f.name() == bug.caught_by());
+        assert_eq!(bug.is_primitive(), primitive, "mutant {}", bug.name());
+    }
 }
 
 #[test]
@@ -102,7 +124,7 @@ fn a_correct_rasterizer_declaring_another_convention_passes_everything() {
             fill,
             ..refrast::ReferenceConfig::default()
         };
-        let mut others = copies(|| refrast_conformance::Named::new("other-convention", config));
+        let mut others = copies(|| refrast_zoo::Named::new("other-convention", config));
         let options = Options {
             cases: Some(300),
             ..Options::default()

@@ -2,7 +2,7 @@
 //! the scanline z-buffer and area averaging (`zoo/src/course/`), and what certification says of
 //! each where it differs from a z-buffer.
 
-use refrast::{CompareOp, Draw, PrimitiveDraw, Rasterizer, Reference, Resolved, Viewport};
+use refrast::{CompareOp, Draw, Rasterizer, Reference, Resolved, Viewport};
 use refrast_conformance::{Options, Status, certify};
 use refrast_zoo::course::area_average::{covered_count, covered_part};
 use refrast_zoo::course::painter::painting_order;
@@ -177,20 +177,20 @@ fn area_average_tells_half_covered_pixels_as_half_their_samples() {
     quad.positions = [[-3.0, 3.0], [-3.0, -3.0], [-0.5, -3.0], [-0.5, 3.0]]
         .map(|[x, y]| [x, y, 0.5, 1.0])
         .to_vec();
-    quad.triangles = vec![[0, 1, 2], [0, 2, 3]];
+    quad.indices = vec![0, 1, 2, 0, 2, 3];
     let samples = AreaAverage
-        .rasterize_primitives(&PrimitiveDraw::of_triangles(&quad, 4))
+        .rasterize(&quad.clone().at_samples(4))
         .expect("4 samples are declared");
     let mut pixel: Vec<u8> = samples
         .iter()
-        .filter(|s| (s.fragment.x, s.fragment.y) == (0, 0))
+        .filter(|s| (s.x, s.y) == (0, 0))
         .map(|s| s.sample)
         .collect();
     pixel.sort_unstable();
     // Pixel 0 is half covered, pixel 1 not at all. Vulkan's
     // standard 4 positions lie at x = 6, 14, 2, 10 sixteenths: samples 0 and 2 are the left ones.
     assert_eq!(pixel, [0, 2]);
-    assert!(samples.iter().all(|s| s.fragment.x == 0));
+    assert!(samples.iter().all(|s| s.x == 0));
 }
 
 #[test]

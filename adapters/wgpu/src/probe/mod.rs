@@ -17,7 +17,7 @@ mod precision;
 pub mod primitives;
 mod snap;
 
-use refrast::{Draw, DrawError, Fragment, PrimitiveDraw, Viewport};
+use refrast::{Draw, DrawError, Fragment, Viewport};
 
 pub use band::{Band, REACHES};
 pub use coverage::Coverage;
@@ -56,9 +56,7 @@ pub fn measure(
     reported_bits: Option<u8>,
     multisampling: Result<(), String>,
 ) -> Result<Probes, DrawError> {
-    let draw = &mut |d: &Draw| {
-        prims(&PrimitiveDraw::of_triangles(d, 1)).map(|all| all.into_iter().map(|s| s.fragment).collect())
-    };
+    let draw = &mut |d: &Draw| prims(d);
     let grid = grid::probe(draw)?;
     let coverage = coverage::probe(draw)?;
     // The grid the other probes place ties on; 16 bits stands for "finer than 16" (no grid).

@@ -9,8 +9,8 @@
 //! edge to `t/16` px covers exactly the samples left of `t/16` under a top-left tie rule.
 
 use refrast::{
-    DrawError, FillConvention, LineRule, PrimitiveDraw, Rasterizer, Reference, ReferenceConfig,
-    SampleFragment, SamplePattern, SubpixelBits, Topology, Viewport,
+    Draw, DrawError, FillConvention, Fragment, LineRule, Rasterizer, Reference, ReferenceConfig,
+    SamplePattern, SubpixelBits, Topology, Viewport,
 };
 
 use super::clip;
@@ -22,7 +22,7 @@ const SIDE: u32 = 32;
 const SHAPES: u32 = 160;
 
 /// A driver's draw of any topology, as these probes call it.
-pub type PrimitiveRaster<'a> = dyn FnMut(&PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> + 'a;
+pub type PrimitiveRaster<'a> = dyn FnMut(&Draw) -> Result<Vec<Fragment>, DrawError> + 'a;
 
 /// What the line, point and sample probes counted on one driver.
 #[derive(Clone, Debug, PartialEq)]
@@ -140,9 +140,7 @@ pub fn measure(
         LineRule::ALL
             .into_iter()
             .map(|rule| {
-                let want = reference(rule)
-                    .rasterize_primitives(&segments)
-                    .map(|f| pixels(&f));
+                let want = reference(rule).rasterize(&segments).map(|f| pixels(&f));
                 (rule, want.map_or(usize::MAX, |want| differing(&got, &want)))
             })
             .collect()
@@ -150,7 +148,7 @@ pub fn measure(
     let dots = shapes(Topology::PointList);
     let points = draw(&dots).map_err(|e| e.to_string()).and_then(|got| {
         let want = reference(LineRule::default())
-            .rasterize_primitives(&dots)
+            .rasterize(&dots)
             .map_err(|e| e.to_string())?;
         // A pair off on either side is one point off.
         Ok(differing(&pixels(&got), &pixels(&want)).div_ceil(2))
@@ -169,7 +167,7 @@ pub fn measure(
 /// pseudo-random spread of lengths and slopes, with the cases rules turn on first (45°
 /// diagonals through pixel corners, axis-aligned segments on pixel centres and edges, ends on
 /// pixel centres).
-fn shapes(topology: Topology) -> PrimitiveDraw {
+fn shapes(topology: Topology) -> Draw {
     let mut state: u32 = 0x9e37_79b9;
     let mut next = move |range: u32| {
         state ^= state << 13;
@@ -209,7 +207,7 @@ fn shapes(topology: Topology) -> PrimitiveDraw {
     let positions: Vec<[f32; 4]> = ends.iter().map(|&p| clip(SIDE, SIDE, p, 0.5, 1.0)).collect();
     let indices = (0..positions.len() as u32).collect();
     let viewport = Viewport::new(SIDE, SIDE).expect("the probe's target");
-    let mut draw = PrimitiveDraw::new(viewport, positions, topology, indices);
+    let mut draw = Draw::of(viewport, positions, topology, indices);
     draw.state.clip_far = true;
     draw
 }
@@ -235,7 +233,7 @@ fn point_steps(draw: &mut PrimitiveRaster<'_>) -> Result<Option<[u8; 2]>, DrawEr
     let positions: Vec<[f32; 4]> = spots.iter().map(|&p| clip(SIDE, SIDE, p, 0.5, 1.0)).collect();
     let indices = (0..positions.len() as u32).collect();
     let viewport = Viewport::new(SIDE, SIDE).expect("the probe's target");
-    let mut probe = PrimitiveDraw::new(viewport, positions, Topology::PointList, indices);
+    let mut probe = Draw::of(viewport, positions, Topology::PointList, indices);
     probe.state.clip_far = true;
     let covered = pixels(&draw(&probe)?);
     let of =
@@ -258,11 +256,8 @@ fn point_steps(draw: &mut PrimitiveRaster<'_>) -> Result<Option<[u8; 2]>, DrawEr
 }
 
 /// The sorted (primitive, x, y) triples covered, samples merged.
-fn pixels(fragments: &[SampleFragment]) -> Vec<(u32, u32, u32)> {
-    let mut all: Vec<_> = fragments
-        .iter()
-        .map(|s| (s.fragment.primitive, s.fragment.x, s.fragment.y))
-        .collect();
+fn pixels(fragments: &[Fragment]) -> Vec<(u32, u32, u32)> {
+    let mut all: Vec<_> = fragments.iter().map(|s| (s.primitive, s.x, s.y)).collect();
     all.sort_unstable();
     all.dedup();
     all
@@ -291,7 +286,7 @@ fn sample_positions(draw: &mut PrimitiveRaster<'_>) -> Result<[[u8; 2]; 4], Stri
     }
     let positions: Vec<[f32; 4]> = corners.iter().map(|&p| clip(16, 2, p, 0.5, 1.0)).collect();
     let indices = (0..positions.len() as u32).collect();
-    let mut probe = PrimitiveDraw::new(
+    let mut probe = Draw::of(
         Viewport::new(16, 2).expect("the probe's target"),
         positions,
         Topology::TriangleList,
@@ -306,7 +301,7 @@ fn sample_positions(draw: &mut PrimitiveRaster<'_>) -> Result<[[u8; 2]; 4], Stri
     // covered[row][t − 1][sample]
     let mut covered = [[[false; 4]; 16]; 2];
     for s in &got {
-        let f = &s.fragment;
+        let f = s;
         if f.x >= 16 || f.y >= 2 || s.sample >= 4 {
             return Err(format!(
                 "sample {} of pixel ({}, {}) is outside the probe's 16×2 target at 4 samples",

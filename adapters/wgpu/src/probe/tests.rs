@@ -10,7 +10,7 @@ fn reference(config: ReferenceConfig) -> Reference {
 
 /// Every probe, through `r`.
 fn measure(r: &mut Reference, reported_bits: Option<u8>) -> Result<Probes, refrast::DrawError> {
-    super::measure(&mut |d| r.rasterize_primitives(d), reported_bits, Ok(()))
+    super::measure(&mut |d| r.rasterize(d), reported_bits, Ok(()))
 }
 
 /// The default reference: 8 bits, top-left, ties to even, nearest, the 8192-px guard band, and

@@ -424,7 +424,7 @@ fn softpipe(run: &mut dyn FnMut(&Draw) -> Vec<Fragment>) {
         width: 9,
         height: 1,
         positions: within.positions.clone(),
-        triangles: within.triangles.clone(),
+        triangles: within.triangles().to_vec(),
         state: within.state,
     };
     assert!(

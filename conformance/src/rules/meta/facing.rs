@@ -4,16 +4,16 @@
 
 use proptest::prelude::*;
 
-use refrast::{CullMode, Fragment, FrontFace, PrimitiveProfile, Profile, Rasterizer};
+use refrast::{CullMode, Fragment, FrontFace, Profile, Rasterizer};
 
 use super::translate;
 use crate::oracle::facing::Turn;
 use crate::oracle::outline::{distance_to_outline, visible_outline};
 use crate::oracle::raster::{self, sample_centre, sample_ndc};
 use crate::oracle::ray_cast::ray_cast;
-use crate::primitives::PrimitiveScene;
 use crate::rules::common::{check_draws_nothing, compare_sets, deep_sample, fragments};
 use crate::rules::samples::sample_fragments;
+use crate::scene::PrimitiveScene;
 use crate::scene::Scene;
 use crate::strategy::{self, primitive};
 use crate::violation::{Findings, Violation, plural};
@@ -29,7 +29,7 @@ pub(super) fn cull_scene(profile: &Profile) -> impl Strategy<Value = Scene> + us
 }
 
 /// Lines or points, whichever the implementation declares (both when it declares both).
-pub(super) fn lines_or_points(_: &Profile, declared: &PrimitiveProfile) -> BoxedStrategy<PrimitiveScene> {
+pub(super) fn lines_or_points(declared: &Profile) -> BoxedStrategy<PrimitiveScene> {
     match (declared.lines.is_some(), declared.points) {
         (true, true) => prop_oneof![primitive::lines(), primitive::points()].boxed(),
         (true, false) => primitive::lines().boxed(),
@@ -51,18 +51,14 @@ pub fn check_lines_points_front(r: &mut dyn Rasterizer, case: &PrimitiveScene) -
             drawn.scene.state.cull = cull;
             drawn.scene.state.front_face = front;
             let frags = sample_fragments(r, &drawn)?;
-            if let Some(f) = frags.iter().find(|f| !f.fragment.front_facing) {
-                let f = &f.fragment;
+            if let Some(f) = frags.iter().find(|f| !f.front_facing) {
                 return Err(Violation::new(format!(
                     "({}, {}) of primitive {} reports back-facing under cull {cull:?}, front face {front:?}: \
                      line and point fragments always face front",
                     f.x, f.y, f.primitive
                 )));
             }
-            let mut covered: Vec<_> = frags
-                .iter()
-                .map(|f| (f.fragment.x, f.fragment.y, f.sample, f.fragment.primitive))
-                .collect();
+            let mut covered: Vec<_> = frags.iter().map(|f| (f.x, f.y, f.sample, f.primitive)).collect();
             covered.sort_unstable();
             match &first {
                 None => first = Some((cull, front, covered)),

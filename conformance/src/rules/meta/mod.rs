@@ -1,8 +1,8 @@
 //! Metamorphic relations: changes to the input that must leave coverage alone, or move it predictably.
 
 use super::level::{EDGES_NOT_PINNED, Level, ZERO_AREA_LINE};
-use super::{CULLING, Family, Rule, needs_primitives};
-use crate::runner::{property, property_declared, property_for};
+use super::{CULLING, Family, Rule, needs};
+use crate::runner::{property, property_for};
 use crate::strategy;
 
 mod facing;
@@ -20,8 +20,7 @@ pub use order::{
 pub use translate::{Translated, check_subpixel_translation, check_translation, check_viewport_neutral};
 
 /// The implementation draws lines or points.
-const LINES_OR_POINTS: super::Need =
-    needs_primitives(|_, d| d.lines.is_some() || d.points, "no lines or points");
+const LINES_OR_POINTS: super::Need = needs(|p| p.lines.is_some() || p.points, "no lines or points");
 
 pub(super) fn rules() -> Vec<Rule> {
     vec![
@@ -86,7 +85,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .cases(300)
             .needs(LINES_OR_POINTS)
             .keeps_winding()
-            .run(|r, cfg| property_declared(r, cfg, lines_or_points, check_lines_points_front)),
+            .run(|r, cfg| property_for(r, cfg, lines_or_points, check_lines_points_front)),
         Rule::invariant(Family::Meta, "meta.degenerate.empty")
             .sentence("Zero-area triangles (collinear or repeated vertices, on sample centres too) draw nothing; without a guard band, those needing no x/y clipping; one the near plane cuts, nothing where the profile decides zero area before clipping, else nothing away from its line.")
             .source("Vulkan 1.4, Basic Polygon Rasterization (a sample is covered when inside the polygon, and zero area leaves no inside; zero area is back-facing); D3D11.3 §15.11.1")

@@ -3,7 +3,7 @@
 
 use std::collections::{BTreeSet, HashMap};
 
-use refrast::{CullMode, Fragment, FrontFace, PrimitiveProfile, Profile, Rasterizer};
+use refrast::{CullMode, Fragment, FrontFace, Profile, Rasterizer};
 
 use super::translate;
 use crate::oracle::raster;
@@ -33,11 +33,7 @@ fn compare_permuted(
     at_edges: bool,
 ) -> Result<(), Violation> {
     let Redrawn { map, flip, what } = how;
-    if at_edges
-        && EXACT_COVERAGE
-            .check(profile, &PrimitiveProfile::triangles_only())
-            .is_ok()
-    {
+    if at_edges && EXACT_COVERAGE.check(profile).is_ok() {
         // With exact coverage the same edges give the same samples, whatever the vertex order.
         compare_sets(scene, other, base, what)?;
     } else {

@@ -2,7 +2,7 @@
 
 use std::time::{Duration, Instant};
 
-use refrast::{DrawError, PrimitiveDraw, SampleFragment, SampleResolved};
+use refrast::{Draw, DrawError, Fragment, Resolved};
 
 use super::pipe::{Incoming, Stall};
 use super::wire::{self, Declared, MAX_LINE, Op};
@@ -13,8 +13,8 @@ pub struct Breach(pub String);
 
 /// A reply that kept to the protocol.
 pub enum Reply {
-    Fragments(Vec<SampleFragment>),
-    Resolved(SampleResolved),
+    Fragments(Vec<Fragment>),
+    Resolved(Resolved),
     /// `error` or `unsupported`: the child refused the draw, as it may.
     Refused(DrawError),
 }
@@ -23,7 +23,7 @@ pub enum Reply {
 pub fn read_reply(
     incoming: &mut Incoming,
     op: Op,
-    draw: &PrimitiveDraw,
+    draw: &Draw,
     declared: &Declared,
     deadline: Instant,
     timeout: Duration,
@@ -85,9 +85,8 @@ pub fn read_reply(
             })?;
             let mut fragments = Vec::with_capacity(count);
             for (k, record) in bytes.chunks_exact(record).enumerate() {
-                let (f, sample) =
-                    wire::fragment(record, declared.profile.features.screen_barycentrics, samples)
-                        .map_err(|why| Breach(format!("fragment {k} of {count}: {why}")))?;
+                let f = wire::fragment(record, declared.profile.features.screen_barycentrics, samples)
+                    .map_err(|why| Breach(format!("fragment {k} of {count}: {why}")))?;
                 if f.x >= width || f.y >= height {
                     return Err(Breach(format!(
                         "fragment {k} of {count} lies at ({}, {}), outside the {width}×{height} viewport",
@@ -100,7 +99,7 @@ pub fn read_reply(
                         f.primitive
                     )));
                 }
-                fragments.push(SampleFragment { fragment: f, sample });
+                fragments.push(f);
             }
             Reply::Fragments(fragments)
         }
@@ -139,7 +138,7 @@ pub fn read_reply(
                     (i / usize::from(samples)) / width as usize
                 )));
             }
-            Reply::Resolved(SampleResolved {
+            Reply::Resolved(Resolved {
                 viewport: draw.viewport,
                 samples,
                 depth: wire::floats(&bytes[..pixels * 4]),

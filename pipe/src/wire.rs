@@ -2,9 +2,8 @@
 //! and the reply headers. `docs/protocol.md` is the specification.
 
 use refrast::{
-    CompareOp, CullMode, DepthConvention, DepthRange, FillConvention, Fragment, FrontFace, LineRule,
-    PointClipping, PrimitiveDraw, PrimitiveProfile, Profile, SamplePattern, Setting, SnapAccuracy, Snapping,
-    Spec, Supported,
+    CompareOp, CullMode, DepthConvention, DepthRange, Draw, FillConvention, Fragment, FrontFace, LineRule,
+    PointClipping, Profile, SamplePattern, Setting, SnapAccuracy, Snapping, Spec, Supported,
 };
 
 /// The newest protocol version this refrast speaks, the one its messages suggest.
@@ -159,7 +158,7 @@ pub const GUARD_BAND_LIMIT: u32 = refrast::COORD_LIMIT as u32;
 /// Version 2 ends the header with the topology and the samples per pixel; a version 1 child is
 /// only ever sent triangle lists at one sample.
 #[must_use]
-pub fn request(op: Op, draw: &PrimitiveDraw, version: u32) -> Vec<u8> {
+pub fn request(op: Op, draw: &Draw, version: u32) -> Vec<u8> {
     let s = &draw.state;
     let count = draw.primitive_count();
     let extra = if version >= 2 {
@@ -210,9 +209,9 @@ pub fn f32_at(record: &[u8], k: usize) -> f32 {
 }
 
 /// Decodes one fragment record of [`fragment_bytes`] of a draw at `samples` samples a pixel,
-/// with its sample (0 in version 1); `Err` names a front-facing word that is neither 0 nor 1,
+/// its sample 0 in version 1; `Err` names a front-facing word that is neither 0 nor 1,
 /// or (version 2) a sample the draw does not have.
-pub fn fragment(record: &[u8], screen_barycentrics: bool, samples: u8) -> Result<(Fragment, u8), String> {
+pub fn fragment(record: &[u8], screen_barycentrics: bool, samples: u8) -> Result<Fragment, String> {
     let front = u32_at(record, 3);
     if front > 1 {
         return Err(format!("its front-facing word is {front}, not 0 or 1"));
@@ -226,9 +225,10 @@ pub fn fragment(record: &[u8], screen_barycentrics: bool, samples: u8) -> Result
         ));
     }
     let screen = [f32_at(record, 8), f32_at(record, 9), f32_at(record, 10)];
-    let fragment = Fragment {
+    Ok(Fragment {
         x: u32_at(record, 0),
         y: u32_at(record, 1),
+        sample: sample as u8,
         primitive: u32_at(record, 2),
         front_facing: front == 1,
         depth: f32_at(record, 4),
@@ -236,8 +236,7 @@ pub fn fragment(record: &[u8], screen_barycentrics: bool, samples: u8) -> Result
         // Three NaN words say "none": the triangle has a vertex at w ≤ 0 and no screen shape
         // (the rules accept none only there; docs/protocol.md).
         screen_barycentric: (screen_barycentrics && !screen.iter().all(|c| c.is_nan())).then_some(screen),
-    };
-    Ok((fragment, sample as u8))
+    })
 }
 
 /// Decodes the `u32` values of a primitive buffer, `0xFFFF_FFFF` meaning none.
@@ -290,13 +289,12 @@ impl Declared {
         }
     }
 
-    /// What it declares about lines, points and samples: lines when it lists both line
-    /// topologies, points when it lists point lists, each count above one at its declared
-    /// positions or the standard ones.
-    #[must_use]
-    pub fn primitive_profile(&self) -> PrimitiveProfile {
+    /// Its profile with what it declares about lines, points and samples folded in: lines when
+    /// it lists both line topologies, points when it lists point lists, each count above one at
+    /// its declared positions or the standard ones.
+    fn folded(self) -> Self {
         let lists = |t: Topology| self.topologies.contains(&t);
-        PrimitiveProfile {
+        let profile = Profile {
             lines: (lists(Topology::LineList) && lists(Topology::LineStrip)).then_some(self.lines),
             points: lists(Topology::PointList),
             endpoint_snapping: None,
@@ -315,7 +313,9 @@ impl Declared {
                 })
                 .collect(),
             point_clipping: self.point_clipping,
-        }
+            ..self.profile
+        };
+        Self { profile, ..self }
     }
 }
 
@@ -347,6 +347,7 @@ pub fn default_profile(name: &str) -> Profile {
             z_rewritten_in_f32: false,
         },
         spec: Spec::Refrast,
+        ..Profile::default()
     }
 }
 
@@ -370,29 +371,95 @@ pub fn version(line: &str) -> Result<u32, String> {
 
 /// Builds the declaration from the handshake lines between the version line and `ready`.
 pub fn parse_profile(lines: &[String], fallback_name: &str, version: u32) -> Result<Declared, String> {
-    let mut declared = Declared::defaults(fallback_name, version);
-    let mut profile = default_profile(fallback_name);
-    let mut about = String::new();
+    let mut reading = Reading {
+        declared: Declared::defaults(fallback_name, version),
+        profile: default_profile(fallback_name),
+        about: String::new(),
+        guard_band_word: false,
+    };
     let mut seen: Vec<&str> = Vec::new();
-    let mut guard_band_word = false;
     for line in lines {
         let line = line.trim();
         if line.is_empty() || line.starts_with('#') {
             continue;
         }
         let (key, rest) = line.split_once(char::is_whitespace).unwrap_or((line, ""));
-        let rest = rest.trim();
         if seen.contains(&key) {
             return Err(format!("the profile says `{key}` twice"));
         }
         let bad = |what: &str| format!("profile line `{}`: {what}", shown(line));
-        let words: Vec<&str> = rest.split_whitespace().collect();
-        let f = &mut profile.features;
+        reading.line(key, rest.trim(), &bad)?;
+        seen.push(key);
+    }
+    let Reading {
+        declared,
+        mut profile,
+        about,
+        guard_band_word,
+    } = reading;
+    if guard_band_word {
+        if seen.contains(&GUARD_BAND) {
+            return Err(format!(
+                "the profile says `guard-band` as a feature and as a line; keep the line `{GUARD_BAND} PIXELS`"
+            ));
+        }
+        // The word alone, from before a guard band had a size: the reach the rule drew then.
+        profile.features.guard_band = LEGACY_GUARD_BAND;
+    }
+    Ok(Declared {
+        profile,
+        about,
+        ..declared
+    }
+    .folded())
+}
+
+/// A handshake being read: what its lines have declared so far.
+struct Reading {
+    /// The declaration, its version's defaults until a line says otherwise.
+    declared: Declared,
+    /// The profile, the protocol's defaults until a line says otherwise.
+    profile: Profile,
+    /// The `about` line.
+    about: String,
+    /// Whether `features` named `guard-band`, the word alone from before it had a size.
+    guard_band_word: bool,
+}
+
+/// What a line names a value of: its check's words, for `bad`.
+type Bad<'a> = &'a dyn Fn(&str) -> String;
+
+impl Reading {
+    /// Reads one line, `key` and the `rest` of it; `Err` says what is wrong, through `bad`.
+    fn line(&mut self, key: &str, rest: &str, bad: Bad<'_>) -> Result<(), String> {
+        let version = self.declared.version;
         match key {
-            "name" if !rest.is_empty() => profile.name = rest.to_owned(),
-            "about" => about = rest.to_owned(),
+            "name" | "about" | "snapping" | "fill" | "depth" | "tolerance" | "precision" | "spec" => {
+                self.conventions(key, rest, bad)
+            }
+            "features" => self.features(rest, bad),
+            "topology" | "samples" | "lines" | "point-clipping" | "sample-positions" if version >= 2 => {
+                self.primitives(key, rest, bad)
+            }
+            _ => self.settings(key, rest, bad).unwrap_or_else(|| {
+                Err(format!(
+                    "the profile has an unknown key `{key}`; docs/protocol.md lists the keys of version \
+                     {version}"
+                ))
+            }),
+        }
+    }
+
+    /// The profile's conventions and what the child says it is: `name`, `about`, `snapping`,
+    /// `fill`, `depth`, `tolerance`, `precision`, `spec`.
+    fn conventions(&mut self, key: &str, rest: &str, bad: Bad<'_>) -> Result<(), String> {
+        let profile = &mut self.profile;
+        match key {
+            "name" if rest.is_empty() => return Err(bad("the name is empty")),
+            "name" => profile.name = rest.to_owned(),
+            "about" => self.about = rest.to_owned(),
             "snapping" => {
-                profile.snapping = match words.as_slice() {
+                profile.snapping = match rest.split_whitespace().collect::<Vec<_>>().as_slice() {
                     ["float"] => Snapping::Float,
                     ["grid", bits] => match bits.parse::<u8>() {
                         Ok(b @ 1..=16) => Snapping::Grid(b),
@@ -434,118 +501,134 @@ pub fn parse_profile(lines: &[String], fallback_name: &str, version: u32) -> Res
                     .filter(|p| (1..=30).contains(p))
                     .ok_or_else(|| bad("a number of bits, 1 to 30"))?;
             }
-            "features" => {
-                (
-                    f.perspective_barycentrics,
-                    f.screen_barycentrics,
-                    f.depth_test,
-                    f.ties_to_even,
-                    f.zero_area_before_clipping,
-                ) = (false, false, false, false, false);
-                for word in &words {
-                    let flag = match *word {
-                        "perspective-barycentrics" => &mut f.perspective_barycentrics,
-                        "screen-barycentrics" => &mut f.screen_barycentrics,
-                        "depth-test" => &mut f.depth_test,
-                        "ties-to-even" => &mut f.ties_to_even,
-                        "zero-area-before-clipping" => &mut f.zero_area_before_clipping,
-                        // The word alone, from before the guard band had a size: the reach the
-                        // rule drew then. A `guard-band PIXELS` line says more.
-                        "guard-band" => &mut guard_band_word,
-                        _ => {
-                            return Err(bad(
-                                "features are perspective-barycentrics, screen-barycentrics, \
-                                 depth-test, ties-to-even, zero-area-before-clipping and guard-band",
-                            ));
-                        }
-                    };
-                    *flag = true;
-                }
-            }
-            "snap" => {
-                f.snap = SnapAccuracy::from_name(rest)
-                    .ok_or_else(|| bad("say nearest, within-one-step, floor or toward-zero"))?;
-            }
-            "spec" => {
+            _ => {
                 profile.spec = Spec::from_name(rest)
                     .ok_or_else(|| bad("say refrast, vulkan, opengl, opengles or d3d11"))?;
             }
-            CLIPPING => {
-                f.clips_in_3d = match rest {
-                    "homogeneous" => true,
-                    "none" => false,
-                    _ => return Err(bad("say homogeneous or none")),
-                };
+        }
+        Ok(())
+    }
+
+    /// The `features` line: the flags it names are on, every other off.
+    fn features(&mut self, rest: &str, bad: Bad<'_>) -> Result<(), String> {
+        let f = &mut self.profile.features;
+        (
+            f.perspective_barycentrics,
+            f.screen_barycentrics,
+            f.depth_test,
+            f.ties_to_even,
+            f.zero_area_before_clipping,
+        ) = (false, false, false, false, false);
+        for word in rest.split_whitespace() {
+            let flag = match word {
+                "perspective-barycentrics" => &mut f.perspective_barycentrics,
+                "screen-barycentrics" => &mut f.screen_barycentrics,
+                "depth-test" => &mut f.depth_test,
+                "ties-to-even" => &mut f.ties_to_even,
+                "zero-area-before-clipping" => &mut f.zero_area_before_clipping,
+                // The word alone, from before the guard band had a size: the reach the rule drew
+                // then. A `guard-band PIXELS` line says more.
+                "guard-band" => &mut self.guard_band_word,
+                _ => {
+                    return Err(bad(
+                        "features are perspective-barycentrics, screen-barycentrics, depth-test, \
+                         ties-to-even, zero-area-before-clipping and guard-band",
+                    ));
+                }
+            };
+            *flag = true;
+        }
+        Ok(())
+    }
+
+    /// A line of the supported states and how it clips and snaps; `None` for another key.
+    fn settings(&mut self, key: &str, rest: &str, bad: Bad<'_>) -> Option<Result<(), String>> {
+        let words: Vec<&str> = rest.split_whitespace().collect();
+        let f = &mut self.profile.features;
+        let read = || -> Result<(), String> {
+            match key {
+                "snap" => {
+                    f.snap = SnapAccuracy::from_name(rest)
+                        .ok_or_else(|| bad("say nearest, within-one-step, floor or toward-zero"))?;
+                }
+                CLIPPING => {
+                    f.clips_in_3d = match rest {
+                        "homogeneous" => true,
+                        "none" => false,
+                        _ => return Err(bad("say homogeneous or none")),
+                    };
+                }
+                GUARD_BAND => f.guard_band = guard_band(rest, bad)?,
+                CullMode::KEY => f.cull_modes = supported(&words, bad)?,
+                FrontFace::KEY => f.front_faces = supported(&words, bad)?,
+                CompareOp::KEY => f.compare_ops = supported(&words, bad)?,
+                DepthRange::KEY => f.depth_ranges = supported(&words, bad)?,
+                bool::KEY => f.depth_writes = supported(&words, bad)?,
+                _ => f.far_clipping = supported(&words, bad)?,
             }
-            GUARD_BAND => {
-                // `unbounded`: no x/y clipping at all, so no edge ever moves (the Rust side's
-                // `u32::MAX`).
-                f.guard_band = if rest == "unbounded" {
-                    u32::MAX
-                } else {
-                    rest.parse()
-                        .ok()
-                        .filter(|&px| px <= GUARD_BAND_LIMIT)
-                        .ok_or_else(|| {
-                            bad(&format!(
-                                "pixels beyond each side of the viewport, 0 to {GUARD_BAND_LIMIT}, or \
-                             unbounded for a rasterizer that clips nothing in x and y"
-                            ))
-                        })?
-                };
-            }
-            CullMode::KEY => f.cull_modes = supported(&words, &bad)?,
-            FrontFace::KEY => f.front_faces = supported(&words, &bad)?,
-            CompareOp::KEY => f.compare_ops = supported(&words, &bad)?,
-            DepthRange::KEY => f.depth_ranges = supported(&words, &bad)?,
-            bool::KEY => f.depth_writes = supported(&words, &bad)?,
-            FAR_CLIPPING => f.far_clipping = supported(&words, &bad)?,
-            "topology" if version >= 2 => declared.topologies = topologies(&words, &bad)?,
-            "samples" if version >= 2 => declared.sample_counts = sample_counts(&words, &bad)?,
-            "lines" if version >= 2 => {
+            Ok(())
+        };
+        let known = [
+            "snap",
+            CLIPPING,
+            GUARD_BAND,
+            CullMode::KEY,
+            FrontFace::KEY,
+            CompareOp::KEY,
+            DepthRange::KEY,
+            bool::KEY,
+            FAR_CLIPPING,
+        ];
+        known.contains(&key).then(read)
+    }
+
+    /// Version 2's lines of lines, points and samples.
+    fn primitives(&mut self, key: &str, rest: &str, bad: Bad<'_>) -> Result<(), String> {
+        let words: Vec<&str> = rest.split_whitespace().collect();
+        let declared = &mut self.declared;
+        match key {
+            "topology" => declared.topologies = topologies(&words, bad)?,
+            "samples" => declared.sample_counts = sample_counts(&words, bad)?,
+            "lines" => {
                 declared.lines = match words.as_slice() {
                     [rule] => LineRule::from_name(rule),
                     _ => None,
                 }
                 .ok_or_else(|| bad("name one of diamond-exit, rectangle, parallelogram"))?;
             }
-            "point-clipping" if version >= 2 => {
+            "point-clipping" => {
                 declared.point_clipping = PointClipping::from_name(rest)
                     .ok_or_else(|| bad("say all-clip-planes or user-clip-planes-only"))?;
             }
-            "sample-positions" if version >= 2 => {
+            _ => {
                 let pattern = sample_positions(&words).map_err(|why| bad(&why))?;
                 declared.sample_positions.retain(|p| p.count() != pattern.count());
                 declared.sample_positions.push(pattern);
             }
-            "name" => return Err(bad("the name is empty")),
-            _ => {
-                return Err(format!(
-                    "the profile has an unknown key `{key}`; docs/protocol.md lists the keys of version \
-                     {version}"
-                ));
-            }
         }
-        seen.push(key);
+        Ok(())
     }
-    if guard_band_word {
-        if seen.contains(&GUARD_BAND) {
-            return Err(format!(
-                "the profile says `guard-band` as a feature and as a line; keep the line `{GUARD_BAND} PIXELS`"
-            ));
-        }
-        // The word alone, from before a guard band had a size: the reach the rule drew then.
-        profile.features.guard_band = LEGACY_GUARD_BAND;
+}
+
+/// The `guard-band` line's reach: pixels, or `unbounded` (no x/y clipping at all, so no edge
+/// ever moves: the Rust side's `u32::MAX`).
+fn guard_band(rest: &str, bad: Bad<'_>) -> Result<u32, String> {
+    if rest == "unbounded" {
+        return Ok(u32::MAX);
     }
-    Ok(Declared {
-        profile,
-        about,
-        ..declared
-    })
+    rest.parse()
+        .ok()
+        .filter(|&px| px <= GUARD_BAND_LIMIT)
+        .ok_or_else(|| {
+            bad(&format!(
+                "pixels beyond each side of the viewport, 0 to {GUARD_BAND_LIMIT}, or unbounded for a \
+             rasterizer that clips nothing in x and y"
+            ))
+        })
 }
 
 /// Version 2's `topology` line: known words, triangle lists among them (all refrast sends today).
-fn topologies(words: &[&str], bad: &dyn Fn(&str) -> String) -> Result<Vec<Topology>, String> {
+fn topologies(words: &[&str], bad: Bad<'_>) -> Result<Vec<Topology>, String> {
     let all = || Topology::ALL.map(Topology::name).join(", ");
     let listed: Option<Vec<Topology>> = words.iter().map(|w| Topology::from_name(w)).collect();
     match listed {
@@ -559,7 +642,7 @@ fn topologies(words: &[&str], bad: &dyn Fn(&str) -> String) -> Result<Vec<Topolo
 }
 
 /// Version 2's `samples` line: counts among [`SAMPLE_COUNTS`], 1 among them (all refrast sends today).
-fn sample_counts(words: &[&str], bad: &dyn Fn(&str) -> String) -> Result<Vec<u32>, String> {
+fn sample_counts(words: &[&str], bad: Bad<'_>) -> Result<Vec<u32>, String> {
     let listed: Option<Vec<u32>> = words
         .iter()
         .map(|w| w.parse().ok().filter(|n| SAMPLE_COUNTS.contains(n)))
@@ -591,7 +674,7 @@ fn sample_positions(words: &[&str]) -> Result<SamplePattern, String> {
 }
 
 /// The values a profile line lists, each a known word, at least one.
-fn supported<T: Word>(words: &[&str], bad: &dyn Fn(&str) -> String) -> Result<Supported<T>, String> {
+fn supported<T: Word>(words: &[&str], bad: Bad<'_>) -> Result<Supported<T>, String> {
     let values: Option<Vec<T>> = words.iter().map(|w| T::parse(w)).collect();
     match values {
         Some(values) if !values.is_empty() => Ok(Supported::only(&values)),
@@ -630,15 +713,14 @@ mod tests {
             words.iter().flat_map(|w| w.to_le_bytes()).collect::<Vec<u8>>()
         };
         let none = fragment(&record([f32::NAN; 3]), true, 1).expect("a record");
-        assert_eq!(none.0.screen_barycentric, None);
+        assert_eq!(none.screen_barycentric, None);
         let one = fragment(&record([f32::NAN, 0.5, 0.5]), true, 1).expect("a record");
-        assert!(one.0.screen_barycentric.is_some_and(|s| s[0].is_nan()));
+        assert!(one.screen_barycentric.is_some_and(|s| s[0].is_nan()));
         let undeclared = fragment(&record([0.2, 0.3, 0.5]), false, 1).expect("a record");
-        assert_eq!(undeclared.0.screen_barycentric, None);
+        assert_eq!(undeclared.screen_barycentric, None);
         assert_eq!(
             fragment(&record([0.2, 0.3, 0.5]), true, 1)
                 .expect("a record")
-                .0
                 .screen_barycentric,
             Some([0.2, 0.3, 0.5])
         );
@@ -666,10 +748,7 @@ mod tests {
         .map(|&l| l.to_owned())
         .collect();
         let declared = parse_profile(&lines, "child", 2).expect("version 2");
-        assert_eq!(
-            declared.primitive_profile().point_clipping,
-            PointClipping::UserClipPlanesOnly
-        );
+        assert_eq!(declared.profile.point_clipping, PointClipping::UserClipPlanesOnly);
         assert_eq!(parsed(&["spec opengles"]).expect("ES").spec, Spec::OpenGlEs);
     }
 

@@ -7,12 +7,10 @@
 //! (`tests/integration/shaped.rs`), so that a class of false verdict, once fixed, stays fixed.
 
 use refrast::{
-    Draw, DrawError, FillConvention, Fragment, PointClipping, PrimitiveDraw, PrimitiveProfile, Profile,
-    Rasterizer, Reference, ReferenceConfig, Resolved, SampleFragment, SamplePattern, SampleResolved,
-    SnapAccuracy, SnapRounding, Snapping, Spec, SubpixelBits, Topology,
+    DepthRange, Draw, DrawError, FillConvention, Fragment, PointClipping, Profile, Rasterizer, Reference,
+    ReferenceConfig, Resolved, SamplePattern, SnapAccuracy, SnapRounding, Snapping, Spec, SubpixelBits,
+    Topology, Viewport,
 };
-
-use crate::oracle::raster::{near_distance, project, window_depth};
 
 /// How a [`Shaped`] rasterizer differs from the reference.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -131,6 +129,16 @@ impl Rasterizer for Shaped {
                 profile.features.snap = SnapAccuracy::TowardZero;
                 profile.features.ties_to_even = false;
                 profile.features.clips_in_3d = false;
+                // Triangles at one sample, nothing else.
+                let triangles = Profile::default();
+                profile.lines = triangles.lines;
+                profile.points = triangles.points;
+                profile.multisample = triangles.multisample;
+            }
+            // What the GPUs report, whatever they do.
+            Shape::PopFreePoints => {
+                profile.spec = Spec::Vulkan;
+                profile.point_clipping = PointClipping::AllClipPlanes;
             }
             _ => profile.spec = Spec::Vulkan,
         }
@@ -144,9 +152,25 @@ impl Rasterizer for Shaped {
             return Err(DrawError::Unsupported(why));
         }
         let mut fragments = self.inner.rasterize(draw)?;
-        if self.shape == Shape::ScreenPlaneAcrossEye {
+        let triangles = draw.topology == Topology::TriangleList;
+        if self.shape == Shape::FragCoordAtCentre && triangles && draw.samples > 1 {
             for f in &mut fragments {
-                let s = [f64::from(f.x) + 0.5, f64::from(f.y) + 0.5];
+                let centre = [f64::from(f.x) + 0.5, f64::from(f.y) + 0.5];
+                if let Some(z) = screen_depth(draw, f.primitive, centre) {
+                    f.depth = z.clamp(0.0, 1.0) as f32;
+                }
+            }
+        }
+        if self.shape == Shape::ScreenPlaneAcrossEye && triangles {
+            let pattern = SamplePattern::standard(draw.samples);
+            for f in &mut fragments {
+                let [u, v] = pattern
+                    .and_then(|p| p.positions().get(usize::from(f.sample)).copied())
+                    .unwrap_or([8, 8]);
+                let s = [
+                    f64::from(f.x) + f64::from(u) / 16.0,
+                    f64::from(f.y) + f64::from(v) / 16.0,
+                ];
                 if let Some(b) = unclipped_screen_weights(draw, f.primitive, s) {
                     f.screen_barycentric = Some(b);
                 }
@@ -163,73 +187,33 @@ impl Rasterizer for Shaped {
         }
         self.inner.resolve(draw)
     }
+}
 
-    fn primitive_profile(&self) -> PrimitiveProfile {
-        match self.shape {
-            Shape::ScanConverter => PrimitiveProfile::triangles_only(),
-            // What the GPUs report, whatever they do.
-            Shape::PopFreePoints => PrimitiveProfile {
-                point_clipping: PointClipping::AllClipPlanes,
-                ..self.inner.primitive_profile()
-            },
-            _ => self.inner.primitive_profile(),
-        }
-    }
+/// `p` divided by `w` and mapped to raster space, in pixels.
+fn project(viewport: Viewport, p: [f64; 4]) -> [f64; 2] {
+    let (x, y) = viewport.to_raster(p[0] / p[3], p[1] / p[3]);
+    [x, y]
+}
 
-    fn rasterize_primitives(&mut self, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> {
-        let mut fragments = self.inner.rasterize_primitives(draw)?;
-        let triangles = draw.topology == Topology::TriangleList;
-        if self.shape == Shape::FragCoordAtCentre && triangles && draw.samples > 1 {
-            let as_triangles = triangles_of(draw);
-            for SampleFragment { fragment: f, .. } in &mut fragments {
-                let centre = [f64::from(f.x) + 0.5, f64::from(f.y) + 0.5];
-                if let Some(z) = as_triangles
-                    .as_ref()
-                    .and_then(|d| screen_depth(d, f.primitive, centre))
-                {
-                    f.depth = z.clamp(0.0, 1.0) as f32;
-                }
-            }
-        }
-        if self.shape == Shape::ScreenPlaneAcrossEye && triangles {
-            let pattern = SamplePattern::standard(draw.samples);
-            let as_triangles = triangles_of(draw);
-            for SampleFragment { fragment: f, sample } in &mut fragments {
-                let [u, v] = pattern
-                    .and_then(|p| p.positions().get(usize::from(*sample)).copied())
-                    .unwrap_or([8, 8]);
-                let s = [
-                    f64::from(f.x) + f64::from(u) / 16.0,
-                    f64::from(f.y) + f64::from(v) / 16.0,
-                ];
-                if let Some(b) = as_triangles
-                    .as_ref()
-                    .and_then(|d| unclipped_screen_weights(d, f.primitive, s))
-                {
-                    f.screen_barycentric = Some(b);
-                }
-            }
-        }
-        Ok(fragments)
-    }
-
-    fn resolve_primitives(&mut self, draw: &PrimitiveDraw) -> Result<SampleResolved, DrawError> {
-        self.inner.resolve_primitives(draw)
+/// How far `(z, w)` lies inside the near plane of `range`'s clip volume (`z ≥ 0` or `z ≥ −w`).
+fn near_distance(range: DepthRange, z: f64, w: f64) -> f64 {
+    match range {
+        DepthRange::ZeroToOne => z,
+        DepthRange::NegativeOneToOne => z + w,
     }
 }
 
 /// The projected vertices of `draw`'s triangle `t`, in pixels, with their `w`; `None` for an
 /// index out of range or a vertex at `w = 0` or not finite.
 fn projected(draw: &Draw, t: u32) -> Option<[([f64; 2], [f64; 4]); 3]> {
-    let tri = draw.triangles.get(t as usize)?;
-    let (w, h) = (draw.viewport.width(), draw.viewport.height());
+    let tri = draw.triangles().get(t as usize)?;
     let mut out = [([0.0; 2], [0.0; 4]); 3];
     for (k, &i) in tri.iter().enumerate() {
         let p = draw.positions.get(i as usize)?.map(f64::from);
         if p[3] == 0.0 || !p.iter().all(|c| c.is_finite()) {
             return None;
         }
-        out[k] = (project(w, h, p), p);
+        out[k] = (project(draw.viewport, p), p);
     }
     Some(out)
 }
@@ -261,18 +245,8 @@ fn screen_depth(draw: &Draw, t: u32, s: [f64; 2]) -> Option<f64> {
         return None;
     }
     let b = plane_weights(v.map(|(q, _)| q), s)?;
-    let z = v.map(|(_, p)| window_depth(draw.state.depth_range, p[2] / p[3]));
+    let z = v.map(|(_, p)| draw.state.depth_range.window_depth(p[2], p[3]));
     Some(b[0] * z[0] + b[1] * z[1] + b[2] * z[2])
-}
-
-/// `draw`'s triangles as a one-sample draw, whatever its sample count (for their geometry).
-fn triangles_of(draw: &PrimitiveDraw) -> Option<Draw> {
-    (draw.topology == Topology::TriangleList).then(|| Draw {
-        viewport: draw.viewport,
-        positions: draw.positions.clone(),
-        triangles: draw.indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
-        state: draw.state,
-    })
 }
 
 /// Every shaped rasterizer, as `shaped:NAME`.

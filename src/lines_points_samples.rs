@@ -25,7 +25,7 @@ use crate::error::DrawError;
 use crate::fixed::FixedPoint;
 use crate::front::{FrontSetup, front_end};
 use crate::interp::interpolate;
-use crate::primitive::{PointClipping, PrimitiveDraw, SampleFragment, SamplePattern, Topology};
+use crate::primitive::{PointClipping, SamplePattern, Topology};
 use crate::project::{RasterVertex, ViewportTransform};
 use crate::reference::{DrawStats, Reference, Sample, Scratch};
 use crate::segment;
@@ -39,13 +39,13 @@ impl Reference {
     /// to `emit` in primitive order; stats count primitives for `triangles`.
     ///
     /// A triangle list at one sample draws exactly as [`Reference::draw`]. `Err` for a draw that
-    /// [`PrimitiveDraw::validate`] refuses, a pattern of another count than the draw's, or
+    /// [`Draw::validate`] refuses, a pattern of another count than the draw's, or
     /// sample positions off this reference's grid (fewer than 4 subpixel bits).
-    pub fn draw_primitives(
+    pub fn draw_with_pattern(
         &self,
-        draw: &PrimitiveDraw,
+        draw: &Draw,
         pattern: &SamplePattern,
-        mut emit: impl FnMut(SampleFragment),
+        mut emit: impl FnMut(Fragment),
     ) -> Result<DrawStats, DrawError> {
         draw.validate()?;
         if pattern.count() != draw.samples {
@@ -57,12 +57,8 @@ impl Reference {
         }
         let offsets = self.offsets(pattern)?;
         match draw.topology {
-            Topology::TriangleList => match draw.as_triangle_draw() {
-                Some(triangles) => self.draw(&triangles, |fragment| {
-                    emit(SampleFragment { fragment, sample: 0 })
-                }),
-                None => self.draw_triangles_at(draw, &offsets, emit),
-            },
+            Topology::TriangleList if draw.samples == 1 => self.draw_samples(draw, |s| emit(s.fragment())),
+            Topology::TriangleList => self.draw_triangles_at(draw, &offsets, emit),
             Topology::LineList | Topology::LineStrip => Ok(self.draw_lines(draw, &offsets, emit)),
             Topology::PointList => Ok(self.draw_points(draw, &offsets, emit)),
         }
@@ -89,7 +85,7 @@ impl Reference {
             .collect()
     }
 
-    fn transform(&self, draw: &PrimitiveDraw) -> ViewportTransform {
+    fn transform(&self, draw: &Draw) -> ViewportTransform {
         ViewportTransform {
             viewport: draw.viewport,
             bits: self.config().subpixel_bits,
@@ -101,30 +97,24 @@ impl Reference {
     /// Triangles at several samples: each sample is the centre of the polygon moved by `½ − oₖ`.
     fn draw_triangles_at(
         &self,
-        draw: &PrimitiveDraw,
+        draw: &Draw,
         offsets: &Offsets,
-        mut emit: impl FnMut(SampleFragment),
+        mut emit: impl FnMut(Fragment),
     ) -> Result<DrawStats, DrawError> {
-        let triangles = Draw {
-            viewport: draw.viewport,
-            positions: draw.positions.clone(),
-            triangles: draw.indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
-            state: draw.state,
-        };
         // Every sample is tested: a triangle holding no pixel centre may still hold other samples.
         let config = crate::ReferenceConfig {
             traversal: Traversal::Viewport,
             ..self.config()
         };
-        let setup = FrontSetup::new(&triangles, config);
+        let setup = FrontSetup::new(draw, config);
         let (bits, half) = (config.subpixel_bits, config.subpixel_bits.one() / 2);
         let mut scratch = Scratch::default();
         let (mut moved, mut fan) = (Vec::new(), Vec::new());
         let mut stats = DrawStats {
-            triangles: triangles.triangles.len(),
+            triangles: draw.triangles().len(),
             ..DrawStats::default()
         };
-        for primitive in 0..triangles.triangles.len() {
+        for primitive in 0..draw.triangles().len() {
             let kept = match front_end(&setup, primitive, setup.corners(primitive), &mut scratch.front) {
                 Ok(kept) => kept,
                 Err(discard) => {
@@ -154,11 +144,9 @@ impl Reference {
                 };
                 traverse(&fan, kept.winding, rect, bits, &mut scratch.row, |hit| {
                     stats.fragments += 1;
-                    let fragment =
-                        Sample::new(primitive as u32, kept.front_facing, hit, &fan, &moved).fragment();
-                    emit(SampleFragment {
-                        fragment,
+                    emit(Fragment {
                         sample: k as u8,
+                        ..Sample::new(primitive as u32, kept.front_facing, hit, &fan, &moved).fragment()
                     });
                 });
             }
@@ -167,12 +155,7 @@ impl Reference {
     }
 
     /// Line lists and strips: clip, project and snap each segment, cover it by the line rule.
-    fn draw_lines(
-        &self,
-        draw: &PrimitiveDraw,
-        offsets: &Offsets,
-        mut emit: impl FnMut(SampleFragment),
-    ) -> DrawStats {
+    fn draw_lines(&self, draw: &Draw, offsets: &Offsets, mut emit: impl FnMut(Fragment)) -> DrawStats {
         let transform = self.transform(draw);
         let planes = clip_planes(
             self.config().clip,
@@ -218,11 +201,11 @@ impl Reference {
     /// The samples of one snapped segment under the line rule; the number covered.
     fn cover_segment(
         &self,
-        draw: &PrimitiveDraw,
+        draw: &Draw,
         primitive: u32,
         [va, vb]: [RasterVertex; 2],
         offsets: &Offsets,
-        emit: &mut impl FnMut(SampleFragment),
+        emit: &mut impl FnMut(Fragment),
     ) -> usize {
         let config = self.config();
         let one = config.subpixel_bits.one();
@@ -240,17 +223,15 @@ impl Reference {
             let t = (((s.x - a.x) as f64 * dx + (s.y - a.y) as f64 * dy) / length2).clamp(0.0, 1.0);
             let b = interpolate([&va.varyings, &vb.varyings], [1.0 - t, t]);
             covered += 1;
-            emit(SampleFragment {
-                fragment: Fragment {
-                    x: x as u32,
-                    y: y as u32,
-                    primitive,
-                    depth: fragment_depth(va.varyings.depth + (vb.varyings.depth - va.varyings.depth) * t),
-                    barycentric: b.perspective.as_vec3().to_array(),
-                    screen_barycentric: b.screen.map(|s| s.as_vec3().to_array()),
-                    front_facing: true,
-                },
+            emit(Fragment {
+                x: x as u32,
+                y: y as u32,
                 sample: sample as u8,
+                primitive,
+                depth: fragment_depth(va.varyings.depth + (vb.varyings.depth - va.varyings.depth) * t),
+                barycentric: b.perspective.as_vec3().to_array(),
+                screen_barycentric: b.screen.map(|s| s.as_vec3().to_array()),
+                front_facing: true,
             });
         };
         segment::candidates(a, b, one, |x, y| {
@@ -281,12 +262,7 @@ impl Reference {
     }
 
     /// Point lists: keep the points inside the view volume, cover the square around each.
-    fn draw_points(
-        &self,
-        draw: &PrimitiveDraw,
-        offsets: &Offsets,
-        mut emit: impl FnMut(SampleFragment),
-    ) -> DrawStats {
+    fn draw_points(&self, draw: &Draw, offsets: &Offsets, mut emit: impl FnMut(Fragment)) -> DrawStats {
         let transform = self.transform(draw);
         let config = self.config();
         let mut planes = clip_planes(
@@ -336,17 +312,15 @@ impl Reference {
                             continue;
                         }
                         stats.fragments += 1;
-                        emit(SampleFragment {
-                            fragment: Fragment {
-                                x: x as u32,
-                                y: y as u32,
-                                primitive: i as u32,
-                                depth: fragment_depth(point.depth),
-                                barycentric: [1.0, 0.0, 0.0],
-                                screen_barycentric: Some([1.0, 0.0, 0.0]),
-                                front_facing: true,
-                            },
+                        emit(Fragment {
+                            x: x as u32,
+                            y: y as u32,
                             sample: k as u8,
+                            primitive: i as u32,
+                            depth: fragment_depth(point.depth),
+                            barycentric: [1.0, 0.0, 0.0],
+                            screen_barycentric: Some([1.0, 0.0, 0.0]),
+                            front_facing: true,
                         });
                     }
                 }

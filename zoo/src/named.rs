@@ -1,10 +1,7 @@
 //! The reference under another name and configuration, for runners and tests that set several
 //! side by side.
 
-use refrast::{
-    Draw, DrawError, Fragment, PrimitiveDraw, PrimitiveProfile, Profile, Rasterizer, Reference,
-    ReferenceConfig, Resolved, SampleFragment, SampleResolved,
-};
+use refrast::{Draw, DrawError, Fragment, Profile, Rasterizer, Reference, ReferenceConfig, Resolved};
 
 /// The reference under another name and configuration.
 #[derive(Clone, Debug)]
@@ -38,17 +35,5 @@ impl Rasterizer for Named {
 
     fn resolve(&mut self, draw: &Draw) -> Result<Resolved, DrawError> {
         self.inner.resolve(draw)
-    }
-
-    fn primitive_profile(&self) -> PrimitiveProfile {
-        self.inner.primitive_profile()
-    }
-
-    fn rasterize_primitives(&mut self, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> {
-        self.inner.rasterize_primitives(draw)
-    }
-
-    fn resolve_primitives(&mut self, draw: &PrimitiveDraw) -> Result<SampleResolved, DrawError> {
-        self.inner.resolve_primitives(draw)
     }
 }

@@ -7,8 +7,7 @@
 
 use refrast::{
     ClipMode, CompareOp, CullMode, DepthRange, Draw, DrawError, Features, Fragment, FrontFace, PointClipping,
-    PrimitiveDraw, PrimitiveProfile, Profile, Rasterizer, Reference, ReferenceConfig, Resolved,
-    SampleFragment, SampleResolved, SnapAccuracy, SnapRounding, Spec, Supported,
+    Profile, Rasterizer, Reference, ReferenceConfig, Resolved, SnapAccuracy, SnapRounding, Spec, Supported,
 };
 
 /// The reference under a restricted profile.
@@ -61,6 +60,7 @@ impl Rasterizer for Restricted {
     }
 
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+        // The reference's lines, points and samples: the restrictions are of triangle states.
         let mut fragments = self.inner.rasterize(&self.forced(draw))?;
         // What it does not declare, it does not compute: garbage the suite must ignore.
         for f in &mut fragments {
@@ -81,43 +81,6 @@ impl Rasterizer for Restricted {
         } else {
             // No depth test of its own: the trait's replay of its fragments.
             Ok(Resolved::from_fragments(&forced, self.rasterize(draw)?))
-        }
-    }
-
-    /// The reference's lines, points and samples: the restrictions are of triangle states.
-    fn primitive_profile(&self) -> PrimitiveProfile {
-        self.inner.primitive_profile()
-    }
-
-    fn rasterize_primitives(&mut self, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> {
-        let forced = PrimitiveDraw {
-            state: self.profile().fit(draw.state),
-            ..draw.clone()
-        };
-        let mut fragments = self.inner.rasterize_primitives(&forced)?;
-        for SampleFragment { fragment: f, .. } in &mut fragments {
-            if !self.features.perspective_barycentrics {
-                f.barycentric = [f32::NAN; 3];
-            }
-            if !self.features.screen_barycentrics {
-                f.screen_barycentric = None;
-            }
-        }
-        Ok(fragments)
-    }
-
-    fn resolve_primitives(&mut self, draw: &PrimitiveDraw) -> Result<SampleResolved, DrawError> {
-        let forced = PrimitiveDraw {
-            state: self.profile().fit(draw.state),
-            ..draw.clone()
-        };
-        if self.features.depth_test {
-            self.inner.resolve_primitives(&forced)
-        } else {
-            Ok(SampleResolved::from_fragments(
-                &forced,
-                self.rasterize_primitives(draw)?,
-            ))
         }
     }
 }
@@ -472,7 +435,7 @@ mod tests {
         assert_eq!(draw.state.cull, CullMode::None);
         assert!(r.rasterize(&draw).expect("draws").is_empty());
         let mut reversed = draw.clone();
-        reversed.triangles = vec![[2, 1, 0]];
+        reversed.indices = vec![2, 1, 0];
         assert_eq!(r.rasterize(&reversed).expect("draws").len(), 120);
     }
 }

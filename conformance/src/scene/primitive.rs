@@ -3,9 +3,9 @@
 
 use std::fmt;
 
-use refrast::{PrimitiveDraw, Topology};
+use refrast::{Draw, Topology};
 
-use crate::scene::{Case, CaseData, DrawData, Scene};
+use super::{Case, CaseData, DrawData, Scene};
 
 /// A scene drawn as `topology` at `samples` samples per pixel.
 ///
@@ -68,8 +68,8 @@ impl PrimitiveScene {
     /// # Panics
     /// When the viewport is out of range; strategies only build valid sizes.
     #[must_use]
-    pub fn draw(&self) -> PrimitiveDraw {
-        PrimitiveDraw {
+    pub fn draw(&self) -> Draw {
+        Draw {
             viewport: self.scene.viewport().expect("strategies build valid viewports"),
             positions: self.scene.positions.clone(),
             topology: self.topology,
@@ -109,39 +109,6 @@ impl PrimitiveScene {
             topology: Topology::LineList,
             indices,
             ..self.clone()
-        }
-    }
-
-    /// The outlines the picture draws: each segment, or each point's square, in pixels.
-    #[must_use]
-    pub fn outlines(&self) -> Vec<Vec<[f64; 2]>> {
-        let (w, h) = (self.scene.width, self.scene.height);
-        let raster = |p: [f32; 4]| {
-            let p = p.map(f64::from);
-            crate::oracle::raster::project(w, h, p)
-        };
-        match self.topology {
-            Topology::TriangleList => crate::picture::scene_outlines(&self.scene),
-            Topology::LineList | Topology::LineStrip => (0..self.primitive_count())
-                .filter_map(|i| self.segment(i))
-                .filter(|ends| ends.iter().all(|p| p[3] > 0.0))
-                .map(|ends| ends.map(raster).to_vec())
-                .collect(),
-            Topology::PointList => self
-                .indices
-                .iter()
-                .map(|&i| self.scene.positions[i as usize])
-                .filter(|p| p[3] > 0.0)
-                .map(|p| {
-                    let [x, y] = raster(p);
-                    vec![
-                        [x - 0.5, y - 0.5],
-                        [x + 0.5, y - 0.5],
-                        [x + 0.5, y + 0.5],
-                        [x - 0.5, y + 0.5],
-                    ]
-                })
-                .collect(),
         }
     }
 }

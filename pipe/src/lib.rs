@@ -3,11 +3,25 @@
 //! suite does to a Rust implementation (`certify`, `run_as_tests`, the fuzz targets) it does to
 //! a Python or C++ program.
 //!
+//! | module | what |
+//! |---|---|
+//! | this one | [`Process`]: the child started, its handshake read, each draw sent and answered; [`Misbehaviour`] read back from an error |
+//! | [`wire`] | the protocol's words and records: requests, the profile a child declares, fragments |
+//! | `reply` | one reply read under a deadline, every breach of the protocol named |
+//! | `pipe` | the child's stdout, stdin and stderr without blocking: [`for_each_line`], [`Tail`] |
+//! | [`contain`] | every child in a process group of its own, under a memory limit |
+//!
+//! It depends on `refrast` alone, as every implementation does; the suite uses its words (its
+//! reports name the wire's keys) and its containment (a rule's own child process).
+//!
 //! The child is started once and reused. A child that crashes, hangs past the per-draw timeout,
 //! answers garbage, a wrong count or a fragment outside the viewport fails the draw with
 //! [`DrawError::Misbehaved`], whose message says which, with the end of its stderr; it is then
 //! killed and started afresh for the next draw. Nothing it does can panic or hang refrast.
 
+#![forbid(unsafe_code)]
+
+pub mod contain;
 mod pipe;
 mod reply;
 pub mod wire;
@@ -16,10 +30,7 @@ use std::fmt;
 use std::process::{Command, ExitStatus, Stdio};
 use std::time::{Duration, Instant};
 
-use refrast::{
-    Draw, DrawError, Fragment, PrimitiveDraw, PrimitiveProfile, Profile, Rasterizer, Resolved,
-    SampleFragment, SampleResolved,
-};
+use refrast::{Draw, DrawError, Fragment, Profile, Rasterizer, Resolved};
 
 use crate::contain::{Contained, DEFAULT_MEMORY_LIMIT, memory_note};
 
@@ -184,7 +195,7 @@ impl Process {
         })
     }
 
-    /// Like [`Process::try_spawn`], but never fails, for [`crate::run_as_tests`]: a child that
+    /// Like [`Process::try_spawn`], but never fails, for the suite's `run_as_tests`: a child that
     /// cannot start gives a rasterizer with the default profile whose every draw fails with
     /// the reason, so each rule says it.
     #[must_use]
@@ -232,7 +243,7 @@ impl Process {
     }
 
     /// Sends one request and reads its reply; a breach kills the child, to be restarted.
-    fn exchange(&mut self, op: Op, draw: &PrimitiveDraw) -> Result<Reply, DrawError> {
+    fn exchange(&mut self, op: Op, draw: &Draw) -> Result<Reply, DrawError> {
         if let Some(why) = &self.start_error {
             return Err(DrawError::Misbehaved(why.clone()));
         }
@@ -328,27 +339,9 @@ impl Rasterizer for Process {
         }
     }
 
-    fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
-        let fragments = self.rasterize_primitives(&PrimitiveDraw::of_triangles(draw, 1))?;
-        Ok(fragments.into_iter().map(|f| f.fragment).collect())
-    }
-
-    fn resolve(&mut self, draw: &Draw) -> Result<Resolved, DrawError> {
-        let resolved = self.resolve_primitives(&PrimitiveDraw::of_triangles(draw, 1))?;
-        Ok(Resolved {
-            viewport: resolved.viewport,
-            depth: resolved.depth,
-            primitive: resolved.primitive,
-        })
-    }
-
-    fn primitive_profile(&self) -> PrimitiveProfile {
-        self.declared.primitive_profile()
-    }
-
     /// A draw the child does not declare is refused here, without asking it.
-    fn rasterize_primitives(&mut self, draw: &PrimitiveDraw) -> Result<Vec<SampleFragment>, DrawError> {
-        if !self.primitive_profile().supports(draw.topology, draw.samples) {
+    fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+        if !self.declared.profile.draws(draw.topology, draw.samples) {
             return Err(DrawError::Unsupported(format!(
                 "{} (the child does not declare it)",
                 draw.describe()
@@ -361,12 +354,14 @@ impl Rasterizer for Process {
         }
     }
 
-    fn resolve_primitives(&mut self, draw: &PrimitiveDraw) -> Result<SampleResolved, DrawError> {
+    /// A draw the child does not declare is refused here, without asking it; a child with no
+    /// depth test of its own has its fragments replayed.
+    fn resolve(&mut self, draw: &Draw) -> Result<Resolved, DrawError> {
         if !self.declared.profile.features.depth_test {
-            let fragments = self.rasterize_primitives(draw)?;
-            return Ok(SampleResolved::from_fragments(draw, fragments));
+            let fragments = self.rasterize(draw)?;
+            return Ok(Resolved::from_fragments(draw, fragments));
         }
-        if !self.primitive_profile().supports(draw.topology, draw.samples) {
+        if !self.declared.profile.draws(draw.topology, draw.samples) {
             return Err(DrawError::Unsupported(format!(
                 "{} (the child does not declare it)",
                 draw.describe()

@@ -32,15 +32,35 @@ pub const DEFAULT_MEMORY_LIMIT: u64 = 4 << 30;
 const IN_GROUP: &str = "REFRAST_IN_PROCESS_GROUP";
 
 /// The process groups this process's children lead and that have not been ended yet, for
-/// [`end_all`].
-static LEADERS: Mutex<BTreeSet<u32>> = Mutex::new(BTreeSet::new());
+/// [`end_all`], and whether it has run (no child starts after it).
+static LEADERS: Mutex<Leaders> = Mutex::new(Leaders {
+    groups: BTreeSet::new(),
+    ending: false,
+});
+
+/// The groups to end on an interrupt.
+#[derive(Debug)]
+struct Leaders {
+    /// The process groups children lead.
+    groups: BTreeSet<u32>,
+    /// Set by [`end_all`]: the process is ending, and starts no more children.
+    ending: bool,
+}
 
 /// Kills every process group a child of this process leads: for an interrupt (Ctrl-C, `SIGTERM`)
 /// of refrast, which the terminal delivers to refrast's own group only, so that no child, nor
-/// anything it started, outlives refrast.
+/// anything it started, outlives refrast. It holds the list while it kills, and a child is
+/// started and listed under the same lock ([`Contained::spawn`]), so a child started just
+/// before is ended too and none starts after.
 pub fn end_all() {
-    let leaders = LEADERS.lock().map(|l| l.clone()).unwrap_or_default();
-    for pid in leaders {
+    end_listed(&LEADERS);
+}
+
+/// [`end_all`] on the groups of `list`.
+fn end_listed(list: &Mutex<Leaders>) {
+    let mut leaders = list.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    leaders.ending = true;
+    for &pid in &leaders.groups {
         kill_group(pid);
     }
 }
@@ -62,6 +82,8 @@ pub struct Contained {
     pub child: Child,
     /// Whether it leads a process group of its own (so that ending it ends the group).
     leads: bool,
+    /// The list its group is on while it leads one ([`LEADERS`] but in tests).
+    listed_in: &'static Mutex<Leaders>,
     /// Its exit, once seen.
     status: Option<ExitStatus>,
 }
@@ -70,6 +92,15 @@ impl Contained {
     /// Starts `command` in a group of its own (or in refrast's, see the module), limited to
     /// `memory` bytes (`None`: no limit).
     pub fn spawn(command: &mut Command, memory: Option<u64>) -> io::Result<Self> {
+        Self::spawn_listed(command, memory, &LEADERS)
+    }
+
+    /// [`Contained::spawn`], its group listed in `list`.
+    fn spawn_listed(
+        command: &mut Command,
+        memory: Option<u64>,
+        list: &'static Mutex<Leaders>,
+    ) -> io::Result<Self> {
         let leads = std::env::var_os(IN_GROUP).is_none();
         command.env(IN_GROUP, "1");
         #[cfg(unix)]
@@ -77,16 +108,26 @@ impl Contained {
             use std::os::unix::process::CommandExt;
             command.process_group(0);
         }
-        let child = command.spawn()?;
-        if leads && let Ok(mut leaders) = LEADERS.lock() {
-            leaders.insert(child.id());
-        }
+        // Started and listed at once, under the lock `end_all` takes: an interrupt between the
+        // two would miss the child.
+        let child = {
+            let mut leaders = list.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+            if leaders.ending {
+                return Err(io::Error::other("refrast is ending: no child starts now"));
+            }
+            let child = command.spawn()?;
+            if leads {
+                leaders.groups.insert(child.id());
+            }
+            child
+        };
         if let Some(bytes) = memory {
             limit_memory(&child, bytes);
         }
         Ok(Self {
             child,
             leads,
+            listed_in: list,
             status: None,
         })
     }
@@ -129,8 +170,8 @@ impl Contained {
     fn kill_group(&self) {
         if self.leads {
             kill_group(self.child.id());
-            if let Ok(mut leaders) = LEADERS.lock() {
-                leaders.remove(&self.child.id());
+            if let Ok(mut leaders) = self.listed_in.lock() {
+                leaders.groups.remove(&self.child.id());
             }
         }
     }
@@ -179,5 +220,35 @@ pub fn memory_note(stderr: &str, limit: Option<u64>) -> String {
             bytes >> 20
         ),
         _ => String::new(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A child started and listed ends with `end_all`, and none starts after it: an interrupt
+    /// that came between a child's start and its listing once let it outlive refrast.
+    #[test]
+    fn ending_all_ends_the_listed_and_starts_none() {
+        let list: &'static Mutex<Leaders> = Box::leak(Box::new(Mutex::new(Leaders {
+            groups: BTreeSet::new(),
+            ending: false,
+        })));
+        let mut sleeper =
+            Contained::spawn_listed(Command::new("sleep").arg("30"), None, list).expect("sleep starts");
+        assert!(
+            list.lock()
+                .expect("the list")
+                .groups
+                .contains(&sleeper.child.id())
+        );
+        end_listed(list);
+        assert!(
+            sleeper.wait_for(Duration::from_secs(5)).is_some(),
+            "the listed child was killed"
+        );
+        let refused = Contained::spawn_listed(Command::new("sleep").arg("30"), None, list);
+        assert!(refused.is_err_and(|e| e.to_string().contains("ending")));
     }
 }

@@ -1,6 +1,8 @@
 //! The hand-checked findings of docs/certified.md (lavapipe, llvmpipe, softpipe), each as the
 //! driver does it today.
 
+use std::panic::{AssertUnwindSafe, catch_unwind};
+
 use refrast::{Draw, Fragment, FrontFace, Rasterizer, Reference, Viewport};
 use refrast_wgpu::{Driver, Gpu};
 
@@ -26,10 +28,79 @@ pub fn at(frags: &[Fragment], x: u32, y: u32) -> Vec<Fragment> {
     frags.iter().filter(|f| (f.x, f.y) == (x, y)).copied().collect()
 }
 
-/// Each finding of docs/certified.md for driver `d`, as the driver does it today.
+/// A driver's fragments for a draw.
+type Run<'a> = dyn FnMut(&Draw) -> Vec<Fragment> + 'a;
+
+/// One hand-checked finding: what it is, and its check, which panics with what moved.
+type Finding = (&'static str, fn(Driver, &mut Run<'_>));
+
+/// The findings every driver is checked for.
+const EVERY_DRIVER: [Finding; 5] = [
+    ("facing follows the front face", facing),
+    ("fragments of extreme inputs", extreme_inputs),
+    (
+        "screen weights of a clipped triangle of equal w",
+        equal_w_screen_weights,
+    ),
+    ("NaN screen weights beside the near cut", nan_beside_the_near_cut),
+    (
+        "NaN screen weights at a corner of the view volume",
+        nan_at_a_view_volume_corner,
+    ),
+];
+
+/// The findings of lavapipe and llvmpipe, which snap to a grid.
+const ON_A_GRID: [Finding; 5] = [
+    ("a tie on an edge leaving the viewport", tie_leaving_the_viewport),
+    ("a sliver's weight on its vertex", sliver_weight_on_its_vertex),
+    ("the wedge's extrapolated depth", wedge_depth),
+    ("a vertex at w = +∞", infinite_w),
+    ("a snap tie rounded to even", snap_tie_to_even),
+];
+
+/// softpipe's own findings: float edges on no grid.
+const SOFTPIPE: [Finding; 4] = [
+    ("a shared edge's sample covered twice", softpipe_shared_edge_twice),
+    ("a vertex sample as top-right keeps it", softpipe_vertex_sample),
+    ("a flat triangle weighted nothing", softpipe_flat_triangle),
+    ("non-finite weights across w = 0", softpipe_across_w_zero),
+];
+
+/// Each finding of docs/certified.md for driver `d`, as the driver does it today: every one is
+/// checked, and those that moved are named together.
 pub fn findings(d: Driver, gpu: &mut Gpu) {
     let mut run = |draw: &Draw| gpu.rasterize(draw).expect("the driver draws");
+    let own: &[Finding] = if d == Driver::Softpipe {
+        &SOFTPIPE
+    } else {
+        &ON_A_GRID
+    };
+    let all: Vec<&Finding> = EVERY_DRIVER.iter().chain(own).collect();
+    let moved: Vec<String> = all
+        .iter()
+        .filter_map(|&&(what, check)| {
+            let panicked = catch_unwind(AssertUnwindSafe(|| check(d, &mut run))).err()?;
+            let why = panicked
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| panicked.downcast_ref::<&str>().map(|s| (*s).to_owned()))
+                .unwrap_or_default();
+            Some(format!("{what}: {why}"))
+        })
+        .collect();
+    assert!(
+        moved.is_empty(),
+        "{}: {} of {} hand-checked findings moved:\n{}",
+        d.name(),
+        moved.len(),
+        all.len(),
+        moved.join("\n")
+    );
+    println!("{}: every hand-checked finding holds ({})", d.name(), all.len());
+}
 
+/// The front face as seen on screen: counter-clockwise there is front-facing.
+fn facing(d: Driver, run: &mut Run<'_>) {
     // The front face as seen on screen (y down): counter-clockwise there is front-facing.
     let mut ccw = draw(
         8,
@@ -50,7 +121,10 @@ pub fn findings(d: Driver, gpu: &mut Gpu) {
             d.name()
         );
     }
+}
 
+/// Fragments outside the framebuffer, with NaN screen weights, from extreme inputs.
+fn extreme_inputs(d: Driver, run: &mut Run<'_>) {
     // Outside-the-framebuffer fragments from extreme inputs (w = 0, a subnormal w, 10³³).
     let extreme = draw(
         2,
@@ -73,7 +147,26 @@ pub fn findings(d: Driver, gpu: &mut Gpu) {
         d.name(),
         frags.len()
     );
+    if d == Driver::Softpipe {
+        return;
+    }
+    assert_eq!(
+        (frags.len(), outside),
+        (12, 10),
+        "{}: fragments outside the framebuffer",
+        d.name()
+    );
+    assert!(
+        frags
+            .iter()
+            .all(|f| f.screen_barycentric.is_some_and(|b| b.iter().all(|w| w.is_nan()))),
+        "{}: NaN screen-space weights",
+        d.name()
+    );
+}
 
+/// Screen weights beside a near cut made after an x cut, all w equal.
+fn equal_w_screen_weights(d: Driver, run: &mut Run<'_>) {
     // Screen-space weights on a triangle clipped by x = w and then the near plane, all w equal
     // (so they must equal the perspective weights): Mesa's draw clipper (`draw_pipe_clip.c`,
     // `interp()`) takes a noperspective output's t from the first axis whose clip coordinates
@@ -107,7 +200,10 @@ pub fn findings(d: Driver, gpu: &mut Gpu) {
         "{}: clipped screen weights",
         d.name()
     );
+}
 
+/// Both ends of a cut at x = 1 exactly, different w: NaN screen weights beside it.
+fn nan_beside_the_near_cut(d: Driver, run: &mut Run<'_>) {
     // The same choice of axis, when both ends of the cut project to x = 1 exactly but differ in
     // w: t = 0/0, and every screen weight of the fragments beside that cut is NaN.
     let nan = draw(
@@ -131,7 +227,10 @@ pub fn findings(d: Driver, gpu: &mut Gpu) {
         "{}: NaN screen weights beside the near cut",
         d.name()
     );
+}
 
+/// The same 0/0 at a corner of the view volume, along a diagonal.
+fn nan_at_a_view_volume_corner(d: Driver, run: &mut Run<'_>) {
     // The same 0/0 at a corner of the view volume (`bary.sum.one` at case 5): vertex 1 lies
     // beyond x = w and y = −w, both w = 0.1. Clipping at x = w leaves an edge with both ends on
     // x = w (w 0.1 and 0.1074); clipping that edge at y = −w takes t from x, where both ends
@@ -162,25 +261,10 @@ pub fn findings(d: Driver, gpu: &mut Gpu) {
         "{}: NaN screen weights along the diagonal",
         d.name()
     );
+}
 
-    if d == Driver::Softpipe {
-        softpipe(&mut run);
-        return;
-    }
-    assert_eq!(
-        (frags.len(), outside),
-        (12, 10),
-        "{}: fragments outside the framebuffer",
-        d.name()
-    );
-    assert!(
-        frags
-            .iter()
-            .all(|f| f.screen_barycentric.is_some_and(|b| b.iter().all(|w| w.is_nan()))),
-        "{}: NaN screen-space weights",
-        d.name()
-    );
-
+/// A sample exactly on an edge leaving the viewport is covered, inside it is not.
+fn tie_leaving_the_viewport(d: Driver, run: &mut Run<'_>) {
     // A sample exactly on an edge leaving the viewport is covered; the same triangle moved
     // inside (8 px right and down, on a 64×64 target; pixel x / 32 − 1 in NDC) leaves it out,
     // as the top-left rule says.
@@ -216,7 +300,10 @@ pub fn findings(d: Driver, gpu: &mut Gpu) {
         d.name()
     );
     assert!(at(&expected(&leaving), 26, 2).is_empty() && at(&expected(&inside), 34, 10).is_empty());
+}
 
+/// A 0.008-px sliver with a 30:1 w ratio: its vertex sample's weight.
+fn sliver_weight_on_its_vertex(d: Driver, run: &mut Run<'_>) {
     // A 0.008-px sliver with a 30:1 w ratio: the sample on vertex 0 weighs 0.99744 there.
     let sliver = draw(
         32,
@@ -240,7 +327,10 @@ pub fn findings(d: Driver, gpu: &mut Gpu) {
         "{}: off by {off}",
         d.name()
     );
+}
 
+/// The extrapolated depth of a wedge from a vertex at w = 0.
+fn wedge_depth(d: Driver, run: &mut Run<'_>) {
     // `robust.bit-patterns.sane-output` at case 289 (2×33): vertex 0 at the centre (depth 0),
     // vertex 1 at w = 0 (a point at infinity, +x), vertex 2 behind the eye. The visible part is
     // a wedge below the row y = 16.5 whose left edge passes 0.001 px (a quarter of a 1/256-px
@@ -266,7 +356,10 @@ pub fn findings(d: Driver, gpu: &mut Gpu) {
         "{}: the wedge's extrapolated depth: {outside:?}",
         d.name()
     );
+}
 
+/// A vertex at w = +∞: lavapipe draws a fragment, llvmpipe none.
+fn infinite_w(d: Driver, run: &mut Run<'_>) {
     // w = +∞ at a vertex: lavapipe draws a fragment, llvmpipe through OpenGL ES draws none.
     let infinite = draw(
         16,
@@ -290,6 +383,10 @@ pub fn findings(d: Driver, gpu: &mut Gpu) {
         "{}: fragments of a triangle with w = ∞",
         d.name()
     );
+}
+
+/// A snap tie, rounded to even.
+fn snap_tie_to_even(d: Driver, run: &mut Run<'_>) {
     // A snap tie: vertex 0's x is (0.21508789 + 1) / 2 · 16 = 9.720703125 px = 2488.5 units,
     // exactly halfway. Rounded to even (2488) it covers what the reference covers, 55 pixels;
     // rounded up (`mutant:half-up-snap`) one more. So the profile claims `ties_to_even`.
@@ -317,11 +414,10 @@ pub fn findings(d: Driver, gpu: &mut Gpu) {
         "{}: a snap tie rounded to even",
         d.name()
     );
-    println!("{}: every hand-checked finding holds", d.name());
 }
 
-/// softpipe's findings.
-fn softpipe(run: &mut dyn FnMut(&Draw) -> Vec<Fragment>) {
+/// softpipe: a shared edge's midpoint covered by both triangles.
+fn softpipe_shared_edge_twice(_: Driver, run: &mut Run<'_>) {
     // Two triangles sharing the edge (32.5, 32.5)–(18.5, 50.5); its midpoint is the sample of
     // pixel (25, 41), covered by both.
     let fan = draw(
@@ -340,7 +436,21 @@ fn softpipe(run: &mut dyn FnMut(&Draw) -> Vec<Fragment>) {
         2,
         "softpipe: the shared-edge sample twice"
     );
+}
 
+/// softpipe: the sample on a vertex where two right edges meet.
+fn softpipe_vertex_sample(_: Driver, run: &mut Run<'_>) {
+    let fan = draw(
+        64,
+        64,
+        vec![
+            [0.015625, -0.015625, 0.5, 1.0],
+            [0.0, -0.1875, 0.5, 1.0],
+            [-0.421875, -0.578125, 0.5, 1.0],
+            [-0.046875, -0.015625, 0.5, 1.0],
+        ],
+        vec![[0, 1, 2], [0, 2, 3]],
+    );
     // The sample (12.5, 0.5) is vertex 1, where two right edges meet: softpipe covers it, as
     // top-right would; its float edges follow top-right on 259 of the probe's 262 tie samples,
     // not all, so it declares no tie rule (tests/measured.rs).
@@ -361,7 +471,10 @@ fn softpipe(run: &mut dyn FnMut(&Draw) -> Vec<Fragment>) {
         1,
         "exactly one triangle covers it"
     );
+}
 
+/// softpipe: a triangle flat on the reference's grid draws a pixel weighted nothing.
+fn softpipe_flat_triangle(_: Driver, run: &mut Run<'_>) {
     // All three vertices project to y = 4.5000004 to 4.5000005 (exact area 1.2·10⁻⁸ px²; on an
     // 8-bit grid zero, but softpipe snaps to no grid), and (24, 4), whose sample lies 4·10⁻⁷ px
     // outside the triangle, is drawn weighted 0, 0, 0: the weights sum to 0, not 1.
@@ -392,6 +505,10 @@ fn softpipe(run: &mut dyn FnMut(&Draw) -> Vec<Fragment>) {
         Some([2.0, 0.0, -2.0]),
         "softpipe: screen weights"
     );
+}
+
+/// softpipe: non-finite weights on triangles crossing w = 0, within 2³² too.
+fn softpipe_across_w_zero(_: Driver, run: &mut Run<'_>) {
     // A triangle crossing w = 0 (w = 0, −2·10⁻⁶, 27.7): (2, 10) is weighted (∞, NaN, ∞).
     let crossing = draw(
         3,
@@ -436,5 +553,4 @@ fn softpipe(run: &mut dyn FnMut(&Draw) -> Vec<Fragment>) {
         weights.len() == 1 && weights[0].barycentric.iter().all(|b| !b.is_finite()),
         "softpipe: non-finite weights at (4, 0) within range: {weights:?}"
     );
-    println!("softpipe: every hand-checked finding holds");
 }

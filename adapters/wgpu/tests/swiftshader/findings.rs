@@ -4,7 +4,9 @@
 //! one was also reproduced bit for bit by an f32 trace of SwiftShader's source (`VertexRoutine`,
 //! `Clipper`, `SetupRoutine`, `QuadRasterizer`, `PixelRoutine`).
 
-use refrast::{ClipMode, Rasterizer};
+use std::panic::{AssertUnwindSafe, catch_unwind};
+
+use refrast::{ClipMode, Draw, Fragment, Rasterizer};
 use refrast_wgpu::Gpu;
 
 use super::{apart, at, draw, exact_barycentrics, reference};
@@ -14,14 +16,72 @@ fn expected(d: &refrast::Draw) -> Vec<refrast::Fragment> {
     reference(4, ClipMode::Full, d)
 }
 
-pub fn swiftshader(gpu: &mut Gpu) {
-    let mut run = |d: &refrast::Draw| gpu.rasterize(d).expect("SwiftShader draws");
-    let pixels = |f: &[refrast::Fragment]| {
-        let mut p: Vec<(u32, u32)> = f.iter().map(|f| (f.x, f.y)).collect();
-        p.sort_unstable();
-        p
-    };
+/// SwiftShader's fragments for a draw.
+type Run<'a> = dyn FnMut(&Draw) -> Vec<Fragment> + 'a;
 
+/// A finding: what it is, and its check, which panics with what moved.
+type Finding = (&'static str, fn(&mut Run<'_>));
+
+/// Each finding, in docs/certified.md's order.
+const FINDINGS: [Finding; 10] = [
+    (
+        "a vertex at w = 0 whose winding comes out backwards draws nothing",
+        w_zero_winding_backwards,
+    ),
+    (
+        "a vertex at w = 0: the depth plane through its projection",
+        w_zero_depth_plane,
+    ),
+    ("a snap near a tie", snap_near_a_tie),
+    ("the same on depth", depth_near_snap_ties),
+    ("plane equations anchored far away", planes_anchored_far_away),
+    ("beyond a snapped near cut", beyond_a_snapped_near_cut),
+    ("a vertex at w = NaN", w_nan),
+    ("finite coordinates to 1.4e35", huge_coordinates),
+    ("a vertex at w = -FLT_MIN", w_minus_flt_min),
+    (
+        "a vertex behind the eye: screen weights",
+        behind_the_eye_screen_weights,
+    ),
+];
+
+/// The pixels of `f`, sorted.
+fn pixels(f: &[Fragment]) -> Vec<(u32, u32)> {
+    let mut p: Vec<(u32, u32)> = f.iter().map(|f| (f.x, f.y)).collect();
+    p.sort_unstable();
+    p
+}
+
+/// Every finding, each checked whatever the others do; those that moved are named together.
+pub fn swiftshader(gpu: &mut Gpu) {
+    let mut run = |d: &Draw| gpu.rasterize(d).expect("SwiftShader draws");
+    let moved: Vec<String> = FINDINGS
+        .iter()
+        .filter_map(|&(what, check)| {
+            let panicked = catch_unwind(AssertUnwindSafe(|| check(&mut run))).err()?;
+            let why = panicked
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| panicked.downcast_ref::<&str>().map(|s| (*s).to_owned()))
+                .unwrap_or_default();
+            Some(format!("{what}: {why}"))
+        })
+        .collect();
+    assert!(
+        moved.is_empty(),
+        "swiftshader: {} of {} hand-checked findings moved:\n{}",
+        moved.len(),
+        FINDINGS.len(),
+        moved.join("\n")
+    );
+    println!(
+        "swiftshader: every hand-checked finding holds ({})",
+        FINDINGS.len()
+    );
+}
+
+/// Finding 1 (docs/certified.md): a vertex at w = 0 whose winding comes out backwards draws nothing.
+fn w_zero_winding_backwards(run: &mut Run<'_>) {
     // 1. A vertex at w = 0 (a point at infinity, outside the view volume: y > w), the others
     // inside: the clipped polygon covers (2..=5, 0..=1). SwiftShader projects the w = 0 vertex
     // as if w were 1 (`VertexRoutine`), takes the winding from that projection
@@ -38,7 +98,10 @@ pub fn swiftshader(gpu: &mut Gpu) {
         "swiftshader: the w = 0 triangle draws nothing"
     );
     println!("swiftshader: a triangle with a vertex at w = 0 draws 0 of its 8 samples");
+}
 
+/// Finding 2 (docs/certified.md): a vertex at w = 0: the depth plane through its projection.
+fn w_zero_depth_plane(run: &mut Run<'_>) {
     // 2. The same kind of vertex where the winding comes out right: coverage is right, but every
     // vertex of the clipped polygon has depth 0.5, so every fragment must (a convex
     // combination). SwiftShader's depth plane runs through the input vertices' projections, the
@@ -78,7 +141,10 @@ pub fn swiftshader(gpu: &mut Gpu) {
         "swiftshader: the w = 0 strip: depth {} at (2, 0) (must be 0.5), weights (1, 0, 0) everywhere",
         corner.depth
     );
+}
 
+/// Finding 3 (docs/certified.md): a snap near a tie.
+fn snap_near_a_tie(run: &mut Run<'_>) {
     // 3. A snap near a tie (x/w computed as x·(1/w), scaled and offset in f32), which the
     // measured profile now declares (`SnapAccuracy::WithinOneStep`): vertex 0 is at
     // x = 2.84374982 px, 1.8·10⁻⁷ px below the tie between 2.8125 and 2.875; SwiftShader snaps it
@@ -100,7 +166,10 @@ pub fn swiftshader(gpu: &mut Gpu) {
     let want = at(&expected(&near_tie), 2, 0)[0].barycentric;
     assert!(apart(got, theirs) < 1e-5 && apart(want, ours) < 1e-5 && apart(got, ours) > 0.45);
     println!("swiftshader: a vertex 1.8e-7 px below a snap tie: weights {got:?}, the reference {want:?}");
+}
 
+/// Finding 4 (docs/certified.md): the same on depth.
+fn depth_near_snap_ties(run: &mut Run<'_>) {
     // 4. The same on depth: vertex 0's y is 4.21874994 px (tie 4.21875), vertex 2's x 0.84374991
     // px (tie 0.84375); SwiftShader snaps both up, and (0, 4) gets the depth of that triangle.
     let depth_tie = draw(
@@ -118,7 +187,10 @@ pub fn swiftshader(gpu: &mut Gpu) {
     );
     assert!((got - 0.163_874_75).abs() < 1e-6 && (want - 0.176_910_24).abs() < 1e-6);
     println!("swiftshader: two vertices just below snap ties: depth {got} at (0, 4), the reference {want}");
+}
 
+/// Finding 5 (docs/certified.md): plane equations anchored far away.
+fn planes_anchored_far_away(run: &mut Run<'_>) {
     // 5. f32 plane equations anchored at the vertex of largest w, here 158 000 px away (the
     // triangle is clipped; vertex 0 is behind the eye): at (0, 7) the weight of the far vertex
     // is -0.0041 (exact arithmetic on the same snapped vertices: +4.3e-5, as the reference).
@@ -184,7 +256,10 @@ pub fn swiftshader(gpu: &mut Gpu) {
     println!(
         "swiftshader: equal w, a vertex 166 000 px away: weights {g:?} at (0, 12), exact [0.497247, 0.000005, 0.502748]"
     );
+}
 
+/// Finding 6 (docs/certified.md): beyond a snapped near cut.
+fn beyond_a_snapped_near_cut(run: &mut Run<'_>) {
     // 6. Near a near-plane cut the clipped polygon is snapped on its own, while attributes and
     // depth come from the input triangle's plane: at (13, 6), inside the snapped polygon but
     // 0.02 px beyond the exact cut, SwiftShader extrapolates depth -0.0188 and weights
@@ -207,7 +282,10 @@ pub fn swiftshader(gpu: &mut Gpu) {
         "swiftshader: beyond a snapped near cut: depth {}, weights {:?} at (13, 6)",
         got[0].depth, got[0].barycentric
     );
+}
 
+/// Finding 7 (docs/certified.md): a vertex at w = NaN.
+fn w_nan(run: &mut Run<'_>) {
     // 7. w = NaN at one vertex (the other two span a segment): 10 fragments. Vulkan leaves NaN
     // input unspecified; SwiftShader tests x, y and z for finiteness, not w (`VertexRoutine`).
     let nan = draw(
@@ -224,7 +302,10 @@ pub fn swiftshader(gpu: &mut Gpu) {
         10,
         "swiftshader: fragments of a w = NaN triangle"
     );
+}
 
+/// Finding 8 (docs/certified.md): finite coordinates to 1.4e35.
+fn huge_coordinates(run: &mut Run<'_>) {
     // 8. Finite coordinates to 1.4·10³⁵: the clipper's products overflow to ∞ and NaN, and 5
     // fragments with NaN depth come out of a triangle whose visible part has no area (x = 0).
     let huge = draw(
@@ -238,7 +319,10 @@ pub fn swiftshader(gpu: &mut Gpu) {
     );
     let got = run(&huge);
     assert!(got.len() == 5 && got.iter().all(|f| f.depth.is_nan()) && expected(&huge).is_empty());
+}
 
+/// Finding 9 (docs/certified.md): a vertex at w = -FLT_MIN.
+fn w_minus_flt_min(run: &mut Run<'_>) {
     // 9. Finding 1's mechanism with w = −1.2·10⁻³⁸ (−FLT_MIN, a normal float) instead of 0
     // (`robust.bit-patterns.sane-output` at case 41 under the measured profile): the vertex is
     // projected with 1/w = −8.5·10³⁷, and the depth plane through the input vertices'
@@ -262,7 +346,10 @@ pub fn swiftshader(gpu: &mut Gpu) {
         "swiftshader: a vertex at w = -1.2e-38: depth {} at (0, 0)",
         got[0].depth
     );
+}
 
+/// Finding 10 (docs/certified.md): a vertex behind the eye: screen weights.
+fn behind_the_eye_screen_weights(run: &mut Run<'_>) {
     // 10. A vertex behind the eye (w = −0.1): the screen-space (`@interpolate(linear)`) planes
     // run through the input vertices' projections, as in finding 2, and at (8, 2) the weights are
     // (−1.72, 0.053, 2.67) (the f32 trace gives the same numbers). Not a violation: a triangle
@@ -287,5 +374,4 @@ pub fn swiftshader(gpu: &mut Gpu) {
         "swiftshader: screen weights with a vertex behind the eye: {f:?}"
     );
     println!("swiftshader: a vertex behind the eye: screen weights {screen:?} at (8, 2)");
-    println!("swiftshader: every hand-checked finding holds");
 }

@@ -209,24 +209,13 @@ pub fn run_rule_watched(
     options: &Options,
     on_case: &mut dyn FnMut(usize),
 ) -> ChildRun {
-    let started = Instant::now();
-    let mut profile: Option<Box<ProfileReport>> = None;
-    let failed = |status: Status,
-                  message: String,
-                  last_case: Option<String>,
-                  cases: usize,
-                  profile: &Option<Box<ProfileReport>>| {
-        let tolerance = profile.as_ref().map_or(1, |p| p.tolerance_subpixels.max(1));
-        let report = RuleReport {
-            status,
-            // Announced inputs include shrinking's, so this may count more than were generated.
-            cases: u32::try_from(cases).unwrap_or(u32::MAX),
-            message: Some(message),
-            counterexample: last_case,
-            seconds: started.elapsed().as_secs_f64(),
-            ..blank(rule, options, tolerance)
-        };
-        ChildRun::Ran(Box::new(report), profile.clone())
+    let mut watch = Watch {
+        rule,
+        options,
+        started: Instant::now(),
+        profile: None,
+        last_case: None,
+        cases_seen: 0,
     };
     let program = format!("{:?}", command.get_program());
     command
@@ -236,53 +225,28 @@ pub fn run_rule_watched(
     let mut child = match Contained::spawn(&mut command, options.memory_limit) {
         Ok(child) => child,
         Err(e) => {
-            return failed(
+            return watch.failed(
                 Status::Crash,
                 format!("could not start the rule's process {program}: {e}"),
-                None,
-                0,
-                &profile,
             );
         }
     };
     let stderr = child.child.stderr.take().map(collect_tail);
-    // Bounded: the parent takes lines as they come; a flood waits for it.
-    let (tx, rx) = mpsc::sync_channel(64);
-    if let Some(stdout) = child.child.stdout.take() {
-        thread::spawn(move || {
-            for_each_line(stdout, MAX_LINE, |line, cut| {
-                let line = String::from_utf8_lossy(line);
-                let parsed = match line.strip_prefix(MARK) {
-                    Some(_) if cut => {
-                        Line::Other(format!("(a protocol line longer than {MAX_LINE} bytes, cut)"))
-                    }
-                    Some(json) => match serde_json::from_str(json) {
-                        Ok(message) => Line::Message(message),
-                        Err(e) => Line::Other(format!("(a garbled protocol line: {e})")),
-                    },
-                    None => Line::Other(line.into_owned()),
-                };
-                tx.send(parsed).is_ok()
-            });
-            let _ = tx.send(Line::Closed);
-        });
-    }
-    let mut last_case = None;
-    let mut cases_seen = 0usize;
+    let rx = child.child.stdout.take().map(read_lines);
     let mut own_output = Tail::default();
     let mut last_word = Instant::now();
     loop {
-        let waited = last_word.elapsed();
-        let left = options.case_timeout.saturating_sub(waited);
-        match rx.recv_timeout(left) {
+        let left = options.case_timeout.saturating_sub(last_word.elapsed());
+        let line = rx.as_ref().map_or(Ok(Line::Closed), |rx| rx.recv_timeout(left));
+        match line {
             Ok(Line::Message(Message::Case(input))) => {
-                cases_seen += 1;
-                on_case(cases_seen);
-                last_case = Some(input);
+                watch.cases_seen += 1;
+                on_case(watch.cases_seen);
+                watch.last_case = Some(input);
                 last_word = Instant::now();
             }
             Ok(Line::Message(Message::Profile(reported))) => {
-                profile = Some(reported);
+                watch.profile = Some(reported);
                 last_word = Instant::now();
             }
             Ok(Line::Message(Message::Unavailable(why))) => {
@@ -291,45 +255,89 @@ pub fn run_rule_watched(
             }
             Ok(Line::Message(Message::Refused(why))) => {
                 finish(&mut child);
-                return ChildRun::Refused(why, profile);
+                return ChildRun::Refused(why, watch.profile);
             }
             Ok(Line::Message(Message::Report(report))) => {
                 finish(&mut child);
-                return ChildRun::Ran(report, profile);
+                return ChildRun::Ran(report, watch.profile);
             }
             Ok(Line::Other(line)) => own_output.push(&line),
             Ok(Line::Closed) | Err(RecvTimeoutError::Disconnected) => {
                 let status = finish(&mut child);
                 let output = join_output(stderr, &own_output, options.memory_limit);
-                return failed(
-                    Status::Crash,
-                    format!(
-                        "the rasterizer's process ended without a verdict ({}) during case {cases_seen}{}",
-                        describe(status),
-                        output
-                    ),
-                    last_case,
-                    cases_seen,
-                    &profile,
+                let message = format!(
+                    "the rasterizer's process ended without a verdict ({}) during case {}{output}",
+                    describe(status),
+                    watch.cases_seen
                 );
+                return watch.failed(Status::Crash, message);
             }
             Err(RecvTimeoutError::Timeout) => {
                 child.end();
                 let output = join_output(stderr, &own_output, options.memory_limit);
-                return failed(
-                    Status::Timeout,
-                    format!(
-                        "no answer within {} s on case {cases_seen}: the rasterizer hangs on it (or is far \
-                         too slow; --case-timeout sets the limit){output}",
-                        options.case_timeout.as_secs_f64()
-                    ),
-                    last_case,
-                    cases_seen,
-                    &profile,
+                let message = format!(
+                    "no answer within {} s on case {}: the rasterizer hangs on it (or is far too slow; \
+                     --case-timeout sets the limit){output}",
+                    options.case_timeout.as_secs_f64(),
+                    watch.cases_seen
                 );
+                return watch.failed(Status::Timeout, message);
             }
         }
     }
+}
+
+/// What the parent has seen of a rule's child so far.
+struct Watch<'a> {
+    rule: &'a Rule,
+    options: &'a Options,
+    started: Instant,
+    /// The profile the child reported, once it has.
+    profile: Option<Box<ProfileReport>>,
+    /// The last input it announced.
+    last_case: Option<String>,
+    /// How many inputs it announced (shrinking's included).
+    cases_seen: usize,
+}
+
+impl Watch<'_> {
+    /// The rule's report when the child gave none: `status`, `message`, the last case announced.
+    fn failed(self, status: Status, message: String) -> ChildRun {
+        let tolerance = self.profile.as_ref().map_or(1, |p| p.tolerance_subpixels.max(1));
+        let report = RuleReport {
+            status,
+            // Announced inputs include shrinking's, so this may count more than were generated.
+            cases: u32::try_from(self.cases_seen).unwrap_or(u32::MAX),
+            message: Some(message),
+            counterexample: self.last_case,
+            seconds: self.started.elapsed().as_secs_f64(),
+            ..blank(self.rule, self.options, tolerance)
+        };
+        ChildRun::Ran(Box::new(report), self.profile)
+    }
+}
+
+/// The child's stdout, line by line, read on a thread of its own: protocol messages parsed,
+/// anything else kept as its own output, then `Closed`. Bounded: the parent takes lines as they
+/// come, and a flood waits for it.
+fn read_lines(stdout: std::process::ChildStdout) -> mpsc::Receiver<Line> {
+    let (tx, rx) = mpsc::sync_channel(64);
+    thread::spawn(move || {
+        for_each_line(stdout, MAX_LINE, |line, cut| {
+            let line = String::from_utf8_lossy(line);
+            let parsed = match line.strip_prefix(MARK) {
+                Some(_) if cut => Line::Other(format!("(a protocol line longer than {MAX_LINE} bytes, cut)")),
+                Some(json) => match serde_json::from_str(json) {
+                    Ok(message) => Line::Message(message),
+                    Err(e) => Line::Other(format!("(a garbled protocol line: {e})")),
+                },
+                None => Line::Other(line.into_owned()),
+            };
+            tx.send(parsed).is_ok()
+        });
+        let _ = tx.send(Line::Closed);
+    });
+    rx
 }
 
 /// Lets a child that is done exit, within [`EXIT_GRACE`], then ends it and its group; its exit

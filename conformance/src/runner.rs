@@ -162,40 +162,17 @@ where
         }
     };
     if let Some(data) = &cfg.replay {
-        return match T::from_data(data) {
-            Ok(mut input) => {
-                fit(input.scene_mut(), &profile, cfg.orient);
-                match run_announced(rasterizer, check, &input, cfg.announce) {
-                    Ok(()) => Verdict::Pass {
-                        cases: 1,
-                        budget_spent: false,
-                    },
-                    Err(violation) => failure(rasterizer, check, input, violation, 1, None, cfg.orient),
-                }
-            }
-            Err(why) => Verdict::Unreadable(why),
-        };
+        return replayed(rasterizer, cfg, &profile, data, check);
     }
     let deadline = cfg.budget.map(|b| Instant::now() + b);
     let spent = || deadline.is_some_and(|d| Instant::now() >= d);
-    let config = Config {
-        cases: cfg.cases,
-        failure_persistence: None,
-        // Shrinking is bounded here, by SHRINK_STEPS and the budget, not by proptest, which
-        // would print its own notice on stderr: both limits are effectively off.
-        max_shrink_iters: u32::MAX - 1,
-        max_shrink_time: 0,
-        // No rule rejects a case, so a reject means the budget is spent: stop at the first.
-        max_global_rejects: 0,
-        ..Config::default()
-    };
     let orient = cfg.orient;
     let strategy = strategy_for(&profile).prop_map(move |mut input| {
         fit(input.scene_mut(), &profile, orient);
         input
     });
     let rng = TestRng::from_seed(RngAlgorithm::ChaCha, &seed_bytes(cfg.seed));
-    let mut runner = TestRunner::new_with_rng(config, rng);
+    let mut runner = TestRunner::new_with_rng(proptest_config(cfg.cases), rng);
     let cell = RefCell::new(rasterizer);
     let announce = cfg.announce;
     // Cases tried before the first failure; shrinking comes after and is not counted.
@@ -252,6 +229,45 @@ where
             tried.get(),
             Violation::new(format!("the case generator gave up: {reason}")),
         ),
+    }
+}
+
+/// The verdict on the one case of a replay: `data` read as the rule's input, fitted to
+/// `profile` as generated cases are, and checked.
+fn replayed<T: Debug + Clone + Case + Send + Sync + 'static>(
+    rasterizer: &mut dyn Rasterizer,
+    cfg: &RunConfig,
+    profile: &Profile,
+    data: &CaseData,
+    check: Check<T>,
+) -> Verdict {
+    match T::from_data(data) {
+        Ok(mut input) => {
+            fit(input.scene_mut(), profile, cfg.orient);
+            match run_announced(rasterizer, check, &input, cfg.announce) {
+                Ok(()) => Verdict::Pass {
+                    cases: 1,
+                    budget_spent: false,
+                },
+                Err(violation) => failure(rasterizer, check, input, violation, 1, None, cfg.orient),
+            }
+        }
+        Err(why) => Verdict::Unreadable(why),
+    }
+}
+
+/// proptest's configuration for `cases` cases: shrinking bounded here, by [`SHRINK_STEPS`] and
+/// the budget, not by proptest, which would print its own notice on stderr (both its limits
+/// are effectively off); no rule rejects a case, so a reject means the budget is spent: stop
+/// at the first.
+fn proptest_config(cases: u32) -> Config {
+    Config {
+        cases,
+        failure_persistence: None,
+        max_shrink_iters: u32::MAX - 1,
+        max_shrink_time: 0,
+        max_global_rejects: 0,
+        ..Config::default()
     }
 }
 

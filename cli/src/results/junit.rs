@@ -55,59 +55,16 @@ enum Case {
     Error { kind: &'static str, message: String },
 }
 
+/// One implementation's `<testsuite>`: its properties, and a testcase per rule (or the one
+/// `certify` case of an implementation skipped, refused or that failed to start).
 fn suite(doc: &Document, entry: &Entry, expect: Option<&Expectations>) -> Suite {
     let name = entry.subject.name();
-    let mut cases: Vec<(String, f64, Case, String)> = Vec::new();
-    let mut seconds = 0.0;
-    match &entry.outcome {
-        Outcome::Skipped { skipped, .. } => {
-            cases.push((
-                "certify".into(),
-                0.0,
-                Case::Skipped(format!("skipped: {skipped}")),
-                String::new(),
-            ));
-        }
-        Outcome::FailedToStart { failed_to_start, .. } => cases.push((
-            "certify".into(),
-            0.0,
-            Case::Error {
-                kind: "failed-to-start",
-                message: failed_to_start.clone(),
-            },
-            String::new(),
-        )),
-        Outcome::Certified(report) if report.refused.is_some() => cases.push((
-            "certify".into(),
-            0.0,
-            Case::Error {
-                kind: "refused",
-                message: report.refused.clone().unwrap_or_default(),
-            },
-            String::new(),
-        )),
-        Outcome::Certified(report) => {
-            let section = expect.map(|e| e.section(name));
-            for r in &report.rules {
-                seconds += r.seconds;
-                let expected = section.map(|s| {
-                    s.map_or((vec![Status::Pass], None), |s| {
-                        let (accepts, line) = s.expected(&r.id);
-                        (accepts, line.map(|l| l.written.clone()))
-                    })
-                });
-                let case = case_of(r, expected);
-                let body = detail(doc, entry, r);
-                cases.push((r.id.clone(), r.seconds, case, body));
-            }
-        }
-    }
-    let failures = cases
-        .iter()
-        .filter(|c| matches!(c.2, Case::Failure { .. }))
-        .count();
-    let errors = cases.iter().filter(|c| matches!(c.2, Case::Error { .. })).count();
-    let skipped = cases.iter().filter(|c| matches!(c.2, Case::Skipped(_))).count();
+    let cases = testcases(doc, entry, expect);
+    let count = |of: fn(&Case) -> bool| cases.iter().filter(|c| of(&c.case)).count();
+    let failures = count(|c| matches!(c, Case::Failure { .. }));
+    let errors = count(|c| matches!(c, Case::Error { .. }));
+    let skipped = count(|c| matches!(c, Case::Skipped(_)));
+    let seconds: f64 = cases.iter().map(|c| c.seconds).sum();
     let mut x = String::new();
     let _ = writeln!(
         x,
@@ -118,6 +75,78 @@ fn suite(doc: &Document, entry: &Entry, expect: Option<&Expectations>) -> Suite 
         esc(doc.run.started.trim_end_matches('Z')),
         esc(&doc.run.host.name)
     );
+    properties(&mut x, doc, entry);
+    for c in &cases {
+        testcase(&mut x, name, c);
+    }
+    x.push_str("  </testsuite>\n");
+    Suite {
+        xml: x,
+        tests: cases.len(),
+        failures,
+        errors,
+    }
+}
+
+/// One testcase of a suite: a rule, or the one `certify` case of an implementation that did not
+/// get as far as its rules.
+struct Testcase {
+    /// The rule's ID, or `certify`.
+    id: String,
+    /// Its seconds.
+    seconds: f64,
+    /// What JUnit calls its outcome.
+    case: Case,
+    /// The text of a failure or an error.
+    body: String,
+}
+
+/// An entry's testcases: one per rule, or one `certify` case saying why there are none.
+fn testcases(doc: &Document, entry: &Entry, expect: Option<&Expectations>) -> Vec<Testcase> {
+    let certify = |case: Case| {
+        vec![Testcase {
+            id: "certify".into(),
+            seconds: 0.0,
+            case,
+            body: String::new(),
+        }]
+    };
+    match &entry.outcome {
+        Outcome::Skipped { skipped, .. } => certify(Case::Skipped(format!("skipped: {skipped}"))),
+        Outcome::FailedToStart { failed_to_start, .. } => certify(Case::Error {
+            kind: "failed-to-start",
+            message: failed_to_start.clone(),
+        }),
+        Outcome::Certified(report) if report.refused.is_some() => certify(Case::Error {
+            kind: "refused",
+            message: report.refused.clone().unwrap_or_default(),
+        }),
+        Outcome::Certified(report) => {
+            let section = expect.map(|e| e.section(entry.subject.name()));
+            report
+                .rules
+                .iter()
+                .map(|r| {
+                    let expected = section.map(|s| {
+                        s.map_or((vec![Status::Pass], None), |s| {
+                            let (accepts, line) = s.expected(&r.id);
+                            (accepts, line.map(|l| l.written.clone()))
+                        })
+                    });
+                    Testcase {
+                        id: r.id.clone(),
+                        seconds: r.seconds,
+                        case: case_of(r, expected),
+                        body: detail(doc, entry, r),
+                    }
+                })
+                .collect()
+        }
+    }
+}
+
+/// The suite's `<properties>`: how the run was made, and the profile certified.
+fn properties(x: &mut String, doc: &Document, entry: &Entry) {
     x.push_str("    <properties>\n");
     let o = &doc.run.options;
     let mut properties = vec![
@@ -138,44 +167,40 @@ fn suite(doc: &Document, entry: &Entry, expect: Option<&Expectations>) -> Suite 
         let _ = writeln!(x, "      <property name=\"{k}\" value=\"{}\"/>", esc(&v));
     }
     x.push_str("    </properties>\n");
-    for (id, time, case, body) in &cases {
-        let open = format!(
-            "    <testcase classname=\"refrast.{}\" name=\"{}\" time=\"{time:.3}\"",
-            esc(name),
-            esc(id)
-        );
-        match case {
-            Case::Passed => {
-                let _ = writeln!(x, "{open}/>");
-            }
-            Case::Skipped(why) => {
-                let _ = writeln!(
-                    x,
-                    "{open}>\n      <skipped message=\"{}\"/>\n    </testcase>",
-                    esc(why)
-                );
-            }
-            Case::Failure { kind, message } | Case::Error { kind, message } => {
-                let tag = if matches!(case, Case::Failure { .. }) {
-                    "failure"
-                } else {
-                    "error"
-                };
-                let _ = writeln!(
-                    x,
-                    "{open}>\n      <{tag} message=\"{}\" type=\"{kind}\">{}</{tag}>\n    </testcase>",
-                    esc(message),
-                    esc_text(body)
-                );
-            }
+}
+
+/// One `<testcase>` of the suite `name`.
+fn testcase(x: &mut String, name: &str, c: &Testcase) {
+    let open = format!(
+        "    <testcase classname=\"refrast.{}\" name=\"{}\" time=\"{:.3}\"",
+        esc(name),
+        esc(&c.id),
+        c.seconds
+    );
+    match &c.case {
+        Case::Passed => {
+            let _ = writeln!(x, "{open}/>");
         }
-    }
-    x.push_str("  </testsuite>\n");
-    Suite {
-        xml: x,
-        tests: cases.len(),
-        failures,
-        errors,
+        Case::Skipped(why) => {
+            let _ = writeln!(
+                x,
+                "{open}>\n      <skipped message=\"{}\"/>\n    </testcase>",
+                esc(why)
+            );
+        }
+        Case::Failure { kind, message } | Case::Error { kind, message } => {
+            let tag = if matches!(c.case, Case::Failure { .. }) {
+                "failure"
+            } else {
+                "error"
+            };
+            let _ = writeln!(
+                x,
+                "{open}>\n      <{tag} message=\"{}\" type=\"{kind}\">{}</{tag}>\n    </testcase>",
+                esc(message),
+                esc_text(&c.body)
+            );
+        }
     }
 }
 

@@ -9,8 +9,8 @@ pub enum SimdLevel {
     /// The best the CPU has, detected at run time.
     #[default]
     Best,
-    /// No SIMD: scalar code (only with the `force_support_fallback` feature on x86-64 and
-    /// AArch64, whose baselines have SIMD).
+    /// No SIMD: scalar code (on x86-64 and AArch64, whose baselines have SIMD, only with the
+    /// default feature `force_support_fallback`).
     Fallback,
     /// x86 SSE2, the x86-64 baseline.
     Sse2,

@@ -1,5 +1,5 @@
 //! The same bits at every SIMD level: fragments and resolved buffers drawn at each level this
-//! CPU has (and at the scalar fallback, built with `--features force_support_fallback`), compared
+//! CPU has (and at the scalar fallback, with the default feature `force_support_fallback`), compared
 //! bit for bit with the best level's, on random scenes and meshes. Levels the CPU or the build
 //! lacks are skipped with a message.
 
@@ -75,7 +75,7 @@ fn levels_this_machine_runs() {
             Some(_) => eprintln!("level {}: compared", level.name()),
             None if level == SimdLevel::Fallback => eprintln!(
                 "level fallback: SKIPPED: this build has no scalar fallback on a SIMD baseline \
-                 (run with --features force_support_fallback)"
+                 (built without the default feature force_support_fallback)"
             ),
             None => eprintln!("level {}: SKIPPED: this CPU does not have it", level.name()),
         }

@@ -3,26 +3,25 @@
 mod child;
 mod lines;
 mod progress;
+mod run;
 mod schedule;
 
-use std::num::NonZeroUsize;
 use std::path::PathBuf;
 use std::process::ExitCode;
-use std::time::{Duration, Instant, SystemTime};
+use std::time::{Instant, SystemTime};
 
 use refrast::Rasterizer;
 
-use refrast_conformance::{Options, Report, RuleReport, Shard, catalogue, matches, selected};
+use refrast_conformance::{Options, Report, RuleReport, catalogue, matches, selected};
 use refrast_pipe::Process;
 
 pub use child::{RunRuleArgs, run_rule, this_program};
 pub use lines::{plural, print_rule, reach, rule_lines, summarise};
 use progress::Progress;
+pub use run::RunArgs;
 
-use crate::results::outputs::{Outputs, write_outputs};
-use crate::results::{
-    DEFAULT_EXEC_BUDGET, Document, Entry, Host, Outcome, Run, RunOptions, SCHEMA_VERSION, Subject,
-};
+use crate::results::outputs::{OutputArgs, Outputs, write_outputs};
+use crate::results::{DEFAULT_EXEC_BUDGET, Document, Entry, Host, Outcome, Run, SCHEMA_VERSION, Subject};
 use refrast_registry::{BuiltIn, Origin};
 
 use crate::say;
@@ -56,72 +55,16 @@ pub struct CertifyArgs {
     /// protocol of docs/protocol.md (repeatable; certified after the --impl ones).
     #[arg(long = "exec", value_name = "CMD")]
     execs: Vec<String>,
-    /// Seconds of wall time per rule after which no new case starts; the report says how many
-    /// ran [default: 10 for --exec, none for built-ins].
-    #[arg(long, value_name = "SECONDS", value_parser = positive_seconds)]
-    budget: Option<f64>,
-    /// Cases per rule [default: PROPTEST_CASES, else each rule's own].
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
-    cases: Option<u32>,
-    /// Multiply the cases per rule by N (nightly runs use 10).
-    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=1000))]
-    scale: u32,
-    /// Seed of the case generator.
-    #[arg(long, value_name = "S", default_value_t = refrast_conformance::DEFAULT_SEED)]
-    seed: u64,
-    /// Only rules matching this glob (`fill.*`, `*.exact`); without `*`, a prefix (repeatable:
-    /// rules matching any).
-    #[arg(long, value_name = "PATTERN")]
-    rule: Vec<String>,
-    /// Only part I of N of the selected rules (every N-th in catalogue order, from the I-th),
-    /// for a run split across machines; `refrast merge` joins the parts' --json reports.
-    #[arg(long, value_name = "I/N", value_parser = |s: &str| s.parse::<Shard>())]
-    shard: Option<Shard>,
-    /// Folder for the report: index.html (a self-contained page: summary, profiles, a table per
-    /// implementation, each failure with its picture, counterexample and the command that
-    /// reproduces it, a matrix when several are certified) and the counterexample pictures.
-    #[arg(long, value_name = "DIR", default_value = "refrast-report")]
-    report: PathBuf,
-    /// Also write the report as JSON: the run's metadata and one entry per implementation
-    /// (docs/json.md gives the schema).
-    #[arg(long, value_name = "FILE")]
-    json: Option<PathBuf>,
-    /// Also write the report as JUnit XML, a testsuite per implementation and a testcase per
-    /// rule, for a CI's test tab (under --expect, expected verdicts are skipped testcases).
-    #[arg(long, value_name = "FILE")]
-    junit: Option<PathBuf>,
-    /// Judge the verdicts against an expectation file (docs/expectations.md; repeatable): exit
-    /// 0 when every verdict is as expected, 1 on an unexpected failure or an unexpected pass.
-    #[arg(long, value_name = "FILE")]
-    expect: Vec<PathBuf>,
+    /// How the run goes: cases, seed, rules, limits, jobs.
+    #[command(flatten)]
+    pub run: RunArgs,
+    /// Where its results go.
+    #[command(flatten)]
+    pub outputs: OutputArgs,
     /// Write the verdicts seen to FILE as expectations (keeping the comments and the may-fail
     /// lines of FILE, or of --expect, that still hold).
     #[arg(long, value_name = "FILE")]
     update_expectations: Option<PathBuf>,
-    /// Seconds one case may take before the rule fails as hung (for --exec: one draw).
-    #[arg(long, value_name = "SECONDS", default_value_t = refrast_conformance::DEFAULT_CASE_TIMEOUT.as_secs_f64(),
-          value_parser = positive_seconds)]
-    case_timeout: f64,
-    /// The most memory, in MiB, each rule's child process and each --exec child may allocate
-    /// (its data: heap and private mappings; 0 sets no limit). A child over it fails its rule
-    /// as a crash that says so.
-    #[arg(long, value_name = "MIB", default_value_t = refrast_pipe::contain::DEFAULT_MEMORY_LIMIT >> 20)]
-    memory_limit: u64,
-    /// Stop at the first failing rule: no rule starts after it, and the rules and implementations
-    /// after it are listed as not run (results of later rules already running are dropped).
-    #[arg(long)]
-    fail_fast: bool,
-    /// Rules run at once: each built-in's rule in its child process, across implementations
-    /// too, and for --exec one rule at a time in each of N children started from CMD (a child
-    /// that cannot run beside a copy of itself wants 1); verdicts, order and output are those
-    /// of --jobs 1 but for times. --in-process runs one rule at a time whatever this says
-    /// [default: the available parallelism].
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
-    jobs: Option<u16>,
-    /// Run the rules in this process, one at a time, instead of one child process each (for a
-    /// debugger or a profiler; a rasterizer that hangs or aborts then stops the whole run).
-    #[arg(long)]
-    in_process: bool,
 }
 
 /// A finite, positive number of seconds.
@@ -144,40 +87,19 @@ pub fn run(args: &CertifyArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let outputs = match Outputs::new(
-        args.report.clone(),
-        args.json.clone(),
-        args.junit.clone(),
-        &args.expect,
-        args.update_expectations.clone(),
-    ) {
+    let outputs = match Outputs::new(&args.outputs, args.update_expectations.clone()) {
         Ok(outputs) => outputs,
         Err(e) => {
             eprintln!("error: {e}");
             return ExitCode::from(2);
         }
     };
-    let options = Options {
-        cases: args.cases,
-        scale: args.scale,
-        seed: args.seed,
-        rules: args.rule.clone(),
-        shard: args.shard,
-        report_dir: Some(args.report.clone()),
-        case_timeout: Duration::from_secs_f64(args.case_timeout),
-        budget: args.budget.map(Duration::from_secs_f64),
-        fail_fast: args.fail_fast,
-        memory_limit: (args.memory_limit > 0).then(|| args.memory_limit.saturating_mul(1 << 20)),
-        ..Options::default()
-    };
+    let options = args.run.options(&args.outputs.report);
     let exec_options = Options {
         budget: Some(options.budget.unwrap_or(DEFAULT_EXEC_BUDGET)),
         ..options.clone()
     };
-    let jobs = args.jobs.map_or_else(
-        || std::thread::available_parallelism().map_or(1, NonZeroUsize::get),
-        usize::from,
-    );
+    let jobs = args.run.jobs();
     for warning in outputs.warnings(&options) {
         eprintln!("{warning}");
     }
@@ -185,9 +107,9 @@ pub fn run(args: &CertifyArgs) -> ExitCode {
     let mut entries: Vec<Entry> = Vec::new();
     let mut left: Vec<String> = Vec::new();
     let stop = |entries: &[Entry], left: &[String]| {
-        !left.is_empty() || entries.last().is_some_and(|e| args.fail_fast && !e.passed())
+        !left.is_empty() || entries.last().is_some_and(|e| args.run.fail_fast && !e.passed())
     };
-    if args.in_process {
+    if args.run.in_process {
         for b in &chosen {
             if stop(&entries, &left) {
                 left.push(b.name.clone());
@@ -237,23 +159,7 @@ pub fn run(args: &CertifyArgs) -> ExitCode {
             command: std::env::args_os()
                 .map(|a| a.to_string_lossy().into_owned())
                 .collect(),
-            options: RunOptions {
-                cases: args.cases,
-                proptest_cases: std::env::var("PROPTEST_CASES")
-                    .ok()
-                    .filter(|_| args.cases.is_none()),
-                scale: args.scale,
-                seed: args.seed,
-                rules: args.rule.clone(),
-                shard: args.shard,
-                budget: args.budget,
-                case_timeout: args.case_timeout,
-                fail_fast: args.fail_fast,
-                jobs,
-                in_process: args.in_process,
-                memory_limit_mib: (args.memory_limit > 0).then_some(args.memory_limit),
-                expect: args.expect.clone(),
-            },
+            options: args.run.recorded(&args.outputs.expect),
         },
         implementations: entries,
         not_certified: left,
@@ -267,7 +173,7 @@ fn choose(args: &CertifyArgs) -> Result<Vec<BuiltIn>, String> {
     for command in &args.execs {
         refrast_pipe::split_command(command).map_err(|e| format!("--exec: {e}"))?;
     }
-    for pattern in &args.rule {
+    for pattern in &args.run.rule {
         if !catalogue().iter().any(|r| matches(pattern, r.id)) {
             return Err(format!("no rule matches '{pattern}'; `refrast rules` lists them"));
         }

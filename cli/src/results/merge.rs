@@ -6,7 +6,7 @@ use std::process::ExitCode;
 
 use refrast_conformance::{Report, catalogue};
 
-use super::outputs::{Outputs, write_outputs};
+use super::outputs::{OutputArgs, Outputs, write_outputs};
 use super::{Document, Entry, Outcome};
 
 /// The documents joined: implementations in order of first appearance, each one's rules in
@@ -125,18 +125,9 @@ pub struct MergeArgs {
     /// The shards' `certify --json` reports.
     #[arg(required = true, value_name = "REPORT.json")]
     reports: Vec<PathBuf>,
-    /// Folder for the merged index.html (pictures are linked from where the shards wrote them).
-    #[arg(long, value_name = "DIR", default_value = "refrast-report")]
-    report: PathBuf,
-    /// Write the merged report as JSON.
-    #[arg(long, value_name = "FILE")]
-    json: Option<PathBuf>,
-    /// Write the merged report as JUnit XML.
-    #[arg(long, value_name = "FILE")]
-    junit: Option<PathBuf>,
-    /// Judge the merged verdicts against expectation files, as `certify --expect` does.
-    #[arg(long, value_name = "FILE")]
-    expect: Vec<PathBuf>,
+    /// Where the merged results go.
+    #[command(flatten)]
+    outputs: OutputArgs,
 }
 
 /// Runs `refrast merge`: the exit code `certify` would have given the run in one piece; 2
@@ -159,13 +150,7 @@ pub fn run(args: &MergeArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let outputs = match Outputs::new(
-        args.report.clone(),
-        args.json.clone(),
-        args.junit.clone(),
-        &args.expect,
-        None,
-    ) {
+    let outputs = match Outputs::new(&args.outputs, None) {
         Ok(outputs) => outputs,
         Err(e) => {
             eprintln!("error: {e}");

@@ -24,24 +24,42 @@ pub struct Outputs {
     pub update: Option<PathBuf>,
 }
 
+/// Where a run's results go: the flags `certify` and `merge` share.
+#[derive(clap::Args, Clone, Debug)]
+pub struct OutputArgs {
+    /// Folder for the report: index.html (a self-contained page: summary, profiles, a table per
+    /// implementation, each failure with its picture, counterexample and the command that
+    /// reproduces it, a matrix when several are certified) and the counterexample pictures
+    /// (`merge` links those its shards wrote).
+    #[arg(long, value_name = "DIR", default_value = "refrast-report")]
+    pub report: PathBuf,
+    /// Also write the report as JSON: the run's metadata and one entry per implementation
+    /// (docs/json.md gives the schema).
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+    /// Also write the report as JUnit XML, a testsuite per implementation and a testcase per
+    /// rule, for a CI's test tab (under --expect, expected verdicts are skipped testcases).
+    #[arg(long, value_name = "FILE")]
+    pub junit: Option<PathBuf>,
+    /// Judge the verdicts against an expectation file (docs/expectations.md; repeatable): exit
+    /// 0 when every verdict is as expected, 1 on an unexpected failure or an unexpected pass.
+    #[arg(long, value_name = "FILE")]
+    pub expect: Vec<PathBuf>,
+}
+
 impl Outputs {
-    /// Reads the expectation files; `Err` names the file and line to fix.
-    pub fn new(
-        report: PathBuf,
-        json: Option<PathBuf>,
-        junit: Option<PathBuf>,
-        expect: &[PathBuf],
-        update: Option<PathBuf>,
-    ) -> Result<Self, String> {
-        let expect = if expect.is_empty() {
+    /// The outputs `args` ask for, with `update` for `--update-expectations`; reads the
+    /// expectation files, and `Err` names the file and line to fix.
+    pub fn new(args: &OutputArgs, update: Option<PathBuf>) -> Result<Self, String> {
+        let expect = if args.expect.is_empty() {
             None
         } else {
-            Some(Expectations::load(expect)?)
+            Some(Expectations::load(&args.expect)?)
         };
         Ok(Self {
-            report,
-            json,
-            junit,
+            report: args.report.clone(),
+            json: args.json.clone(),
+            junit: args.junit.clone(),
             expect,
             update,
         })

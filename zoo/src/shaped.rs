@@ -125,15 +125,12 @@ impl Rasterizer for Shaped {
         profile.name = format!("shaped:{}", self.shape.name());
         match self.shape {
             Shape::ScanConverter => {
+                // Triangles at one sample, nothing else.
+                profile = std::mem::take(&mut profile).triangles_only();
                 profile.snapping = Snapping::Grid(6);
                 profile.features.snap = SnapAccuracy::TowardZero;
                 profile.features.ties_to_even = false;
                 profile.features.clips_in_3d = false;
-                // Triangles at one sample, nothing else.
-                let triangles = Profile::default();
-                profile.lines = triangles.lines;
-                profile.points = triangles.points;
-                profile.multisample = triangles.multisample;
             }
             // What the GPUs report, whatever they do.
             Shape::PopFreePoints => {

@@ -175,7 +175,8 @@ impl Gpu {
     /// [`Gpu::check_target`] refuses.
     fn check(&self, draw: &Draw) -> Result<(), DrawError> {
         draw.validate()?;
-        if !self.profile().draws(draw.topology, draw.samples) {
+        let profile = self.profile();
+        if !profile.draws(draw.topology, draw.samples) {
             return Err(DrawError::Unsupported(format!(
                 "{} draws no {} (measured: {})",
                 self.driver.name(),
@@ -183,13 +184,17 @@ impl Gpu {
                 self.measured.summary()
             )));
         }
-        self.check_target(draw.viewport, &draw.state)
+        self.check_target(&profile, draw.viewport, &draw.state)
     }
 
     /// Refuses a state WebGPU cannot set (far clipping off, `−w ≤ z`) and a target beyond the
     /// device's largest side.
-    fn check_target(&self, viewport: refrast::Viewport, state: &refrast::DrawState) -> Result<(), DrawError> {
-        let profile = self.profile();
+    fn check_target(
+        &self,
+        profile: &Profile,
+        viewport: refrast::Viewport,
+        state: &refrast::DrawState,
+    ) -> Result<(), DrawError> {
         if !profile.supports(state) {
             return Err(DrawError::Unsupported(format!(
                 "{} cannot draw with {state:?}: far clipping is always on and z runs 0 ≤ z ≤ w",

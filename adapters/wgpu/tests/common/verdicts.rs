@@ -14,6 +14,23 @@ use refrast_conformance::isolate::{certify_isolated_jobs, serve_rule};
 use refrast_conformance::{Options, Report, Rule};
 use refrast_wgpu::{Driver, Gpu};
 
+/// Runs every check of `findings` through `run`, whatever the others do; each that panicked,
+/// as `WHAT: its message`: a moved finding hides no other.
+pub fn moved_findings<F: Copy>(findings: &[(&str, F)], mut run: impl FnMut(F)) -> Vec<String> {
+    findings
+        .iter()
+        .filter_map(|&(what, check)| {
+            let panicked = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| run(check))).err()?;
+            let why = panicked
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| panicked.downcast_ref::<&str>().map(|s| (*s).to_owned()))
+                .unwrap_or_default();
+            Some(format!("{what}: {why}"))
+        })
+        .collect()
+}
+
 /// The variable naming the rule a child certifies.
 const RULE_ENV: &str = "REFRAST_DRIVER_TEST_RULE";
 /// The variable naming the driver a child opens.

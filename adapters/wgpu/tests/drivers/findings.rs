@@ -1,8 +1,6 @@
 //! The hand-checked findings of docs/certified.md (lavapipe, llvmpipe, softpipe), each as the
 //! driver does it today.
 
-use std::panic::{AssertUnwindSafe, catch_unwind};
-
 use refrast::{Draw, Fragment, FrontFace, Rasterizer, Reference, Viewport};
 use refrast_wgpu::{Driver, Gpu};
 
@@ -75,19 +73,8 @@ pub fn findings(d: Driver, gpu: &mut Gpu) {
     } else {
         &ON_A_GRID
     };
-    let all: Vec<&Finding> = EVERY_DRIVER.iter().chain(own).collect();
-    let moved: Vec<String> = all
-        .iter()
-        .filter_map(|&&(what, check)| {
-            let panicked = catch_unwind(AssertUnwindSafe(|| check(d, &mut run))).err()?;
-            let why = panicked
-                .downcast_ref::<String>()
-                .cloned()
-                .or_else(|| panicked.downcast_ref::<&str>().map(|s| (*s).to_owned()))
-                .unwrap_or_default();
-            Some(format!("{what}: {why}"))
-        })
-        .collect();
+    let all: Vec<Finding> = EVERY_DRIVER.iter().chain(own).copied().collect();
+    let moved = crate::common::moved_findings(&all, |check| check(d, &mut run));
     assert!(
         moved.is_empty(),
         "{}: {} of {} hand-checked findings moved:\n{}",

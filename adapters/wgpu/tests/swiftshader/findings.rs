@@ -4,8 +4,6 @@
 //! one was also reproduced bit for bit by an f32 trace of SwiftShader's source (`VertexRoutine`,
 //! `Clipper`, `SetupRoutine`, `QuadRasterizer`, `PixelRoutine`).
 
-use std::panic::{AssertUnwindSafe, catch_unwind};
-
 use refrast::{ClipMode, Draw, Fragment, Rasterizer};
 use refrast_wgpu::Gpu;
 
@@ -55,18 +53,7 @@ fn pixels(f: &[Fragment]) -> Vec<(u32, u32)> {
 /// Every finding, each checked whatever the others do; those that moved are named together.
 pub fn swiftshader(gpu: &mut Gpu) {
     let mut run = |d: &Draw| gpu.rasterize(d).expect("SwiftShader draws");
-    let moved: Vec<String> = FINDINGS
-        .iter()
-        .filter_map(|&(what, check)| {
-            let panicked = catch_unwind(AssertUnwindSafe(|| check(&mut run))).err()?;
-            let why = panicked
-                .downcast_ref::<String>()
-                .cloned()
-                .or_else(|| panicked.downcast_ref::<&str>().map(|s| (*s).to_owned()))
-                .unwrap_or_default();
-            Some(format!("{what}: {why}"))
-        })
-        .collect();
+    let moved = crate::common::moved_findings(&FINDINGS, |check| check(&mut run));
     assert!(
         moved.is_empty(),
         "swiftshader: {} of {} hand-checked findings moved:\n{}",

@@ -6,7 +6,7 @@ mod progress;
 mod run;
 mod schedule;
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::{Instant, SystemTime};
 
@@ -94,7 +94,8 @@ pub fn run(args: &CertifyArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let options = args.run.options(&args.outputs.report);
+    let options = args.run.options();
+    let report = args.outputs.report.as_path();
     let exec_options = Options {
         budget: Some(options.budget.unwrap_or(DEFAULT_EXEC_BUDGET)),
         ..options.clone()
@@ -116,12 +117,12 @@ pub fn run(args: &CertifyArgs) -> ExitCode {
             } else {
                 entries.push(Entry {
                     subject: Subject::BuiltIn(b.name.clone()),
-                    outcome: certify_in_process(b, &options, &out),
+                    outcome: certify_in_process(b, &options, report, &out),
                 });
             }
         }
     } else {
-        (entries, left) = schedule::certify_builtins(&chosen, &options, jobs, &out);
+        (entries, left) = schedule::certify_builtins(&chosen, &options, report, jobs, &out);
     }
     for command in &args.execs {
         if stop(&entries, &left) {
@@ -129,7 +130,7 @@ pub fn run(args: &CertifyArgs) -> ExitCode {
         } else {
             entries.push(Entry {
                 subject: Subject::Exec(command.clone()),
-                outcome: certify_exec(command, &exec_options, jobs, &out),
+                outcome: certify_exec(command, &exec_options, report, jobs, &out),
             });
         }
     }
@@ -194,9 +195,9 @@ fn choose(args: &CertifyArgs) -> Result<Vec<BuiltIn>, String> {
     Ok(chosen)
 }
 
-/// Certifies one built-in in this process, one rule after another; skips it, saying why, when
-/// it cannot be built here.
-fn certify_in_process(b: &BuiltIn, options: &Options, out: &Progress) -> Outcome {
+/// Certifies one built-in in this process, one rule after another, each failure's files
+/// written into `report`; skips it, saying why, when it cannot be built here.
+fn certify_in_process(b: &BuiltIn, options: &Options, report: &Path, out: &Progress) -> Outcome {
     out.line(&format!("== {} (seed {})", b.name, options.seed));
     let start = Instant::now();
     let mut rasterizer = match b.build() {
@@ -209,7 +210,7 @@ fn certify_in_process(b: &BuiltIn, options: &Options, out: &Progress) -> Outcome
             };
         }
     };
-    let report = one_at_a_time(&b.name, false, options, out, |progress| {
+    let report = one_at_a_time(&b.name, false, options, report, out, |progress| {
         refrast_conformance::certify(rasterizer.as_mut(), options, progress)
     });
     summarise(out, &report, start.elapsed().as_secs_f64());
@@ -218,8 +219,8 @@ fn certify_in_process(b: &BuiltIn, options: &Options, out: &Progress) -> Outcome
 
 /// Certifies a rasterizer in child processes, `jobs` of them (one rule at a time each), each
 /// started once and reused: the [`Process`] turns a crash, a hang or garbage into a failed
-/// draw, and restarts its child.
-fn certify_exec(command: &str, options: &Options, jobs: usize, out: &Progress) -> Outcome {
+/// draw, and restarts its child. Each failure's files are written into `report`.
+fn certify_exec(command: &str, options: &Options, report: &Path, jobs: usize, out: &Progress) -> Outcome {
     out.line(&format!("== {command} (seed {}, pipe protocol)", options.seed));
     let start = Instant::now();
     let spawn = || Process::try_spawn_limited(command, options.case_timeout, options.memory_limit);
@@ -248,7 +249,7 @@ fn certify_exec(command: &str, options: &Options, jobs: usize, out: &Progress) -
         out.line(&format!("  child {} {why}: {n} at a time", n + 1));
         break;
     }
-    let report = one_at_a_time(command, true, options, out, |progress| {
+    let report = one_at_a_time(command, true, options, report, out, |progress| {
         refrast_conformance::certify_with(&mut children, options, progress)
     });
     summarise(out, &report, start.elapsed().as_secs_f64());
@@ -261,14 +262,24 @@ fn certify_exec(command: &str, options: &Options, jobs: usize, out: &Progress) -
     Outcome::Certified(Box::new(report))
 }
 
+/// Writes a failure's files into `dir` ([`RuleReport::save_exhibit`]), warning when one cannot
+/// be written: the verdict stands without its picture.
+fn save_exhibit(report: &mut RuleReport, dir: &Path, out: &Progress) {
+    if let Err(why) = report.save_exhibit(dir) {
+        out.warn(&format!("warning: {why}"));
+    }
+}
+
 /// Runs `certify` (which calls its argument after each rule) with a bar for `name` and a line
-/// for the rule in flight, printing each rule's result.
+/// for the rule in flight, writing each failure's files into `dir` and printing each rule's
+/// result.
 fn one_at_a_time(
     name: &str,
     is_exec: bool,
     options: &Options,
+    dir: &Path,
     out: &Progress,
-    certify: impl FnOnce(&mut (dyn FnMut(&RuleReport) + Send)) -> Report,
+    certify: impl FnOnce(&mut (dyn FnMut(&mut RuleReport) + Send)) -> Report,
 ) -> Report {
     let rules = selected(options);
     let bar = out.implementation(name, rules.len());
@@ -279,7 +290,8 @@ fn one_at_a_time(
     let mut arrived: Vec<Option<RuleReport>> = vec![None; rules.len()];
     let mut printed = 0;
     let reach = reach(name, is_exec);
-    let report = certify(&mut |report: &RuleReport| {
+    let report = certify(&mut |report: &mut RuleReport| {
+        save_exhibit(report, dir, out);
         match rules.iter().position(|r| r.id == report.id) {
             Some(i) => arrived[i] = Some(report.clone()),
             None => print_rule(out, report, &reach),

@@ -88,11 +88,10 @@ fn replay(args: &ReplayArgs) -> Result<RuleReport, String> {
             }
             (None, None) => return Err("give --exec CMD or --impl NAME: the rasterizer to replay on".into()),
         };
-    let options = Options {
-        report_dir: Some(args.report.clone()),
-        ..Options::default()
-    };
-    let report = refrast_conformance::replay(&case, rasterizer.as_mut(), &options)?;
+    let mut report = refrast_conformance::replay(&case, rasterizer.as_mut(), &Options::default())?;
+    if let Err(why) = report.save_exhibit(&args.report) {
+        eprintln!("warning: {why}");
+    }
     if args.json {
         let text = serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?;
         say(&text);

@@ -43,19 +43,20 @@ pub fn matches_glob(pattern: &str, id: &str) -> bool {
     true
 }
 
-/// Certifies `rasterizer` against every rule selected by `options`, calling `progress` after each.
+/// Certifies `rasterizer` against every rule selected by `options`, calling `progress` after each
+/// with its report, which it may complete (say, with the paths [`RuleReport::save_exhibit`] sets).
 pub fn certify(
     rasterizer: &mut dyn Rasterizer,
     options: &Options,
-    mut progress: impl FnMut(&RuleReport),
+    mut progress: impl FnMut(&mut RuleReport),
 ) -> Report {
     let profile = ProfileReport::of(rasterizer);
     if let Some(refused) = refusal(rasterizer) {
         return report_of(profile, (Vec::new(), Vec::new()), Some(refused));
     }
     let run = |rule: &Rule| {
-        let report = run_rule(rule, rasterizer, options);
-        progress(&report);
+        let mut report = run_rule(rule, rasterizer, options);
+        progress(&mut report);
         Ok::<_, std::convert::Infallible>(report)
     };
     let Ok(ran) = run_selected(options, run);
@@ -68,7 +69,7 @@ pub fn certify(
 pub fn certify_with<R: Rasterizer + Send>(
     rasterizers: &mut [R],
     options: &Options,
-    progress: impl FnMut(&RuleReport) + Send,
+    progress: impl FnMut(&mut RuleReport) + Send,
 ) -> Report {
     match rasterizers {
         [] => {
@@ -88,9 +89,9 @@ pub fn certify_with<R: Rasterizer + Send>(
     let run = |worker: usize, rule: &Rule| {
         // Each worker locks only its own rasterizer: never contended.
         let mut rasterizer = workers[worker].lock().unwrap_or_else(PoisonError::into_inner);
-        let report = run_rule(rule, *rasterizer, options);
+        let mut report = run_rule(rule, *rasterizer, options);
         drop(rasterizer);
-        (progress.lock().unwrap_or_else(PoisonError::into_inner))(&report);
+        (progress.lock().unwrap_or_else(PoisonError::into_inner))(&mut report);
         Ok::<_, std::convert::Infallible>(report)
     };
     let Ok(ran) = run_selected_jobs(options, workers.len(), run);

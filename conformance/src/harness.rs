@@ -38,9 +38,6 @@ fn options_from_env() -> Options {
         seed: var("REFRAST_SEED")
             .and_then(|s| s.parse().ok())
             .unwrap_or(DEFAULT_SEED),
-        report_dir: Some(
-            var("REFRAST_REPORT").map_or_else(|| PathBuf::from("target/refrast-report"), PathBuf::from),
-        ),
         case_timeout: var("REFRAST_CASE_TIMEOUT")
             .and_then(|s| s.parse().ok())
             .map_or(DEFAULT_CASE_TIMEOUT, Duration::from_secs_f64),
@@ -50,6 +47,11 @@ fn options_from_env() -> Options {
             .map(Duration::from_secs_f64),
         ..Options::default()
     }
+}
+
+/// Where the failures' files go: `REFRAST_REPORT`, else `target/refrast-report`.
+fn report_dir() -> PathBuf {
+    std::env::var_os("REFRAST_REPORT").map_or_else(|| PathBuf::from("target/refrast-report"), PathBuf::from)
 }
 
 /// Runs every rule against rasterizers made by `make`, as a test harness, then exits.
@@ -108,7 +110,7 @@ where
                         "not run: an earlier rule failed (REFRAST_FAIL_FAST)",
                     ));
                 }
-                let report = if in_process {
+                let mut report = if in_process {
                     run_rule(&rule, &mut make(), &options)
                 } else {
                     let exe =
@@ -125,6 +127,10 @@ where
                         ChildRun::Refused(why, _) => return Err(Failed::from(format!("refused: {why}"))),
                     }
                 };
+                // A file that cannot be written costs the failure its picture, not its verdict.
+                if let Err(why) = report.save_exhibit(&report_dir()) {
+                    eprintln!("warning: {why}");
+                }
                 match report.status {
                     Status::Pass => Ok(Completion::Completed),
                     Status::NotApplicable => Ok(Completion::ignored_with(format!(

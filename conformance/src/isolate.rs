@@ -25,7 +25,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::certify::{refusal, run_selected_jobs};
 use crate::judge::{Options, cases_for, run_rule};
-use crate::report::{ProfileReport, Report, RuleReport, Status};
+use crate::report::{Exhibit, ProfileReport, Report, RuleReport, Status};
 use crate::rules::{Rule, catalogue};
 use refrast_pipe::contain::{Contained, memory_note};
 use refrast_pipe::{Tail, for_each_line, status_words};
@@ -52,8 +52,8 @@ enum Message {
     Refused(String),
     /// The input about to be checked, as Rust.
     Case(String),
-    /// The rule's outcome.
-    Report(Box<RuleReport>),
+    /// The rule's outcome, with its exhibit (which the report's JSON leaves out) beside it.
+    Report(Box<RuleReport>, Option<Box<Exhibit>>),
 }
 
 /// Writes one protocol line to stdout.
@@ -99,8 +99,9 @@ pub fn serve_rule(
         announce: Some(announce),
         ..options.clone()
     };
-    let report = run_rule(&rule, rasterizer.as_mut(), &options);
-    send(&Message::Report(Box::new(report)));
+    let mut report = run_rule(&rule, rasterizer.as_mut(), &options);
+    let exhibit = report.exhibit.take().map(Box::new);
+    send(&Message::Report(Box::new(report), exhibit));
     true
 }
 
@@ -121,7 +122,7 @@ pub enum ChildRun {
 pub fn certify_isolated(
     command: &(dyn Fn(&Rule) -> Command + Sync),
     options: &Options,
-    progress: impl FnMut(&RuleReport) + Send,
+    progress: impl FnMut(&mut RuleReport) + Send,
 ) -> Result<Report, Unavailable> {
     certify_isolated_jobs(command, options, 1, progress)
 }
@@ -132,7 +133,7 @@ pub fn certify_isolated_jobs(
     command: &(dyn Fn(&Rule) -> Command + Sync),
     options: &Options,
     jobs: usize,
-    progress: impl FnMut(&RuleReport) + Send,
+    progress: impl FnMut(&mut RuleReport) + Send,
 ) -> Result<Report, Unavailable> {
     let profile = Mutex::new(None);
     let refused = Mutex::new(None);
@@ -145,11 +146,11 @@ pub fn certify_isolated_jobs(
                 *lock(&refused) = Some(why);
                 Err(Stop::Refused)
             }
-            ChildRun::Ran(report, reported) => {
+            ChildRun::Ran(mut report, reported) => {
                 let mut profile = lock(&profile);
                 *profile = profile.take().or(reported);
                 drop(profile);
-                (lock(&progress))(&report);
+                (lock(&progress))(&mut report);
                 Ok(*report)
             }
         }
@@ -257,8 +258,9 @@ pub fn run_rule_watched(
                 finish(&mut child);
                 return ChildRun::Refused(why, watch.profile);
             }
-            Ok(Line::Message(Message::Report(report))) => {
+            Ok(Line::Message(Message::Report(mut report, exhibit))) => {
                 finish(&mut child);
+                report.exhibit = exhibit.map(|e| *e);
                 return ChildRun::Ran(report, watch.profile);
             }
             Ok(Line::Other(line)) => own_output.push(&line),

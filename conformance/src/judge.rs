@@ -1,14 +1,12 @@
 //! One rule judged on one rasterizer: its property run, the verdict read under the claimed
 //! specification's level, a hint, a picture; or one counterexample replayed.
 
-use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use refrast::Rasterizer;
 
-use crate::picture;
-use crate::report::{CaseFile, Part, RuleReport, Status};
+use crate::report::{CaseFile, Exhibit, Part, RuleReport, Status};
 use crate::rules::{Level, Rule, Run, catalogue, hint};
 use crate::runner::{Announce, DEFAULT_SEED, RunConfig, Verdict, guarded};
 
@@ -22,7 +20,7 @@ pub const DEFAULT_CASE_TIMEOUT: Duration = Duration::from_secs(20);
 /// another tie rule's coverage), a hundred seldom do.
 const HINT_CASES: u32 = 100;
 
-/// What to run and where to write pictures.
+/// What to run, and how.
 #[derive(Clone, Debug)]
 pub struct Options {
     /// Cases per rule. `None` reads the `PROPTEST_CASES` environment variable (as proptest
@@ -38,8 +36,6 @@ pub struct Options {
     pub rules: Vec<String>,
     /// Only this part of the selected rules ([`Shard`]), for runs split across machines.
     pub shard: Option<Shard>,
-    /// Where to write counterexample pictures; `None` writes none.
-    pub report_dir: Option<PathBuf>,
     /// Called with every input before it is checked ([`RunConfig::announce`]).
     pub announce: Option<Announce>,
     /// How long one case may take before a rule run in a child process ([`crate::isolate`])
@@ -64,7 +60,6 @@ impl Default for Options {
             seed: DEFAULT_SEED,
             rules: Vec::new(),
             shard: None,
-            report_dir: None,
             announce: None,
             case_timeout: DEFAULT_CASE_TIMEOUT,
             budget: None,
@@ -84,7 +79,8 @@ pub fn cases_for(rule: &Rule, options: &Options) -> u32 {
         .saturating_mul(options.scale.max(1))
 }
 
-/// Runs one rule against `rasterizer` and reports it, writing a picture on failure.
+/// Runs one rule against `rasterizer` and reports it, with the files of a failure gathered
+/// ([`RuleReport::exhibit`]) but not written.
 pub fn run_rule(rule: &Rule, rasterizer: &mut dyn Rasterizer, options: &Options) -> RuleReport {
     let start = Instant::now();
     // Without a case to replay, every case is the rule's own: none can be unfit.
@@ -240,51 +236,17 @@ fn judge(
                 seed: options.seed,
                 case: *case,
             });
-            if let Some(dir) = &options.report_dir {
-                let stem = file_stem(&profile.name, rule.id);
-                if let Some(pic) = &violation.picture {
-                    let mut caption = vec![format!("{} on {}: {violation}", rule.id, profile.name)];
-                    caption.extend(violation.details.iter().skip(1).cloned());
-                    report.picture = write_picture(dir, &stem, pic, &caption);
-                }
-                report.case_path = report
-                    .case_file
-                    .as_ref()
-                    .and_then(|file| write_case(dir, &stem, file));
-            }
+            let mut caption = vec![format!("{} on {}: {violation}", rule.id, profile.name)];
+            caption.extend(violation.details.iter().skip(1).cloned());
+            report.exhibit = Some(Exhibit::new(
+                &profile.name,
+                rule.id,
+                violation.picture.map(|p| *p),
+                caption,
+            ));
         }
     }
     Ok(report)
-}
-
-/// The name, without extension, of the files of `id`'s failure on `implementation`.
-fn file_stem(implementation: &str, id: &str) -> String {
-    let safe: String = implementation
-        .chars()
-        .map(|c| if c.is_alphanumeric() || c == '-' { c } else { '_' })
-        .collect();
-    format!("{safe}__{id}")
-}
-
-/// Writes the counterexample as data, for `refrast replay`: `DIR/STEM.case.json`.
-fn write_case(dir: &Path, stem: &str, file: &CaseFile) -> Option<PathBuf> {
-    let path = dir.join(format!("{stem}.case.json"));
-    std::fs::create_dir_all(dir).ok()?;
-    std::fs::write(&path, file.to_json() + "\n").ok()?;
-    Some(path)
-}
-
-/// Writes a counterexample picture: `DIR/STEM.png`.
-fn write_picture(
-    dir: &Path,
-    stem: &str,
-    pic: &crate::violation::Picture,
-    caption: &[String],
-) -> Option<PathBuf> {
-    let path = dir.join(format!("{stem}.png"));
-    std::fs::create_dir_all(dir).ok()?;
-    picture::save(pic, caption, &path).ok()?;
-    Some(path)
 }
 
 /// Part `index` of `count` (1-based, as `--shard 2/3` says): every `count`-th of the selected

@@ -12,7 +12,7 @@
 //! | 5 | [`strategy`] | free functions that build valid scenes: grid triangles, spade meshes, fans, quads, clip crossings |
 //! | 6 | `runner` | [`property`]: one rule's property, seeded, shrunk, panics caught |
 //! | 7 | [`rules`] | [`catalogue`], [`Rule`], [`Family`], [`Kind`], [`Need`]: nine families, each rule a proptest property |
-//! | 8 | `report`, [`spec`] | [`Report`], [`RuleReport`], [`Status`], [`ProfileReport`]; [`SpecMap`]: each normative statement of Vulkan, D3D11.3, OpenGL and OpenGL ES, the seeds' results and refrast's conventions, with the rules that check it |
+//! | 8 | `report`, [`spec`] | [`Report`], [`RuleReport`] (with its [`Exhibit`], the files a failure leaves for the runner to write), [`Status`], [`ProfileReport`]; [`SpecMap`]: each normative statement of Vulkan, D3D11.3, OpenGL and OpenGL ES, the seeds' results and refrast's conventions, with the rules that check it |
 //! | 9 | `judge` | [`run_rule`], [`replay`], [`Options`]: one rule on one rasterizer, its verdict read under the claimed specification, a hint, a picture, the case as data |
 //! | 10 | `certify` | [`certify`]: the selected rules, in order or on several workers |
 //! | 11 | [`isolate`], [`expect`] | rules in child processes: a hang is a `timeout`, an abort or a crash a `crash` of the rule it was running; expectation files |
@@ -47,7 +47,9 @@ mod violation;
 pub use certify::{certify, certify_with, matches, matches_glob, refusal, selected};
 pub use harness::{band_words, failure_text, run_as_tests};
 pub use judge::{DEFAULT_CASE_TIMEOUT, Options, Shard, cases_for, replay, run_rule};
-pub use report::{CaseFile, Part, ProfileReport, Report, RuleReport, Status, feature_list, fill_name};
+pub use report::{
+    CaseFile, Exhibit, Part, ProfileReport, Report, RuleReport, Status, feature_list, fill_name,
+};
 pub use rules::meta::Translated;
 pub use rules::robust::Poisoned;
 pub use rules::{

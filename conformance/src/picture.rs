@@ -5,8 +5,6 @@
 //! in white where they are visible. Below the grid a caption repeats the legend, then what went
 //! wrong with its numbers, one line per wrong sample (the first few).
 
-use std::path::Path;
-
 use image::{Rgba, RgbaImage};
 use refrast::stage::{LineVertex, rasterize_line};
 use refrast::{Fragment, Viewport};
@@ -370,9 +368,11 @@ fn draw_text(img: &mut RgbaImage, x: u32, y: u32, text: &str, colour: [u8; 4]) -
     x
 }
 
-/// Writes the picture with its caption as a PNG.
-pub fn save(picture: &Picture, caption: &[String], path: &Path) -> Result<(), image::ImageError> {
-    render_with_caption(picture, caption).save_with_format(path, image::ImageFormat::Png)
+/// The picture with its caption, encoded as a PNG in memory: the runner decides where it goes.
+pub fn png(picture: &Picture, caption: &[String]) -> Result<Vec<u8>, image::ImageError> {
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    render_with_caption(picture, caption).write_to(&mut bytes, image::ImageFormat::Png)?;
+    Ok(bytes.into_inner())
 }
 
 #[cfg(test)]

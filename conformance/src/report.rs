@@ -1,7 +1,7 @@
 //! What certification reports: a status per rule, the profile as printed, and the whole
 //! report of one implementation (text, HTML and JSON are written from these).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use refrast::{
     CompareOp, CullMode, DepthRange, Features, FillConvention, FrontFace, Profile, Rasterizer, SnapAccuracy,
@@ -9,11 +9,12 @@ use refrast::{
 };
 use serde::{Deserialize, Serialize};
 
+use crate::picture;
 use crate::rules::{Family, Kind, Rule};
 use crate::runner::guarded;
 use crate::scene::CaseData;
 pub use crate::status::Status;
-use crate::violation::Counts;
+use crate::violation::{Counts, Picture};
 use refrast_pipe::wire::{FAR_CLIPPING, Word, depth_word};
 
 /// One rule's line in the report.
@@ -68,6 +69,10 @@ pub struct RuleReport {
     pub case_path: Option<PathBuf>,
     /// The counterexample picture, if one was written.
     pub picture: Option<PathBuf>,
+    /// The failure's files before they are written ([`RuleReport::save_exhibit`]); not part of
+    /// the JSON document, which names the files instead.
+    #[serde(skip)]
+    pub exhibit: Option<Exhibit>,
     /// Seconds the rule took where it ran (in its child process, for an isolated rule; from the
     /// parent's side when the child died without a report).
     #[serde(default)]
@@ -99,7 +104,80 @@ impl RuleReport {
             case_file: None,
             case_path: None,
             picture: None,
+            exhibit: None,
             seconds: 0.0,
+        }
+    }
+}
+
+/// What a failed rule leaves to be written (judging gathers it; whoever runs the suite, the
+/// CLI, the test harness or a certifier of its own, decides whether and where it goes): the name its files share and the picture.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Exhibit {
+    /// The file name without its extension: the implementation, then the rule.
+    pub stem: String,
+    /// The counterexample picture, when the check drew one.
+    pub picture: Option<Picture>,
+    /// The lines under the picture: the rule, the implementation and what went wrong.
+    pub caption: Vec<String>,
+}
+
+impl Exhibit {
+    /// The exhibit of `rule`'s failure on `implementation`.
+    #[must_use]
+    pub fn new(implementation: &str, rule: &str, picture: Option<Picture>, caption: Vec<String>) -> Self {
+        Self {
+            stem: file_stem(implementation, rule),
+            picture,
+            caption,
+        }
+    }
+}
+
+/// The name, without extension, of the files of `rule`'s failure on `implementation`: a name
+/// any file system takes, one per implementation and rule, so that a rerun replaces its own.
+fn file_stem(implementation: &str, rule: &str) -> String {
+    let safe: String = implementation
+        .chars()
+        .map(|c| if c.is_alphanumeric() || c == '-' { c } else { '_' })
+        .collect();
+    format!("{safe}__{rule}")
+}
+
+impl RuleReport {
+    /// Writes this failure's files into `dir` (`STEM.case.json`, `STEM.png`) and records where
+    /// ([`RuleReport::case_path`], [`RuleReport::picture`]); nothing for a report without an
+    /// exhibit. An error says which file could not be written; the report keeps the others.
+    pub fn save_exhibit(&mut self, dir: &Path) -> Result<(), String> {
+        let Some(exhibit) = &self.exhibit else {
+            return Ok(());
+        };
+        let write = |extension: &str, bytes: &[u8]| -> Result<PathBuf, String> {
+            let path = dir.join(format!("{}.{extension}", exhibit.stem));
+            std::fs::create_dir_all(dir)
+                .and_then(|()| std::fs::write(&path, bytes))
+                .map_err(|e| format!("could not write {}: {e}", path.display()))?;
+            Ok(path)
+        };
+        let mut failed = Vec::new();
+        if let Some(case) = &self.case_file {
+            match write("case.json", (case.to_json() + "\n").as_bytes()) {
+                Ok(path) => self.case_path = Some(path),
+                Err(why) => failed.push(why),
+            }
+        }
+        if let Some(picture) = &exhibit.picture {
+            let png = picture::png(picture, &exhibit.caption)
+                .map_err(|e| format!("could not draw the picture of {}: {e}", exhibit.stem));
+            match png.and_then(|bytes| write("png", &bytes)) {
+                Ok(path) => self.picture = Some(path),
+                Err(why) => failed.push(why),
+            }
+        }
+        if failed.is_empty() {
+            Ok(())
+        } else {
+            Err(failed.join("; "))
         }
     }
 }

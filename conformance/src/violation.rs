@@ -8,7 +8,7 @@ use crate::status::Status;
 use refrast_pipe::Misbehaviour;
 
 /// How one sample came out against what was expected.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum Class {
     /// Not covered, and rightly so.
     Empty,
@@ -53,8 +53,9 @@ pub struct Counts {
     pub dont_care: usize,
 }
 
-/// A picture of a viewport's samples with the triangles drawn over them.
-#[derive(Clone, Debug, PartialEq)]
+/// A picture of a viewport's samples with the triangles drawn over them (data: the runner that
+/// wants a file renders it, [`crate::picture::png`]; it travels from a rule's child process).
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Picture {
     /// Viewport width in pixels.
     pub width: u32,

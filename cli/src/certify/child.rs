@@ -21,9 +21,6 @@ pub(super) fn run_rule_command(implementation: &str, rule: &str, options: &Optio
     if let Some(budget) = options.budget {
         command.args(["--budget", &budget.as_secs_f64().to_string()]);
     }
-    if let Some(dir) = &options.report_dir {
-        command.arg("--report").arg(dir);
-    }
     command
 }
 
@@ -82,9 +79,6 @@ pub struct RunRuleArgs {
     /// Seed of the case generator.
     #[arg(long, value_name = "S", default_value_t = refrast_conformance::DEFAULT_SEED)]
     seed: u64,
-    /// Folder for the counterexample picture.
-    #[arg(long, value_name = "DIR")]
-    report: Option<PathBuf>,
     /// Seconds of wall time after which no new case starts.
     #[arg(long, value_name = "SECONDS", value_parser = positive_seconds)]
     budget: Option<f64>,
@@ -103,7 +97,6 @@ pub fn run_rule(args: &RunRuleArgs) -> ExitCode {
         cases: args.cases,
         scale: args.scale,
         seed: args.seed,
-        report_dir: args.report.clone(),
         budget: args.budget.map(Duration::from_secs_f64),
         ..Options::default()
     };

@@ -44,6 +44,14 @@ impl Progress {
         }
     }
 
+    /// Prints a warning on stderr, above the bars when there are some.
+    pub fn warn(&self, text: &str) {
+        match &self.multi {
+            Some(multi) => multi.suspend(|| eprintln!("{text}")),
+            None => eprintln!("{text}"),
+        }
+    }
+
     /// A bar of `rules` rules for one implementation; hidden (every call a no-op) off a terminal.
     pub fn implementation(&self, name: &str, rules: usize) -> ProgressBar {
         let Some(multi) = &self.multi else {

@@ -2,7 +2,7 @@
 //! here, and only here, into the suite's [`Options`] and the JSON document's [`RunOptions`].
 
 use std::num::NonZeroUsize;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Duration;
 
 use refrast_conformance::{Options, Shard};
@@ -61,16 +61,15 @@ pub struct RunArgs {
 }
 
 impl RunArgs {
-    /// The suite's options for this run, counterexample pictures written into `report`.
+    /// The suite's options for this run.
     #[must_use]
-    pub fn options(&self, report: &Path) -> Options {
+    pub fn options(&self) -> Options {
         Options {
             cases: self.cases,
             scale: self.scale,
             seed: self.seed,
             rules: self.rule.clone(),
             shard: self.shard,
-            report_dir: Some(report.to_owned()),
             case_timeout: Duration::from_secs_f64(self.case_timeout),
             budget: self.budget.map(Duration::from_secs_f64),
             fail_fast: self.fail_fast,

@@ -8,6 +8,7 @@
 //! child that finds its implementation cannot be built here stops the others of that
 //! implementation, which is then skipped with the reason.
 
+use std::path::Path;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Mutex, PoisonError};
 use std::time::Instant;
@@ -41,6 +42,7 @@ enum Done {
 pub fn certify_builtins(
     builtins: &[BuiltIn],
     options: &Options,
+    dir: &Path,
     jobs: usize,
     out: &Progress,
 ) -> (Vec<Entry>, Vec<String>) {
@@ -57,6 +59,7 @@ pub fn certify_builtins(
         builtins,
         rules: &rules,
         options,
+        dir,
         out,
         bars: &bars,
         next: AtomicUsize::new(0),
@@ -90,6 +93,8 @@ struct Run<'a> {
     builtins: &'a [BuiltIn],
     rules: &'a [Rule],
     options: &'a Options,
+    /// Where each failure's files go.
+    dir: &'a Path,
     out: &'a Progress,
     bars: &'a [ProgressBar],
     /// The next task to start: implementation `next / rules`, rule `next % rules`.
@@ -142,7 +147,8 @@ impl Run<'_> {
                 self.unavailable[i].store(true, Ordering::SeqCst);
                 Done::Refused(why, profile)
             }
-            ChildRun::Ran(report, profile) => {
+            ChildRun::Ran(mut report, profile) => {
+                super::save_exhibit(&mut report, self.dir, self.out);
                 if report.status.is_failure() && self.options.fail_fast {
                     self.stop_at.fetch_min(task + 1, Ordering::SeqCst);
                 }

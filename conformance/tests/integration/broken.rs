@@ -77,10 +77,9 @@ fn inclusive_edges_fail_the_fill_rules_with_a_small_counterexample_and_a_picture
     let dir = std::env::temp_dir().join("refrast-broken-test");
     let options = Options {
         rules: vec!["fill.*".into()],
-        report_dir: Some(dir),
         ..Options::default()
     };
-    let report = certify(&mut InclusiveEdges, &options, |_| {});
+    let report = certify(&mut InclusiveEdges, &options, |r| r.save_exhibit(&dir).unwrap());
     let failed: Vec<_> = report.rules.iter().filter(|r| r.status == Status::Fail).collect();
     for id in [
         "fill.mesh.exactly-once",
@@ -125,6 +124,40 @@ fn inclusive_edges_fail_the_fill_rules_with_a_small_counterexample_and_a_picture
     );
 }
 
+/// Judging writes no file: a failure's picture and case come back as its exhibit, and are
+/// written only where the runner saves them (issue 44: the runner owns every output).
+#[test]
+fn judging_writes_nothing_until_the_runner_saves_the_exhibit() {
+    let options = Options {
+        rules: vec!["fill.mesh.exactly-once".into()],
+        ..Options::default()
+    };
+    let mut report = certify(&mut InclusiveEdges, &options, |_| {});
+    let failed = &mut report.rules[0];
+    assert_eq!(failed.status, Status::Fail, "{failed:#?}");
+    assert_eq!((&failed.picture, &failed.case_path), (&None, &None));
+    let exhibit = failed.exhibit.as_ref().expect("a failure keeps its exhibit");
+    assert!(
+        exhibit.stem.ends_with("__fill.mesh.exactly-once"),
+        "{}",
+        exhibit.stem
+    );
+    assert!(exhibit.picture.is_some() && !exhibit.caption.is_empty());
+    let dir = std::env::temp_dir().join(format!("refrast-exhibit-{}", std::process::id()));
+    failed.save_exhibit(&dir).expect("the files are written");
+    for path in [&failed.picture, &failed.case_path] {
+        let path = path.as_ref().expect("each path is recorded");
+        assert!(path.starts_with(&dir) && path.is_file(), "{}", path.display());
+    }
+    // A folder that cannot be made is an error that names the file, not a panic.
+    let blocked = dir.join(failed.picture.as_ref().unwrap().file_name().unwrap());
+    let why = failed
+        .save_exhibit(&blocked)
+        .expect_err("a file stands where the folder goes");
+    assert!(why.contains("could not write"), "{why}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 #[test]
 fn the_reference_passes_what_the_broken_one_fails() {
     let options = Options {
@@ -143,10 +176,9 @@ fn a_counterexample_replays_from_its_json() {
     let dir = std::env::temp_dir().join("refrast-replay-test");
     let options = Options {
         rules: vec!["fill.mesh.exactly-once".into()],
-        report_dir: Some(dir),
         ..Options::default()
     };
-    let report = certify(&mut InclusiveEdges, &options, |_| {});
+    let report = certify(&mut InclusiveEdges, &options, |r| r.save_exhibit(&dir).unwrap());
     let failed = &report.rules[0];
     assert_eq!(failed.status, Status::Fail, "{failed:#?}");
     let path = failed

@@ -45,6 +45,21 @@ pub fn matches_glob(pattern: &str, id: &str) -> bool {
 
 /// Certifies `rasterizer` against every rule selected by `options`, calling `progress` after each
 /// with its report, which it may complete (say, with the paths [`RuleReport::save_exhibit`] sets).
+///
+/// ```
+/// use refrast::Reference;
+/// use refrast_conformance::{Options, certify};
+///
+/// let options = Options { rules: vec!["fill.top-left.exact".into()], cases: Some(8), ..Options::default() };
+/// let folder = std::env::temp_dir().join("my-refrast-report");
+/// let report = certify(&mut Reference::default(), &options, |rule| {
+///     // A failure's picture and case, written where this program wants them.
+///     if let Err(why) = rule.save_exhibit(&folder) {
+///         eprintln!("warning: {why}");
+///     }
+/// });
+/// assert!(report.passed(), "{report:#?}");
+/// ```
 pub fn certify(
     rasterizer: &mut dyn Rasterizer,
     options: &Options,

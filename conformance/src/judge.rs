@@ -36,13 +36,14 @@ pub struct Options {
     pub rules: Vec<String>,
     /// Only this part of the selected rules ([`Shard`]), for runs split across machines.
     pub shard: Option<Shard>,
-    /// Called with every input before it is checked ([`RunConfig::announce`]).
+    /// Called with every input, shrinking included, before it is checked (for a progress
+    /// display, and for the parent of a rule's child process to name the case a hang is on).
     pub announce: Option<Announce>,
     /// How long one case may take before a rule run in a child process ([`crate::isolate`])
     /// fails as hung.
     pub case_timeout: Duration,
-    /// Wall time per rule after which no new case starts ([`RunConfig::budget`]); `None` runs
-    /// every case.
+    /// Wall time per rule after which no new case starts and shrinking stops, for slow
+    /// implementations (a rasterizer in another language behind a pipe); `None` runs every case.
     pub budget: Option<Duration>,
     /// Stop at the first rule that fails: the rules after it are not run and are listed in
     /// [`crate::Report::not_run`] (for a quick answer, and for mutation testing).

@@ -1,17 +1,23 @@
 //! The refrast conformance suite: a catalogue of rules that certifies any [`refrast::Rasterizer`].
 //!
+//! A certifier needs the root's names: [`run_as_tests`] or [`certify`], [`Options`], the
+//! [`Report`] types, the [`catalogue`], [`replay`], the [`spec`] map, [`expect`] files and the
+//! [`fuzz`] targets. The modules in *italics* below are the suite's inner workings: public only
+//! with the `internals` feature (its own tests and the workspace's cross-checks use them), and
+//! free to change in any release.
+//!
 //! The modules form layers, each using only those above it (`tests/integration/layers.rs` checks it):
 //!
 //! | layer | module | what |
 //! |---|---|---|
 //! | 0 | `status` | [`Status`]: pass, fail, crash, timeout, flake, beyond-spec, n/a |
-//! | 1 | [`oracle`] | the conventions' geometry ([`oracle::raster`]), brute force (i128 `orient2d`), ray casting (f64 with exact fallback, clip space), visible outlines, lines, points and samples ([`oracle::segment`]); no code shared with the reference |
+//! | 1 | *`oracle`* | the conventions' geometry (`oracle::raster`), brute force (i128 `orient2d`), ray casting (f64 with exact fallback, clip space), visible outlines, lines, points and samples (`oracle::segment`); no code shared with the reference |
 //! | 2 | `scene` | [`Scene`]: a draw whose `Debug` is pasteable Rust; [`PrimitiveScene`]: a scene drawn as lines or points, or at several samples per pixel; [`Case`]: what a rule's input is; [`CaseData`]: an input as data, the draw in the pipe protocol's words |
-//! | 3 | `violation` | [`Violation`], [`Counts`], [`Expect`], [`Picture`] |
-//! | 4 | [`picture`] | the zoomed sample grid: missing purple, unexpected red, double blue, don't-care yellow; outlines |
-//! | 5 | [`strategy`] | free functions that build valid scenes: grid triangles, spade meshes, fans, quads, clip crossings |
-//! | 6 | `runner` | [`property`]: one rule's property, seeded, shrunk, panics caught |
-//! | 7 | [`rules`] | [`catalogue`], [`Rule`], [`Family`], [`Kind`], [`Need`]: nine families, each rule a proptest property |
+//! | 3 | `violation` | `Violation`, [`Counts`], `Expect`, [`Picture`] |
+//! | 4 | *`picture`* | the zoomed sample grid: missing purple, unexpected red, double blue, don't-care yellow; outlines |
+//! | 5 | *`strategy`* | free functions that build valid scenes: grid triangles, spade meshes, fans, quads, clip crossings |
+//! | 6 | `runner` | `property`: one rule's property, seeded, shrunk, panics caught |
+//! | 7 | *`rules`* | [`catalogue`], [`Rule`], [`Family`], [`Kind`], [`Need`]: nine families, each rule a proptest property |
 //! | 8 | `report`, [`spec`] | [`Report`], [`RuleReport`] (with its [`Exhibit`], the files a failure leaves for the runner to write), [`Status`], [`ProfileReport`]; [`SpecMap`]: each normative statement of Vulkan, D3D11.3, OpenGL and OpenGL ES, the seeds' results and refrast's conventions, with the rules that check it |
 //! | 9 | `judge` | [`run_rule`], [`replay`], [`Options`]: one rule on one rasterizer, its verdict read under the claimed specification, a hint, a picture, the case as data |
 //! | 10 | `certify` | [`certify`]: the selected rules, in order or on several workers |
@@ -33,29 +39,54 @@ pub mod fuzz;
 mod harness;
 pub mod isolate;
 mod judge;
-pub mod oracle;
-pub mod picture;
 mod report;
-pub mod rules;
 mod runner;
 mod scene;
 pub mod spec;
 mod status;
-pub mod strategy;
 mod violation;
 
-pub use certify::{certify, certify_with, matches, matches_glob, refusal, selected};
-pub use harness::{band_words, failure_text, run_as_tests};
+// The suite's inner workings: public only with the `internals` feature, for the suite's own
+// tests and the workspace's cross-checks of oracles against implementations. They are not the
+// certifier's API and may change in any release.
+#[cfg(feature = "internals")]
+pub mod oracle;
+#[cfg(not(feature = "internals"))]
+mod oracle;
+#[cfg(feature = "internals")]
+pub mod picture;
+#[cfg(not(feature = "internals"))]
+mod picture;
+#[cfg(feature = "internals")]
+pub mod rules;
+#[cfg(not(feature = "internals"))]
+mod rules;
+#[cfg(feature = "internals")]
+pub mod strategy;
+#[cfg(not(feature = "internals"))]
+mod strategy;
+
+// What a certifier uses: run the rules, read the reports, replay a counterexample.
+pub use certify::{certify, certify_with, matches, refusal, selected};
+pub use harness::run_as_tests;
 pub use judge::{DEFAULT_CASE_TIMEOUT, Options, Shard, cases_for, replay, run_rule};
 pub use report::{
     CaseFile, Exhibit, Part, ProfileReport, Report, RuleReport, Status, feature_list, fill_name,
 };
-pub use rules::meta::Translated;
-pub use rules::robust::Poisoned;
-pub use rules::{
-    Family, Kind, Level, Levels, Need, Rule, RuleDraft, catalogue, levels_markdown, markdown_table, needs,
-};
-pub use runner::{DEFAULT_SEED, Replay, RunConfig, Verdict, property, property_for};
-pub use scene::{Case, CaseData, Coordinate, DrawData, Poison, PrimitiveScene, Scene, clip_of};
+pub use rules::{Family, Kind, Level, Levels, Need, Rule, catalogue, levels_markdown, markdown_table};
+pub use runner::DEFAULT_SEED;
+// A counterexample printed as Rust names these (`use refrast_conformance::*;` pastes it).
+pub use rules::{meta::Translated, robust::Poisoned};
+pub use scene::{Case, CaseData, Coordinate, DrawData, Poison, PrimitiveScene, Scene};
 pub use spec::{Coverage, SpecMap, Statement, spec_map};
-pub use violation::{Class, Counts, Expect, Findings, Picture, Violation, compare_coverage, count_fragments};
+pub use violation::{Class, Counts, Picture};
+
+// The inner workings' names at the root, with the feature.
+#[cfg(feature = "internals")]
+pub use harness::{band_words, failure_text};
+#[cfg(feature = "internals")]
+pub use rules::{RuleDraft, needs};
+#[cfg(feature = "internals")]
+pub use runner::{Replay, RunConfig, Verdict, property, property_for};
+#[cfg(feature = "internals")]
+pub use violation::{Expect, Findings, Violation, compare_coverage, count_fragments};

@@ -54,7 +54,8 @@ pub struct Counts {
 }
 
 /// A picture of a viewport's samples with the triangles drawn over them (data: the runner that
-/// wants a file renders it, [`crate::picture::png`]; it travels from a rule's child process).
+/// wants a file saves it with [`crate::RuleReport::save_exhibit`]; it travels from a rule's
+/// child process).
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Picture {
     /// Viewport width in pixels.

@@ -15,20 +15,6 @@ use crate::picture::finite_outlines;
 use crate::scene::Scene;
 use crate::violation::{Expect, Violation, compare_coverage, count_fragments};
 
-/// Ray-cast expectations for a scene whose triangles do not overlap (one triangle, or a mesh).
-///
-/// A sample inside some triangle should be covered exactly once, one outside all should not
-/// be covered, except within `band` pixels of an outline segment that is not a shared edge:
-/// the mesh boundary and the cuts made by clip planes (there, any count is accepted: a cut
-/// vertex snapped over a neighbour's sample makes it count twice); cuts are widened by how far
-/// an f32 clipper may move them ([`CutRounding`]). Shared edges get no band,
-/// so a crack along them is caught exactly, and so is an overlap, except within the band of a
-/// shared edge ending at a cut vertex, where one or two is right ([`Expect::OneOrTwo`]).
-#[must_use]
-pub fn mesh_expectation(scene: &Scene, band: f64) -> (Vec<Expect>, Vec<Vec<[f64; 2]>>) {
-    mesh_expectation_with(scene, band, Relax::NONE)
-}
-
 /// What a coverage check leaves to the implementation beyond refrast's conventions, for a
 /// specification that requires less ([`super::level::Level::Partly`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -53,10 +39,19 @@ impl Relax {
     };
 }
 
-/// [`mesh_expectation`], leaving to the implementation what `relax` says of cuts (its vertices
-/// of three are [`check_mesh_coverage`]'s, which knows where the profile puts them).
+/// Ray-cast expectations for a scene whose triangles do not overlap (one triangle, or a mesh).
+///
+/// A sample inside some triangle should be covered exactly once, one outside all should not
+/// be covered, except within `band` pixels of an outline segment that is not a shared edge:
+/// the mesh boundary and the cuts made by clip planes (there, any count is accepted: a cut
+/// vertex snapped over a neighbour's sample makes it count twice); cuts are widened by how far
+/// an f32 clipper may move them ([`CutRounding`]). Shared edges get no band,
+/// so a crack along them is caught exactly, and so is an overlap, except within the band of a
+/// shared edge ending at a cut vertex, where one or two is right ([`Expect::OneOrTwo`]).
+/// `relax` leaves to the implementation what it says of cuts ([`Relax::NONE`] leaves nothing;
+/// its vertices of three are [`check_mesh_coverage`]'s, which knows where the profile puts them).
 #[must_use]
-pub fn mesh_expectation_with(scene: &Scene, band: f64, relax: Relax) -> (Vec<Expect>, Vec<Vec<[f64; 2]>>) {
+pub fn mesh_expectation(scene: &Scene, band: f64, relax: Relax) -> (Vec<Expect>, Vec<Vec<[f64; 2]>>) {
     let shared = shared_edges(scene);
     let tris: Vec<[[f64; 4]; 3]> = (0..scene.triangles.len())
         .map(|t| scene.positions_of(t))
@@ -271,7 +266,7 @@ pub fn drawn_expectation(
     relax: Relax,
 ) -> (Vec<Expect>, Vec<Vec<[f64; 2]>>) {
     if scene.state.cull == CullMode::None {
-        return mesh_expectation_with(scene, band, relax);
+        return mesh_expectation(scene, band, relax);
     }
     let drawn: Vec<Option<bool>> = scene
         .turns(profile)
@@ -286,11 +281,11 @@ pub fn drawn_expectation(
             .collect();
         kept
     };
-    let (with, outlines) = mesh_expectation_with(&keeping(true), band, relax);
+    let (with, outlines) = mesh_expectation(&keeping(true), band, relax);
     if drawn.iter().all(Option::is_some) {
         return (with, outlines);
     }
-    let (without, _) = mesh_expectation_with(&keeping(false), band, relax);
+    let (without, _) = mesh_expectation(&keeping(false), band, relax);
     let either = with
         .iter()
         .zip(&without)
@@ -362,7 +357,7 @@ mod tests {
     use crate::strategy::{clipped_mesh_scene, crossing_scene, fan_scene, mesh_scene, projected_mesh_scene};
 
     /// The expectation sample by sample over every triangle, without boxes, with the cut
-    /// rounding evaluated per sample: what [`mesh_expectation_with`] computed before it skipped
+    /// rounding evaluated per sample: what [`mesh_expectation`] computed before it skipped
     /// the samples a triangle cannot reach and set the rounding up once per triangle.
     fn direct(scene: &Scene, band: f64, relax: Relax) -> Vec<Expect> {
         let tris: Vec<_> = (0..scene.triangles.len())
@@ -433,7 +428,7 @@ mod tests {
             cuts in any::<bool>(),
         ) {
             let relax = Relax { vertices_of_three: false, cut_shared_edges: cuts };
-            let (got, _) = mesh_expectation_with(&scene, band, relax);
+            let (got, _) = mesh_expectation(&scene, band, relax);
             prop_assert_eq!(got, direct(&scene, band, relax));
         }
     }

@@ -121,13 +121,13 @@ pub struct Rule {
 }
 
 impl Rule {
-    /// An invariant rule of `family` called `id`; finish it with [`RuleDraft::run`].
+    /// An invariant rule of `family` called `id`; finish it with the draft's `run`.
     #[must_use]
     pub fn invariant(family: Family, id: &'static str) -> RuleDraft {
         RuleDraft::new(family, Kind::Invariant, id)
     }
 
-    /// An exact rule of `family` called `id`; finish it with [`RuleDraft::run`].
+    /// An exact rule of `family` called `id`; finish it with the draft's `run`.
     #[must_use]
     pub fn exact(family: Family, id: &'static str) -> RuleDraft {
         RuleDraft::new(family, Kind::Exact, id)

@@ -330,22 +330,13 @@ const RAW_BITS: &str = "on a draw of raw f32 bit patterns (NaN, infinities, huge
 /// Computation; OpenGL 4.6 §2.3.4.1).
 const FLOAT_RANGE: f64 = 4_294_967_296.0;
 
-/// Whether drawing `scene` needs no value beyond 2^32: every coordinate finite and within it
-/// (subnormals included: they "must yield deterministic results"), and every vertex of each
-/// clipped polygon at w ≥ 2^-32, since perspective interpolation divides by w (Basic Polygon
-/// Rasterization). A vertex clipped away may have any w: nothing divides by it.
-#[must_use]
-pub fn within_float_range(scene: &Scene) -> bool {
-    exact_within_float_range(scene)
-}
-
 /// [`within_float_range`] of the draw as an implementation with `profile` receives it: for one
 /// whose `z` arrives rewritten to `2z − w` in f32 ([`refrast::Features::z_rewritten_in_f32`]),
 /// also no vertex that the rewrite's rounding moves across or onto the near plane, since that
 /// can leave a sliver at `w` far below 2^-32 where the exact volume leaves nothing.
 #[must_use]
 pub fn within_float_range_as_received(scene: &Scene, profile: &refrast::Profile) -> bool {
-    exact_within_float_range(scene)
+    within_float_range(scene)
         && (!profile.features.z_rewritten_in_f32
             || scene
                 .positions
@@ -367,7 +358,12 @@ fn near_side_kept_by_rewrite(p: [f32; 4], range: refrast::DepthRange) -> bool {
     exact.partial_cmp(&0.0) == rewritten.partial_cmp(&0.0)
 }
 
-fn exact_within_float_range(scene: &Scene) -> bool {
+/// Whether drawing `scene` needs no value beyond 2^32: every coordinate finite and within it
+/// (subnormals included: they "must yield deterministic results"), and every vertex of each
+/// clipped polygon at w ≥ 2^-32, since perspective interpolation divides by w (Basic Polygon
+/// Rasterization). A vertex clipped away may have any w: nothing divides by it.
+#[must_use]
+pub fn within_float_range(scene: &Scene) -> bool {
     use refrast::stage::{ClipOutcome, assemble, clip_planes, clip_triangle};
     let finite = scene
         .positions

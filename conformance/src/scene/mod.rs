@@ -148,8 +148,8 @@ impl Scene {
         }
     }
 
-    /// How each triangle turns as an implementation with `profile` may see it ([`turn`]);
-    /// [`Turn::Unsure`] for a triangle naming a vertex that does not exist.
+    /// How each triangle turns as an implementation with `profile` may see it; `Turn::Unsure`
+    /// for a triangle naming a vertex that does not exist.
     #[must_use]
     pub fn turns(&self, profile: &Profile) -> Vec<Turn> {
         (0..self.triangles.len())

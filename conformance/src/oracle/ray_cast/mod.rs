@@ -10,10 +10,10 @@ mod cut_rounding;
 mod exact;
 mod spread;
 
+pub use cut_rounding::CutRounding;
 #[cfg(test)]
 pub(crate) use cut_rounding::reference::cut_rounding_px as reference_cut_rounding_px;
-pub use cut_rounding::{CLIP_ROUNDING, CutRounding, cut_rounding_px};
-pub use spread::{PlaneValue, Spread, spread};
+pub use spread::spread;
 
 use refrast::DrawState;
 

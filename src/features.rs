@@ -253,6 +253,23 @@ pub struct Features {
     pub z_rewritten_in_f32: bool,
 }
 
+/// The draw state a rasterizer honours beyond [`Features`]: state the contract gained after
+/// its first rasterizers were written, so it defaults to none (a profile ending in
+/// `..Profile::default()` keeps its meaning, and the suite sends it none of this state).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub struct StateSupport {
+    /// It honours [`DrawState::scissor`](crate::DrawState::scissor): no fragment outside the
+    /// rectangle, for every topology and sample count it draws.
+    pub scissor: bool,
+}
+
+impl StateSupport {
+    /// None of it: what a rasterizer written before it existed declares.
+    pub const NONE: StateSupport = StateSupport { scissor: false };
+    /// All of it, as the reference honours it.
+    pub const ALL: StateSupport = StateSupport { scissor: true };
+}
+
 impl Features {
     /// Everything the reference does.
     pub const ALL: Features = Features {

@@ -23,8 +23,8 @@
 //! |---|---|---|
 //! | the contract | `rasterizer.rs`, `draw.rs` | [`Rasterizer`], [`Draw`], [`Fragment`], [`Resolved`] |
 //! | lines, points, samples | `primitive.rs` | [`Topology`], [`LineRule`], [`PointClipping`], [`SamplePattern`], [`SAMPLE_COUNTS`] |
-//! | what an implementation declares | `profile.rs`, `features.rs` | [`Profile`], [`Snapping`], [`Spec`], [`Features`], [`Supported`], [`SnapAccuracy`] |
-//! | state | `state.rs`, `setup.rs`, `depth.rs` | [`DrawState`], [`CullMode`], [`FrontFace`], [`DepthState`], [`CompareOp`], [`DepthRange`] |
+//! | what an implementation declares | `profile.rs`, `features.rs` | [`Profile`], [`Snapping`], [`Spec`], [`Features`], [`StateSupport`], [`Supported`], [`SnapAccuracy`] |
+//! | state | `state.rs`, `setup.rs`, `depth.rs` | [`DrawState`], [`Scissor`], [`CullMode`], [`FrontFace`], [`DepthState`], [`CompareOp`], [`DepthRange`] |
 //! | the reference | `reference.rs` | [`Reference`], [`ReferenceConfig`], [`Traversal`], [`ClipMode`], [`DrawStats`], [`Sample`] |
 //! | fixed point | `fixed.rs` | [`SubpixelBits`], [`FixedPoint`], [`snap`], [`SnapRounding`], [`COORD_LIMIT`] |
 //! | viewport | `viewport.rs` | [`Viewport`], [`MAX_VIEWPORT`] |
@@ -78,6 +78,9 @@
 //!   clipped, far when enabled, x/y at the guard band ([`stage::GUARD_BAND`]) and clamped by
 //!   traversal, or at the viewport with [`ClipMode::Full`]. Intersections are canonical
 //!   ([`stage::intersect`]).
+//! - **Scissor**: a fragment is produced only where its pixel lies in the draw's scissor
+//!   rectangle, half-open in raster space, for every primitive and sample
+//!   ([`DrawState::passes_scissor`]).
 //! - **Coverage of a clipped polygon**: its snapped fan's winding number
 //!   ([`stage::traverse`]), so a sliver turned over by snapping neither doubles nor leaks.
 //! - **Depth**: window depth `z/w` interpolated linearly in screen space
@@ -123,12 +126,12 @@ pub use depth::{CompareOp, DepthRange, DepthState};
 pub use draw::{Draw, Fragment, Resolved};
 pub use edge::{FillConvention, is_top_left, orient2d};
 pub use error::{ConfigError, DrawError, Unavailable};
-pub use features::{Features, Setting, SnapAccuracy, Supported};
+pub use features::{Features, Setting, SnapAccuracy, StateSupport, Supported};
 pub use fixed::{COORD_LIMIT, FixedPoint, SnapRounding, SubpixelBits, snap};
 pub use primitive::{LineRule, PointClipping, SAMPLE_COUNTS, SamplePattern, Topology};
 pub use profile::{DepthConvention, Profile, Snapping, Spec};
 pub use rasterizer::Rasterizer;
 pub use reference::{DrawStats, Reference, Sample};
 pub use setup::{CullMode, FrontFace, Winding};
-pub use state::DrawState;
+pub use state::{DrawState, Scissor};
 pub use viewport::{GUARD_BAND_REACH, MAX_VIEWPORT, Viewport};

@@ -143,6 +143,9 @@ impl Reference {
                     continue;
                 };
                 traverse(&fan, kept.winding, rect, bits, &mut scratch.row, |hit| {
+                    if !draw.state.passes_scissor(hit.x, hit.y) {
+                        return;
+                    }
                     stats.fragments += 1;
                     emit(Fragment {
                         sample: k as u8,
@@ -235,7 +238,10 @@ impl Reference {
             });
         };
         segment::candidates(a, b, one, |x, y| {
-            if !(0..width).contains(&x) || !(0..height).contains(&y) {
+            if !(0..width).contains(&x)
+                || !(0..height).contains(&y)
+                || !draw.state.passes_scissor(x as u32, y as u32)
+            {
                 return;
             }
             let centre = FixedPoint {
@@ -303,6 +309,9 @@ impl Reference {
             };
             for y in pixels(c.y - half, c.y + half, draw.viewport.height()) {
                 for x in pixels(c.x - half, c.x + half, draw.viewport.width()) {
+                    if !draw.state.passes_scissor(x as u32, y as u32) {
+                        continue;
+                    }
                     for (k, &(ox, oy)) in offsets.iter().enumerate() {
                         let s = FixedPoint {
                             x: x * one + ox,

@@ -5,7 +5,7 @@
 use std::fmt;
 
 use crate::edge::FillConvention;
-use crate::features::Features;
+use crate::features::{Features, StateSupport};
 use crate::primitive::{LineRule, PointClipping, SAMPLE_COUNTS, SamplePattern, Topology};
 use crate::state::DrawState;
 
@@ -167,11 +167,14 @@ pub struct Profile {
     pub multisample: Vec<SamplePattern>,
     /// What clipping does to a point whose centre lies outside the viewport in x or y.
     pub point_clipping: PointClipping,
+    /// The draw state it honours beyond [`features`](Self::features): the scissor, so far.
+    pub state: StateSupport,
 }
 
 impl Default for Profile {
     /// refrast's conventions with no name: an 8-bit grid, the top-left rule, screen-linear
-    /// depth, the reference's tolerance and precision, every state, triangles at one sample.
+    /// depth, the reference's tolerance and precision, every state of [`Features`] and none of
+    /// [`StateSupport`], triangles at one sample.
     fn default() -> Self {
         Self {
             name: String::new(),
@@ -188,6 +191,7 @@ impl Default for Profile {
             point_snapping: None,
             multisample: Vec::new(),
             point_clipping: PointClipping::AllClipPlanes,
+            state: StateSupport::NONE,
         }
     }
 }
@@ -226,13 +230,15 @@ impl Profile {
         }
     }
 
-    /// These declarations for triangle lists at one sample alone: lines, points and sample
-    /// counts above one left out. For a rasterizer that borrows another's profile
-    /// (`..Reference::default().profile()`, which declares all three) but draws only triangles.
+    /// These declarations for the first contract alone, triangle lists at one sample: lines,
+    /// points, sample counts above one and the later state ([`StateSupport`]) left out. For a
+    /// rasterizer that borrows another's profile (`..Reference::default().profile()`, which
+    /// declares all of them) but draws only triangles as the first contract has them.
     #[must_use]
     pub fn triangles_only(self) -> Self {
         let none = Self::default();
         Self {
+            state: none.state,
             lines: none.lines,
             points: none.points,
             endpoint_snapping: none.endpoint_snapping,
@@ -284,7 +290,8 @@ impl Profile {
         *state == self.fit(*state)
     }
 
-    /// `state` with each unsupported setting replaced by a supported one.
+    /// `state` with each unsupported setting replaced by a supported one (an undeclared scissor
+    /// dropped).
     #[must_use]
     pub fn fit(&self, state: DrawState) -> DrawState {
         let f = &self.features;
@@ -295,6 +302,7 @@ impl Profile {
         fitted.depth.write = f.depth_writes.fit(state.depth.write);
         fitted.clip_far = f.far_clipping.fit(state.clip_far);
         fitted.depth_range = f.depth_ranges.fit(state.depth_range);
+        fitted.scissor = state.scissor.filter(|_| self.state.scissor);
         fitted
     }
 }

@@ -4,7 +4,7 @@ use crate::config::ReferenceConfig;
 use crate::depth::fragment_depth;
 use crate::draw::{Draw, Fragment};
 use crate::error::DrawError;
-use crate::features::{Features, SnapAccuracy};
+use crate::features::{Features, SnapAccuracy, StateSupport};
 use crate::fixed::SnapRounding;
 use crate::front::{Discard, FrontScratch, FrontSetup, front_end};
 use crate::interp::{Varyings, interpolate, interpolate_depth, screen_weights};
@@ -145,6 +145,10 @@ impl Reference {
             self.config.subpixel_bits,
             &mut scratch.row,
             |hit| {
+                // The scissor test, on each sample the triangle covers.
+                if !setup.draw.state.passes_scissor(hit.x, hit.y) {
+                    return;
+                }
                 covered += 1;
                 visit(&Sample::new(
                     primitive as u32,
@@ -253,6 +257,7 @@ impl Rasterizer for Reference {
                 .filter_map(|&n| SamplePattern::standard(n))
                 .collect(),
             point_clipping: self.config.point_clipping,
+            state: StateSupport::ALL,
         }
     }
 

@@ -1,6 +1,6 @@
-//! A draw's state besides its geometry: facing, culling, depth and clipping. Its own module
-//! because both the contract (a [`Draw`](crate::Draw) carries it) and a profile (which states
-//! it supports) need it.
+//! A draw's state besides its geometry: facing, culling, depth, clipping and the scissor. Its
+//! own module because both the contract (a [`Draw`](crate::Draw) carries it) and a profile
+//! (which states it supports) need it.
 
 use crate::depth::{DepthRange, DepthState};
 use crate::setup::{CullMode, FrontFace};
@@ -18,4 +18,78 @@ pub struct DrawState {
     pub depth_range: DepthRange,
     /// Whether triangles are clipped at the far plane `z = w` (near is always clipped).
     pub clip_far: bool,
+    /// The rectangle fragments must fall in; `None` tests nothing. Sent only to a rasterizer
+    /// that declares it ([`StateSupport::scissor`](crate::StateSupport::scissor)).
+    pub scissor: Option<Scissor>,
+}
+
+impl DrawState {
+    /// Whether a fragment at pixel `(x, y)` passes the scissor test: the one place the
+    /// reference applies it, as Vulkan's Scissor Test does, to each fragment's pixel.
+    #[must_use]
+    #[inline]
+    pub fn passes_scissor(&self, x: u32, y: u32) -> bool {
+        self.scissor.is_none_or(|s| s.contains(x, y))
+    }
+}
+
+/// A scissor rectangle in pixels, in raster space (origin top-left, y down, as fragments'
+/// `x` and `y`): a fragment outside it is not produced (Vulkan, Scissor Test; D3D11.3 §15.7).
+/// It may reach past the viewport, and have no width or height (then nothing passes).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub struct Scissor {
+    /// The first column inside.
+    pub x: u32,
+    /// The first row inside.
+    pub y: u32,
+    /// Columns inside: `x ≤ column < x + width`.
+    pub width: u32,
+    /// Rows inside: `y ≤ row < y + height`.
+    pub height: u32,
+}
+
+impl Scissor {
+    /// Whether pixel `(px, py)` is inside: `x ≤ px < x + width` and `y ≤ py < y + height`,
+    /// in 64 bits so that a rectangle reaching past `u32::MAX` does not wrap.
+    #[must_use]
+    #[inline]
+    pub fn contains(self, px: u32, py: u32) -> bool {
+        let inside = |p: u32, start: u32, extent: u32| {
+            p >= start && u64::from(p) < u64::from(start) + u64::from(extent)
+        };
+        inside(px, self.x, self.width) && inside(py, self.y, self.height)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The rectangle is half-open: its first column and row are in, `x + width` and
+    /// `y + height` are out; one at the top of `u32` does not wrap to take in column 0.
+    #[test]
+    fn a_scissor_holds_its_first_and_not_its_end_pixels() {
+        let s = Scissor {
+            x: 2,
+            y: 3,
+            width: 4,
+            height: 1,
+        };
+        assert!(s.contains(2, 3) && s.contains(5, 3));
+        assert!(!s.contains(1, 3) && !s.contains(6, 3) && !s.contains(2, 4) && !s.contains(2, 2));
+        assert!(!Scissor { width: 0, ..s }.contains(2, 3));
+        let far = Scissor {
+            x: u32::MAX - 1,
+            y: 0,
+            width: 10,
+            height: 1,
+        };
+        assert!(far.contains(u32::MAX, 0) && !far.contains(0, 0));
+        let state = DrawState {
+            scissor: Some(s),
+            ..DrawState::default()
+        };
+        assert!(state.passes_scissor(3, 3) && !state.passes_scissor(0, 0));
+        assert!(DrawState::default().passes_scissor(u32::MAX, u32::MAX));
+    }
 }

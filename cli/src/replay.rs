@@ -217,6 +217,13 @@ fn describe(case: &CaseFile) -> String {
         d.depth_range,
         d.far_clipping
     );
+    if let Some([x, y, w, h]) = d.scissor {
+        text.push_str(&format!(
+            "; scissor x {x}..{}, y {y}..{}",
+            u64::from(x) + u64::from(w),
+            u64::from(y) + u64::from(h)
+        ));
+    }
     if let Some([dx, dy]) = case.case.translate {
         text.push_str(&format!("; drawn again moved by ({dx}, {dy}) pixels"));
     }

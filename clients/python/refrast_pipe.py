@@ -18,13 +18,16 @@ FRAGMENT = struct.Struct("<4I7fI")
 Draw = namedtuple(
     "Draw",
     "width height positions triangles cull front_face depth_compare depth_write depth_clear "
-    "depth_range far_clipping topology samples",
+    "depth_range far_clipping topology samples scissor",
+    defaults=(None,),
 )
 Draw.__doc__ = """One draw: clip-space positions (x, y, z, w), triangles (i, j, k) and state.
 
 cull is none/front/back, front_face ccw/cw, depth_compare less/less-equal/greater/
 greater-equal/equal/not-equal/always/never, depth_write and far_clipping booleans, depth_clear a
-float, depth_range zero-to-one or negative-one-to-one. topology is triangle-list and samples 1:
+float, depth_range zero-to-one or negative-one-to-one. scissor is None, or (x, y, width, height)
+in pixels (origin top-left) for a profile whose features name scissor: then no fragment may lie
+outside x <= px < x + width, y <= py < y + height. topology is triangle-list and samples 1:
 refrast sends lines, points and other sample counts only to a child whose profile lists them,
 and this helper declares and reads triangle lists only. Indices are not checked: raise Refused
 for one that names no vertex."""
@@ -85,6 +88,7 @@ def _read_draw(words, stream):
         far_clipping=fields["far-clipping"] == "on",
         topology=fields.get("topology", "triangle-list"),
         samples=int(fields.get("samples", "1")),
+        scissor=tuple(int(v) for v in fields["scissor"].split(",")) if "scissor" in fields else None,
     )
 
 

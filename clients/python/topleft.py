@@ -6,8 +6,8 @@ Python integers, and a sample exactly on an edge belongs to the triangle only if
 top or a left edge (D3D11's top-left rule). Triangles are clipped in clip space against the
 near plane, the far plane when asked, and a guard band 16384 pixels from the viewport's centre,
 each cut computed from the inside end; a clipped polygon covers the samples its snapped fan winds
-around. Barycentrics are perspective-correct, depth is z/w linear on screen, and its own depth
-buffer answers `resolve`.
+around. Barycentrics are perspective-correct, depth is z/w linear on screen, a scissor rectangle
+drops the fragments outside it, and its own depth buffer answers `resolve`.
 
 Run it with refrast:  refrast certify --exec "python3 clients/python/topleft.py"
 
@@ -37,7 +37,7 @@ PROFILE = {
     "depth": "z-over-w",
     "tolerance": 1,
     "precision": 18,
-    "features": "perspective-barycentrics screen-barycentrics depth-test ties-to-even",
+    "features": "perspective-barycentrics screen-barycentrics depth-test ties-to-even scissor",
     # The guard band's half-side less half the largest viewport (16384 px): its reach beyond
     # every side of every viewport.
     "guard-band": int(GUARD_BAND) - 16384 // 2,
@@ -277,7 +277,15 @@ def rasterize(draw):
     out = []
     for t, tri in enumerate(draw.triangles):
         out += triangle_fragments(draw, t, [draw.positions[i] for i in tri])
-    return out
+    return [f for f in out if in_scissor(draw, f.x, f.y)]
+
+
+def in_scissor(draw, x, y):
+    """The scissor test: the pixel lies in the draw's rectangle, or the draw has none."""
+    if draw.scissor is None:
+        return True
+    sx, sy, width, height = draw.scissor
+    return sx <= x < sx + width and sy <= y < sy + height
 
 
 PASSES = {

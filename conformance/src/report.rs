@@ -4,8 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use refrast::{
-    CompareOp, CullMode, DepthRange, Features, FillConvention, FrontFace, Profile, Rasterizer, SnapAccuracy,
-    Supported,
+    CompareOp, CullMode, DepthRange, FillConvention, FrontFace, Profile, Rasterizer, SnapAccuracy, Supported,
 };
 use serde::{Deserialize, Serialize};
 
@@ -299,7 +298,7 @@ impl From<&Profile> for ProfileReport {
             depth: depth_word(p.depth).to_owned(),
             tolerance_subpixels: p.tolerance_subpixels,
             band_px: p.band_px(),
-            features: feature_list(&p.features),
+            features: feature_list(p),
             spec: p.spec.title().to_owned(),
         }
     }
@@ -331,13 +330,15 @@ pub fn fill_name(fill: Option<FillConvention>) -> &'static str {
 
 /// The abilities a profile declares, then each setting's supported values.
 #[must_use]
-pub fn feature_list(f: &Features) -> Vec<String> {
+pub fn feature_list(p: &Profile) -> Vec<String> {
+    let f = &p.features;
     let abilities = [
         (f.perspective_barycentrics, "perspective-barycentrics"),
         (f.screen_barycentrics, "screen-barycentrics"),
         (f.depth_test, "depth-test"),
         (f.ties_to_even, "ties-to-even"),
         (f.zero_area_before_clipping, "zero-area-before-clipping"),
+        (p.state.scissor, "scissor"),
     ];
     let mut list: Vec<String> = abilities
         .iter()

@@ -142,6 +142,10 @@ pub fn depth_word(depth: DepthConvention) -> &'static str {
 /// The key of far clipping, whose values are `on` and `off` like depth writes'.
 pub const FAR_CLIPPING: &str = "far-clipping";
 
+/// The feature word a child declares to be sent a scissor, and the request key that carries
+/// it: `scissor=X,Y,WIDTH,HEIGHT` in pixels, origin top-left.
+pub const SCISSOR: &str = "scissor";
+
 /// The key of the guard band's reach: pixels beyond each side of the viewport.
 pub const GUARD_BAND: &str = "guard-band";
 
@@ -156,16 +160,21 @@ pub const GUARD_BAND_LIMIT: u32 = refrast::COORD_LIMIT as u32;
 /// indices. `triangles=T` counts the draw's primitives, whose indices follow: `3T` of a triangle
 /// list, `2T` of a line list, `T + 1` of a line strip (none when `T = 0`), `T` of a point list.
 /// Version 2 ends the header with the topology and the samples per pixel; a version 1 child is
-/// only ever sent triangle lists at one sample.
+/// only ever sent triangle lists at one sample. A draw with a scissor ends it with
+/// `scissor=X,Y,W,H`, in either version.
 #[must_use]
 pub fn request(op: Op, draw: &Draw, version: u32) -> Vec<u8> {
     let s = &draw.state;
     let count = draw.primitive_count();
-    let extra = if version >= 2 {
+    let mut extra = if version >= 2 {
         format!(" topology={} samples={}", draw.topology.name(), draw.samples)
     } else {
         String::new()
     };
+    // Only a child that declares the feature is ever sent a scissor (Profile::fit drops it).
+    if let Some(r) = s.scissor {
+        extra += &format!(" {SCISSOR}={},{},{},{}", r.x, r.y, r.width, r.height);
+    }
     let header = format!(
         "{} width={} height={} vertices={} triangles={count} cull={} front-face={} depth-compare={} \
          depth-write={} depth-clear={:?} depth-range={} far-clipping={}{extra}\n",
@@ -519,6 +528,7 @@ impl Reading {
             f.ties_to_even,
             f.zero_area_before_clipping,
         ) = (false, false, false, false, false);
+        self.profile.state.scissor = false;
         for word in rest.split_whitespace() {
             let flag = match word {
                 "perspective-barycentrics" => &mut f.perspective_barycentrics,
@@ -526,13 +536,14 @@ impl Reading {
                 "depth-test" => &mut f.depth_test,
                 "ties-to-even" => &mut f.ties_to_even,
                 "zero-area-before-clipping" => &mut f.zero_area_before_clipping,
+                SCISSOR => &mut self.profile.state.scissor,
                 // The word alone, from before the guard band had a size: the reach the rule drew
                 // then. A `guard-band PIXELS` line says more.
                 "guard-band" => &mut self.guard_band_word,
                 _ => {
                     return Err(bad(
                         "features are perspective-barycentrics, screen-barycentrics, depth-test, \
-                         ties-to-even, zero-area-before-clipping and guard-band",
+                         ties-to-even, zero-area-before-clipping, scissor and guard-band",
                     ));
                 }
             };

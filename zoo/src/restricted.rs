@@ -7,7 +7,8 @@
 
 use refrast::{
     ClipMode, CompareOp, CullMode, DepthRange, Draw, DrawError, Features, Fragment, FrontFace, PointClipping,
-    Profile, Rasterizer, Reference, ReferenceConfig, Resolved, SnapAccuracy, SnapRounding, Spec, Supported,
+    Profile, Rasterizer, Reference, ReferenceConfig, Resolved, SnapAccuracy, SnapRounding, Spec,
+    StateSupport, Supported,
 };
 
 /// The reference under a restricted profile.
@@ -16,17 +17,19 @@ pub struct Restricted {
     name: String,
     inner: Reference,
     features: Features,
+    state: StateSupport,
     spec: Spec,
 }
 
 impl Restricted {
-    /// The reference configured by `config`, declaring `restrict` of its features and `spec`,
-    /// named `restricted:NAME`.
+    /// The reference configured by `config`, declaring `restrict` of its features, `state` and
+    /// `spec`, named `restricted:NAME`.
     #[must_use]
     pub fn new(
         name: &str,
         config: ReferenceConfig,
         restrict: impl FnOnce(&mut Features),
+        state: StateSupport,
         spec: Spec,
     ) -> Self {
         let inner = Reference::new(config);
@@ -36,6 +39,7 @@ impl Restricted {
             name: format!("restricted:{name}"),
             inner,
             features,
+            state,
             spec,
         }
     }
@@ -54,6 +58,7 @@ impl Rasterizer for Restricted {
         Profile {
             name: self.name.clone(),
             features: self.features,
+            state: self.state,
             spec: self.spec,
             ..self.inner.profile()
         }
@@ -111,7 +116,20 @@ fn only(name: impl Into<String>, description: impl Into<String>, restrict: impl 
     )
 }
 
-/// A restriction with its own reference configuration and claimed specification.
+/// The default reference declaring only `state` of the state beyond [`Features`].
+fn stateful(name: impl Into<String>, description: impl Into<String>, state: StateSupport) -> Restriction {
+    restriction(
+        name,
+        description,
+        ReferenceConfig::default(),
+        |_: &mut Features| {},
+        state,
+        Spec::Refrast,
+    )
+}
+
+/// A restriction with its own reference configuration and claimed specification, declaring
+/// all the state beyond [`Features`].
 fn configured(
     name: impl Into<String>,
     description: impl Into<String>,
@@ -119,12 +137,24 @@ fn configured(
     restrict: impl Restrict,
     spec: Spec,
 ) -> Restriction {
+    restriction(name, description, config, restrict, StateSupport::ALL, spec)
+}
+
+/// A restriction of everything a profile declares.
+fn restriction(
+    name: impl Into<String>,
+    description: impl Into<String>,
+    config: ReferenceConfig,
+    restrict: impl Restrict,
+    state: StateSupport,
+    spec: Spec,
+) -> Restriction {
     let name = name.into();
     let inner = name.clone();
     Restriction {
         name,
         description: description.into(),
-        make: Box::new(move || Restricted::new(&inner, config, restrict.clone(), spec)),
+        make: Box::new(move || Restricted::new(&inner, config, restrict.clone(), state, spec)),
     }
 }
 
@@ -307,6 +337,7 @@ pub fn restrictions() -> Vec<Restriction> {
         |_: &mut Features| {},
         Spec::Refrast,
     ));
+    all.push(stateful("scissor=none", "no scissor", StateSupport::NONE));
     all.extend(combinations());
     all
 }
@@ -326,9 +357,9 @@ fn combinations() -> Vec<Restriction> {
                 f.screen_barycentrics = false;
             },
         ),
-        configured(
+        restriction(
             "least",
-            "one value of every setting, no optional output or claim: culls front faces, LessOrEqual, no depth test, no barycentrics, no guard band, snapping down",
+            "one value of every setting, no optional output or claim: culls front faces, LessOrEqual, no depth test, no barycentrics, no guard band, snapping down, no scissor",
             ReferenceConfig {
                 clip: ClipMode::Full,
                 snap_rounding: SnapRounding::Floor,
@@ -346,6 +377,7 @@ fn combinations() -> Vec<Restriction> {
                 f.depth_test = false;
                 f.zero_area_before_clipping = false;
             },
+            StateSupport::NONE,
             Spec::Vulkan,
         ),
         configured(

@@ -11,7 +11,7 @@ use std::time::{Duration, Instant};
 use crate::Timings;
 use crate::device::Context;
 use crate::pipelines::{DEPTH, DEPTHS, IDS, Key, Method, Pass, Pipelines};
-use crate::resources::{Readback, along, depth_attachment, map, target, vertex_list};
+use crate::resources::{Readback, along, depth_attachment, map, set_scissor, target, vertex_list};
 
 /// One covered sample as the capture shader writes it (`Sample` in `capture.wgsl`); the
 /// position as the bits of its f32 coordinates.
@@ -183,6 +183,7 @@ fn capture_pass(
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &bind_group, &[]);
         pass.set_vertex_buffer(0, vertex_buffer.slice(..));
+        set_scissor(&mut pass, draw);
         pass.draw(0..vertices.len() as u32, 0..1);
     }
     let count = read_buffer(ctx, encoder, &count_buffer, 4)?;
@@ -268,6 +269,7 @@ pub fn resolve(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
         });
         pass.set_pipeline(pipeline);
         pass.set_vertex_buffer(0, vertex_buffer.slice(..));
+        set_scissor(&mut pass, draw);
         pass.draw(0..vertices.len() as u32, 0..1);
     }
     // The draw, timed apart from reading it back.

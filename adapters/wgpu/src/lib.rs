@@ -87,7 +87,7 @@ use std::sync::{Arc, Mutex};
 
 use refrast::{
     CompareOp, DepthConvention, DepthRange, Draw, DrawError, Features, Fragment, Profile, Rasterizer,
-    Resolved, Supported, Unavailable,
+    Resolved, StateSupport, Supported, Unavailable,
 };
 
 pub use device::Driver;
@@ -276,6 +276,9 @@ impl Rasterizer for Gpu {
             point_snapping: m.point_snapping,
             multisample: m.multisample.clone(),
             point_clipping: m.point_clipping,
+            // The scissor test is core in Vulkan, OpenGL and OpenGL ES, and wgpu sets it on
+            // every backend (`set_scissor_rect`, in raster space on each).
+            state: StateSupport { scissor: true },
         }
     }
 

@@ -163,3 +163,13 @@ impl Readback {
             .collect())
     }
 }
+
+/// The draw's scissor rectangle on `pass`, cut to the target, as wgpu requires of a rectangle
+/// (what lies past the target passes nothing there anyway); none leaves the whole target.
+pub fn set_scissor(pass: &mut wgpu::RenderPass<'_>, draw: &Draw) {
+    if let Some(s) = draw.state.scissor {
+        let (w, h) = (draw.viewport.width(), draw.viewport.height());
+        let (x, y) = (s.x.min(w), s.y.min(h));
+        pass.set_scissor_rect(x, y, s.width.min(w - x), s.height.min(h - y));
+    }
+}

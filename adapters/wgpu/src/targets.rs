@@ -7,7 +7,7 @@ use wgpu::util::DeviceExt;
 
 use crate::device::Context;
 use crate::pipelines::{DEPTH, FLOATS, Key, Pass, Pipelines};
-use crate::resources::{Readback, along, depth_attachment, target, vertex_list};
+use crate::resources::{Readback, along, depth_attachment, set_scissor, target, vertex_list};
 
 /// Every covered sample of every primitive of `draw` (at one sample per pixel), one primitive
 /// per pass.
@@ -70,6 +70,7 @@ pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
             });
             pass.set_pipeline(pipeline);
             pass.set_vertex_buffer(0, vertex_buffer.slice(..));
+            set_scissor(&mut pass, draw);
             // The shader numbers corners by the global vertex index, as in one draw of all.
             pass.draw(step * primitive..step * primitive + per, 0..1);
         }

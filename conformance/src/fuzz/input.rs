@@ -6,7 +6,7 @@
 use std::fmt;
 
 use arbitrary::Arbitrary;
-use refrast::{CompareOp, CullMode, DepthRange, DepthState, DrawState, FrontFace};
+use refrast::{CompareOp, CullMode, DepthRange, DepthState, DrawState, FrontFace, Scissor};
 
 use crate::scene::{Scene, clip_of, rust_f32};
 use crate::strategy::{self, GRID, triangulate};
@@ -62,7 +62,8 @@ impl RawDraw {
 }
 
 /// Every draw state from 16 bits: cull mode, front face, compare op, depth writes, depth range,
-/// far clipping, and a clear value of 1, 0 or ½.
+/// far clipping, a clear value of 1, 0 or ½, and one of 16 scissor rectangles or none (from a
+/// pixel in from the corner to past a 64-px viewport's sides).
 #[must_use]
 pub fn draw_state(bits: u16) -> DrawState {
     const OPS: [CompareOp; 8] = [
@@ -86,6 +87,15 @@ pub fn draw_state(bits: u16) -> DrawState {
         },
         depth_range: [DepthRange::ZeroToOne, DepthRange::NegativeOneToOne][field(9, 2)],
         clip_far: field(10, 2) == 1,
+        scissor: (field(11, 2) == 1).then(|| {
+            let (a, b) = (field(12, 4) as u32, field(14, 4) as u32);
+            Scissor {
+                x: 3 * a,
+                y: 5 * b,
+                width: 70 - 17 * a,
+                height: 1 + 9 * b,
+            }
+        }),
     }
 }
 
@@ -358,7 +368,8 @@ mod tests {
     #[test]
     fn sixteen_bits_reach_every_draw_state() {
         let states: HashSet<String> = (0..=u16::MAX).map(|b| format!("{:?}", draw_state(b))).collect();
-        // 3 cull modes × 2 front faces × 8 compare ops × 2 write masks × 3 clears × 2 ranges × 2.
-        assert_eq!(states.len(), 3 * 2 * 8 * 2 * 3 * 2 * 2);
+        // 3 cull modes × 2 front faces × 8 compare ops × 2 write masks × 3 clears × 2 ranges × 2
+        // far-clipping settings × 17 scissors (none, and 16 rectangles).
+        assert_eq!(states.len(), 3 * 2 * 8 * 2 * 3 * 2 * 2 * 17);
     }
 }

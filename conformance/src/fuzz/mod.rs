@@ -24,6 +24,7 @@ use crate::rules::{
     EXACT_COVERAGE, EXTREME_WINS, GUARD_BAND, Need, PERSPECTIVE_BARYCENTRICS, SCREEN_BARYCENTRICS,
     Z_OVER_W_DEPTH,
 };
+use crate::scene::Scene;
 use crate::violation::Violation;
 
 /// A check that failed on a fuzz input.
@@ -57,16 +58,36 @@ fn judged(input: &impl fmt::Debug, check: impl FnOnce() -> Result<(), Violation>
     })
 }
 
-/// Any bit patterns: no panic, only well-formed fragments, and `resolve` works.
+/// Any bit patterns: no panic, only well-formed fragments, none outside a scissor, and
+/// `resolve` works.
 pub fn robustness(r: &mut dyn Rasterizer, input: &RawDraw) -> Result<(), Failure> {
     let Some(scene) = input.scene() else { return Ok(()) };
     let scene = scene.fitted(&r.profile());
     judged(input, || {
         check_well_formed(r, &scene)?;
+        check_inside_scissor(r, &scene)?;
         r.resolve(&scene.draw())
             .map(drop)
             .map_err(|e| Violation::new(format!("resolve returned an error on in-range indices: {e}")))
     })
+}
+
+/// No fragment of `scene` outside its scissor rectangle, whatever its numbers.
+fn check_inside_scissor(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let Some(scissor) = scene.state.scissor else {
+        return Ok(());
+    };
+    let draw = scene.draw();
+    let fragments = r
+        .rasterize(&draw)
+        .map_err(|e| Violation::of_draw_error("rasterize", &e))?;
+    match fragments.iter().find(|f| !scissor.contains(f.x, f.y)) {
+        Some(f) => Err(Violation::at(
+            (f.x, f.y),
+            format!("a fragment at ({}, {}) outside the scissor {scissor:?}", f.x, f.y),
+        )),
+        None => Ok(()),
+    }
 }
 
 /// Each grid triangle alone against the brute-force oracle, bit for bit (where the profile has

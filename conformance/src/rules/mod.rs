@@ -17,6 +17,7 @@ mod reading;
 pub mod robust;
 pub mod sample_depth;
 pub mod samples;
+pub mod scissor;
 pub mod ties;
 pub mod vertices;
 mod weights;
@@ -410,6 +411,7 @@ pub fn catalogue() -> Vec<Rule> {
     rules.extend(line::rules());
     rules.extend(point::rules());
     rules.extend(msaa::rules());
+    rules.extend(scissor::rules());
     rules
 }
 

@@ -3,7 +3,9 @@
 
 use std::fmt;
 
-use refrast::{CompareOp, CullMode, DepthRange, DepthState, DrawState, FrontFace, Topology, Viewport};
+use refrast::{
+    CompareOp, CullMode, DepthRange, DepthState, DrawState, FrontFace, Scissor, Topology, Viewport,
+};
 use serde::de::{self, Visitor};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
@@ -118,6 +120,9 @@ pub struct DrawData {
     pub depth_range: String,
     /// `on` or `off`.
     pub far_clipping: String,
+    /// The scissor rectangle `[x, y, width, height]` in pixels, when the draw has one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scissor: Option<[u32; 4]>,
 }
 
 impl DrawData {
@@ -140,6 +145,7 @@ impl DrawData {
             depth_clear: Coordinate(s.depth.clear),
             depth_range: s.depth_range.word().to_owned(),
             far_clipping: s.clip_far.word().to_owned(),
+            scissor: s.scissor.map(|r| [r.x, r.y, r.width, r.height]),
         }
     }
 
@@ -163,6 +169,9 @@ impl DrawData {
             },
             depth_range: word(DepthRange::KEY, &self.depth_range)?,
             clip_far: word(FAR_CLIPPING, &self.far_clipping)?,
+            scissor: self
+                .scissor
+                .map(|[x, y, width, height]| Scissor { x, y, width, height }),
         };
         // A draw needs a viewport in range; the rules build none other.
         Viewport::new(self.width, self.height)

@@ -334,6 +334,16 @@ impl fmt::Debug for Scene {
             range_name(s.depth_range)
         )?;
         writeln!(f, "        clip_far: {},", s.clip_far)?;
+        // State the contract gained later prints only when set, the rest left to the default,
+        // so a counterexample without it reads as before it existed.
+        match s.scissor {
+            Some(r) => writeln!(
+                f,
+                "        scissor: Some(Scissor {{ x: {}, y: {}, width: {}, height: {} }}),",
+                r.x, r.y, r.width, r.height
+            )?,
+            None => writeln!(f, "        ..DrawState::default()")?,
+        }
         writeln!(f, "    }},")?;
         write!(f, "}}")
     }

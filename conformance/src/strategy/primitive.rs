@@ -2,7 +2,7 @@
 //! power-of-two viewports, so that every implementation snaps their ends to the same points.
 
 use proptest::prelude::*;
-use refrast::Topology;
+use refrast::{Scissor, Topology};
 
 use super::{GRID, side};
 use crate::scene::PrimitiveScene;
@@ -168,6 +168,22 @@ pub fn multisampled_primitives(
 ) -> impl Strategy<Value = PrimitiveScene> {
     let counts = if counts.is_empty() { vec![1] } else { counts };
     (scenes, prop::sample::select(counts)).prop_map(|(scene, samples)| PrimitiveScene { samples, ..scene })
+}
+
+/// `cases` with a scissor rectangle, in 64ths of the viewport's sides: from empty to past its
+/// right and bottom sides, thin strips and single pixels included; it shrinks toward the
+/// top-left corner and toward nothing.
+pub fn scissored(cases: impl Strategy<Value = PrimitiveScene>) -> impl Strategy<Value = PrimitiveScene> {
+    (cases, 0u32..=68, 0u32..=68, 0u32..=72, 0u32..=72).prop_map(|(mut case, x, y, w, h)| {
+        let (width, height) = (case.scene.width, case.scene.height);
+        case.scene.state.scissor = Some(Scissor {
+            x: x * width / 64,
+            y: y * height / 64,
+            width: w * width / 64,
+            height: h * height / 64,
+        });
+        case
+    })
 }
 
 /// `scene` with every vertex (at `w = 1`) moved to the nearest point of a grid of `bits`

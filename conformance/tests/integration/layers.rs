@@ -57,6 +57,7 @@ const INNER_LAYERS: &[(&str, &[&[&str]])] = &[
                 "line",
                 "point",
                 "sample_depth",
+                "scissor",
             ],
             &["msaa"],
             &["hint"],

@@ -26,9 +26,34 @@ fn a_printed_scene_compiles_and_round_trips() {
             },
             depth_range: DepthRange::ZeroToOne,
             clip_far: false,
+            scissor: Some(Scissor {
+                x: 2,
+                y: 0,
+                width: 9,
+                height: 16,
+            }),
         },
     };
     let printed = format!("{pasted:?}");
+    assert!(
+        printed.contains("scissor: Some(Scissor { x: 2, y: 0, width: 9, height: 16 }),")
+            && !printed.contains(".."),
+        "{printed}"
+    );
+    // Without a scissor, the state prints as before there was one, the rest left to the default.
+    let unscissored = Scene {
+        state: DrawState {
+            scissor: None,
+            ..pasted.state
+        },
+        ..pasted.clone()
+    };
+    let printed_without = format!("{unscissored:?}");
+    assert!(
+        !printed_without.contains("scissor")
+            && printed_without.contains("        ..DrawState::default()\n    },"),
+        "{printed_without}"
+    );
     assert!(
         printed.starts_with("Scene {") && printed.contains("CompareOp::Less"),
         "{printed}"

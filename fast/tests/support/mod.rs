@@ -65,6 +65,8 @@ pub fn state() -> impl Strategy<Value = DrawState> {
             },
             depth_range,
             clip_far,
+            // fast declares no scissor.
+            scissor: None,
         },
     )
 }

@@ -89,11 +89,22 @@ pub enum Bug {
     PixelDepth,
     /// Points drawn in the pixel `round(x)` names instead of the one that holds them.
     RoundedPoints,
+    /// The scissor's right and bottom sides inclusive: `x ≤ column ≤ x + width`.
+    InclusiveScissor,
+    /// The scissor applied to triangles only (as a clamp of their traversal): lines and points
+    /// are drawn outside it.
+    TrianglesOnlyScissor,
+    /// The scissor's rows counted from the bottom, as OpenGL's window coordinates count them,
+    /// without the flip to raster space.
+    BottomUpScissor,
+    /// The scissor keeps the colour (the primitive buffer) but not the depth writes: the depth
+    /// test writes depth outside the rectangle.
+    DepthPastScissor,
 }
 
 impl Bug {
     /// Every bug.
-    pub const ALL: [Bug; 34] = [
+    pub const ALL: [Bug; 38] = [
         Self::InclusiveEdges,
         Self::ExclusiveEdges,
         Self::BottomRightAsTopLeft,
@@ -128,6 +139,10 @@ impl Bug {
         Self::CentreOnlyCoverage,
         Self::PixelDepth,
         Self::RoundedPoints,
+        Self::InclusiveScissor,
+        Self::TrianglesOnlyScissor,
+        Self::BottomUpScissor,
+        Self::DepthPastScissor,
     ];
 
     /// The name after `mutant:` in `--impl`.
@@ -168,6 +183,10 @@ impl Bug {
             Self::CentreOnlyCoverage => "centre-only-coverage",
             Self::PixelDepth => "pixel-depth",
             Self::RoundedPoints => "rounded-points",
+            Self::InclusiveScissor => "inclusive-scissor",
+            Self::TrianglesOnlyScissor => "triangles-only-scissor",
+            Self::BottomUpScissor => "bottom-up-scissor",
+            Self::DepthPastScissor => "depth-past-scissor",
         }
     }
 
@@ -209,6 +228,8 @@ impl Bug {
             | Self::CentreOnlyCoverage
             | Self::PixelDepth => "msaa",
             Self::RoundedPoints => "point",
+            Self::InclusiveScissor | Self::TrianglesOnlyScissor | Self::BottomUpScissor => "clip",
+            Self::DepthPastScissor => "depth",
         }
     }
 
@@ -217,5 +238,18 @@ impl Bug {
     #[must_use]
     pub fn is_primitive(self) -> bool {
         matches!(self.caught_by(), "line" | "point" | "msaa")
+    }
+
+    /// Whether it is a bug of the draw state beyond the first contract (the scissor): the
+    /// mutant then declares everything the reference does, and draws with it.
+    #[must_use]
+    pub fn is_state(self) -> bool {
+        matches!(
+            self,
+            Self::InclusiveScissor
+                | Self::TrianglesOnlyScissor
+                | Self::BottomUpScissor
+                | Self::DepthPastScissor
+        )
     }
 }

@@ -13,6 +13,7 @@ use refrast::{
 
 mod bug;
 mod primitive;
+mod state;
 
 pub use bug::Bug;
 
@@ -43,13 +44,13 @@ struct Vert {
 }
 
 impl Rasterizer for Mutant {
-    /// The reference's lines, points and standard samples for a bug among them, triangles at
-    /// one sample for the others.
+    /// The reference's lines, points, standard samples and scissor for a bug among them,
+    /// triangles at one sample for the others.
     fn profile(&self) -> Profile {
         let reference = Reference::default().profile();
         Profile {
             name: format!("mutant:{}", self.bug.name()),
-            ..if self.bug.is_primitive() {
+            ..if self.bug.is_primitive() || self.bug.is_state() {
                 reference
             } else {
                 reference.triangles_only()
@@ -58,6 +59,9 @@ impl Rasterizer for Mutant {
     }
 
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+        if self.bug.is_state() {
+            return state::rasterize(self.bug, draw);
+        }
         if self.bug.is_primitive() {
             // Its bug is in lines, points or samples: triangles at one sample are the reference's.
             return primitive::rasterize(self.bug, draw);
@@ -149,6 +153,9 @@ impl Rasterizer for Mutant {
     }
 
     fn resolve(&mut self, draw: &Draw) -> Result<Resolved, DrawError> {
+        if self.bug.is_state() {
+            return state::resolve(self.bug, draw);
+        }
         let fragments = self.rasterize(draw)?;
         if self.bug == Bug::StrictCompare {
             let mut strict = draw.clone();

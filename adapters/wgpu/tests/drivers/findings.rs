@@ -1,7 +1,7 @@
 //! The hand-checked findings of docs/certified.md (lavapipe, llvmpipe, softpipe), each as the
 //! driver does it today.
 
-use refrast::{Draw, Fragment, FrontFace, Rasterizer, Reference, Viewport};
+use refrast::{Draw, Fragment, FrontFace, Rasterizer, Reference, Scissor, Viewport};
 use refrast_wgpu::{Driver, Gpu};
 
 /// A draw on a `width`×`height` target with far clipping on (WebGPU cannot turn it off).
@@ -64,6 +64,12 @@ const SOFTPIPE: [Finding; 4] = [
     ("non-finite weights across w = 0", softpipe_across_w_zero),
 ];
 
+/// lavapipe's own findings: at 4 samples, which only it draws through wgpu of Mesa's three.
+const LAVAPIPE: [Finding; 1] = [(
+    "the scissor tested half a pixel up and left at 4 samples",
+    lavapipe_multisample_scissor,
+)];
+
 /// Each finding of docs/certified.md for driver `d`, as the driver does it today: every one is
 /// checked, and those that moved are named together.
 pub fn findings(d: Driver, gpu: &mut Gpu) {
@@ -73,7 +79,13 @@ pub fn findings(d: Driver, gpu: &mut Gpu) {
     } else {
         &ON_A_GRID
     };
-    let all: Vec<Finding> = EVERY_DRIVER.iter().chain(own).copied().collect();
+    let multisampled: &[Finding] = if d == Driver::Lavapipe { &LAVAPIPE } else { &[] };
+    let all: Vec<Finding> = EVERY_DRIVER
+        .iter()
+        .chain(own)
+        .chain(multisampled)
+        .copied()
+        .collect();
     let moved = crate::common::moved_findings(&all, |check| check(d, &mut run));
     assert!(
         moved.is_empty(),
@@ -539,5 +551,60 @@ fn softpipe_across_w_zero(_: Driver, run: &mut Run<'_>) {
     assert!(
         weights.len() == 1 && weights[0].barycentric.iter().all(|b| !b.is_finite()),
         "softpipe: non-finite weights at (4, 0) within range: {weights:?}"
+    );
+}
+
+/// At 4 samples, the scissor keeps the samples of the column left of it and of the row above
+/// it that lie within half a pixel of the rectangle; at one sample it is exact.
+fn lavapipe_multisample_scissor(d: Driver, run: &mut Run<'_>) {
+    // The lower-left half of a 16×16 target (y > x), scissored to the 2×2 pixels at (3, 5).
+    let mut half = draw(
+        16,
+        16,
+        vec![
+            [-1.0, 1.0, 0.5, 1.0],
+            [1.0, -1.0, 0.5, 1.0],
+            [-1.0, -1.0, 0.5, 1.0],
+        ],
+        vec![[2, 0, 1]],
+    )
+    .at_samples(4);
+    let scissor = Scissor {
+        x: 3,
+        y: 5,
+        width: 2,
+        height: 2,
+    };
+    half.state.scissor = Some(scissor);
+    let mut outside: Vec<(u32, u32, u8)> = run(&half)
+        .iter()
+        .filter(|f| !scissor.contains(f.x, f.y))
+        .map(|f| (f.x, f.y, f.sample))
+        .collect();
+    outside.sort_unstable();
+    // Samples 1 and 3 lie in a pixel's right half, 2 and 3 in its lower half (Vulkan's
+    // standard locations): column 2's right half and row 4's lower half.
+    let shifted = vec![
+        (2, 4, 3),
+        (2, 5, 1),
+        (2, 5, 3),
+        (2, 6, 1),
+        (2, 6, 3),
+        (3, 4, 2),
+        (3, 4, 3),
+        (4, 4, 2),
+        (4, 4, 3),
+    ];
+    assert_eq!(
+        outside,
+        shifted,
+        "{}: samples outside the scissor at 4 samples",
+        d.name()
+    );
+    half.samples = 1;
+    assert!(
+        run(&half).iter().all(|f| scissor.contains(f.x, f.y)),
+        "{}: at one sample, fragments outside the scissor",
+        d.name()
     );
 }

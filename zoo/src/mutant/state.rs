@@ -1,0 +1,61 @@
+//! The bugs of the draw state the contract gained after its first rasterizers (the scissor, so
+//! far): the reference's own drawing with that state applied wrong in one way, so that every
+//! failure is that bug's doing.
+
+use refrast::{Draw, DrawError, Fragment, Rasterizer, Reference, Resolved, Scissor};
+
+use super::Bug;
+
+/// Draws `draw` as the reference does, with `bug`.
+pub fn rasterize(bug: Bug, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+    let mut reference = Reference::default();
+    let Some(scissor) = draw.state.scissor else {
+        return reference.rasterize(draw);
+    };
+    let with = |scissor: Option<Scissor>| {
+        let mut moved = draw.clone();
+        moved.state.scissor = scissor;
+        moved
+    };
+    match bug {
+        // `x ≤ column ≤ x + width`: one column and one row too many.
+        Bug::InclusiveScissor => reference.rasterize(&with(Some(Scissor {
+            width: scissor.width.saturating_add(1),
+            height: scissor.height.saturating_add(1),
+            ..scissor
+        }))),
+        // The scissor as a clamp of the triangles' traversal only: lines and points ignore it.
+        Bug::TrianglesOnlyScissor if draw.topology != refrast::Topology::TriangleList => {
+            reference.rasterize(&with(None))
+        }
+        // Rows counted from the bottom, as OpenGL's window coordinates count them, not flipped.
+        Bug::BottomUpScissor => {
+            let height = i64::from(draw.viewport.height());
+            let top = height - i64::from(scissor.y) - i64::from(scissor.height);
+            let rows = i64::from(scissor.height) + top.min(0);
+            reference.rasterize(&with(Some(Scissor {
+                y: u32::try_from(top.max(0)).unwrap_or(u32::MAX),
+                height: u32::try_from(rows.max(0)).unwrap_or(0),
+                ..scissor
+            })))
+        }
+        _ => reference.rasterize(draw),
+    }
+}
+
+/// Resolves `draw` as the reference does, with `bug`.
+pub fn resolve(bug: Bug, draw: &Draw) -> Result<Resolved, DrawError> {
+    let cut = Resolved::from_fragments(draw, rasterize(bug, draw)?);
+    if bug != Bug::DepthPastScissor || draw.state.scissor.is_none() {
+        return Ok(cut);
+    }
+    // The scissor keeps colour (here, the primitive buffer) but the depth test writes depth
+    // everywhere the draw without it covers.
+    let mut whole = draw.clone();
+    whole.state.scissor = None;
+    let written = Resolved::from_fragments(&whole, rasterize(bug, &whole)?);
+    Ok(Resolved {
+        depth: written.depth,
+        ..cut
+    })
+}

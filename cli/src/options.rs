@@ -4,7 +4,9 @@
 use std::path::Path;
 
 use glam::Vec3;
-use refrast::{CullMode, DrawState, FrontFace, MAX_VIEWPORT, Rasterizer, Reference, ReferenceConfig};
+use refrast::{
+    CullMode, DrawState, FrontFace, MAX_VIEWPORT, Rasterizer, Reference, ReferenceConfig, Scissor,
+};
 use refrast_render::scene::{self, Framed, Setup};
 use refrast_render::{Job, Light, Mode, Overrides, Sampling, Shading, Texture, load};
 
@@ -52,6 +54,10 @@ pub struct SceneArgs {
     /// Which winding faces the viewer: ccw or cw.
     #[arg(long, value_name = "WINDING", default_value = "ccw", value_parser = parse_front_face)]
     pub front_face: FrontFace,
+    /// Draw only inside this rectangle of pixels, X,Y,WIDTH,HEIGHT from the top-left corner
+    /// (the scissor test); the rasterizer must declare a scissor (the reference does).
+    #[arg(long, value_name = "X,Y,W,H", value_parser = parse_scissor)]
+    pub scissor: Option<Scissor>,
     /// Light position, X,Y,Z [default: the scene's light, or a headlight above the eye].
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
     pub light: Option<Vec3>,
@@ -165,6 +171,7 @@ pub fn prepare(args: &SceneArgs) -> Result<Prepared, Failure> {
     let mut state = setup.state;
     state.cull = args.cull.unwrap_or(state.cull);
     state.front_face = args.front_face;
+    state.scissor = args.scissor;
     Ok(Prepared {
         headlight: setup.light.is_none() && args.light.is_none(),
         shading: args.shading.unwrap_or(setup.shading),
@@ -217,6 +224,23 @@ pub fn rasterizer(name: &str, setup: &Setup) -> Result<Box<dyn Rasterizer>, Fail
     let b = refrast_registry::find(name).map_err(|e| Failure(e, 2))?;
     b.build()
         .map_err(|why| Failure(format!("{name} is not available here: {why}"), 2))
+}
+
+/// `X,Y,WIDTH,HEIGHT`: four whole numbers of pixels.
+fn parse_scissor(s: &str) -> Result<Scissor, String> {
+    let bad = || {
+        format!(
+            "'{s}' is not a scissor; give X,Y,WIDTH,HEIGHT in pixels from the top-left corner, e.g. 10,10,100,50"
+        )
+    };
+    let v: Vec<u32> = s
+        .split(',')
+        .map(|n| n.trim().parse::<u32>().map_err(|_| bad()))
+        .collect::<Result<_, _>>()?;
+    match v[..] {
+        [x, y, width, height] => Ok(Scissor { x, y, width, height }),
+        _ => Err(bad()),
+    }
 }
 
 /// `WIDTHxHEIGHT`, each side within what a viewport may be.

@@ -5,7 +5,7 @@ use glam::{Mat4, Vec3, Vec3A, Vec4};
 use refrast::pipeline::{Framebuffer, Mesh, Renderer, to_rgba8};
 use std::sync::atomic::{AtomicU32, Ordering};
 
-use refrast::{CompareOp, Draw, DrawError, DrawState, Fragment, Rasterizer, Reference, Resolved};
+use refrast::{CompareOp, Draw, DrawError, DrawState, Fragment, Profile, Rasterizer, Reference, Resolved};
 
 use crate::geometry::{edges, face_normal};
 use crate::mode::{Mode, depth_greys, normal_color, overdraw_color};
@@ -63,6 +63,7 @@ pub fn render(
     if let Some(stats) = draw_lines(job, target) {
         return Ok(stats);
     }
+    undeclared_state(&rasterizer.profile(), job)?;
     let mesh = job.mesh;
     let pipeline = Renderer {
         reference: Reference::default(),
@@ -166,6 +167,17 @@ fn own_depth_test(
     written
 }
 
+/// `Err(Unsupported)` when `job` asks for state `profile` does not declare ([`Profile::state`]:
+/// a scissor): such a draw is refused with what to do, never drawn as if it had not been asked.
+pub(crate) fn undeclared_state(profile: &Profile, job: &Job<'_>) -> Result<(), DrawError> {
+    if job.state.scissor.is_some() && !profile.state.scissor {
+        return Err(DrawError::Unsupported(
+            "a scissor, which this rasterizer does not declare (the reference does)".to_owned(),
+        ));
+    }
+    Ok(())
+}
+
 /// Points and wire modes through refrast's line rasterizer: what they took, or `None` for a
 /// mode of triangles.
 fn draw_lines(job: &Job<'_>, target: &mut Framebuffer) -> Option<Stats> {
@@ -250,6 +262,8 @@ pub fn render_shaded<R: ShadingRasterizer + ?Sized>(
     if draw_lines(job, target).is_some() {
         return Ok(());
     }
+    // A shading rasterizer declares no profile, so none of the state declared apart.
+    undeclared_state(&Profile::default(), job)?;
     let viewport = target.viewport();
     let pipeline = Renderer {
         reference: Reference::default(),

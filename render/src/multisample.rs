@@ -24,6 +24,7 @@ pub fn render_multisampled(
         return render(rasterizer, job, target);
     }
     let declared = rasterizer.profile();
+    crate::draw::undeclared_state(&declared, job)?;
     if !declared.draws(Topology::TriangleList, samples) {
         return Err(DrawError::Unsupported(format!(
             "{samples} samples per pixel (it declares {:?})",

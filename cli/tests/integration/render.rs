@@ -164,6 +164,57 @@ fn ply_and_obj_files_render_in_every_mode() {
     );
 }
 
+/// `--scissor` draws only inside its rectangle, in every mode (wire and points too); a
+/// rasterizer that does not declare a scissor refuses the draw (exit 1), and a malformed
+/// rectangle is a usage error (exit 2).
+#[test]
+fn a_scissor_keeps_every_mode_inside_it() {
+    let dir = scratch("scissor");
+    for mode in ["fill", "wire", "points", "depth"] {
+        let path = dir.join(format!("{mode}.png"));
+        let out = render(&[
+            "room",
+            "--size",
+            "160x120",
+            "--mode",
+            mode,
+            "--scissor",
+            "20,30,80,40",
+            "-o",
+            path.to_str().unwrap(),
+        ]);
+        assert!(
+            out.status.success(),
+            "{mode}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let image = png(&path);
+        let outside = image
+            .enumerate_pixels()
+            .filter(|(x, y, p)| !((20..100).contains(x) && (30..70).contains(y)) && p.0 != [0, 0, 0, 255])
+            .count();
+        assert_eq!(outside, 0, "{mode}: pixels drawn outside the scissor");
+        assert!(
+            drawn(&image, "room") > 0,
+            "{mode}: nothing drawn inside the scissor"
+        );
+    }
+    let path = dir.join("fast.png");
+    let out = render(&[
+        "room",
+        "--impl",
+        "fast",
+        "--scissor",
+        "20,30,80,40",
+        "-o",
+        path.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("does not declare") && !path.exists(), "{stderr}");
+    refused(&["room", "--scissor", "1,2,3"], "is not a scissor");
+}
+
 #[test]
 fn an_interrupted_or_failed_render_leaves_no_file() {
     let dir = scratch("atomic");

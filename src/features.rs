@@ -14,6 +14,8 @@ pub trait Setting: Copy + PartialEq + fmt::Debug + 'static {
     const VALUES: &'static [Self];
 }
 
+/// Both faces are not among the values: [`StateSupport::cull_both`] declares them, so a
+/// profile written before they existed (`Supported::ALL`) does not claim them.
 impl Setting for CullMode {
     const VALUES: &'static [Self] = &[Self::None, Self::Back, Self::Front];
 }
@@ -261,13 +263,22 @@ pub struct StateSupport {
     /// It honours [`DrawState::scissor`](crate::DrawState::scissor): no fragment outside the
     /// rectangle, for every topology and sample count it draws.
     pub scissor: bool,
+    /// It culls both faces ([`CullMode::FrontAndBack`](crate::CullMode::FrontAndBack)): no
+    /// triangle drawn, lines and points drawn as with culling off.
+    pub cull_both: bool,
 }
 
 impl StateSupport {
     /// None of it: what a rasterizer written before it existed declares.
-    pub const NONE: StateSupport = StateSupport { scissor: false };
+    pub const NONE: StateSupport = StateSupport {
+        scissor: false,
+        cull_both: false,
+    };
     /// All of it, as the reference honours it.
-    pub const ALL: StateSupport = StateSupport { scissor: true };
+    pub const ALL: StateSupport = StateSupport {
+        scissor: true,
+        cull_both: true,
+    };
 }
 
 impl Features {

@@ -72,8 +72,8 @@
 //!   the visible part whatever the signs of `w`), falling back to the snapped polygon's area
 //!   when the determinant is too close to zero to be sure ([`stage::drawn_winding`],
 //!   [`stage::clipped_winding`]). Front
-//!   face CCW by default, CW optional ([`FrontFace::is_front`]); culling by facing
-//!   ([`CullMode::culls`]).
+//!   face CCW by default, CW optional ([`FrontFace::is_front`]); culling by facing, of
+//!   triangles only: none, front, back or both ([`CullMode::culls`]).
 //! - **Clip volume**: `−w ≤ x, y ≤ w`, `0 ≤ z ≤ w` (or `−w ≤ z`, [`DepthRange`]). Near is always
 //!   clipped, far when enabled, x/y at the guard band ([`stage::GUARD_BAND`]) and clamped by
 //!   traversal, or at the viewport with [`ClipMode::Full`]. Intersections are canonical

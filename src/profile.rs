@@ -7,6 +7,7 @@ use std::fmt;
 use crate::edge::FillConvention;
 use crate::features::{Features, StateSupport};
 use crate::primitive::{LineRule, PointClipping, SAMPLE_COUNTS, SamplePattern, Topology};
+use crate::setup::CullMode;
 use crate::state::DrawState;
 
 /// How an implementation places vertices before it decides coverage.
@@ -291,12 +292,16 @@ impl Profile {
     }
 
     /// `state` with each unsupported setting replaced by a supported one (an undeclared scissor
-    /// dropped).
+    /// dropped, undeclared culling of both faces replaced like an unsupported cull mode).
     #[must_use]
     pub fn fit(&self, state: DrawState) -> DrawState {
         let f = &self.features;
         let mut fitted = state;
-        fitted.cull = f.cull_modes.fit(state.cull);
+        fitted.cull = if state.cull == CullMode::FrontAndBack && self.state.cull_both {
+            state.cull
+        } else {
+            f.cull_modes.fit(state.cull)
+        };
         fitted.front_face = f.front_faces.fit(state.front_face);
         fitted.depth.compare = f.compare_ops.fit(state.depth.compare);
         fitted.depth.write = f.depth_writes.fit(state.depth.write);

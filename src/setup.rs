@@ -69,6 +69,10 @@ pub enum CullMode {
     Front,
     /// Discard back-facing triangles (zero-area ones are back-facing and never drawn anyway).
     Back,
+    /// Discard every triangle, front- and back-facing (Vulkan's `FRONT_AND_BACK`, OpenGL's
+    /// `CullFace(FRONT_AND_BACK)`); lines and points are never culled. Declared apart
+    /// ([`StateSupport::cull_both`](crate::StateSupport::cull_both)): it came after the others.
+    FrontAndBack,
 }
 
 impl CullMode {
@@ -79,6 +83,7 @@ impl CullMode {
             Self::None => false,
             Self::Front => front_facing,
             Self::Back => !front_facing,
+            Self::FrontAndBack => true,
         }
     }
 }

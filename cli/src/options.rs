@@ -48,7 +48,8 @@ pub struct SceneArgs {
     /// view shows at the target].
     #[arg(long, value_name = "HEIGHT", num_args = 0..=1, value_parser = parse_finite)]
     pub ortho: Option<Option<f32>>,
-    /// Discard none, back or front faces [default: the scene's].
+    /// Discard none, back, front or front-and-back faces (the last draws no triangle; points
+    /// and wire are never culled) [default: the scene's].
     #[arg(long, value_name = "FACES", value_parser = parse_cull)]
     pub cull: Option<CullMode>,
     /// Which winding faces the viewer: ccw or cw.
@@ -306,7 +307,10 @@ fn parse_cull(s: &str) -> Result<CullMode, String> {
         "none" => Ok(CullMode::None),
         "back" => Ok(CullMode::Back),
         "front" => Ok(CullMode::Front),
-        _ => Err(format!("no culling named '{s}'; give none, back or front")),
+        "front-and-back" => Ok(CullMode::FrontAndBack),
+        _ => Err(format!(
+            "no culling named '{s}'; give none, back, front or front-and-back"
+        )),
     }
 }
 

@@ -41,7 +41,7 @@ PROFILE = {
     # The guard band's half-side less half the largest viewport (16384 px): its reach beyond
     # every side of every viewport.
     "guard-band": int(GUARD_BAND) - 16384 // 2,
-    "cull": "none front back",
+    "cull": "none front back front-and-back",
     "front-face": "ccw cw",
     "depth-compare": "never less equal less-equal greater not-equal greater-equal always",
     "depth-write": "on off",
@@ -180,7 +180,7 @@ def triangle_fragments(draw, t, tri):
     else:
         clockwise = fan_area > 0
     front = clockwise == (draw.front_face == "cw")
-    if (draw.cull == "back" and not front) or (draw.cull == "front" and front):
+    if draw.cull == "front-and-back" or (draw.cull == "back" and not front) or (draw.cull == "front" and front):
         return []
     return fan_fragments(draw, t, raster, front)
 

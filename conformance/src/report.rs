@@ -339,6 +339,7 @@ pub fn feature_list(p: &Profile) -> Vec<String> {
         (f.ties_to_even, "ties-to-even"),
         (f.zero_area_before_clipping, "zero-area-before-clipping"),
         (p.state.scissor, "scissor"),
+        (p.state.cull_both, "cull front-and-back"),
     ];
     let mut list: Vec<String> = abilities
         .iter()

@@ -75,6 +75,8 @@ pub trait Word: Setting {
     }
 }
 
+/// `front-and-back` is not among [`Setting::VALUES`]: a child declares it beside the others in
+/// its `cull` line, and is sent it only then ([`refrast::StateSupport::cull_both`]).
 impl Word for CullMode {
     const KEY: &'static str = "cull";
     fn word(self) -> &'static str {
@@ -82,9 +84,18 @@ impl Word for CullMode {
             Self::None => "none",
             Self::Front => "front",
             Self::Back => "back",
+            Self::FrontAndBack => CULL_BOTH,
         }
     }
+    fn parse(word: &str) -> Option<Self> {
+        [Self::None, Self::Front, Self::Back, Self::FrontAndBack]
+            .into_iter()
+            .find(|v| v.word() == word)
+    }
 }
+
+/// The cull mode of both faces, as the protocol spells it.
+pub const CULL_BOTH: &str = "front-and-back";
 
 impl Word for FrontFace {
     const KEY: &'static str = "front-face";
@@ -570,7 +581,12 @@ impl Reading {
                     };
                 }
                 GUARD_BAND => f.guard_band = guard_band(rest, bad)?,
-                CullMode::KEY => f.cull_modes = supported(&words, bad)?,
+                CullMode::KEY => {
+                    // Both faces are declared apart: the other words are the supported modes.
+                    self.profile.state.cull_both = words.contains(&CULL_BOTH);
+                    let modes: Vec<&str> = words.iter().copied().filter(|w| *w != CULL_BOTH).collect();
+                    f.cull_modes = supported(&modes, bad)?;
+                }
                 FrontFace::KEY => f.front_faces = supported(&words, bad)?,
                 CompareOp::KEY => f.compare_ops = supported(&words, bad)?,
                 DepthRange::KEY => f.depth_ranges = supported(&words, bad)?,
@@ -812,5 +828,42 @@ mod tests {
         assert!(f.ties_to_even && !f.depth_test);
         let bad = parsed(&["features ties-up"]).unwrap_err();
         assert!(bad.contains("ties-to-even"), "{bad}");
+    }
+
+    /// The scissor and culling of both faces are declared apart (a feature word; a word in the
+    /// cull line), sent only when declared, and carried in the request's header.
+    #[test]
+    fn the_scissor_and_both_faces_are_declared_and_sent() {
+        let plain = parsed(&["cull none back"]).unwrap();
+        assert!(!plain.state.scissor && !plain.state.cull_both);
+        let both = parsed(&["cull none front-and-back", "features scissor"]).unwrap();
+        assert!(both.state.scissor && both.state.cull_both);
+        assert!(both.features.cull_modes.contains(CullMode::None));
+        assert!(!both.features.cull_modes.contains(CullMode::Back));
+        assert!(parsed(&["cull front-and-sides"]).unwrap_err().contains("cull"));
+        let mut draw = Draw::new(
+            refrast::Viewport::new(4, 4).unwrap(),
+            vec![[0.0; 4]; 3],
+            vec![[0, 1, 2]],
+        );
+        let header = |draw: &Draw| {
+            let bytes = request(Op::Rasterize, draw, 2);
+            let end = bytes.iter().position(|&b| b == b'\n').unwrap();
+            String::from_utf8(bytes[..end].to_vec()).unwrap()
+        };
+        assert!(!header(&draw).contains("scissor"));
+        draw.state.cull = CullMode::FrontAndBack;
+        draw.state.scissor = Some(refrast::Scissor {
+            x: 1,
+            y: 2,
+            width: 3,
+            height: 0,
+        });
+        let text = header(&draw);
+        assert!(
+            text.contains(" cull=front-and-back ") && text.ends_with(" scissor=1,2,3,0"),
+            "{text}"
+        );
+        assert_eq!(CullMode::parse("front-and-back"), Some(CullMode::FrontAndBack));
     }
 }

@@ -337,7 +337,22 @@ pub fn restrictions() -> Vec<Restriction> {
         |_: &mut Features| {},
         Spec::Refrast,
     ));
-    all.push(stateful("scissor=none", "no scissor", StateSupport::NONE));
+    all.push(stateful(
+        "scissor=none",
+        "no scissor",
+        StateSupport {
+            scissor: false,
+            ..StateSupport::ALL
+        },
+    ));
+    all.push(stateful(
+        "cull=one-face",
+        "culls one face or none, never both",
+        StateSupport {
+            cull_both: false,
+            ..StateSupport::ALL
+        },
+    ));
     all.extend(combinations());
     all
 }

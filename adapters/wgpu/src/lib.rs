@@ -197,8 +197,10 @@ impl Gpu {
     ) -> Result<(), DrawError> {
         if !profile.supports(state) {
             return Err(DrawError::Unsupported(format!(
-                "{} cannot draw with {state:?}: far clipping is always on and z runs 0 ≤ z ≤ w",
-                profile.name
+                "{} cannot draw with {state:?}: far clipping is always on, z runs 0 ≤ z ≤ w, and \
+                 wgpu culls one face or none (the nearest it draws: {:?})",
+                profile.name,
+                profile.fit(*state)
             )));
         }
         let side = self.context.max_side;
@@ -277,8 +279,12 @@ impl Rasterizer for Gpu {
             multisample: m.multisample.clone(),
             point_clipping: m.point_clipping,
             // The scissor test is core in Vulkan, OpenGL and OpenGL ES, and wgpu sets it on
-            // every backend (`set_scissor_rect`, in raster space on each).
-            state: StateSupport { scissor: true },
+            // every backend (`set_scissor_rect`, in raster space on each); its `Face` has no
+            // value for both faces, so culling both is not declared (the rules are n/a).
+            state: StateSupport {
+                scissor: true,
+                cull_both: false,
+            },
         }
     }
 

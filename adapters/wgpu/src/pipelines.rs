@@ -411,6 +411,9 @@ fn cull_mode(cull: CullMode) -> Option<wgpu::Face> {
         CullMode::None => None,
         CullMode::Front => Some(wgpu::Face::Front),
         CullMode::Back => Some(wgpu::Face::Back),
+        // wgpu has no face for both: `Gpu::check_target` refuses such a draw before any
+        // pipeline is built, as its profile does not declare it.
+        CullMode::FrontAndBack => None,
     }
 }
 

@@ -292,6 +292,7 @@ fn cull_name(cull: CullMode) -> &'static str {
         CullMode::None => "none",
         CullMode::Back => "back",
         CullMode::Front => "front",
+        CullMode::FrontAndBack => "front-and-back",
     }
 }
 

@@ -196,9 +196,10 @@ fn rules_print_in_catalogue_order_and_the_summary_names_budget_cuts() {
 }
 
 /// The Python client as a fixed-function rasterizer: one cull mode declared and used whatever a
-/// draw asks. It must still pass every rule, none of them n/a but the one that needs no culling
-/// (it failed a dozen when the rules expected the coverage of no culling, before every rule asked
-/// its question under what the profile supports: docs/profiles.md).
+/// draw asks. It must still pass every rule, none of them n/a but the one that needs culling of
+/// both faces, which one mode is not (it failed a dozen when the rules expected the coverage of
+/// no culling, before every rule asked its question under what the profile supports:
+/// docs/profiles.md).
 #[test]
 fn python_topleft_with_one_cull_mode_passes_every_rule() {
     if !have("python3") {
@@ -212,7 +213,11 @@ fn python_topleft_with_one_cull_mode_passes_every_rule() {
         );
         assert_eq!(code, 0, "--cull {mode}: {rules:#?}");
         assert_eq!(with_status(&rules, "fail"), "", "--cull {mode}");
-        assert_eq!(with_status(&rules, "n/a"), "", "--cull {mode}");
+        assert_eq!(
+            with_status(&rules, "n/a"),
+            "meta.cull.both-faces",
+            "--cull {mode}"
+        );
     }
 }
 

@@ -61,7 +61,7 @@ impl RawDraw {
     }
 }
 
-/// Every draw state from 16 bits: cull mode, front face, compare op, depth writes, depth range,
+/// Every draw state from 16 bits: cull mode (both faces included), front face, compare op, depth writes, depth range,
 /// far clipping, a clear value of 1, 0 or ½, and one of 16 scissor rectangles or none (from a
 /// pixel in from the corner to past a 64-px viewport's sides).
 #[must_use]
@@ -78,7 +78,12 @@ pub fn draw_state(bits: u16) -> DrawState {
     ];
     let field = |shift: u16, n: u16| usize::from((bits >> shift) % n);
     DrawState {
-        cull: [CullMode::None, CullMode::Back, CullMode::Front][field(0, 4) % 3],
+        cull: [
+            CullMode::None,
+            CullMode::Back,
+            CullMode::Front,
+            CullMode::FrontAndBack,
+        ][field(0, 4)],
         front_face: [FrontFace::CounterClockwise, FrontFace::Clockwise][field(2, 2)],
         depth: DepthState {
             compare: OPS[field(3, 8)],
@@ -368,8 +373,8 @@ mod tests {
     #[test]
     fn sixteen_bits_reach_every_draw_state() {
         let states: HashSet<String> = (0..=u16::MAX).map(|b| format!("{:?}", draw_state(b))).collect();
-        // 3 cull modes × 2 front faces × 8 compare ops × 2 write masks × 3 clears × 2 ranges × 2
+        // 4 cull modes × 2 front faces × 8 compare ops × 2 write masks × 3 clears × 2 ranges × 2
         // far-clipping settings × 17 scissors (none, and 16 rectangles).
-        assert_eq!(states.len(), 3 * 2 * 8 * 2 * 3 * 2 * 2 * 17);
+        assert_eq!(states.len(), 4 * 2 * 8 * 2 * 3 * 2 * 2 * 17);
     }
 }

@@ -12,7 +12,7 @@ use crate::oracle::raster::{sample_centre, sample_ndc};
 use crate::oracle::ray_cast::ray_cast;
 use crate::picture::scene_outlines;
 use crate::scene::Scene;
-use crate::violation::{Expect, Violation, compare_coverage, count_fragments};
+use crate::violation::{Expect, Violation, compare_coverage, count_fragments, plural};
 
 /// The precision a profile claims: barycentrics and window depth within this of their exact
 /// values (`2^-precision_bits`). Bounds derived from it: a barycentric outside `[0, 1]`, or a
@@ -105,8 +105,8 @@ pub fn check_draws_nothing(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), 
             Err(Violation::at(
                 (f.x, f.y),
                 format!(
-                    "{} fragments drawn where none should be, the first at {:?} by triangle {}{why}",
-                    frags.len(),
+                    "{} drawn where none should be, the first at {:?} by triangle {}{why}",
+                    plural(frags.len(), "fragment"),
                     (f.x, f.y),
                     f.primitive
                 ),

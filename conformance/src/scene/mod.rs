@@ -354,6 +354,7 @@ fn cull_name(c: CullMode) -> &'static str {
         CullMode::None => "None",
         CullMode::Front => "Front",
         CullMode::Back => "Back",
+        CullMode::FrontAndBack => "FrontAndBack",
     }
 }
 

@@ -100,11 +100,15 @@ pub enum Bug {
     /// The scissor keeps the colour (the primitive buffer) but not the depth writes: the depth
     /// test writes depth outside the rectangle.
     DepthPastScissor,
+    /// Culling of both faces taken as culling of front faces: back faces drawn.
+    FrontOnlyForBoth,
+    /// Culling of both faces applied to every primitive: lines and points culled too.
+    BothCullsLines,
 }
 
 impl Bug {
     /// Every bug.
-    pub const ALL: [Bug; 38] = [
+    pub const ALL: [Bug; 40] = [
         Self::InclusiveEdges,
         Self::ExclusiveEdges,
         Self::BottomRightAsTopLeft,
@@ -143,6 +147,8 @@ impl Bug {
         Self::TrianglesOnlyScissor,
         Self::BottomUpScissor,
         Self::DepthPastScissor,
+        Self::FrontOnlyForBoth,
+        Self::BothCullsLines,
     ];
 
     /// The name after `mutant:` in `--impl`.
@@ -187,6 +193,8 @@ impl Bug {
             Self::TrianglesOnlyScissor => "triangles-only-scissor",
             Self::BottomUpScissor => "bottom-up-scissor",
             Self::DepthPastScissor => "depth-past-scissor",
+            Self::FrontOnlyForBoth => "front-only-for-both",
+            Self::BothCullsLines => "both-culls-lines",
         }
     }
 
@@ -230,6 +238,7 @@ impl Bug {
             Self::RoundedPoints => "point",
             Self::InclusiveScissor | Self::TrianglesOnlyScissor | Self::BottomUpScissor => "clip",
             Self::DepthPastScissor => "depth",
+            Self::FrontOnlyForBoth | Self::BothCullsLines => "meta",
         }
     }
 
@@ -240,7 +249,8 @@ impl Bug {
         matches!(self.caught_by(), "line" | "point" | "msaa")
     }
 
-    /// Whether it is a bug of the draw state beyond the first contract (the scissor): the
+    /// Whether it is a bug of the draw state beyond the first contract (the scissor, culling of
+    /// both faces): the
     /// mutant then declares everything the reference does, and draws with it.
     #[must_use]
     pub fn is_state(self) -> bool {
@@ -250,6 +260,8 @@ impl Bug {
                 | Self::TrianglesOnlyScissor
                 | Self::BottomUpScissor
                 | Self::DepthPastScissor
+                | Self::FrontOnlyForBoth
+                | Self::BothCullsLines
         )
     }
 }

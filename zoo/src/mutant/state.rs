@@ -1,14 +1,27 @@
-//! The bugs of the draw state the contract gained after its first rasterizers (the scissor, so
-//! far): the reference's own drawing with that state applied wrong in one way, so that every
-//! failure is that bug's doing.
+//! The bugs of the draw state the contract gained after its first rasterizers (the scissor and
+//! culling of both faces, so far): the reference's own drawing with that state applied wrong in
+//! one way, so that every failure is that bug's doing.
 
-use refrast::{Draw, DrawError, Fragment, Rasterizer, Reference, Resolved, Scissor};
+use refrast::{CullMode, Draw, DrawError, Fragment, Rasterizer, Reference, Resolved, Scissor};
 
 use super::Bug;
 
 /// Draws `draw` as the reference does, with `bug`.
 pub fn rasterize(bug: Bug, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
     let mut reference = Reference::default();
+    if draw.state.cull == CullMode::FrontAndBack {
+        return match bug {
+            // Both faces taken as the front one: back faces drawn.
+            Bug::FrontOnlyForBoth => {
+                let mut front = draw.clone();
+                front.state.cull = CullMode::Front;
+                reference.rasterize(&front)
+            }
+            // Every primitive culled, lines and points too.
+            Bug::BothCullsLines => Ok(Vec::new()),
+            _ => reference.rasterize(draw),
+        };
+    }
     let Some(scissor) = draw.state.scissor else {
         return reference.rasterize(draw);
     };

@@ -40,12 +40,16 @@ pub(super) fn lines_or_points(declared: &Profile) -> BoxedStrategy<PrimitiveScen
 /// `(x, y, sample, primitive)` of a covered sample.
 type CoveredSample = (u32, u32, u8, u32);
 
-/// Every fragment of a line or point faces front, and every supported cull mode and front face
-/// leaves the same samples covered: facing and culling belong to polygons.
+/// Every fragment of a line or point faces front, and every supported cull mode (both faces
+/// included, where declared) and front face leaves the same samples covered: facing and
+/// culling belong to polygons.
 pub fn check_lines_points_front(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
-    let features = r.profile().features;
+    let profile = r.profile();
+    let features = profile.features;
     let mut first: Option<(CullMode, FrontFace, Vec<CoveredSample>)> = None;
-    for cull in features.cull_modes.values() {
+    // Culling of both faces, where declared, leaves them alone too.
+    let both = profile.state.cull_both.then_some(CullMode::FrontAndBack);
+    for cull in features.cull_modes.values().chain(both) {
         for front in features.front_faces.values() {
             let mut drawn = case.clone();
             drawn.scene.state.cull = cull;
@@ -75,6 +79,19 @@ pub fn check_lines_points_front(r: &mut dyn Rasterizer, case: &PrimitiveScene) -
         }
     }
     Ok(())
+}
+
+/// With both faces culled, the scene's triangles draw nothing.
+pub fn check_culled_both(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    check_draws_nothing(r, scene).map_err(|v| v.on("with both faces culled (front-and-back)"))
+}
+
+/// [`cull_scene`] with both faces culled.
+pub(super) fn cull_both_scene(profile: &Profile) -> impl Strategy<Value = Scene> + use<> {
+    cull_scene(profile).prop_map(|mut s| {
+        s.state.cull = CullMode::FrontAndBack;
+        s
+    })
 }
 
 /// Unclipped grid triangles, triangles across clip planes with `w` of either sign, and slivers

@@ -10,14 +10,18 @@ mod order;
 mod translate;
 
 pub use facing::{
-    check_culling, check_degenerate, check_degenerate_off_line, check_facing, check_lines_points_front,
+    check_culled_both, check_culling, check_degenerate, check_degenerate_off_line, check_facing,
+    check_lines_points_front,
 };
-use facing::{cull_scene, degenerate_scene, facing_scene, lines_or_points};
+use facing::{cull_both_scene, cull_scene, degenerate_scene, facing_scene, lines_or_points};
 pub use order::{
     check_batch_away_from_edges, check_batch_independent, check_reversal, check_reversal_away_from_edges,
     check_rotation, check_rotation_away_from_edges,
 };
 pub use translate::{Translated, check_subpixel_translation, check_translation, check_viewport_neutral};
+
+/// The implementation culls both faces.
+const CULL_BOTH: super::Need = needs(|p| p.state.cull_both, "no culling of both faces");
 
 /// The implementation draws lines or points.
 const LINES_OR_POINTS: super::Need = needs(|p| p.lines.is_some() || p.points, "no lines or points");
@@ -73,6 +77,13 @@ pub(super) fn rules() -> Vec<Rule> {
             .needs(CULLING)
             .keeps_winding()
             .run(|r, cfg| property_for(r, cfg, cull_scene, check_culling)),
+        Rule::invariant(Family::Meta, "meta.cull.both-faces")
+            .sentence("With both faces culled, no triangle draws a fragment, whatever its facing, clipped or not (lines and points are drawn as with culling off: meta.facing.lines-points-front).")
+            .source("Vulkan 1.4, Basic Polygon Rasterization (VK_CULL_MODE_FRONT_AND_BACK); OpenGL 4.6 §14.6.1 and OpenGL ES 3.2 §13.7.1 (CullFace(FRONT_AND_BACK)); dEQP-VK.rasterization.culling.both_*")
+            .cases(1000)
+            .needs(CULL_BOTH)
+            .keeps_winding()
+            .run(|r, cfg| property_for(r, cfg, cull_both_scene, check_culled_both)),
         Rule::invariant(Family::Meta, "meta.facing.from-winding")
             .sentence("A fragment is front-facing exactly when its triangle turns on screen the way the front face says: by its snapped signed area (also for a sliver that snapping turns over), or by the sign of det[x y w] when it is clipped; a triangle its cull mode discards draws nothing.")
             .source("Vulkan 1.4, Basic Polygon Rasterization (polygon facing from the signed area); Olano and Greer 1997 (facing of clipped triangles); seed 003 (back-face culling)")

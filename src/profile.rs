@@ -168,7 +168,8 @@ pub struct Profile {
     pub multisample: Vec<SamplePattern>,
     /// What clipping does to a point whose centre lies outside the viewport in x or y.
     pub point_clipping: PointClipping,
-    /// The draw state it honours beyond [`features`](Self::features): the scissor, so far.
+    /// The draw state it honours beyond [`features`](Self::features): the scissor and culling
+    /// of both faces, so far.
     pub state: StateSupport,
 }
 

@@ -23,7 +23,7 @@ Draw = namedtuple(
 )
 Draw.__doc__ = """One draw: clip-space positions (x, y, z, w), triangles (i, j, k) and state.
 
-cull is none/front/back, front_face ccw/cw, depth_compare less/less-equal/greater/
+cull is none/front/back (or front-and-back, sent only to a profile whose cull line lists it), front_face ccw/cw, depth_compare less/less-equal/greater/
 greater-equal/equal/not-equal/always/never, depth_write and far_clipping booleans, depth_clear a
 float, depth_range zero-to-one or negative-one-to-one. scissor is None, or (x, y, width, height)
 in pixels (origin top-left) for a profile whose features name scissor: then no fragment may lie

@@ -325,6 +325,29 @@ impl Drop for Process {
     }
 }
 
+impl Process {
+    /// `Err(Unsupported)` for a draw the child's profile does not declare: its topology and
+    /// sample count, or its state (a scissor or a cull mode it does not list), so that nothing
+    /// it did not ask for reaches it (docs/protocol.md promises as much), whoever draws.
+    fn declares(&self, draw: &Draw) -> Result<(), DrawError> {
+        let profile = &self.declared.profile;
+        if !profile.draws(draw.topology, draw.samples) {
+            return Err(DrawError::Unsupported(format!(
+                "{} (the child does not declare it)",
+                draw.describe()
+            )));
+        }
+        if !profile.supports(&draw.state) {
+            return Err(DrawError::Unsupported(format!(
+                "{:?} (the child does not declare it; it does declare {:?})",
+                draw.state,
+                profile.fit(draw.state)
+            )));
+        }
+        Ok(())
+    }
+}
+
 impl Rasterizer for Process {
     fn profile(&self) -> Profile {
         self.declared.profile.clone()
@@ -341,12 +364,7 @@ impl Rasterizer for Process {
 
     /// A draw the child does not declare is refused here, without asking it.
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
-        if !self.declared.profile.draws(draw.topology, draw.samples) {
-            return Err(DrawError::Unsupported(format!(
-                "{} (the child does not declare it)",
-                draw.describe()
-            )));
-        }
+        self.declares(draw)?;
         match self.exchange(Op::Rasterize, draw)? {
             Reply::Fragments(fragments) => Ok(fragments),
             Reply::Refused(e) => Err(e),
@@ -361,12 +379,7 @@ impl Rasterizer for Process {
             let fragments = self.rasterize(draw)?;
             return Ok(Resolved::from_fragments(draw, fragments));
         }
-        if !self.declared.profile.draws(draw.topology, draw.samples) {
-            return Err(DrawError::Unsupported(format!(
-                "{} (the child does not declare it)",
-                draw.describe()
-            )));
-        }
+        self.declares(draw)?;
         match self.exchange(Op::Resolve, draw)? {
             Reply::Resolved(resolved) => Ok(resolved),
             Reply::Refused(e) => Err(e),

@@ -92,6 +92,9 @@ impl Word for CullMode {
             .into_iter()
             .find(|v| v.word() == word)
     }
+    fn words() -> String {
+        format!("none, front, back, {CULL_BOTH}")
+    }
 }
 
 /// The cull mode of both faces, as the protocol spells it.
@@ -585,6 +588,11 @@ impl Reading {
                     // Both faces are declared apart: the other words are the supported modes.
                     self.profile.state.cull_both = words.contains(&CULL_BOTH);
                     let modes: Vec<&str> = words.iter().copied().filter(|w| *w != CULL_BOTH).collect();
+                    if modes.is_empty() && !words.is_empty() {
+                        return Err(bad(&format!(
+                            "{CULL_BOTH} needs one of none, front, back beside it"
+                        )));
+                    }
                     f.cull_modes = supported(&modes, bad)?;
                 }
                 FrontFace::KEY => f.front_faces = supported(&words, bad)?,
@@ -841,6 +849,8 @@ mod tests {
         assert!(both.features.cull_modes.contains(CullMode::None));
         assert!(!both.features.cull_modes.contains(CullMode::Back));
         assert!(parsed(&["cull front-and-sides"]).unwrap_err().contains("cull"));
+        let alone = parsed(&["cull front-and-back"]).unwrap_err();
+        assert!(alone.contains("needs one of none, front, back"), "{alone}");
         let mut draw = Draw::new(
             refrast::Viewport::new(4, 4).unwrap(),
             vec![[0.0; 4]; 3],

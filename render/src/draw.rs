@@ -168,11 +168,17 @@ fn own_depth_test(
 }
 
 /// `Err(Unsupported)` when `job` asks for state `profile` does not declare ([`Profile::state`]:
-/// a scissor): such a draw is refused with what to do, never drawn as if it had not been asked.
+/// a scissor, culling of both faces): such a draw is refused with what to do, never drawn as if
+/// it had not been asked.
 pub(crate) fn undeclared_state(profile: &Profile, job: &Job<'_>) -> Result<(), DrawError> {
     if job.state.scissor.is_some() && !profile.state.scissor {
         return Err(DrawError::Unsupported(
             "a scissor, which this rasterizer does not declare (the reference does)".to_owned(),
+        ));
+    }
+    if job.state.cull == refrast::CullMode::FrontAndBack && !profile.state.cull_both {
+        return Err(DrawError::Unsupported(
+            "culling of both faces, which this rasterizer does not declare (the reference does)".to_owned(),
         ));
     }
     Ok(())

@@ -62,8 +62,8 @@ impl RawDraw {
 }
 
 /// Every draw state from 16 bits: cull mode (both faces included), front face, compare op, depth writes, depth range,
-/// far clipping, a clear value of 1, 0 or ½, and one of 16 scissor rectangles or none (from a
-/// pixel in from the corner to past a 64-px viewport's sides).
+/// far clipping, a clear value of 1, 0 or ½, and one of 16 scissor rectangles or none (empty
+/// ones, thin ones, and ones past a 64-px viewport's right and bottom sides).
 #[must_use]
 pub fn draw_state(bits: u16) -> DrawState {
     const OPS: [CompareOp; 8] = [
@@ -93,12 +93,12 @@ pub fn draw_state(bits: u16) -> DrawState {
         depth_range: [DepthRange::ZeroToOne, DepthRange::NegativeOneToOne][field(9, 2)],
         clip_far: field(10, 2) == 1,
         scissor: (field(11, 2) == 1).then(|| {
-            let (a, b) = (field(12, 4) as u32, field(14, 4) as u32);
+            let (a, b) = (field(12, 4), field(14, 4));
             Scissor {
-                x: 3 * a,
-                y: 5 * b,
-                width: 70 - 17 * a,
-                height: 1 + 9 * b,
+                x: 3 * a as u32,
+                y: 5 * b as u32,
+                width: [70, 0, 30, 1][a],
+                height: [1, 70, 0, 33][b],
             }
         }),
     }

@@ -56,6 +56,10 @@ impl Turn {
     /// culled or has zero area, `None` when that depends on which correct rounding happens.
     #[must_use]
     pub fn drawn(self, state: &DrawState) -> Option<bool> {
+        // Both faces culled: not drawn, whichever way it turns.
+        if state.cull.culls(true) && state.cull.culls(false) {
+            return Some(false);
+        }
         let front = self.front_facing(state)?;
         Some(!state.cull.culls(front))
     }

@@ -320,7 +320,7 @@ mod tests {
         data.cull = "sideways".into();
         let err = data.triangle_scene().unwrap_err();
         assert!(
-            err.contains("cull 'sideways' is none of none, back, front"),
+            err.contains("cull 'sideways' is none of none, front, back, front-and-back"),
             "{err}"
         );
         data.cull = "none".into();

@@ -170,7 +170,8 @@ impl Scene {
     /// faces draws every triangle as a front face. Zero-area and unsure triangles are left as
     /// they are (the rules accept either outcome for the unsure ones).
     pub fn orient_to_face_front(&mut self, profile: &Profile) {
-        if self.state.cull == CullMode::None {
+        // No cull, or both faces culled: no winding makes a triangle drawn.
+        if matches!(self.state.cull, CullMode::None | CullMode::FrontAndBack) {
             return;
         }
         for (t, turn) in self.turns(profile).into_iter().enumerate() {

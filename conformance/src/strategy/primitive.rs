@@ -2,7 +2,7 @@
 //! power-of-two viewports, so that every implementation snaps their ends to the same points.
 
 use proptest::prelude::*;
-use refrast::{Scissor, Topology};
+use refrast::{CompareOp, CullMode, Scissor, Setting, Topology};
 
 use super::{GRID, side};
 use crate::scene::PrimitiveScene;
@@ -172,10 +172,21 @@ pub fn multisampled_primitives(
 
 /// `cases` with a scissor rectangle, in 64ths of the viewport's sides: from empty to past its
 /// right and bottom sides, thin strips and single pixels included; it shrinks toward the
-/// top-left corner and toward nothing.
+/// top-left corner and toward nothing. Culling, the compare op and depth writes vary too, so
+/// the scissor is seen with each (the profile's fit keeps what it supports).
 pub fn scissored(cases: impl Strategy<Value = PrimitiveScene>) -> impl Strategy<Value = PrimitiveScene> {
-    (cases, 0u32..=68, 0u32..=68, 0u32..=72, 0u32..=72).prop_map(|(mut case, x, y, w, h)| {
+    let state = (
+        prop::sample::select(CullMode::VALUES),
+        prop::sample::select(CompareOp::VALUES),
+        any::<bool>(),
+    );
+    (cases, 0u32..=68, 0u32..=68, 0u32..=72, 0u32..=72, state).prop_map(|(mut case, x, y, w, h, state)| {
         let (width, height) = (case.scene.width, case.scene.height);
+        (
+            case.scene.state.cull,
+            case.scene.state.depth.compare,
+            case.scene.state.depth.write,
+        ) = state;
         case.scene.state.scissor = Some(Scissor {
             x: x * width / 64,
             y: y * height / 64,

@@ -9,6 +9,8 @@ use super::Bug;
 /// Draws `draw` as the reference does, with `bug`.
 pub fn rasterize(bug: Bug, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
     let mut reference = Reference::default();
+    // The culling bugs first: no rule draws both faces culled with a scissor, so neither kind
+    // of bug hides the other.
     if draw.state.cull == CullMode::FrontAndBack {
         return match bug {
             // Both faces taken as the front one: back faces drawn.

@@ -63,15 +63,8 @@ pub fn render(
     if let Some(stats) = draw_lines(job, target) {
         return Ok(stats);
     }
-    undeclared_state(&rasterizer.profile(), job)?;
-    let mesh = job.mesh;
-    let pipeline = Renderer {
-        reference: Reference::default(),
-        state: job.state,
-    };
-    let viewport = target.viewport();
-    let draw = pipeline.mesh_draw(viewport, mesh, job.view_projection);
-    draw.validate()?;
+    let draw = triangle_draw(&rasterizer.profile(), job, target)?;
+    let (mesh, viewport) = (job.mesh, target.viewport());
     let mut fragments = rasterizer.rasterize(&draw)?;
     // API order, as `Resolved::from_fragments` replays them: stable, so each primitive keeps its own.
     fragments.sort_by_key(|f| f.primitive);
@@ -165,6 +158,23 @@ fn own_depth_test(
         }
     }
     written
+}
+
+/// The draw of `job`'s mesh on `target`, as every triangle mode sends it; `Err` for state
+/// `profile` does not declare ([`undeclared_state`]) or a mesh the contract refuses.
+pub(crate) fn triangle_draw(
+    profile: &Profile,
+    job: &Job<'_>,
+    target: &Framebuffer,
+) -> Result<Draw, DrawError> {
+    undeclared_state(profile, job)?;
+    let pipeline = Renderer {
+        reference: Reference::default(),
+        state: job.state,
+    };
+    let draw = pipeline.mesh_draw(target.viewport(), job.mesh, job.view_projection);
+    draw.validate()?;
+    Ok(draw)
 }
 
 /// `Err(Unsupported)` when `job` asks for state `profile` does not declare ([`Profile::state`]:
@@ -269,14 +279,8 @@ pub fn render_shaded<R: ShadingRasterizer + ?Sized>(
         return Ok(());
     }
     // A shading rasterizer declares no profile, so none of the state declared apart.
-    undeclared_state(&Profile::default(), job)?;
+    let mut draw = triangle_draw(&Profile::default(), job, target)?;
     let viewport = target.viewport();
-    let pipeline = Renderer {
-        reference: Reference::default(),
-        state: job.state,
-    };
-    let mut draw = pipeline.mesh_draw(viewport, job.mesh, job.view_projection);
-    draw.validate()?;
     let triangles = job.mesh.triangles.len();
     let inside = |f: &Fragment| {
         f.x < viewport.width() && f.y < viewport.height() && (f.primitive as usize) < triangles

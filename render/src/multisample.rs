@@ -2,10 +2,10 @@
 //! resolved to its pixel with a box filter (the mean of its samples), as a 4× supersampled
 //! target is in seed 001's memory sums.
 
-use refrast::pipeline::{Framebuffer, Renderer, to_rgba8};
-use refrast::{DrawError, Rasterizer, Reference, Topology};
+use refrast::pipeline::{Framebuffer, to_rgba8};
+use refrast::{DrawError, Rasterizer, Topology};
 
-use crate::draw::{Job, Shader, Stats, render};
+use crate::draw::{Job, Shader, Stats, render, triangle_draw};
 use crate::mode::{Mode, depth_greys, overdraw_color};
 
 /// Clears `target` and draws `job` into it at `samples` samples per pixel through
@@ -24,7 +24,6 @@ pub fn render_multisampled(
         return render(rasterizer, job, target);
     }
     let declared = rasterizer.profile();
-    crate::draw::undeclared_state(&declared, job)?;
     if !declared.draws(Topology::TriangleList, samples) {
         return Err(DrawError::Unsupported(format!(
             "{samples} samples per pixel (it declares {:?})",
@@ -33,12 +32,7 @@ pub fn render_multisampled(
     }
     target.clear(job.clear, job.state.depth.clear);
     let viewport = target.viewport();
-    let pipeline = Renderer {
-        reference: Reference::default(),
-        state: job.state,
-    };
-    let draw = pipeline.mesh_draw(viewport, job.mesh, job.view_projection);
-    draw.validate()?;
+    let draw = triangle_draw(&declared, job, target)?;
     let mut fragments = rasterizer.rasterize(&draw.at_samples(samples))?;
     // API order, as the depth test replays them: stable, so each primitive keeps its own.
     fragments.sort_by_key(|f| f.primitive);

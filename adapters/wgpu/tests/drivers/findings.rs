@@ -415,11 +415,9 @@ fn snap_tie_to_even(d: Driver, run: &mut Run<'_>) {
     );
 }
 
-/// softpipe: a shared edge's midpoint covered by both triangles.
-fn softpipe_shared_edge_twice(_: Driver, run: &mut Run<'_>) {
-    // Two triangles sharing the edge (32.5, 32.5)–(18.5, 50.5); its midpoint is the sample of
-    // pixel (25, 41), covered by both.
-    let fan = draw(
+/// Two triangles of softpipe's findings on 64×64, sharing the edge (32.5, 32.5)–(18.5, 50.5).
+fn softpipe_fan() -> Draw {
+    draw(
         64,
         64,
         vec![
@@ -429,7 +427,14 @@ fn softpipe_shared_edge_twice(_: Driver, run: &mut Run<'_>) {
             [-0.046875, -0.015625, 0.5, 1.0],
         ],
         vec![[0, 1, 2], [0, 2, 3]],
-    );
+    )
+}
+
+/// softpipe: a shared edge's midpoint covered by both triangles.
+fn softpipe_shared_edge_twice(_: Driver, run: &mut Run<'_>) {
+    // Two triangles sharing the edge (32.5, 32.5)–(18.5, 50.5); its midpoint is the sample of
+    // pixel (25, 41), covered by both.
+    let fan = softpipe_fan();
     assert_eq!(
         at(&run(&fan), 25, 41).len(),
         2,
@@ -439,17 +444,7 @@ fn softpipe_shared_edge_twice(_: Driver, run: &mut Run<'_>) {
 
 /// softpipe: the sample on a vertex where two right edges meet.
 fn softpipe_vertex_sample(_: Driver, run: &mut Run<'_>) {
-    let fan = draw(
-        64,
-        64,
-        vec![
-            [0.015625, -0.015625, 0.5, 1.0],
-            [0.0, -0.1875, 0.5, 1.0],
-            [-0.421875, -0.578125, 0.5, 1.0],
-            [-0.046875, -0.015625, 0.5, 1.0],
-        ],
-        vec![[0, 1, 2], [0, 2, 3]],
-    );
+    let fan = softpipe_fan();
     // The sample (12.5, 0.5) is vertex 1, where two right edges meet: softpipe covers it, as
     // top-right would; its float edges follow top-right on 259 of the probe's 262 tie samples,
     // not all, so it declares no tie rule (tests/measured.rs).

@@ -7,6 +7,8 @@
 //! other topologies and sample counts only to a profile that declares them
 //! ([`Profile::draws`](crate::Profile::draws)).
 
+use std::borrow::Cow;
+
 use crate::error::DrawError;
 use crate::primitive::{SAMPLE_COUNTS, Topology};
 use crate::state::DrawState;
@@ -16,7 +18,8 @@ use crate::viewport::Viewport;
 /// per pixel, and state.
 ///
 /// Primitive `i` (triangle, segment or point, in index order; segment `i` of a strip joins
-/// indices `i` and `i + 1`) is [`Fragment::primitive`] `i` in every output.
+/// indices `i` and `i + 1`; triangle `i` of a strip or fan is [`Draw::triangle`]`(i)`) is
+/// [`Fragment::primitive`] `i` in every output.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Draw {
     /// The render target's size.
@@ -25,7 +28,8 @@ pub struct Draw {
     pub positions: Vec<[f32; 4]>,
     /// How the indices make primitives.
     pub topology: Topology,
-    /// Vertex indices: three per triangle of a list ([`Draw::triangles`] reads them so).
+    /// Vertex indices: three per triangle of a list ([`Draw::triangles`] reads them, and a
+    /// strip's or fan's, as triangles).
     pub indices: Vec<u32>,
     /// Samples per pixel (1, 2, 4, 8 or 16).
     pub samples: u8,
@@ -65,18 +69,40 @@ impl Draw {
         Self { samples, ..self }
     }
 
-    /// The triangles of a triangle list, three indices each (indices left over after the last
-    /// whole triangle are not one); empty for lines and points, whose primitives
-    /// [`Draw::primitive`] gives.
+    /// Triangle `i`'s vertex indices, in the order Vulkan gives them (Triangle Lists, Strips
+    /// and Fans): a list's `3i, 3i + 1, 3i + 2`; a strip's `i, i + 1 + i % 2, i + 2 − i % 2`,
+    /// every other triangle reversed so that the winding is the strip's; a fan's
+    /// `i + 1, i + 2, 0`. [`Fragment::barycentric`]`[k]` is the weight of its vertex `k`.
+    /// `None` past the last triangle, and for lines and points.
     #[must_use]
-    pub fn triangles(&self) -> &[[u32; 3]] {
+    pub fn triangle(&self, i: usize) -> Option<[u32; 3]> {
+        let at = |k: usize| self.indices.get(k).copied();
+        let odd = i % 2;
+        let corners = match self.topology {
+            Topology::TriangleList => [3 * i, 3 * i + 1, 3 * i + 2],
+            Topology::TriangleStrip => [i, i + 1 + odd, i + 2 - odd],
+            Topology::TriangleFan => [i + 1, i + 2, 0],
+            Topology::LineList | Topology::LineStrip | Topology::PointList => return None,
+        };
+        Some([at(corners[0])?, at(corners[1])?, at(corners[2])?])
+    }
+
+    /// Every triangle ([`Draw::triangle`]): a list's indices as they are, a strip's or fan's
+    /// gathered; empty for lines and points, whose primitives [`Draw::primitive`] gives.
+    #[must_use]
+    pub fn triangles(&self) -> Cow<'_, [[u32; 3]]> {
         match self.topology {
-            Topology::TriangleList => self.indices.as_chunks::<3>().0,
-            _ => &[],
+            Topology::TriangleList => Cow::Borrowed(self.indices.as_chunks::<3>().0),
+            _ => Cow::Owned(
+                (0..self.primitive_count())
+                    .map_while(|i| self.triangle(i))
+                    .collect(),
+            ),
         }
     }
 
-    /// [`Draw::triangles`], to change in place (reversing one, say).
+    /// The triangles of a triangle list, to change in place (reversing one, say); empty for
+    /// every other topology, whose triangles share indices.
     pub fn triangles_mut(&mut self) -> &mut [[u32; 3]] {
         match self.topology {
             Topology::TriangleList => self.indices.as_chunks_mut::<3>().0,
@@ -84,22 +110,42 @@ impl Draw {
         }
     }
 
-    /// Whether it is a triangle list at one sample: all a rasterizer that declares nothing more
-    /// is sent.
+    /// The same triangles as a triangle list, in the same order and each in
+    /// [`Draw::triangle`]'s vertex order: what a strip or fan draws, drawn the first
+    /// contract's way. Lines and points are returned as they are.
     #[must_use]
-    pub fn is_triangles_at_one_sample(&self) -> bool {
-        self.topology == Topology::TriangleList && self.samples == 1
+    pub fn as_triangle_list(&self) -> Self {
+        if !self.topology.is_triangles() {
+            return self.clone();
+        }
+        Self {
+            topology: Topology::TriangleList,
+            indices: self.triangles().iter().flatten().copied().collect(),
+            ..self.clone()
+        }
     }
 
-    /// The vertex indices of primitive `i` (one, two or three of them); `None` past the last.
+    /// Whether it is triangles (a list, a strip or a fan) at one sample: what a triangle
+    /// rasterizer reading [`Draw::triangles`] draws.
     #[must_use]
-    pub fn primitive(&self, i: usize) -> Option<&[u32]> {
-        match self.topology {
+    pub fn is_triangles_at_one_sample(&self) -> bool {
+        self.topology.is_triangles() && self.samples == 1
+    }
+
+    /// The vertex indices of primitive `i` (one, two or three of them; a triangle's in
+    /// [`Draw::triangle`]'s order); `None` past the last.
+    #[must_use]
+    pub fn primitive(&self, i: usize) -> Option<Cow<'_, [u32]>> {
+        let slice = match self.topology {
             Topology::TriangleList => self.indices.get(3 * i..3 * i + 3),
             Topology::LineList => self.indices.get(2 * i..2 * i + 2),
             Topology::LineStrip => self.indices.get(i..i + 2),
             Topology::PointList => self.indices.get(i..=i),
-        }
+            Topology::TriangleStrip | Topology::TriangleFan => {
+                return self.triangle(i).map(|t| Cow::Owned(t.to_vec()));
+            }
+        };
+        slice.map(Cow::Borrowed)
     }
 
     /// How many primitives it draws (0 when [`validate`](Self::validate) refuses its count).
@@ -122,9 +168,9 @@ impl Draw {
             .map_err(DrawError::Unsupported)?;
         let vertices = self.positions.len();
         for i in 0..self.primitive_count() {
-            if let Some(&index) = self
+            if let Some(index) = self
                 .primitive(i)
-                .and_then(|p| p.iter().find(|&&v| v as usize >= vertices))
+                .and_then(|p| p.iter().copied().find(|&v| v as usize >= vertices))
             {
                 return Err(DrawError::IndexOutOfRange {
                     triangle: i,
@@ -243,7 +289,7 @@ mod tests {
         let vp = Viewport::new(4, 4).expect("4×4");
         let strip = Draw::of(vp, vec![[0.0; 4]; 3], Topology::LineStrip, vec![0, 1, 2]);
         assert_eq!(strip.primitive_count(), 2);
-        assert_eq!(strip.primitive(1), Some(&[1, 2][..]));
+        assert_eq!(strip.primitive(1).as_deref(), Some(&[1, 2][..]));
         assert!(strip.triangles().is_empty());
         assert!(strip.validate().is_ok());
         let list = Draw::of(vp, vec![[0.0; 4]; 3], Topology::LineList, vec![0, 1, 2]);
@@ -266,12 +312,59 @@ mod tests {
     fn a_triangle_list_reads_back_as_triangles() {
         let vp = Viewport::new(4, 4).expect("4×4");
         let draw = Draw::new(vp, vec![[0.0; 4]; 4], vec![[0, 1, 2], [2, 1, 3]]);
-        assert_eq!(draw.triangles(), [[0, 1, 2], [2, 1, 3]]);
+        assert_eq!(draw.triangles()[..], [[0, 1, 2], [2, 1, 3]]);
         assert_eq!(draw.indices, [0, 1, 2, 2, 1, 3]);
         assert!(draw.is_triangles_at_one_sample());
-        assert_eq!(draw.primitive(1), Some(&[2, 1, 3][..]));
+        assert_eq!(draw.primitive(1).as_deref(), Some(&[2, 1, 3][..]));
+        assert_eq!(draw.as_triangle_list(), draw);
         assert!(!draw.clone().at_samples(4).is_triangles_at_one_sample());
         assert_eq!(draw.describe(), "triangle-list at 1 sample per pixel");
+    }
+
+    /// Strips and fans make their triangles in Vulkan's vertex order (Triangle Strips: odd
+    /// ones reversed; Triangle Fans: the hub last); fewer than three indices make none.
+    #[test]
+    fn strips_and_fans_make_vulkans_triangles() {
+        let vp = Viewport::new(4, 4).expect("4×4");
+        let strip = Draw::of(
+            vp,
+            vec![[0.0; 4]; 9],
+            Topology::TriangleStrip,
+            vec![4, 5, 6, 7, 8],
+        );
+        assert_eq!(strip.primitive_count(), 3);
+        assert_eq!(strip.triangles()[..], [[4, 5, 6], [5, 7, 6], [6, 7, 8]]);
+        assert_eq!(strip.triangle(3), None);
+        assert_eq!(strip.primitive(1).as_deref(), Some(&[5, 7, 6][..]));
+        let fan = Draw {
+            topology: Topology::TriangleFan,
+            ..strip.clone()
+        };
+        assert_eq!(fan.triangles()[..], [[5, 6, 4], [6, 7, 4], [7, 8, 4]]);
+        let list = fan.as_triangle_list();
+        assert_eq!(
+            (list.topology, list.indices),
+            (Topology::TriangleList, vec![5, 6, 4, 6, 7, 4, 7, 8, 4])
+        );
+        assert!(strip.is_triangles_at_one_sample() && strip.validate().is_ok());
+        let short = Draw {
+            indices: vec![0, 1],
+            ..strip.clone()
+        };
+        assert_eq!((short.primitive_count(), short.triangles().len()), (0, 0));
+        assert!(short.validate().is_ok());
+        let bad = Draw {
+            indices: vec![0, 1, 2, 9],
+            ..strip
+        };
+        assert!(matches!(
+            bad.validate(),
+            Err(DrawError::IndexOutOfRange {
+                triangle: 1,
+                index: 9,
+                ..
+            })
+        ));
     }
 
     /// Sample `s` of a pixel is its own depth-test slot; one sample is row-major.

@@ -266,6 +266,12 @@ pub struct StateSupport {
     /// It culls both faces ([`CullMode::FrontAndBack`](crate::CullMode::FrontAndBack)): no
     /// triangle drawn, lines and points drawn as with culling off.
     pub cull_both: bool,
+    /// It draws triangle strips ([`Topology::TriangleStrip`](crate::Topology::TriangleStrip)),
+    /// at every sample count it declares.
+    pub triangle_strips: bool,
+    /// It draws triangle fans ([`Topology::TriangleFan`](crate::Topology::TriangleFan)), at
+    /// every sample count it declares.
+    pub triangle_fans: bool,
 }
 
 impl StateSupport {
@@ -273,11 +279,15 @@ impl StateSupport {
     pub const NONE: StateSupport = StateSupport {
         scissor: false,
         cull_both: false,
+        triangle_strips: false,
+        triangle_fans: false,
     };
     /// All of it, as the reference honours it.
     pub const ALL: StateSupport = StateSupport {
         scissor: true,
         cull_both: true,
+        triangle_strips: true,
+        triangle_fans: true,
     };
 }
 

@@ -6,6 +6,8 @@
 //! which triangles are drawn, how they turn and which discard they count as, is written here
 //! alone.
 
+use std::borrow::Cow;
+
 use crate::clip::{
     ClipOutcome, ClipPlane, ClipVertex, assemble, classify, clip_planes, clip_triangle, outcode,
 };
@@ -49,6 +51,8 @@ impl Corner {
 pub struct FrontSetup<'d> {
     /// The draw.
     pub draw: &'d Draw,
+    /// Its triangles, gathered once ([`Draw::triangles`]).
+    pub triangles: Cow<'d, [[u32; 3]]>,
     /// Its clip planes.
     pub planes: Vec<ClipPlane>,
     /// Its viewport transform.
@@ -65,6 +69,7 @@ impl<'d> FrontSetup<'d> {
     pub fn new(draw: &'d Draw, config: ReferenceConfig) -> Self {
         Self {
             draw,
+            triangles: draw.triangles(),
             planes: clip_planes(
                 config.clip,
                 draw.viewport,
@@ -86,7 +91,7 @@ impl<'d> FrontSetup<'d> {
     #[must_use]
     #[inline]
     pub fn corners(&self, primitive: usize) -> [Corner; 3] {
-        self.draw.triangles()[primitive]
+        self.triangles[primitive]
             .map(|i| Corner::new(self.draw.positions[i as usize], &self.planes, &self.transform))
     }
 }
@@ -166,8 +171,8 @@ pub fn front_end(
             kept(setup, winding, positions, Some(triangle))
         }
         ClipOutcome::Clipped => {
-            let input = assemble(&setup.draw.positions, setup.draw.triangles()[primitive])
-                .ok_or(Discard::NonFinite)?;
+            let input =
+                assemble(&setup.draw.positions, setup.triangles[primitive]).ok_or(Discard::NonFinite)?;
             // The outcodes said cut; what is cut can still leave less than a triangle.
             if clip_triangle(&input, &setup.planes, &mut scratch.polygon, &mut scratch.clip)
                 != ClipOutcome::Clipped

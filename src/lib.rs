@@ -81,6 +81,10 @@
 //! - **Scissor**: a fragment is produced only where its pixel lies in the draw's scissor
 //!   rectangle, half-open in raster space, for every primitive and sample
 //!   ([`DrawState::passes_scissor`]).
+//! - **Strips and fans**: triangle `i` of a strip is indices `i, i+1+i%2, i+2−i%2` (every other
+//!   one reversed, so the strip keeps one winding), of a fan `i+1, i+2, 0`, as Vulkan makes them
+//!   and orders their barycentrics; each draws as that triangle would in a list
+//!   ([`Draw::triangle`]).
 //! - **Coverage of a clipped polygon**: its snapped fan's winding number
 //!   ([`stage::traverse`]), so a sliver turned over by snapping neither doubles nor leaks.
 //! - **Depth**: window depth `z/w` interpolated linearly in screen space

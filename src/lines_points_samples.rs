@@ -57,8 +57,10 @@ impl Reference {
         }
         let offsets = self.offsets(pattern)?;
         match draw.topology {
-            Topology::TriangleList if draw.samples == 1 => self.draw_samples(draw, |s| emit(s.fragment())),
-            Topology::TriangleList => self.draw_triangles_at(draw, &offsets, emit),
+            t if t.is_triangles() && draw.samples == 1 => self.draw_samples(draw, |s| emit(s.fragment())),
+            Topology::TriangleList | Topology::TriangleStrip | Topology::TriangleFan => {
+                self.draw_triangles_at(draw, &offsets, emit)
+            }
             Topology::LineList | Topology::LineStrip => Ok(self.draw_lines(draw, &offsets, emit)),
             Topology::PointList => Ok(self.draw_points(draw, &offsets, emit)),
         }
@@ -111,10 +113,10 @@ impl Reference {
         let mut scratch = Scratch::default();
         let (mut moved, mut fan) = (Vec::new(), Vec::new());
         let mut stats = DrawStats {
-            triangles: draw.triangles().len(),
+            triangles: setup.triangles.len(),
             ..DrawStats::default()
         };
-        for primitive in 0..draw.triangles().len() {
+        for primitive in 0..setup.triangles.len() {
             let kept = match front_end(&setup, primitive, setup.corners(primitive), &mut scratch.front) {
                 Ok(kept) => kept,
                 Err(discard) => {
@@ -171,7 +173,7 @@ impl Reference {
             ..DrawStats::default()
         };
         for i in 0..draw.primitive_count() {
-            let Some(&[ia, ib]) = draw.primitive(i) else {
+            let Some(&[ia, ib]) = draw.primitive(i).as_deref() else {
                 continue;
             };
             let (pa, pb) = (draw.positions[ia as usize], draw.positions[ib as usize]);

@@ -15,15 +15,23 @@ pub enum Topology {
     LineStrip,
     /// One index per point.
     PointList,
+    /// Each index after the second ends a triangle with the two before it, every other one
+    /// reversed so that the winding stays the strip's ([`Draw::triangle`](crate::Draw::triangle)).
+    TriangleStrip,
+    /// Each index after the second ends a triangle with the one before it and the first.
+    TriangleFan,
 }
 
 impl Topology {
-    /// Every topology, triangles first.
-    pub const ALL: [Topology; 4] = [
+    /// Every topology: the first contract's triangle list, then lines and points, then the
+    /// strips and fans that came with the later draw state.
+    pub const ALL: [Topology; 6] = [
         Self::TriangleList,
         Self::LineList,
         Self::LineStrip,
         Self::PointList,
+        Self::TriangleStrip,
+        Self::TriangleFan,
     ];
 
     /// The name the pipe protocol and reports use: `triangle-list`, `line-strip`, ….
@@ -34,6 +42,8 @@ impl Topology {
             Self::LineList => "line-list",
             Self::LineStrip => "line-strip",
             Self::PointList => "point-list",
+            Self::TriangleStrip => "triangle-strip",
+            Self::TriangleFan => "triangle-fan",
         }
     }
 
@@ -49,6 +59,12 @@ impl Topology {
         matches!(self, Self::LineList | Self::LineStrip)
     }
 
+    /// Whether its primitives are triangles (a list, a strip or a fan).
+    #[must_use]
+    pub fn is_triangles(self) -> bool {
+        matches!(self, Self::TriangleList | Self::TriangleStrip | Self::TriangleFan)
+    }
+
     /// The number of primitives `indices` indices make; `Err` with what is wrong when a list's
     /// count is not a multiple of its primitive's vertices.
     pub fn primitive_count(self, indices: usize) -> Result<usize, String> {
@@ -56,6 +72,7 @@ impl Topology {
             Self::TriangleList => 3,
             Self::LineList => 2,
             Self::LineStrip => return Ok(indices.saturating_sub(1)),
+            Self::TriangleStrip | Self::TriangleFan => return Ok(indices.saturating_sub(2)),
             Self::PointList => 1,
         };
         if indices.is_multiple_of(per) {
@@ -298,6 +315,6 @@ mod tests {
         for t in Topology::ALL {
             assert_eq!(Topology::from_name(t.name()), Some(t));
         }
-        assert_eq!(Topology::from_name("triangle-strip"), None);
+        assert_eq!(Topology::from_name("triangle-strips"), None);
     }
 }

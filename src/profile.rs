@@ -168,8 +168,8 @@ pub struct Profile {
     pub multisample: Vec<SamplePattern>,
     /// What clipping does to a point whose centre lies outside the viewport in x or y.
     pub point_clipping: PointClipping,
-    /// The draw state it honours beyond [`features`](Self::features): the scissor and culling
-    /// of both faces, so far.
+    /// The draw state it honours beyond [`features`](Self::features): the scissor, culling of
+    /// both faces, triangle strips and fans, so far.
     pub state: StateSupport,
 }
 
@@ -267,6 +267,8 @@ impl Profile {
             Topology::TriangleList => true,
             Topology::LineList | Topology::LineStrip => self.lines.is_some(),
             Topology::PointList => self.points,
+            Topology::TriangleStrip => self.state.triangle_strips,
+            Topology::TriangleFan => self.state.triangle_fans,
         };
         drawn && self.pattern(samples).is_some()
     }
@@ -355,7 +357,16 @@ mod tests {
             ..p
         };
         assert!(more.draws(Topology::LineStrip, 4));
+        assert!(!more.draws(Topology::TriangleStrip, 1));
         assert_eq!(more.sample_counts(), [1, 4]);
+        let strips = Profile {
+            state: StateSupport {
+                triangle_strips: true,
+                ..StateSupport::NONE
+            },
+            ..more.clone()
+        };
+        assert!(strips.draws(Topology::TriangleStrip, 4) && !strips.draws(Topology::TriangleFan, 1));
         let fewer = more.clone().triangles_only();
         assert_eq!(fewer.topologies(), [Topology::TriangleList]);
         assert_eq!(fewer.sample_counts(), [1]);

@@ -91,7 +91,8 @@ impl Reference {
     /// Rasterizes `draw`, handing each covered [`Sample`] to `visit` in primitive order.
     ///
     /// A sample carries its depth; its barycentrics are computed only when asked for, so a
-    /// depth test can reject it first. `Err` unless `draw` is a triangle list at one sample.
+    /// depth test can reject it first. `Err` unless `draw` is triangles (a list, strip or fan)
+    /// at one sample.
     pub fn draw_samples(
         &self,
         draw: &Draw,
@@ -100,17 +101,17 @@ impl Reference {
         draw.validate()?;
         if !draw.is_triangles_at_one_sample() {
             return Err(DrawError::Unsupported(format!(
-                "{}: samples are visited for triangle lists at one sample",
+                "{}: samples are visited for triangles at one sample",
                 draw.describe()
             )));
         }
         let setup = FrontSetup::new(draw, self.config);
         let mut scratch = Scratch::default();
         let mut stats = DrawStats {
-            triangles: draw.triangles().len(),
+            triangles: setup.triangles.len(),
             ..DrawStats::default()
         };
-        for primitive in 0..draw.triangles().len() {
+        for primitive in 0..setup.triangles.len() {
             match self.draw_triangle(&setup, primitive, &mut scratch, &mut visit) {
                 Ok(fragments) => {
                     stats.traversed += 1;

@@ -9,7 +9,7 @@ use refrast::{Rasterizer, Topology};
 use refrast_conformance::{Case, CaseFile, Options, PrimitiveScene, RuleReport, Status};
 use refrast_pipe::{Process, contain};
 
-use crate::certify::{plural, positive_seconds, reach, rule_lines};
+use crate::certify::{plural, positive_seconds, reach, rule_lines, this_program};
 use crate::say;
 
 /// Arguments of `refrast replay`.
@@ -52,6 +52,9 @@ pub struct ReplayArgs {
 /// profile claims), 1 when it fails, crashes or hangs, 2 when the file, the rule or the
 /// rasterizer cannot be had.
 pub fn run(args: &ReplayArgs) -> ExitCode {
+    if let Some(code) = in_its_environment(args) {
+        return code;
+    }
     match replay(args) {
         Ok(report) => {
             if report.status.is_failure() {
@@ -65,6 +68,32 @@ pub fn run(args: &ReplayArgs) -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+/// The exit code of this same replay run in a child with the environment a built-in needs set
+/// before its process starts (softpipe's `GALLIUM_DRIVER`), as `certify` runs it; `None` when
+/// this process has that environment already, or the rasterizer needs none.
+fn in_its_environment(args: &ReplayArgs) -> Option<ExitCode> {
+    let name = args.implementation.as_ref().filter(|_| args.exec.is_none())?;
+    let builtin = refrast_registry::find(name).ok()?;
+    let set = |(k, v): &(String, String)| std::env::var(k).is_ok_and(|now| now == *v);
+    if builtin.env.iter().all(set) {
+        return None;
+    }
+    let status = this_program()
+        .args(std::env::args_os().skip(1))
+        .envs(builtin.env.iter().map(|(k, v)| (k, v)))
+        .status();
+    Some(match status {
+        Ok(status) => ExitCode::from(status.code().and_then(|c| u8::try_from(c).ok()).unwrap_or(1)),
+        Err(e) => {
+            eprintln!(
+                "error: could not start a child to replay on {name} with {:?} set: {e}",
+                builtin.env
+            );
+            ExitCode::from(2)
+        }
+    })
 }
 
 /// Reads the case, builds the rasterizer, replays, prints.

@@ -18,8 +18,8 @@ FRAGMENT = struct.Struct("<4I7fI")
 Draw = namedtuple(
     "Draw",
     "width height positions triangles cull front_face depth_compare depth_write depth_clear "
-    "depth_range far_clipping topology samples scissor",
-    defaults=(None,),
+    "depth_range far_clipping topology samples scissor indices",
+    defaults=(None, None),
 )
 Draw.__doc__ = """One draw: clip-space positions (x, y, z, w), triangles (i, j, k) and state.
 
@@ -27,10 +27,13 @@ cull is none/front/back (or front-and-back, sent only to a profile whose cull li
 greater-equal/equal/not-equal/always/never, depth_write and far_clipping booleans, depth_clear a
 float, depth_range zero-to-one or negative-one-to-one. scissor is None, or (x, y, width, height)
 in pixels (origin top-left) for a profile whose features name scissor: then no fragment may lie
-outside x <= px < x + width, y <= py < y + height. topology is triangle-list and samples 1:
-refrast sends lines, points and other sample counts only to a child whose profile lists them,
-and this helper declares and reads triangle lists only. Indices are not checked: raise Refused
-for one that names no vertex."""
+outside x <= px < x + width, y <= py < y + height. topology is triangle-list, or triangle-strip
+or triangle-fan for a profile whose topology line lists them; samples is 1 unless the profile's
+samples line lists more. indices are the draw's as sent; triangles are its triangles in the
+order Vulkan makes them (triangle i of a strip: indices i, i+1+i%2, i+2-i%2; of a fan: i+1, i+2,
+0), so a triangle rasterizer draws strips and fans unchanged, barycentric k being the weight of
+its triangle's vertex k. Lines and points are read (their indices) but make no triangles.
+Indices are not checked: raise Refused for one that names no vertex."""
 
 Fragment = namedtuple(
     "Fragment", "x y primitive front_facing depth barycentric screen_barycentric sample"
@@ -68,17 +71,41 @@ def _read_exactly(stream, n):
     return data
 
 
+def index_count(topology, primitives):
+    """How many indices follow a request's positions: docs/protocol.md's `triangles=T` rule."""
+    if primitives == 0:
+        return 0
+    per = {"triangle-list": 3 * primitives, "line-list": 2 * primitives, "point-list": primitives}
+    joined = {"line-strip": primitives + 1, "triangle-strip": primitives + 2, "triangle-fan": primitives + 2}
+    return per.get(topology, joined.get(topology, 0))
+
+
+def assemble(topology, indices):
+    """The triangles `indices` make, each in Vulkan's vertex order; none for lines and points."""
+    if topology == "triangle-list":
+        return [tuple(indices[i : i + 3]) for i in range(0, len(indices) - 2, 3)]
+    count = max(0, len(indices) - 2)
+    if topology == "triangle-strip":
+        return [(indices[i], indices[i + 1 + i % 2], indices[i + 2 - i % 2]) for i in range(count)]
+    if topology == "triangle-fan":
+        return [(indices[i + 1], indices[i + 2], indices[0]) for i in range(count)]
+    return []
+
+
 def _read_draw(words, stream):
     fields = dict(word.split("=", 1) for word in words[1:])
     width, height = int(fields["width"]), int(fields["height"])
-    vertices, triangles = int(fields["vertices"]), int(fields["triangles"])
+    vertices, primitives = int(fields["vertices"]), int(fields["triangles"])
+    topology = fields.get("topology", "triangle-list")
+    n = index_count(topology, primitives)
     floats = struct.unpack(f"<{4 * vertices}f", _read_exactly(stream, 16 * vertices))
-    indices = struct.unpack(f"<{3 * triangles}I", _read_exactly(stream, 12 * triangles))
+    indices = struct.unpack(f"<{n}I", _read_exactly(stream, 4 * n))
     return Draw(
         width=width,
         height=height,
         positions=[floats[i : i + 4] for i in range(0, len(floats), 4)],
-        triangles=[indices[i : i + 3] for i in range(0, len(indices), 3)],
+        triangles=assemble(topology, indices),
+        indices=list(indices),
         cull=fields["cull"],
         front_face=fields["front-face"],
         depth_compare=fields["depth-compare"],
@@ -86,7 +113,7 @@ def _read_draw(words, stream):
         depth_clear=float(fields["depth-clear"]),
         depth_range=fields["depth-range"],
         far_clipping=fields["far-clipping"] == "on",
-        topology=fields.get("topology", "triangle-list"),
+        topology=topology,
         samples=int(fields.get("samples", "1")),
         scissor=tuple(int(v) for v in fields["scissor"].split(",")) if "scissor" in fields else None,
     )

@@ -7,7 +7,8 @@ top or a left edge (D3D11's top-left rule). Triangles are clipped in clip space 
 near plane, the far plane when asked, and a guard band 16384 pixels from the viewport's centre,
 each cut computed from the inside end; a clipped polygon covers the samples its snapped fan winds
 around. Barycentrics are perspective-correct, depth is z/w linear on screen, a scissor rectangle
-drops the fragments outside it, and its own depth buffer answers `resolve`.
+drops the fragments outside it, and its own depth buffer answers `resolve`. It draws triangle
+lists, strips and fans (refrast_pipe assembles a strip's or fan's triangles in Vulkan's order).
 
 Run it with refrast:  refrast certify --exec "python3 clients/python/topleft.py"
 
@@ -41,6 +42,7 @@ PROFILE = {
     # The guard band's half-side less half the largest viewport (16384 px): its reach beyond
     # every side of every viewport.
     "guard-band": int(GUARD_BAND) - 16384 // 2,
+    "topology": "triangle-list triangle-strip triangle-fan",
     "cull": "none front back front-and-back",
     "front-face": "ccw cw",
     "depth-compare": "never less equal less-equal greater not-equal greater-equal always",

@@ -62,6 +62,7 @@ pub fn primitive_outlines(case: &PrimitiveScene) -> Vec<Vec<[f64; 2]>> {
     };
     match case.topology {
         Topology::TriangleList => scene_outlines(&case.scene),
+        Topology::TriangleStrip | Topology::TriangleFan => scene_outlines(&case.as_list().scene),
         Topology::LineList | Topology::LineStrip => (0..case.primitive_count())
             .filter_map(|i| case.segment(i))
             .filter(|ends| ends.iter().all(|p| p[3] > 0.0))

@@ -340,6 +340,8 @@ pub fn feature_list(p: &Profile) -> Vec<String> {
         (f.zero_area_before_clipping, "zero-area-before-clipping"),
         (p.state.scissor, "scissor"),
         (p.state.cull_both, "cull front-and-back"),
+        (p.state.triangle_strips, "triangle-strip"),
+        (p.state.triangle_fans, "triangle-fan"),
     ];
     let mut list: Vec<String> = abilities
         .iter()

@@ -733,7 +733,8 @@ fn read_draw(header: &str, input: &mut impl Read, version: u32) -> Option<(Strin
         Topology::TriangleList => 3 * primitives,
         Topology::LineList => 2 * primitives,
         Topology::LineStrip if primitives > 0 => primitives + 1,
-        Topology::LineStrip => 0,
+        Topology::TriangleStrip | Topology::TriangleFan if primitives > 0 => primitives + 2,
+        Topology::LineStrip | Topology::TriangleStrip | Topology::TriangleFan => 0,
         Topology::PointList => primitives,
     };
     let mut bytes = vec![0u8; vertices * 16 + indices * 4];

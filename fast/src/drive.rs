@@ -54,7 +54,7 @@ pub(crate) fn run<K: Sink>(
     draw.validate()?;
     if !draw.is_triangles_at_one_sample() {
         return Err(DrawError::Unsupported(format!(
-            "{}: fast draws triangle lists at one sample",
+            "{}: fast draws triangles at one sample",
             draw.describe()
         )));
     }
@@ -83,7 +83,7 @@ pub(crate) fn run<K: Sink>(
     debug_assert_eq!(sinks.len(), grid.bands());
     let threads = pool.map_or(1, ThreadPool::current_num_threads);
     chunks.resize_with(threads, Chunk::default);
-    let count = draw.triangles().len();
+    let count = setup.front.triangles.len();
     for start in (0..count).step_by(BATCH) {
         let end = (start + BATCH).min(count);
         let per_chunk = (end - start).div_ceil(threads);

@@ -80,7 +80,7 @@ impl Chunk {
     /// One triangle through the front end the reference uses ([`front_end`]), its corners set
     /// up once per vertex, appended to `triangles`; its box, or `None` when it draws nothing.
     fn prepare_one(&mut self, setup: &DrawSetup<'_>, primitive: usize) -> Option<[u32; 4]> {
-        let corners = setup.front.draw.triangles()[primitive].map(|i| setup.vertices[i as usize]);
+        let corners = setup.front.triangles[primitive].map(|i| setup.vertices[i as usize]);
         let kept = front_end(&setup.front, primitive, corners, &mut self.scratch).ok()?;
         let (x0, x1, y0, y1) = kept.rect.bounds();
         let rect = [x0, x1, y0, y1];

@@ -46,7 +46,9 @@ mod tiles;
 use std::sync::Arc;
 
 use rayon::ThreadPool;
-use refrast::{Draw, DrawError, Fragment, Profile, Rasterizer, Reference, ReferenceConfig, Resolved};
+use refrast::{
+    Draw, DrawError, Fragment, Profile, Rasterizer, Reference, ReferenceConfig, Resolved, StateSupport,
+};
 
 pub use crate::plane::PRECISION_BITS;
 pub use crate::simd::SimdLevel;
@@ -199,11 +201,18 @@ impl Fast {
 
 impl Rasterizer for Fast {
     fn profile(&self) -> Profile {
+        let triangles = Reference::new(self.config.reference).profile().triangles_only();
         Profile {
             name: "fast".into(),
             precision_bits: PRECISION_BITS,
-            // Triangles at one sample: fast draws nothing else.
-            ..Reference::new(self.config.reference).profile().triangles_only()
+            // Triangles at one sample, lists, strips and fans (the front end reads every
+            // triangle through `Draw::triangles`): fast draws nothing else.
+            state: StateSupport {
+                triangle_strips: true,
+                triangle_fans: true,
+                ..triangles.state
+            },
+            ..triangles
         }
     }
 

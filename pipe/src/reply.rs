@@ -89,6 +89,8 @@ impl Reader<'_> {
         let n = self.draw.primitive_count();
         if self.draw.topology == refrast::Topology::TriangleList {
             format!("{n} triangles")
+        } else if self.draw.topology.is_triangles() {
+            format!("{n} {} triangles", self.draw.topology)
         } else {
             format!("{n} {} primitives", self.draw.topology)
         }

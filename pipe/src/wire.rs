@@ -172,7 +172,8 @@ pub const GUARD_BAND_LIMIT: u32 = refrast::COORD_LIMIT as u32;
 
 /// The request for `op` on `draw` in protocol `version`: its header line, then positions and
 /// indices. `triangles=T` counts the draw's primitives, whose indices follow: `3T` of a triangle
-/// list, `2T` of a line list, `T + 1` of a line strip (none when `T = 0`), `T` of a point list.
+/// list, `2T` of a line list, `T + 1` of a line strip and `T + 2` of a triangle strip or fan
+/// (none when `T = 0`), `T` of a point list.
 /// Version 2 ends the header with the topology and the samples per pixel; a version 1 child is
 /// only ever sent triangle lists at one sample. A draw with a scissor ends it with
 /// `scissor=X,Y,W,H`, in either version.
@@ -205,7 +206,7 @@ pub fn request(op: Op, draw: &Draw, version: u32) -> Vec<u8> {
         s.clip_far.word(),
     );
     let indices: &[u32] = match draw.topology {
-        Topology::LineStrip if count == 0 => &[],
+        Topology::LineStrip | Topology::TriangleStrip | Topology::TriangleFan if count == 0 => &[],
         _ => &draw.indices,
     };
     let mut bytes = header.into_bytes();
@@ -313,8 +314,8 @@ impl Declared {
     }
 
     /// Its profile with what it declares about lines, points and samples folded in: lines when
-    /// it lists both line topologies, points when it lists point lists, each count above one at
-    /// its declared positions or the standard ones.
+    /// it lists both line topologies, points when it lists point lists, strips and fans when it
+    /// lists them, each count above one at its declared positions or the standard ones.
     fn folded(self) -> Self {
         let lists = |t: Topology| self.topologies.contains(&t);
         let profile = Profile {
@@ -336,6 +337,11 @@ impl Declared {
                 })
                 .collect(),
             point_clipping: self.point_clipping,
+            state: refrast::StateSupport {
+                triangle_strips: lists(Topology::TriangleStrip),
+                triangle_fans: lists(Topology::TriangleFan),
+                ..self.profile.state
+            },
             ..self.profile
         };
         Self { profile, ..self }
@@ -875,5 +881,38 @@ mod tests {
             "{text}"
         );
         assert_eq!(CullMode::parse("front-and-back"), Some(CullMode::FrontAndBack));
+    }
+
+    /// Strips and fans are declared in the topology line, each on its own, and a request sends
+    /// `T + 2` indices for `T` triangles, none for a strip too short to make one.
+    #[test]
+    fn strips_and_fans_are_declared_and_sent() {
+        let declared = |line: &str| {
+            parse_profile(&[line.to_owned()], "child", 2)
+                .expect("version 2")
+                .folded()
+                .profile
+        };
+        let strips = declared("topology triangle-list triangle-strip");
+        assert!(strips.state.triangle_strips && !strips.state.triangle_fans);
+        assert!(strips.draws(Topology::TriangleStrip, 1) && !strips.draws(Topology::TriangleFan, 1));
+        let fans = declared("topology triangle-list triangle-fan");
+        assert!(fans.state.triangle_fans && !fans.state.triangle_strips);
+        assert!(!declared("topology triangle-list").state.triangle_strips);
+        let vp = refrast::Viewport::new(4, 4).unwrap();
+        let body = |indices: Vec<u32>| {
+            let draw = Draw::of(vp, vec![[0.0; 4]; 4], Topology::TriangleFan, indices);
+            let bytes = request(Op::Rasterize, &draw, 2);
+            let end = bytes.iter().position(|&b| b == b'\n').unwrap();
+            let header = String::from_utf8(bytes[..end].to_vec()).unwrap();
+            (header, bytes.len() - end - 1 - 4 * 16)
+        };
+        let (header, bytes) = body(vec![0, 1, 2, 3]);
+        assert!(
+            header.contains(" triangles=2 ") && header.contains(" topology=triangle-fan "),
+            "{header}"
+        );
+        assert_eq!(bytes, 4 * 4);
+        assert_eq!(body(vec![0, 1]).1, 0);
     }
 }

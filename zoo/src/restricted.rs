@@ -353,6 +353,23 @@ pub fn restrictions() -> Vec<Restriction> {
             ..StateSupport::ALL
         },
     ));
+    all.push(stateful(
+        "topology=lists",
+        "triangle lists only: no strips or fans",
+        StateSupport {
+            triangle_strips: false,
+            triangle_fans: false,
+            ..StateSupport::ALL
+        },
+    ));
+    all.push(stateful(
+        "fans=none",
+        "strips but no fans, as D3D11 and WebGPU",
+        StateSupport {
+            triangle_fans: false,
+            ..StateSupport::ALL
+        },
+    ));
     all.extend(combinations());
     all
 }
@@ -374,7 +391,7 @@ fn combinations() -> Vec<Restriction> {
         ),
         restriction(
             "least",
-            "one value of every setting, no optional output or claim: culls front faces, LessOrEqual, no depth test, no barycentrics, no guard band, snapping down, no scissor",
+            "one value of every setting, no optional output or claim: culls front faces, LessOrEqual, no depth test, no barycentrics, no guard band, snapping down, no scissor, strips or fans",
             ReferenceConfig {
                 clip: ClipMode::Full,
                 snap_rounding: SnapRounding::Floor,

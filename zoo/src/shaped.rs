@@ -9,7 +9,7 @@
 use refrast::{
     DepthRange, Draw, DrawError, FillConvention, Fragment, PointClipping, Profile, Rasterizer, Reference,
     ReferenceConfig, Resolved, SamplePattern, SnapAccuracy, SnapRounding, Snapping, Spec, SubpixelBits,
-    Topology, Viewport,
+    Viewport,
 };
 
 /// How a [`Shaped`] rasterizer differs from the reference.
@@ -149,7 +149,7 @@ impl Rasterizer for Shaped {
             return Err(DrawError::Unsupported(why));
         }
         let mut fragments = self.inner.rasterize(draw)?;
-        let triangles = draw.topology == Topology::TriangleList;
+        let triangles = draw.topology.is_triangles();
         if self.shape == Shape::FragCoordAtCentre && triangles && draw.samples > 1 {
             for f in &mut fragments {
                 let centre = [f64::from(f.x) + 0.5, f64::from(f.y) + 0.5];
@@ -203,7 +203,7 @@ fn near_distance(range: DepthRange, z: f64, w: f64) -> f64 {
 /// The projected vertices of `draw`'s triangle `t`, in pixels, with their `w`; `None` for an
 /// index out of range or a vertex at `w = 0` or not finite.
 fn projected(draw: &Draw, t: u32) -> Option<[([f64; 2], [f64; 4]); 3]> {
-    let tri = draw.triangles().get(t as usize)?;
+    let tri = draw.triangle(t as usize)?;
     let mut out = [([0.0; 2], [0.0; 4]); 3];
     for (k, &i) in tri.iter().enumerate() {
         let p = draw.positions.get(i as usize)?.map(f64::from);

@@ -64,30 +64,44 @@ pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
     }
 }
 
-/// How far `topology`'s flat primitive ids are from its primitives' indices: 0 but for a line
-/// strip on a driver whose flat values come from a segment's last vertex. A strip of one
-/// segment across a 4×1 target, drawn once per process, says which.
+/// How far `topology`'s flat primitive ids are from its primitives' indices: 0 but for a strip
+/// on a driver whose flat values come from a primitive's last vertex (1 for a line strip, 2
+/// for a triangle strip). A strip of one primitive over a 4×1 target, drawn once per process
+/// and topology, says which.
 fn strip_offset(ctx: &Context, pipelines: &mut Pipelines, topology: Topology) -> Result<u32, DrawError> {
-    if topology != Topology::LineStrip || pipelines.method == Method::FloatTargets {
-        return Ok(0);
-    }
-    if let Some(offset) = pipelines.strip_offset {
+    let (corners, probe): (u32, Vec<[f32; 4]>) = match topology {
+        Topology::LineStrip => (2, vec![[-0.75, 0.0, 0.5, 1.0], [0.75, 0.0, 0.5, 1.0]]),
+        Topology::TriangleStrip => (
+            3,
+            vec![
+                [-3.0, -3.0, 0.5, 1.0],
+                [3.0, -3.0, 0.5, 1.0],
+                [0.0, 3.0, 0.5, 1.0],
+            ],
+        ),
+        _ => return Ok(0),
+    };
+    if let Some(&offset) = pipelines.strip_offsets.get(&topology) {
         return Ok(offset);
     }
     let viewport = refrast::Viewport::new(4, 1).map_err(|e| DrawError::Backend(e.to_string()))?;
-    let ends = vec![[-0.75, 0.0, 0.5, 1.0], [0.75, 0.0, 0.5, 1.0]];
-    let probe = Draw::of(viewport, ends.clone(), Topology::LineStrip, vec![0, 1]);
-    let (_, samples) = capture_pass(ctx, pipelines, &probe, &ends, 16)?;
-    let offset = match samples.first().map(|s| s.primitive) {
-        Some(first) if samples.iter().all(|s| s.primitive == first) && first <= 1 => first,
+    let indices = (0..corners).collect();
+    let one = Draw::of(viewport, probe, topology, indices);
+    // The resolve pass reads flat ids back with either capture method.
+    let ids: Vec<u32> = resolve_with(ctx, pipelines, &one, 0)?
+        .primitive
+        .into_iter()
+        .flatten()
+        .collect();
+    let offset = match ids.first() {
+        Some(&first) if ids.iter().all(|&id| id == first) && (first == 0 || first == corners - 1) => first,
         _ => {
             return Err(DrawError::Backend(format!(
-                "a one-segment line strip came back as {:?}: its flat values name neither end",
-                samples.iter().map(|s| s.primitive).collect::<Vec<_>>()
+                "a {topology} of one primitive came back as {ids:?}: its flat values name neither its first nor its last vertex"
             )));
         }
     };
-    pipelines.strip_offset = Some(offset);
+    pipelines.strip_offsets.insert(topology, offset);
     Ok(offset)
 }
 
@@ -220,6 +234,17 @@ fn read_buffer(
 /// The driver's depth test: the depth buffer and the id of the last fragment that passed, one
 /// value per sample.
 pub fn resolve(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<Resolve, DrawError> {
+    let offset = strip_offset(ctx, pipelines, draw.topology)?;
+    resolve_with(ctx, pipelines, draw, offset)
+}
+
+/// [`resolve`], each flat id taken `offset` from its primitive's index.
+fn resolve_with(
+    ctx: &Context,
+    pipelines: &mut Pipelines,
+    draw: &Draw,
+    offset: u32,
+) -> Result<Resolve, DrawError> {
     let n = draw.viewport.pixel_count() * usize::from(draw.samples);
     let clear = draw.state.depth.clear;
     if draw.primitive_count() == 0 {
@@ -239,7 +264,6 @@ pub fn resolve(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
         contents: bytemuck::cast_slice(&vertices),
         usage: wgpu::BufferUsages::VERTEX,
     });
-    let offset = strip_offset(ctx, pipelines, draw.topology)?;
     let samples = draw.samples;
     let depth = target(ctx, draw.viewport, DEPTH, samples);
     let ids = target(ctx, draw.viewport, IDS, samples);

@@ -280,10 +280,13 @@ impl Rasterizer for Gpu {
             point_clipping: m.point_clipping,
             // The scissor test is core in Vulkan, OpenGL and OpenGL ES, and wgpu sets it on
             // every backend (`set_scissor_rect`, in raster space on each); its `Face` has no
-            // value for both faces, so culling both is not declared (the rules are n/a).
+            // value for both faces, and its `PrimitiveTopology` no triangle fan, so neither is
+            // declared (their rules are n/a). Triangle strips are core everywhere.
             state: StateSupport {
                 scissor: true,
                 cull_both: false,
+                triangle_strips: true,
+                triangle_fans: false,
             },
         }
     }

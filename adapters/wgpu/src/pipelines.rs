@@ -102,10 +102,10 @@ pub struct Pipelines {
     samples_resolve_module: Option<wgpu::ShaderModule>,
     /// The unpacking of a multisampled resolve: its pipeline and bind group layout, when built.
     unpacking: Option<(wgpu::RenderPipeline, wgpu::BindGroupLayout)>,
-    /// How far a line strip's flat values are from its segment's index: 0 where a primitive's
-    /// flat values come from its first vertex (Vulkan), 1 from its last (OpenGL ES, which cannot
-    /// choose); measured on the first strip drawn.
-    pub strip_offset: Option<u32>,
+    /// How far a strip's flat values are from its primitive's index, per strip topology: 0
+    /// where a primitive's flat values come from its first vertex (Vulkan), its vertices less
+    /// one from its last (OpenGL ES, which cannot choose); measured on the first strip drawn.
+    pub strip_offsets: HashMap<Topology, u32>,
     /// The capture pass's bind group layout: the count, then the samples.
     pub layout: wgpu::BindGroupLayout,
     capture_layout: wgpu::PipelineLayout,
@@ -157,7 +157,7 @@ impl Pipelines {
             samples_module: None,
             samples_resolve_module: None,
             unpacking: None,
-            strip_offset: None,
+            strip_offsets: HashMap::new(),
             layout,
             capture_layout,
             plain_layout,
@@ -178,6 +178,9 @@ impl Pipelines {
     /// cannot be built (a driver lacking what a topology or sample count needs).
     pub fn get(&mut self, device: &wgpu::Device, key: Key) -> Result<&wgpu::RenderPipeline, DrawError> {
         if !self.built.contains_key(&key) {
+            if primitive_topology(key.topology).is_none() {
+                return Err(DrawError::Unsupported(format!("WebGPU has no {}", key.topology)));
+            }
             let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
             let internal = device.push_error_scope(wgpu::ErrorFilter::Internal);
             if key.pass == Pass::CaptureSamples && self.samples_module.is_none() {
@@ -264,16 +267,18 @@ impl Pipelines {
             ),
         };
         let (corners, strip) = match key.topology {
-            Topology::TriangleList => (3.0, 0.0),
+            Topology::TriangleList | Topology::TriangleFan => (3.0, 0.0),
+            Topology::TriangleStrip => (3.0, 1.0),
             Topology::LineList => (2.0, 0.0),
             Topology::LineStrip => (2.0, 1.0),
             Topology::PointList => (1.0, 0.0),
         };
         let constants = [("corners", corners), ("strip", strip)];
         // Lines and points have no face to cull.
-        let cull = match key.topology {
-            Topology::TriangleList => cull_mode(key.cull),
-            _ => None,
+        let cull = if key.topology.is_triangles() {
+            cull_mode(key.cull)
+        } else {
+            None
         };
         device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some(entry),
@@ -292,7 +297,8 @@ impl Pipelines {
                 })],
             },
             primitive: wgpu::PrimitiveState {
-                topology: primitive_topology(key.topology),
+                // `get` refuses a topology WebGPU lacks before building.
+                topology: primitive_topology(key.topology).unwrap_or_default(),
                 front_face: front_face(key.front_face),
                 cull_mode: cull,
                 ..wgpu::PrimitiveState::default()
@@ -386,14 +392,16 @@ fn build_unpack(device: &wgpu::Device) -> (wgpu::RenderPipeline, wgpu::BindGroup
     (pipeline, layout)
 }
 
-/// The API's topology for refrast's.
-fn primitive_topology(topology: Topology) -> wgpu::PrimitiveTopology {
-    match topology {
+/// The API's topology for refrast's; `None` for a triangle fan, which WebGPU does not have.
+fn primitive_topology(topology: Topology) -> Option<wgpu::PrimitiveTopology> {
+    Some(match topology {
         Topology::TriangleList => wgpu::PrimitiveTopology::TriangleList,
+        Topology::TriangleStrip => wgpu::PrimitiveTopology::TriangleStrip,
         Topology::LineList => wgpu::PrimitiveTopology::LineList,
         Topology::LineStrip => wgpu::PrimitiveTopology::LineStrip,
         Topology::PointList => wgpu::PrimitiveTopology::PointList,
-    }
+        Topology::TriangleFan => return None,
+    })
 }
 
 /// The API's front face for refrast's. Both name the turn as seen on screen (framebuffer

@@ -15,14 +15,23 @@ pub fn vertex_list(draw: &Draw) -> Vec<[f32; 4]> {
 }
 
 /// A fragment's barycentrics as the contract orders them: vertex `i` of a strip is corner
-/// `i % 2` (`shaders.wgsl`), so an odd segment starts at corner 1 and its weights are swapped
-/// to put its first vertex first.
+/// `i % 2` of a line strip, `i % 3` of a triangle strip (`shaders.wgsl`), so an odd segment
+/// starts at corner 1 and has its weights swapped, and a triangle's weights are gathered in
+/// [`Draw::triangle`](refrast::Draw::triangle)'s order.
 pub fn along(topology: Topology, mut f: Fragment) -> Fragment {
     if topology == Topology::LineStrip && f.primitive % 2 == 1 {
         f.barycentric.swap(0, 1);
         if let Some(s) = f.screen_barycentric.as_mut() {
             s.swap(0, 1);
         }
+    }
+    if topology == Topology::TriangleStrip {
+        let i = f.primitive as usize;
+        let odd = i % 2;
+        // The corners of triangle i's vertices i, i + 1 + odd, i + 2 − odd.
+        let corners = [i, i + 1 + odd, i + 2 - odd].map(|v| v % 3);
+        f.barycentric = corners.map(|c| f.barycentric[c]);
+        f.screen_barycentric = f.screen_barycentric.map(|s| corners.map(|c| s[c]));
     }
     f
 }

@@ -2,9 +2,10 @@
 // fragment shaders only report what the driver computed. `varyings.wgsl` or
 // `varyings_sample.wgsl` comes first.
 
-// The vertices a primitive has (3, 2 or 1), and whether the list is a line strip: vertex `i`
-// of a list is corner `i % corners` of primitive `i / corners`; of a strip, it starts segment
-// `i` (flat values come from a primitive's first vertex) as corner `i % 2`.
+// The vertices a primitive has (3, 2 or 1), and whether the list is a strip: vertex `i` of a
+// list is corner `i % corners` of primitive `i / corners`; of a strip, it starts segment or
+// triangle `i` (flat values come from a primitive's first vertex, or its last on OpenGL ES) as
+// corner `i % corners`, so the three vertices of any strip triangle have distinct corners.
 override corners: u32 = 3u;
 override strip: bool = false;
 

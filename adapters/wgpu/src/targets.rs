@@ -37,12 +37,14 @@ pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
     // One pipeline and one pair of read-back buffers serve every primitive.
     let key = Key::new(Pass::CaptureTargets, &draw.state).drawing(draw.topology, 1);
     let pipeline = pipelines.get(device, key)?;
-    // The vertices of primitive `i`: a list's own, a strip's segment from vertex `i`.
+    // The vertices of primitive `i`: a list's own, a strip's from vertex `i`.
     let (per, step) = match draw.topology {
         Topology::TriangleList => (3, 3),
+        Topology::TriangleStrip => (3, 1),
         Topology::LineList => (2, 2),
         Topology::LineStrip => (2, 1),
         Topology::PointList => (1, 1),
+        Topology::TriangleFan => return Err(DrawError::Unsupported("WebGPU has no triangle-fan".into())),
     };
     let (first, second) = (Readback::new(ctx, w, h, 16), Readback::new(ctx, w, h, 16));
     let mut fragments = Vec::new();
@@ -71,16 +73,20 @@ pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
             pass.set_pipeline(pipeline);
             pass.set_vertex_buffer(0, vertex_buffer.slice(..));
             set_scissor(&mut pass, draw);
-            // The shader numbers corners by the global vertex index, as in one draw of all.
-            pass.draw(step * primitive..step * primitive + per, 0..1);
+            // The shader numbers corners by the global vertex index, as in one draw of all. An
+            // odd triangle of a strip is drawn second in a strip of two, from the vertex before
+            // its own, so that it turns as in the whole strip (reversed).
+            let (first, count) = strip_pair(draw.topology, step * primitive, per);
+            pass.draw(first..first + count, 0..1);
         }
         first.copy(&mut encoder, &perspective, wgpu::TextureAspect::All);
         second.copy(&mut encoder, &screen, wgpu::TextureAspect::All);
         ctx.queue.submit([encoder.finish()]);
         let (weights, facing) = (first.read::<[f32; 4]>(ctx)?, second.read::<[f32; 4]>(ctx)?);
         for (i, (p, s)) in weights.iter().zip(&facing).enumerate() {
-            // The facing marker is 1 or 2 on a covered sample, 0 (the clear) elsewhere.
-            if s[3] == 0.0 {
+            // The marker is 0 (the clear) on an uncovered sample, else 1 for a front face and 2
+            // for a back face, plus 4 where the flat id is odd (`targets.wgsl`).
+            if s[3] == 0.0 || !is_drawn_primitive(draw.topology, primitive, s[3]) {
                 continue;
             }
             fragments.push(along(
@@ -93,10 +99,27 @@ pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
                     depth: p[3],
                     barycentric: [p[0], p[1], p[2]],
                     screen_barycentric: Some([s[0], s[1], s[2]]),
-                    front_facing: s[3] == 1.0,
+                    front_facing: s[3] % 4.0 == 1.0,
                 },
             ));
         }
     }
     Ok(fragments)
+}
+
+/// The vertices drawn for the primitive whose own start at `first`: its `per`, but for an odd
+/// triangle of a strip, which is drawn with the one before it.
+fn strip_pair(topology: Topology, first: u32, per: u32) -> (u32, u32) {
+    if topology == Topology::TriangleStrip && first % 2 == 1 {
+        (first - 1, per + 1)
+    } else {
+        (first, per)
+    }
+}
+
+/// Whether a sample marked `marker` belongs to `primitive` rather than to the triangle drawn
+/// with it ([`strip_pair`]): in a strip, triangle `i`'s flat id is its first or last vertex,
+/// `i` or `i + 2`, of `i`'s parity either way, and its partner's is of the other.
+fn is_drawn_primitive(topology: Topology, primitive: u32, marker: f32) -> bool {
+    topology != Topology::TriangleStrip || (marker >= 4.0) == (primitive % 2 == 1)
 }

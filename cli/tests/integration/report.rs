@@ -384,3 +384,32 @@ fn replay_reads_a_written_case_and_refuses_what_it_cannot_use() {
         said(&out)
     );
 }
+
+/// A driver that needs its environment set before its process starts (softpipe's
+/// `GALLIUM_DRIVER`) is replayed in a child of refrast with it set, as `certify` runs it, so
+/// the command a failed rule prints works as printed.
+#[test]
+fn replay_sets_the_environment_a_driver_needs() {
+    let dir = scratch("replay-environment");
+    let (_, json) = certify(&dir, &["--impl", MUTANT, "--rule", "fill.mesh.exactly-once"]);
+    let case = json[0]["rules"][0]["case_path"]
+        .as_str()
+        .expect("a case file")
+        .to_owned();
+    let out = Command::new(REFRAST)
+        .args(["replay", "--impl", "softpipe", &case, "--report"])
+        .arg(dir.join("softpipe"))
+        .env_remove("GALLIUM_DRIVER")
+        .output()
+        .expect("refrast runs");
+    let (said, printed) = (
+        String::from_utf8_lossy(&out.stderr),
+        String::from_utf8_lossy(&out.stdout),
+    );
+    assert!(!said.contains("set before its process starts"), "{said}");
+    if out.status.code() == Some(2) && said.contains("unavailable on this machine") {
+        eprintln!("skipped: softpipe is not installed here ({said})");
+        return;
+    }
+    assert!(printed.contains("on softpipe"), "{printed}{said}");
+}

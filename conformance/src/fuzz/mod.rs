@@ -12,19 +12,20 @@ use std::fmt;
 use arbitrary::{Arbitrary, Unstructured};
 use glam::{Mat4, Vec3};
 use refrast::pipeline::{Framebuffer, Mesh, Renderer, Vertex};
-use refrast::{Profile, Rasterizer};
+use refrast::{Profile, Rasterizer, Topology};
 
 pub use input::{Clipping, GridTriangles, Overlapping, Perspective, Points, RawDraw, RawPipeline};
 
 use crate::rules::bary::{check_equal_w, check_matches_raycast, check_reconstructs, check_sum_one};
 use crate::rules::depth::{check_depth_matches_raycast, check_order_independent, extreme_depth};
 use crate::rules::fill::{check_exactly_once, check_guard_band};
+use crate::rules::meta::check_same_as_list;
 use crate::rules::robust::check_well_formed;
 use crate::rules::{
     EXACT_COVERAGE, EXTREME_WINS, GUARD_BAND, Need, PERSPECTIVE_BARYCENTRICS, SCREEN_BARYCENTRICS,
     Z_OVER_W_DEPTH,
 };
-use crate::scene::Scene;
+use crate::scene::{PrimitiveScene, Scene};
 use crate::violation::Violation;
 
 /// A check that failed on a fuzz input.
@@ -58,8 +59,9 @@ fn judged(input: &impl fmt::Debug, check: impl FnOnce() -> Result<(), Violation>
     })
 }
 
-/// Any bit patterns: no panic, only well-formed fragments, none outside a scissor, and
-/// `resolve` works.
+/// Any bit patterns: no panic, only well-formed fragments, none outside a scissor, `resolve`
+/// works, and the indices drawn as a strip and as a fan (where the profile declares them) draw
+/// what the list of their triangles draws.
 pub fn robustness(r: &mut dyn Rasterizer, input: &RawDraw) -> Result<(), Failure> {
     let Some(scene) = input.scene() else { return Ok(()) };
     let scene = scene.fitted(&r.profile());
@@ -68,8 +70,31 @@ pub fn robustness(r: &mut dyn Rasterizer, input: &RawDraw) -> Result<(), Failure
         check_inside_scissor(r, &scene)?;
         r.resolve(&scene.draw())
             .map(drop)
-            .map_err(|e| Violation::new(format!("resolve returned an error on in-range indices: {e}")))
+            .map_err(|e| Violation::new(format!("resolve returned an error on in-range indices: {e}")))?;
+        check_strips_and_fans(r, &scene)
     })
+}
+
+/// The scene's indices, one after another, drawn as a strip and as a fan where the profile
+/// declares them, each against the list of its own triangles (`meta.strip.same-as-list`).
+fn check_strips_and_fans(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let profile = r.profile();
+    for topology in [Topology::TriangleStrip, Topology::TriangleFan] {
+        if !profile.draws(topology, 1) {
+            continue;
+        }
+        let indices = scene.triangles.iter().flatten().copied().collect();
+        let mut case = PrimitiveScene::of(
+            scene.width,
+            scene.height,
+            scene.positions.clone(),
+            topology,
+            indices,
+        );
+        case.scene.state = scene.state;
+        check_same_as_list(r, &case)?;
+    }
+    Ok(())
 }
 
 /// No fragment of `scene` outside its scissor rectangle, whatever its numbers.

@@ -6,7 +6,7 @@ use refrast::{FillConvention, Fragment, LineRule, Profile, Rasterizer, Topology}
 use super::common::precision;
 use super::level::Level;
 use super::samples::{
-    compare_samples, counts, endpoint_bits, expect_covered, grid, positions, sample_fragments,
+    compare_samples, counts, endpoint_bits, expect_covered, grid, keys, positions, sample_fragments,
     within_guard_band,
 };
 use super::{CLIPS_IN_3D, Family, PERSPECTIVE_BARYCENTRICS, Rule, needs};
@@ -324,13 +324,6 @@ pub fn check_diamond_allowance(r: &mut dyn Rasterizer, case: &PrimitiveScene) ->
         })?;
     }
     Ok(())
-}
-
-/// `(primitive, x, y, sample)` of every fragment, sorted.
-fn keys(frags: &[Fragment]) -> Vec<(u32, u32, u32, u8)> {
-    let mut k: Vec<_> = frags.iter().map(|f| (f.primitive, f.y, f.x, f.sample)).collect();
-    k.sort_unstable();
-    k
 }
 
 /// A strip's fragments are its segments' drawn as a list.

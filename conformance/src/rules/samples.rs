@@ -5,12 +5,12 @@
 //! 2 × 2, 4 × 2, 4 × 4), sample `k` at column `k mod cols`, row `k div cols`, so one cell of the
 //! picture is one sample.
 
-use refrast::{Fragment, Profile, Rasterizer, Snapping};
+use refrast::{Draw, Fragment, Profile, Rasterizer, Resolved, Snapping};
 
 use crate::oracle::segment::SampleGrid;
 
 use crate::scene::PrimitiveScene;
-use crate::violation::{Expect, Violation, compare_coverage};
+use crate::violation::{Class, Counts, Expect, Picture, Violation, compare_coverage};
 
 /// The columns and rows a pixel's samples take in a picture.
 #[must_use]
@@ -179,4 +179,92 @@ pub fn grid<'a>(case: &PrimitiveScene, bits: u8, positions: &'a [[u8; 2]]) -> Sa
         bits,
         positions,
     }
+}
+
+/// `(y, x, sample, primitive)` of every fragment, sorted: a draw's coverage as a multiset.
+pub fn keys<'a>(frags: impl IntoIterator<Item = &'a Fragment>) -> Vec<(u32, u32, u8, u32)> {
+    let mut k: Vec<_> = frags
+        .into_iter()
+        .map(|f| (f.y, f.x, f.sample, f.primitive))
+        .collect();
+    k.sort_unstable();
+    k
+}
+
+/// Fragments per picture cell (a sample of a pixel).
+pub fn cell_counts<'a>(case: &PrimitiveScene, frags: impl IntoIterator<Item = &'a Fragment>) -> Vec<u32> {
+    let mut counts = vec![0; cells(case)];
+    for f in frags {
+        counts[cell(case, f.x, f.y, f.sample)] += 1;
+    }
+    counts
+}
+
+/// The tally of `got` against `want`, cell by cell.
+#[must_use]
+pub fn difference_counts(got: &[u32], want: &[u32]) -> Counts {
+    let mut counts = Counts::default();
+    for (&g, &w) in got.iter().zip(want) {
+        counts.missing += usize::from(g < w);
+        counts.unexpected += usize::from(g > w);
+        counts.double += usize::from(g == w && g > 1);
+    }
+    counts
+}
+
+/// The samples of a draw compared with the same implementation's draw of something that must
+/// cover alike, one cell each: as expected grey (blue where covered more than once), missing
+/// purple, unexpected red; the primitives' outlines and `extra` outlines (in pixels) over them.
+#[must_use]
+pub fn difference_picture(
+    case: &PrimitiveScene,
+    got: &[u32],
+    want: &[u32],
+    extra: Vec<Vec<[f64; 2]>>,
+) -> Picture {
+    let (cols, rows) = layout(case.samples);
+    let classes = got
+        .iter()
+        .zip(want)
+        .map(|(&g, &w)| match (g, w) {
+            (g, w) if g < w => Class::Missing,
+            (g, w) if g > w => Class::Unexpected,
+            (0, _) => Class::Empty,
+            (1, _) => Class::Covered,
+            _ => Class::Double,
+        })
+        .collect();
+    let outlines = crate::picture::primitive_outlines(case)
+        .into_iter()
+        .chain(extra)
+        .map(|o| {
+            o.into_iter()
+                .map(|[x, y]| [x * f64::from(cols), y * f64::from(rows)])
+                .collect()
+        })
+        .collect();
+    Picture {
+        width: case.scene.width * cols,
+        height: case.scene.height * rows,
+        classes,
+        outlines,
+    }
+}
+
+/// The resolved buffers of `draw`, or the violation of a failed call.
+pub fn resolved(r: &mut dyn Rasterizer, draw: &Draw) -> Result<Resolved, Violation> {
+    let out = r
+        .resolve(draw)
+        .map_err(|e| Violation::of_draw_error(&format!("resolve ({})", draw.describe()), &e))?;
+    let expected =
+        draw.viewport.width() as usize * draw.viewport.height() as usize * usize::from(draw.samples);
+    if out.depth.len() != expected || out.primitive.len() != expected {
+        return Err(Violation::new(format!(
+            "resolve ({}) returned {} depths and {} primitives for {expected} samples",
+            draw.describe(),
+            out.depth.len(),
+            out.primitive.len()
+        )));
+    }
+    Ok(out)
 }

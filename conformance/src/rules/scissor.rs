@@ -7,14 +7,14 @@
 
 use proptest::prelude::*;
 use proptest::strategy::Union;
-use refrast::{Draw, Fragment, Profile, Rasterizer, Resolved, Scissor};
+use refrast::{Draw, Fragment, Profile, Rasterizer, Scissor};
 
-use super::samples::{cell, cells, layout, sample_fragments};
+use super::samples::{cell_counts, difference_counts, difference_picture, keys, resolved, sample_fragments};
 use super::{DEPTH_TEST, Family, Need, Rule, needs};
 use crate::runner::property_for;
 use crate::scene::PrimitiveScene;
 use crate::strategy::{self, primitive};
-use crate::violation::{Class, Counts, Findings, Picture, Violation, plural};
+use crate::violation::{Findings, Violation, plural};
 
 /// What every specification says of the scissor test.
 const SOURCE: &str = "Vulkan 1.4, Scissor Test (fragops-scissor); D3D11.3 §15.7; OpenGL 4.6 §14.9.2 and OpenGL ES 3.2 §13.8.2 (left ≤ x < left + width); dEQP-VK.fragment_operations.scissor.*";
@@ -83,16 +83,6 @@ fn unscissored(case: &PrimitiveScene) -> PrimitiveScene {
     whole
 }
 
-/// `(x, y, sample, primitive)` of every fragment, sorted: a draw's coverage as a multiset.
-fn keys<'a>(frags: impl IntoIterator<Item = &'a Fragment>) -> Vec<(u32, u32, u8, u32)> {
-    let mut k: Vec<_> = frags
-        .into_iter()
-        .map(|f| (f.y, f.x, f.sample, f.primitive))
-        .collect();
-    k.sort_unstable();
-    k
-}
-
 /// The rectangle as a sentence names it.
 fn describe(s: Scissor) -> String {
     if s.width == 0 || s.height == 0 {
@@ -148,88 +138,22 @@ pub fn check_crops(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), 
     };
     let mut violation = Violation::new(message);
     violation.counts = Some(Box::new(difference_counts(&got, &want)));
-    violation.picture = Some(Box::new(difference_picture(case, &got, &want)));
+    violation.picture = Some(Box::new(difference_picture(case, &got, &want, rectangle(case))));
     Err(violation)
 }
 
-/// Fragments per picture cell (a sample of a pixel).
-fn cell_counts<'a>(case: &PrimitiveScene, frags: impl IntoIterator<Item = &'a Fragment>) -> Vec<u32> {
-    let mut counts = vec![0; cells(case)];
-    for f in frags {
-        counts[cell(case, f.x, f.y, f.sample)] += 1;
-    }
-    counts
-}
-
-/// The tally of `got` against `want`, cell by cell.
-fn difference_counts(got: &[u32], want: &[u32]) -> Counts {
-    let mut counts = Counts::default();
-    for (&g, &w) in got.iter().zip(want) {
-        counts.missing += usize::from(g < w);
-        counts.unexpected += usize::from(g > w);
-        counts.double += usize::from(g == w && g > 1);
-    }
-    counts
-}
-
-/// The samples, one cell each: as expected grey (blue where covered more than once), missing
-/// purple, unexpected red; the primitives' outlines and the scissor rectangle over them.
-fn difference_picture(case: &PrimitiveScene, got: &[u32], want: &[u32]) -> Picture {
-    let (cols, rows) = layout(case.samples);
-    let classes = got
-        .iter()
-        .zip(want)
-        .map(|(&g, &w)| match (g, w) {
-            (g, w) if g < w => Class::Missing,
-            (g, w) if g > w => Class::Unexpected,
-            (0, _) => Class::Empty,
-            (1, _) => Class::Covered,
-            _ => Class::Double,
-        })
-        .collect();
-    let scale = |o: Vec<[f64; 2]>| {
-        o.into_iter()
-            .map(|[x, y]| [x * f64::from(cols), y * f64::from(rows)])
-            .collect()
+/// The scissor rectangle cut to the viewport, as an outline in pixels.
+fn rectangle(case: &PrimitiveScene) -> Vec<Vec<[f64; 2]>> {
+    let Some(r) = case.scene.state.scissor else {
+        return Vec::new();
     };
-    let mut outlines: Vec<Vec<[f64; 2]>> = crate::picture::primitive_outlines(case)
-        .into_iter()
-        .map(scale)
-        .collect();
-    // The rectangle itself, cut to the viewport.
-    if let Some(r) = case.scene.state.scissor {
-        let (w, h) = (f64::from(case.scene.width), f64::from(case.scene.height));
-        let (x0, y0) = (f64::from(r.x).min(w), f64::from(r.y).min(h));
-        let (x1, y1) = (
-            (x0 + f64::from(r.width)).min(w),
-            (y0 + f64::from(r.height)).min(h),
-        );
-        outlines.push(scale(vec![[x0, y0], [x1, y0], [x1, y1], [x0, y1]]));
-    }
-    Picture {
-        width: case.scene.width * cols,
-        height: case.scene.height * rows,
-        classes,
-        outlines,
-    }
-}
-
-/// The resolved buffers of `draw`, or the violation of a failed call.
-fn resolved(r: &mut dyn Rasterizer, draw: &Draw) -> Result<Resolved, Violation> {
-    let out = r
-        .resolve(draw)
-        .map_err(|e| Violation::of_draw_error(&format!("resolve ({})", draw.describe()), &e))?;
-    let expected =
-        draw.viewport.width() as usize * draw.viewport.height() as usize * usize::from(draw.samples);
-    if out.depth.len() != expected || out.primitive.len() != expected {
-        return Err(Violation::new(format!(
-            "resolve ({}) returned {} depths and {} primitives for {expected} samples",
-            draw.describe(),
-            out.depth.len(),
-            out.primitive.len()
-        )));
-    }
-    Ok(out)
+    let (w, h) = (f64::from(case.scene.width), f64::from(case.scene.height));
+    let (x0, y0) = (f64::from(r.x).min(w), f64::from(r.y).min(h));
+    let (x1, y1) = (
+        (x0 + f64::from(r.width)).min(w),
+        (y0 + f64::from(r.height)).min(h),
+    );
+    vec![vec![[x0, y0], [x1, y0], [x1, y1], [x0, y1]]]
 }
 
 /// The depth test with a scissor leaves the samples inside as without one, those outside as

@@ -9,8 +9,8 @@ use super::{Case, CaseData, DrawData, Scene};
 
 /// A scene drawn as `topology` at `samples` samples per pixel.
 ///
-/// Triangles come from the scene's `triangles`; lines and points from `indices` (the scene's
-/// triangles are then empty), so the state, viewport and positions are the scene's, fitted and
+/// A triangle list's triangles come from the scene's `triangles`; strips, fans, lines and
+/// points from `indices` (the scene's triangles are then empty), so the state, viewport and positions are the scene's, fitted and
 /// printed as for every rule.
 #[derive(Clone, PartialEq)]
 pub struct PrimitiveScene {
@@ -18,7 +18,7 @@ pub struct PrimitiveScene {
     pub scene: Scene,
     /// How the primitives are made.
     pub topology: Topology,
-    /// Vertex indices of lines and points (empty for triangles).
+    /// Vertex indices of strips, fans, lines and points (empty for a triangle list).
     pub indices: Vec<u32>,
     /// Samples per pixel.
     pub samples: u8,
@@ -36,7 +36,7 @@ impl PrimitiveScene {
         }
     }
 
-    /// Lines or points of `topology` over `positions`, at one sample per pixel.
+    /// Strips, fans, lines or points of `topology` over `positions`, at one sample per pixel.
     #[must_use]
     pub fn of(
         width: u32,
@@ -98,24 +98,30 @@ impl PrimitiveScene {
             .unwrap_or(0)
     }
 
-    /// The same primitives as a list: a strip's segments as a line list.
+    /// The same primitives as a list, in the same order: a line strip's segments as a line
+    /// list, a triangle strip's or fan's triangles as a triangle list, each in
+    /// [`Draw::triangle`]'s vertex order.
     #[must_use]
     pub fn as_list(&self) -> Self {
-        if self.topology != Topology::LineStrip {
-            return self.clone();
-        }
-        let indices = self.indices.windows(2).flatten().copied().collect();
-        Self {
-            topology: Topology::LineList,
-            indices,
-            ..self.clone()
+        match self.topology {
+            Topology::LineStrip => Self {
+                topology: Topology::LineList,
+                indices: self.indices.windows(2).flatten().copied().collect(),
+                ..self.clone()
+            },
+            Topology::TriangleStrip | Topology::TriangleFan => {
+                let mut scene = self.scene.clone();
+                scene.triangles = self.draw().triangles().into_owned();
+                Self::triangles(scene, self.samples)
+            }
+            _ => self.clone(),
         }
     }
 }
 
 impl Case for PrimitiveScene {
     /// Every way of dropping one primitive: a triangle, a list's segment or point, a strip's
-    /// first or last vertex.
+    /// first or last vertex, a fan's first or last rim vertex.
     fn reductions(&self) -> Vec<Self> {
         if self.topology == Topology::TriangleList {
             return self
@@ -141,8 +147,10 @@ impl Case for PrimitiveScene {
             s.indices.drain(range);
             s
         };
+        let last = self.indices.len() - 1..self.indices.len();
         match self.topology {
-            Topology::LineStrip => vec![without(0..1), without(self.indices.len() - 1..self.indices.len())],
+            Topology::LineStrip | Topology::TriangleStrip => vec![without(0..1), without(last)],
+            Topology::TriangleFan => vec![without(1..2), without(last)],
             _ => (0..count).map(|i| without(per * i..per * i + per)).collect(),
         }
     }

@@ -221,3 +221,85 @@ pub fn on_grid(mut scene: Scene, bits: u8) -> Scene {
     }
     scene
 }
+
+/// A strip or fan over `scene`'s positions: 3 to 12 indices drawn from them, in any order and
+/// with repeats (so zero-area triangles too); its state is the scene's.
+fn over(scene: Scene, topology: Topology, picks: &[prop::sample::Index]) -> PrimitiveScene {
+    let n = scene.positions.len();
+    let indices = picks.iter().map(|i| i.index(n) as u32).collect();
+    let (width, height) = (scene.width, scene.height);
+    let mut case = PrimitiveScene::of(width, height, scene.positions.clone(), topology, indices);
+    case.scene.state = scene.state;
+    case
+}
+
+/// Vertices for a strip or fan of consistent winding on the 8-bit grid: a zigzag between two
+/// rows that may fold back (a strip), or a rim turning round a hub (a fan, the hub first); `w`
+/// of 1 or varied, `z` from before the near plane to the far one, so that some triangles are
+/// clipped.
+fn shaped(topology: Topology) -> impl Strategy<Value = PrimitiveScene> {
+    (
+        side(),
+        side(),
+        (coordinate(), coordinate(), coordinate()),
+        prop::collection::vec((-4 * GRID..24 * GRID, -GRID..GRID), 2..10),
+        prop::collection::vec(-0.3f32..1.0, 1..6),
+        prop::collection::vec(0.25f32..3.0, 1..4),
+        any::<bool>(),
+    )
+        .prop_map(move |(w, h, (x0, y0, y1), steps, zs, ws, flat_w)| {
+            let ws = if flat_w { vec![1.0] } else { ws };
+            let mut points = Vec::new();
+            if topology == Topology::TriangleFan {
+                // The hub, then rim points at growing angles (a step's first number, in 1/256 turn).
+                points.push((x0, y0));
+                let radius = (y1 - y0).abs().max(GRID);
+                let mut turn = 0i64;
+                for &(step, wobble) in &steps {
+                    turn += step.rem_euclid(64 * GRID) / GRID;
+                    let angle = turn as f64 * std::f64::consts::TAU / 256.0;
+                    let r = (radius + wobble) as f64;
+                    points.push((x0 + (r * angle.cos()) as i64, y0 + (r * angle.sin()) as i64));
+                }
+            } else {
+                let mut x = x0;
+                for (k, &(step, wobble)) in steps.iter().chain(&[(GRID, 0), (GRID, 0)]).enumerate() {
+                    let y = if k % 2 == 0 { y0 } else { y1 };
+                    points.push((x, y + wobble));
+                    x += step / 2;
+                }
+            }
+            let positions = points
+                .iter()
+                .enumerate()
+                .map(|(i, &(x, y))| clip_of(w, h, 8, x, y, zs[i % zs.len()], ws[i % ws.len()]))
+                .collect();
+            let indices = (0..points.len() as u32).collect();
+            PrimitiveScene::of(w, h, positions, topology, indices)
+        })
+}
+
+/// Triangle strips or fans (`topology`): shaped ones of consistent winding ([`shaped`]), or
+/// indices picked from a mesh's, a clipped mesh's or overlapping triangles' vertices; under
+/// every cull mode (both faces too) and front face (the profile's fit keeps what it
+/// supports), at one of `counts` samples per pixel.
+pub fn strips_or_fans(topology: Topology, counts: Vec<u8>) -> impl Strategy<Value = PrimitiveScene> {
+    let scenes = prop_oneof![
+        super::mesh_scene(),
+        super::clipped_mesh_scene(),
+        super::overlapping_scene()
+    ];
+    let picked = (scenes, prop::collection::vec(any::<prop::sample::Index>(), 3..12))
+        .prop_map(move |(scene, picks)| over(scene, topology, &picks));
+    let cases = prop_oneof![shaped(topology), picked];
+    let culls = [CullMode::VALUES, &[CullMode::FrontAndBack]].concat();
+    let state = (
+        prop::sample::select(culls),
+        prop::sample::select(refrast::FrontFace::VALUES),
+    );
+    let faced = (cases, state).prop_map(|(mut case, (cull, front_face))| {
+        (case.scene.state.cull, case.scene.state.front_face) = (cull, front_face);
+        case
+    });
+    multisampled_primitives(faced, counts)
+}

@@ -73,7 +73,7 @@ impl Rasterizer for CarelessPoints {
     }
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
         let mut out = Reference::default().rasterize(draw)?;
-        if draw.topology != refrast::Topology::TriangleList {
+        if !draw.topology.is_triangles() {
             if self.cull_points && draw.state.cull != refrast::CullMode::None {
                 out.clear();
             }

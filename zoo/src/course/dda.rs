@@ -54,7 +54,9 @@ impl Rasterizer for Dda {
             });
         };
         match draw.topology {
-            Topology::TriangleList => return Reference::default().rasterize(draw),
+            Topology::TriangleList | Topology::TriangleStrip | Topology::TriangleFan => {
+                return Reference::default().rasterize(draw);
+            }
             Topology::PointList => {
                 let planes = clip_planes(ClipMode::Full, vp, state.clip_far, state.depth_range);
                 for (i, &index) in draw.indices.iter().enumerate() {
@@ -70,7 +72,7 @@ impl Rasterizer for Dda {
             Topology::LineList | Topology::LineStrip => {
                 let planes = clip_planes(ClipMode::GuardBand, vp, state.clip_far, state.depth_range);
                 for i in 0..draw.primitive_count() {
-                    let Some(&[a, b]) = draw.primitive(i) else {
+                    let Some(&[a, b]) = draw.primitive(i).as_deref() else {
                         continue;
                     };
                     let clip = |v: u32, barycentric| ClipVertex {

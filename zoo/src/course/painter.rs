@@ -32,7 +32,7 @@ pub struct Painter;
 /// the eye (`w > 0`), or `None` when no vertex is (such a triangle draws nothing after clipping).
 #[must_use]
 pub fn sort_key(draw: &Draw, triangle: usize) -> Option<f64> {
-    let indices = draw.triangles().get(triangle)?;
+    let indices = draw.triangle(triangle)?;
     indices
         .iter()
         .filter_map(|&i| draw.positions.get(i as usize))

@@ -104,11 +104,19 @@ pub enum Bug {
     FrontOnlyForBoth,
     /// Culling of both faces applied to every primitive: lines and points culled too.
     BothCullsLines,
+    /// A strip's triangle `i` taken as vertices `i, i + 1, i + 2` whatever its parity: every
+    /// other triangle turns the other way, so it faces and culls wrong.
+    UnalternatedStrip,
+    /// A strip's or fan's last triangle dropped (its triangles counted as vertices − 3).
+    ShortStrip,
+    /// A fan drawn as a strip of the same vertices: its hub left out of every triangle after
+    /// the first.
+    FanAsStrip,
 }
 
 impl Bug {
     /// Every bug.
-    pub const ALL: [Bug; 40] = [
+    pub const ALL: [Bug; 43] = [
         Self::InclusiveEdges,
         Self::ExclusiveEdges,
         Self::BottomRightAsTopLeft,
@@ -149,6 +157,9 @@ impl Bug {
         Self::DepthPastScissor,
         Self::FrontOnlyForBoth,
         Self::BothCullsLines,
+        Self::UnalternatedStrip,
+        Self::ShortStrip,
+        Self::FanAsStrip,
     ];
 
     /// The name after `mutant:` in `--impl`.
@@ -195,6 +206,9 @@ impl Bug {
             Self::DepthPastScissor => "depth-past-scissor",
             Self::FrontOnlyForBoth => "front-only-for-both",
             Self::BothCullsLines => "both-culls-lines",
+            Self::UnalternatedStrip => "unalternated-strip",
+            Self::ShortStrip => "short-strip",
+            Self::FanAsStrip => "fan-as-strip",
         }
     }
 
@@ -239,6 +253,7 @@ impl Bug {
             Self::InclusiveScissor | Self::TrianglesOnlyScissor | Self::BottomUpScissor => "clip",
             Self::DepthPastScissor => "depth",
             Self::FrontOnlyForBoth | Self::BothCullsLines => "meta",
+            Self::UnalternatedStrip | Self::ShortStrip | Self::FanAsStrip => "meta",
         }
     }
 
@@ -250,8 +265,8 @@ impl Bug {
     }
 
     /// Whether it is a bug of the draw state beyond the first contract (the scissor, culling of
-    /// both faces): the
-    /// mutant then declares everything the reference does, and draws with it.
+    /// both faces, strips and fans): the mutant then declares everything the reference does,
+    /// and draws with it.
     #[must_use]
     pub fn is_state(self) -> bool {
         matches!(
@@ -262,6 +277,9 @@ impl Bug {
                 | Self::DepthPastScissor
                 | Self::FrontOnlyForBoth
                 | Self::BothCullsLines
+                | Self::UnalternatedStrip
+                | Self::ShortStrip
+                | Self::FanAsStrip
         )
     }
 }

@@ -105,7 +105,7 @@ fn with_last_pixels(draw: &Draw, mut out: Vec<Fragment>, also: impl Fn(usize) ->
         f64::from(draw.viewport.height()),
     );
     for i in (0..draw.primitive_count()).filter(|&i| also(i)) {
-        let Some(&[_, b]) = draw.primitive(i) else {
+        let Some(&[_, b]) = draw.primitive(i).as_deref() else {
             continue;
         };
         let end = draw.positions[b as usize];

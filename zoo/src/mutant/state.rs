@@ -1,14 +1,17 @@
-//! The bugs of the draw state the contract gained after its first rasterizers (the scissor and
-//! culling of both faces, so far): the reference's own drawing with that state applied wrong in
-//! one way, so that every failure is that bug's doing.
+//! The bugs of the draw state the contract gained after its first rasterizers (the scissor,
+//! culling of both faces, strips and fans, so far): the reference's own drawing with that state
+//! applied wrong in one way, so that every failure is that bug's doing.
 
-use refrast::{CullMode, Draw, DrawError, Fragment, Rasterizer, Reference, Resolved, Scissor};
+use refrast::{CullMode, Draw, DrawError, Fragment, Rasterizer, Reference, Resolved, Scissor, Topology};
 
 use super::Bug;
 
 /// Draws `draw` as the reference does, with `bug`.
 pub fn rasterize(bug: Bug, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
     let mut reference = Reference::default();
+    if let Some(assembled) = misassembled(bug, draw) {
+        return reference.rasterize(&assembled);
+    }
     // The culling bugs first: no rule draws both faces culled with a scissor, so neither kind
     // of bug hides the other.
     if draw.state.cull == CullMode::FrontAndBack {
@@ -40,9 +43,7 @@ pub fn rasterize(bug: Bug, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
             ..scissor
         }))),
         // The scissor as a clamp of the triangles' traversal only: lines and points ignore it.
-        Bug::TrianglesOnlyScissor if draw.topology != refrast::Topology::TriangleList => {
-            reference.rasterize(&with(None))
-        }
+        Bug::TrianglesOnlyScissor if !draw.topology.is_triangles() => reference.rasterize(&with(None)),
         // Rows counted from the bottom, as OpenGL's window coordinates count them, not flipped.
         Bug::BottomUpScissor => {
             let height = i64::from(draw.viewport.height());
@@ -72,5 +73,35 @@ pub fn resolve(bug: Bug, draw: &Draw) -> Result<Resolved, DrawError> {
     Ok(Resolved {
         depth: written.depth,
         ..cut
+    })
+}
+
+/// A strip or fan assembled into triangles wrong by `bug`, as the triangle list it then draws
+/// (primitive `i` is still the draw's triangle `i`); `None` for other bugs and topologies.
+fn misassembled(bug: Bug, draw: &Draw) -> Option<Draw> {
+    let strip_or_fan = matches!(draw.topology, Topology::TriangleStrip | Topology::TriangleFan);
+    let list = match bug {
+        Bug::UnalternatedStrip if draw.topology == Topology::TriangleStrip => {
+            draw.indices.windows(3).flatten().copied().collect()
+        }
+        Bug::ShortStrip if strip_or_fan => {
+            let mut triangles = draw.triangles().into_owned();
+            triangles.pop();
+            triangles.into_flattened()
+        }
+        Bug::FanAsStrip if draw.topology == Topology::TriangleFan => {
+            Draw {
+                topology: Topology::TriangleStrip,
+                ..draw.clone()
+            }
+            .as_triangle_list()
+            .indices
+        }
+        _ => return None,
+    };
+    Some(Draw {
+        topology: Topology::TriangleList,
+        indices: list,
+        ..draw.clone()
     })
 }

@@ -1,12 +1,13 @@
 //! Metamorphic relations: changes to the input that must leave coverage alone, or move it predictably.
 
-use super::level::{EDGES_NOT_PINNED, Level, ZERO_AREA_LINE};
+use super::level::{EDGES_NOT_PINNED, Level, STRIP_ORDER_NOT_PINNED, ZERO_AREA_LINE};
 use super::{CULLING, Family, Rule, needs};
 use crate::runner::{property, property_for};
 use crate::strategy;
 
 mod facing;
 mod order;
+mod strip;
 mod translate;
 
 pub use facing::{
@@ -18,10 +19,17 @@ pub use order::{
     check_batch_away_from_edges, check_batch_independent, check_reversal, check_reversal_away_from_edges,
     check_rotation, check_rotation_away_from_edges,
 };
+pub use strip::{check_same_as_list, check_same_as_list_away_from_edges};
 pub use translate::{Translated, check_subpixel_translation, check_translation, check_viewport_neutral};
 
 /// The implementation culls both faces.
 const CULL_BOTH: super::Need = needs(|p| p.state.cull_both, "no culling of both faces");
+
+/// The implementation draws triangle strips.
+const STRIPS: super::Need = needs(|p| p.state.triangle_strips, "no triangle strips");
+
+/// The implementation draws triangle fans.
+const FANS: super::Need = needs(|p| p.state.triangle_fans, "no triangle fans");
 
 /// The implementation draws lines or points.
 const LINES_OR_POINTS: super::Need = needs(|p| p.lines.is_some() || p.points, "no lines or points");
@@ -84,6 +92,28 @@ pub(super) fn rules() -> Vec<Rule> {
             .needs(CULL_BOTH)
             .keeps_winding()
             .run(|r, cfg| property_for(r, cfg, cull_both_scene, check_culled_both)),
+        Rule::invariant(Family::Meta, "meta.strip.same-as-list")
+            .sentence("A triangle strip draws what the list of its triangles draws, triangle i as vertices i, i + 1 + i mod 2, i + 2 − i mod 2 (every other one reversed, so the strip keeps one facing): the same samples, primitive ids, facing, depth and barycentrics, under every cull mode and front face, and the same depth-test result.")
+            .source("Vulkan 1.4, Triangle Strips (drawing-triangle-strips) and the barycentric order table (primsrast-barycentric-order-table); OpenGL 4.6 §10.1.6 and OpenGL ES 3.2 §10.1.5 (the same triangles, each rotated: coverage and facing agree); D3D11.3 §8.10; dEQP-VK.rasterization.primitives.triangle_strip")
+            .cases(600)
+            .needs(STRIPS)
+            .keeps_winding()
+            .vulkan_and_opengl(Level::Partly {
+                part: |r, cfg| property_for(r, cfg, strip::strips, check_same_as_list_away_from_edges),
+                note: STRIP_ORDER_NOT_PINNED,
+            })
+            .run(|r, cfg| property_for(r, cfg, strip::strips, check_same_as_list)),
+        Rule::invariant(Family::Meta, "meta.fan.same-as-list")
+            .sentence("A triangle fan draws what the list of its triangles draws, triangle i as vertices i + 1, i + 2, 0 (the hub last): the same samples, primitive ids, facing, depth and barycentrics, under every cull mode and front face, and the same depth-test result.")
+            .source("Vulkan 1.4, Triangle Fans (drawing-triangle-fans) and the barycentric order table (primsrast-barycentric-order-table); OpenGL 4.6 §10.1.7 and OpenGL ES 3.2 §10.1.6 (hub first, the same triangles rotated); D3D11.3 has none (§25.1); dEQP-VK.rasterization.primitives.triangle_fan")
+            .cases(600)
+            .needs(FANS)
+            .keeps_winding()
+            .vulkan_and_opengl(Level::Partly {
+                part: |r, cfg| property_for(r, cfg, strip::fans, check_same_as_list_away_from_edges),
+                note: STRIP_ORDER_NOT_PINNED,
+            })
+            .run(|r, cfg| property_for(r, cfg, strip::fans, check_same_as_list)),
         Rule::invariant(Family::Meta, "meta.facing.from-winding")
             .sentence("A fragment is front-facing exactly when its triangle turns on screen the way the front face says: by its snapped signed area (also for a sliver that snapping turns over), or by the sign of det[x y w] when it is clipped; a triangle its cull mode discards draws nothing.")
             .source("Vulkan 1.4, Basic Polygon Rasterization (polygon facing from the signed area); Olano and Greer 1997 (facing of clipped triangles); seed 003 (back-face culling)")

@@ -1,0 +1,313 @@
+//! Triangle strips and fans: each draws what the triangle list of its triangles draws, each
+//! triangle in the vertex order Vulkan gives it ([`refrast::Draw::triangle`]), so that every
+//! other triangle of a strip is reversed and keeps the strip's facing.
+//!
+//! Both rules compare the implementation with itself (the strip or fan, then the same
+//! triangles as a list), so they hold whatever its conventions; its list is judged by every
+//! other rule.
+
+use std::collections::HashMap;
+
+use proptest::prelude::*;
+use refrast::{Fragment, Profile, Rasterizer, Topology};
+
+use super::translate::{near_edge, snap_slack};
+use crate::rules::common::{precision, screen_defined};
+use crate::rules::samples::{
+    cell_counts, difference_counts, difference_picture, keys, resolved, sample_fragments,
+};
+use crate::scene::{PrimitiveScene, Scene};
+use crate::strategy::primitive;
+use crate::violation::{Findings, Violation, plural};
+
+/// Strips at every sample count `p` draws them at.
+pub(super) fn strips(p: &Profile) -> BoxedStrategy<PrimitiveScene> {
+    of(p, Topology::TriangleStrip)
+}
+
+/// Fans at every sample count `p` draws them at.
+pub(super) fn fans(p: &Profile) -> BoxedStrategy<PrimitiveScene> {
+    of(p, Topology::TriangleFan)
+}
+
+fn of(p: &Profile, topology: Topology) -> BoxedStrategy<PrimitiveScene> {
+    let counts = p
+        .sample_counts()
+        .into_iter()
+        .filter(|&n| p.draws(topology, n))
+        .collect();
+    primitive::strips_or_fans(topology, counts).boxed()
+}
+
+/// A strip or fan draws as its triangles do in a list, sample for sample and value for value.
+pub fn check_same_as_list(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    compare_with_list(r, case, false)
+}
+
+/// [`check_same_as_list`] but within the band (and a grid step where snapping is not exact) of
+/// an edge, coverage on triangles the near or far plane cuts, and values on triangles any plane
+/// cuts: what Vulkan and OpenGL require ([`crate::rules::level::STRIP_ORDER_NOT_PINNED`]).
+pub fn check_same_as_list_away_from_edges(
+    r: &mut dyn Rasterizer,
+    case: &PrimitiveScene,
+) -> Result<(), Violation> {
+    compare_with_list(r, case, true)
+}
+
+/// What a comparison leaves out at the level Vulkan and OpenGL require: samples near an edge
+/// of one of the list's triangles, coverage on triangles the near or far plane cuts, and values
+/// on triangles any plane cuts; nothing at the exact level.
+struct Unpinned {
+    /// Each of the list's triangles alone, with whether the near or far plane cuts it and
+    /// whether any plane does; `None` at the exact level.
+    triangles: Option<Vec<(Scene, bool, bool)>>,
+    snapping: refrast::Snapping,
+    limit: f64,
+}
+
+impl Unpinned {
+    fn new(list: &PrimitiveScene, profile: &Profile, away_from_edges: bool) -> Self {
+        // Samples other than the centre lie up to √2/2 px from it.
+        let spread = if list.samples > 1 {
+            std::f64::consts::FRAC_1_SQRT_2
+        } else {
+            0.0
+        };
+        let triangles = away_from_edges.then(|| {
+            list.scene
+                .triangles
+                .iter()
+                .map(|&t| {
+                    let corners = t.map(|i| list.scene.positions.get(i as usize).copied());
+                    let outside =
+                        |inside: fn([f32; 4]) -> bool| corners.iter().any(|p| p.is_none_or(|p| !inside(p)));
+                    let depth_cut = outside(|p| (0.0..=p[3]).contains(&p[2]));
+                    let any_cut = depth_cut || outside(|p| p[0].abs() <= p[3] && p[1].abs() <= p[3]);
+                    let alone = Scene {
+                        triangles: vec![t],
+                        ..list.scene.clone()
+                    };
+                    (alone, depth_cut, any_cut)
+                })
+                .collect()
+        });
+        Self {
+            triangles,
+            snapping: profile.snapping,
+            limit: profile.band_px() + snap_slack(profile) + spread,
+        }
+    }
+
+    /// Whether coverage at pixel `(x, y)` is left out: near an edge of a triangle, or anywhere
+    /// on one with a vertex outside `0 ≤ z ≤ w` (the planes' cut edges are pinned by no
+    /// specification).
+    fn at(&self, x: u32, y: u32) -> bool {
+        self.triangles.as_ref().is_some_and(|alone| {
+            alone
+                .iter()
+                .any(|(t, depth_cut, _)| *depth_cut || near_edge(t, self.snapping, x, y, self.limit))
+        })
+    }
+
+    /// Whether the values of triangle `primitive` are left out: a plane cuts it, and the
+    /// strip's order of its vertices may differ from the list's by a rotation (OpenGL's), which
+    /// Vulkan and OpenGL let change a clipped polygon's cut vertices and so its values
+    /// (`meta.rotation.same-coverage` judges values on unclipped triangles alone for the same
+    /// reason).
+    fn values_of(&self, primitive: u32) -> bool {
+        self.triangles.as_ref().is_some_and(|alone| {
+            alone
+                .get(primitive as usize)
+                .is_none_or(|&(_, _, any_cut)| any_cut)
+        })
+    }
+}
+
+fn compare_with_list(
+    r: &mut dyn Rasterizer,
+    case: &PrimitiveScene,
+    away_from_edges: bool,
+) -> Result<(), Violation> {
+    let profile = r.profile();
+    let list = case.as_list();
+    let skip = Unpinned::new(&list, &profile, away_from_edges);
+    let drawn = sample_fragments(r, case)?;
+    let listed = sample_fragments(r, &list)?;
+    let judged = |frags: &[Fragment]| -> Vec<Fragment> {
+        frags.iter().filter(|f| !skip.at(f.x, f.y)).copied().collect()
+    };
+    let (got, want) = (judged(&drawn), judged(&listed));
+    if keys(&got) != keys(&want) {
+        return Err(coverage_differs(case, &got, &want));
+    }
+    compare_values(case, &list.scene, &profile, &skip, &drawn, &listed)?;
+    if profile.features.depth_test {
+        compare_resolves(r, case, &list, &profile, &skip, &listed)?;
+    }
+    Ok(())
+}
+
+/// The violation of a strip or fan covering other samples than its list.
+fn coverage_differs(case: &PrimitiveScene, got: &[Fragment], want: &[Fragment]) -> Violation {
+    let (gc, wc) = (cell_counts(case, got), cell_counts(case, want));
+    let message = if gc == wc {
+        format!(
+            "the {} covers the samples its triangles cover as a list, but names other triangles for them",
+            case.topology
+        )
+    } else {
+        let (lost, added) = gc.iter().zip(&wc).fold((0, 0), |(l, a), (&g, &w)| {
+            (l + w.saturating_sub(g), a + g.saturating_sub(w))
+        });
+        format!(
+            "the {} covers other samples than its triangles drawn as a list: {lost} missing, {added} more",
+            case.topology
+        )
+    };
+    let mut violation = Violation::new(message);
+    violation.counts = Some(Box::new(difference_counts(&gc, &wc)));
+    violation.picture = Some(Box::new(difference_picture(case, &gc, &wc, Vec::new())));
+    violation
+}
+
+/// Each fragment both draws has one facing, and depth and barycentrics within twice the
+/// declared precision of each other (each is within it of the exact value). A value the list
+/// gives that is not finite is no standard (the `bary.` and `robust.` rules judge it), so the
+/// strip's is not compared with it.
+fn compare_values(
+    case: &PrimitiveScene,
+    list: &Scene,
+    profile: &Profile,
+    skip: &Unpinned,
+    drawn: &[Fragment],
+    listed: &[Fragment],
+) -> Result<(), Violation> {
+    let tolerance = 2.0 * precision(profile);
+    let by_key: HashMap<_, &Fragment> = listed
+        .iter()
+        .map(|f| ((f.x, f.y, f.sample, f.primitive), f))
+        .collect();
+    // Within the tolerance of a finite list value; a NaN or infinity against one is not.
+    let within = |a: &[f32], b: &[f32]| {
+        a.iter()
+            .zip(b)
+            .all(|(&p, &q)| !q.is_finite() || (f64::from(p) - f64::from(q)).abs() <= tolerance)
+    };
+    let f = &profile.features;
+    let mut found = Findings::new();
+    for got in drawn {
+        let Some(want) = by_key.get(&(got.x, got.y, got.sample, got.primitive)) else {
+            continue;
+        };
+        let mut wrong = Vec::new();
+        if got.front_facing != want.front_facing {
+            wrong.push(format!(
+                "faces {} where the list's triangle faces {}",
+                facing(got.front_facing),
+                facing(want.front_facing)
+            ));
+        }
+        let values = !skip.values_of(got.primitive);
+        if values && !within(&[got.depth], &[want.depth]) {
+            wrong.push(format!("depth {:?} against {:?}", got.depth, want.depth));
+        }
+        if values && f.perspective_barycentrics && !within(&got.barycentric, &want.barycentric) {
+            wrong.push(format!(
+                "barycentrics {:?} against {:?}",
+                got.barycentric, want.barycentric
+            ));
+        }
+        if let (Some(g), Some(w)) = (got.screen_barycentric, want.screen_barycentric)
+            && values
+            && f.screen_barycentrics
+            && screen_defined(list, got.primitive)
+            && !within(&g, &w)
+        {
+            wrong.push(format!("screen barycentrics {g:?} against {w:?}"));
+        }
+        if !wrong.is_empty() {
+            found.add((got.x, got.y), || {
+                format!(
+                    "({}, {}) sample {} of triangle {}: {}",
+                    got.x,
+                    got.y,
+                    got.sample,
+                    got.primitive,
+                    wrong.join(", ")
+                )
+            });
+        }
+    }
+    found.verdict(|n| {
+        format!(
+            "the {} gives {} other values than its triangles drawn as a list (beyond twice the declared 2^-{} each)",
+            case.topology,
+            plural(n, "sample"),
+            profile.precision_bits
+        )
+    })
+}
+
+fn facing(front: bool) -> &'static str {
+    if front { "front" } else { "back" }
+}
+
+/// The depth test leaves the same depth and primitive at each judged sample after the strip
+/// or fan as after its list; where the two name different triangles, their depths there are
+/// within twice the precision (either may then win). Samples whose values [`Unpinned`] leaves
+/// out are left out here too.
+fn compare_resolves(
+    r: &mut dyn Rasterizer,
+    case: &PrimitiveScene,
+    list: &PrimitiveScene,
+    profile: &Profile,
+    skip: &Unpinned,
+    listed: &[Fragment],
+) -> Result<(), Violation> {
+    let tolerance = 2.0 * precision(profile);
+    let (drawn, want) = (resolved(r, &case.draw())?, resolved(r, &list.draw())?);
+    let depth_of: HashMap<_, f32> = listed
+        .iter()
+        .map(|f| ((f.x, f.y, f.sample, f.primitive), f.depth))
+        .collect();
+    let close =
+        |a: f32, b: f32| (f64::from(a) - f64::from(b)).abs() <= tolerance || a.to_bits() == b.to_bits();
+    let mut found = Findings::new();
+    for y in 0..case.scene.height {
+        for x in 0..case.scene.width {
+            if skip.at(x, y) {
+                continue;
+            }
+            for s in 0..case.samples {
+                let i = drawn.index(x, y, s);
+                let (gp, wp) = (drawn.primitive[i], want.primitive[i]);
+                if [gp, wp].into_iter().flatten().any(|p| skip.values_of(p)) {
+                    continue;
+                }
+                let tie = match (gp, wp) {
+                    (Some(a), Some(b)) => match (depth_of.get(&(x, y, s, a)), depth_of.get(&(x, y, s, b))) {
+                        (Some(&da), Some(&db)) => close(da, db),
+                        _ => false,
+                    },
+                    _ => false,
+                };
+                let same = (gp == wp || tie) && close(drawn.depth[i], want.depth[i]);
+                if !same {
+                    found.add((x, y), || {
+                        format!(
+                            "({x}, {y}) sample {s}: depth {:?} and triangle {gp:?}, where the list leaves depth {:?} and triangle {wp:?}",
+                            drawn.depth[i], want.depth[i]
+                        )
+                    });
+                }
+            }
+        }
+    }
+    found.verdict(|n| {
+        format!(
+            "after the {}, the depth test leaves {} other than after its triangles drawn as a list",
+            case.topology,
+            plural(n, "sample")
+        )
+    })
+}

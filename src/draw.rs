@@ -148,6 +148,28 @@ impl Draw {
         slice.map(Cow::Borrowed)
     }
 
+    /// The provoking vertex of primitive `i` under the draw's mode (Vulkan's
+    /// `VkProvokingVertexModeEXT`, as its topology sections give it): first, a list's `3i`, a
+    /// strip's `i`, a fan's `i + 1`, a line list's `2i`, a line strip's `i`; last, `3i + 2`,
+    /// `i + 2`, `i + 2`, `2i + 1`, `i + 1`; a point's either way. As a vertex index (into
+    /// `positions`); `None` past the last primitive.
+    #[must_use]
+    pub fn provoking(&self, i: usize) -> Option<u32> {
+        use crate::state::ProvokingVertex::{First, Last};
+        let k = match (self.topology, self.state.provoking_vertex) {
+            (Topology::TriangleList, First) => 3 * i,
+            (Topology::TriangleList, Last) => 3 * i + 2,
+            (Topology::TriangleStrip, First) | (Topology::LineStrip, First) | (Topology::PointList, _) => i,
+            (Topology::TriangleFan, First) | (Topology::LineStrip, Last) => i + 1,
+            (Topology::TriangleStrip | Topology::TriangleFan, Last) => i + 2,
+            (Topology::LineList, First) => 2 * i,
+            (Topology::LineList, Last) => 2 * i + 1,
+        };
+        (i < self.primitive_count())
+            .then(|| self.indices.get(k).copied())
+            .flatten()
+    }
+
     /// How many primitives it draws (0 when [`validate`](Self::validate) refuses its count).
     #[must_use]
     pub fn primitive_count(&self) -> usize {
@@ -168,10 +190,12 @@ impl Draw {
             .map_err(DrawError::Unsupported)?;
         let vertices = self.positions.len();
         for i in 0..self.primitive_count() {
-            if let Some(index) = self
-                .primitive(i)
-                .and_then(|p| p.iter().copied().find(|&v| v as usize >= vertices))
-            {
+            let out_of_range = |p: &[u32]| p.iter().copied().find(|&v| v as usize >= vertices);
+            let found = match self.triangle(i) {
+                Some(t) => out_of_range(&t),
+                None => self.primitive(i).and_then(|p| out_of_range(&p)),
+            };
+            if let Some(index) = found {
                 return Err(DrawError::IndexOutOfRange {
                     triangle: i,
                     index,
@@ -220,6 +244,12 @@ pub struct Fragment {
     pub depth: f32,
     /// Perspective-correct barycentrics of the sample in the input primitive.
     pub barycentric: [f32; 3],
+    /// The draw's vertex (an index into its positions) whose flat values the fragment carries:
+    /// its primitive's provoking vertex under the draw's
+    /// [`ProvokingVertex`](crate::ProvokingVertex) ([`Draw::provoking`]), also when clipping
+    /// cut that vertex away. `None` from an implementation that reports no flat values
+    /// ([`StateSupport::flat`](crate::StateSupport::flat) empty).
+    pub flat: Option<u32>,
     /// Screen-space (affine) barycentrics, where the implementation can give them. A profile
     /// declaring them gives them for every triangle in front of the eye; for one with a vertex
     /// at `w ≤ 0`, which has no shape on screen, `None` is an answer too, and values given are

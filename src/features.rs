@@ -6,6 +6,7 @@ use std::marker::PhantomData;
 
 use crate::depth::{CompareOp, DepthRange};
 use crate::setup::{CullMode, FrontFace};
+use crate::state::ProvokingVertex;
 use crate::viewport::GUARD_BAND_REACH;
 
 /// A draw-state setting with a few values, each of which an implementation may support.
@@ -41,6 +42,10 @@ impl Setting for DepthRange {
     const VALUES: &'static [Self] = &[Self::ZeroToOne, Self::NegativeOneToOne];
 }
 
+impl Setting for ProvokingVertex {
+    const VALUES: &'static [Self] = &[Self::First, Self::Last];
+}
+
 /// On and off, for switches such as far clipping and depth writes.
 impl Setting for bool {
     const VALUES: &'static [Self] = &[false, true];
@@ -56,6 +61,12 @@ impl<T: Setting> Supported<T> {
     /// Every value.
     pub const ALL: Self = Self {
         mask: (1 << T::VALUES.len()) - 1,
+        setting: PhantomData,
+    };
+
+    /// No value: for a setting of [`StateSupport`], which a rasterizer may lack altogether.
+    pub const NONE: Self = Self {
+        mask: 0,
         setting: PhantomData,
     };
 
@@ -111,6 +122,13 @@ impl<T: Setting> Clone for Supported<T> {
 }
 
 impl<T: Setting> Copy for Supported<T> {}
+
+/// No value, as [`StateSupport`]'s default declares none of its state.
+impl<T: Setting> Default for Supported<T> {
+    fn default() -> Self {
+        Self::NONE
+    }
+}
 
 impl<T: Setting> PartialEq for Supported<T> {
     fn eq(&self, other: &Self) -> bool {
@@ -272,6 +290,10 @@ pub struct StateSupport {
     /// It draws triangle fans ([`Topology::TriangleFan`](crate::Topology::TriangleFan)), at
     /// every sample count it declares.
     pub triangle_fans: bool,
+    /// The provoking-vertex modes under which it reports [`Fragment::flat`](crate::Fragment::flat),
+    /// the vertex whose flat values a fragment carries; none when it reports none. A draw in
+    /// another mode is drawn all the same, its `flat` unjudged (`None` is the honest answer).
+    pub flat: Supported<ProvokingVertex>,
 }
 
 impl StateSupport {
@@ -281,6 +303,7 @@ impl StateSupport {
         cull_both: false,
         triangle_strips: false,
         triangle_fans: false,
+        flat: Supported::NONE,
     };
     /// All of it, as the reference honours it.
     pub const ALL: StateSupport = StateSupport {
@@ -288,6 +311,7 @@ impl StateSupport {
         cull_both: true,
         triangle_strips: true,
         triangle_fans: true,
+        flat: Supported::ALL,
     };
 }
 

@@ -85,6 +85,9 @@
 //!   one reversed, so the strip keeps one winding), of a fan `i+1, i+2, 0`, as Vulkan makes them
 //!   and orders their barycentrics; each draws as that triangle would in a list
 //!   ([`Draw::triangle`]).
+//! - **Flat values**: a fragment names the vertex whose flat values it carries, its
+//!   primitive's provoking vertex: the first (Vulkan's default) or the last, as the draw's
+//!   [`ProvokingVertex`] says, also where clipping cut it away ([`Draw::provoking`]).
 //! - **Coverage of a clipped polygon**: its snapped fan's winding number
 //!   ([`stage::traverse`]), so a sliver turned over by snapping neither doubles nor leaks.
 //! - **Depth**: window depth `z/w` interpolated linearly in screen space
@@ -137,5 +140,5 @@ pub use profile::{DepthConvention, Profile, Snapping, Spec};
 pub use rasterizer::Rasterizer;
 pub use reference::{DrawStats, Reference, Sample};
 pub use setup::{CullMode, FrontFace, Winding};
-pub use state::{DrawState, Scissor};
+pub use state::{DrawState, ProvokingVertex, Scissor};
 pub use viewport::{GUARD_BAND_REACH, MAX_VIEWPORT, Viewport};

@@ -144,6 +144,7 @@ impl Reference {
                 else {
                     continue;
                 };
+                let flat = draw.provoking(primitive);
                 traverse(&fan, kept.winding, rect, bits, &mut scratch.row, |hit| {
                     if !draw.state.passes_scissor(hit.x, hit.y) {
                         return;
@@ -151,7 +152,7 @@ impl Reference {
                     stats.fragments += 1;
                     emit(Fragment {
                         sample: k as u8,
-                        ..Sample::new(primitive as u32, kept.front_facing, hit, &fan, &moved).fragment()
+                        ..Sample::new(primitive as u32, kept.front_facing, flat, hit, &fan, &moved).fragment()
                     });
                 });
             }
@@ -222,6 +223,7 @@ impl Reference {
             i64::from(draw.viewport.width()),
             i64::from(draw.viewport.height()),
         );
+        let flat = draw.provoking(primitive as usize);
         let mut covered = 0;
         let mut fragment_at = |x: i64, y: i64, s: FixedPoint, sample: usize| {
             // The sample's projection on the segment, the Vulkan line `t`.
@@ -235,6 +237,7 @@ impl Reference {
                 primitive,
                 depth: fragment_depth(va.varyings.depth + (vb.varyings.depth - va.varyings.depth) * t),
                 barycentric: b.perspective.as_vec3().to_array(),
+                flat,
                 screen_barycentric: b.screen.map(|s| s.as_vec3().to_array()),
                 front_facing: true,
             });
@@ -330,6 +333,7 @@ impl Reference {
                             primitive: i as u32,
                             depth: fragment_depth(point.depth),
                             barycentric: [1.0, 0.0, 0.0],
+                            flat: draw.provoking(i),
                             screen_barycentric: Some([1.0, 0.0, 0.0]),
                             front_facing: true,
                         });

@@ -8,7 +8,7 @@ use crate::edge::FillConvention;
 use crate::features::{Features, StateSupport};
 use crate::primitive::{LineRule, PointClipping, SAMPLE_COUNTS, SamplePattern, Topology};
 use crate::setup::CullMode;
-use crate::state::DrawState;
+use crate::state::{DrawState, ProvokingVertex};
 
 /// How an implementation places vertices before it decides coverage.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -169,7 +169,7 @@ pub struct Profile {
     /// What clipping does to a point whose centre lies outside the viewport in x or y.
     pub point_clipping: PointClipping,
     /// The draw state it honours beyond [`features`](Self::features): the scissor, culling of
-    /// both faces, triangle strips and fans, so far.
+    /// both faces, triangle strips and fans, flat values, so far.
     pub state: StateSupport,
 }
 
@@ -273,7 +273,7 @@ impl Profile {
         drawn && self.pattern(samples).is_some()
     }
 
-    /// The topologies it draws, triangles first.
+    /// The topologies it draws, in [`Topology::ALL`]'s order (triangle lists first).
     #[must_use]
     pub fn topologies(&self) -> Vec<Topology> {
         Topology::ALL.into_iter().filter(|&t| self.draws(t, 1)).collect()
@@ -288,14 +288,21 @@ impl Profile {
             .collect()
     }
 
-    /// Whether every setting of `state` is supported.
+    /// Whether every setting of `state` is supported. The provoking vertex is no such setting:
+    /// it changes only [`Fragment::flat`](crate::Fragment::flat), which is required only under
+    /// the modes a profile declares ([`StateSupport::flat`]), so any draw may ask any mode.
     #[must_use]
     pub fn supports(&self, state: &DrawState) -> bool {
-        *state == self.fit(*state)
+        let fitted = self.fit(*state);
+        DrawState {
+            provoking_vertex: fitted.provoking_vertex,
+            ..*state
+        } == fitted
     }
 
     /// `state` with each unsupported setting replaced by a supported one (an undeclared scissor
-    /// dropped, undeclared culling of both faces replaced like an unsupported cull mode).
+    /// dropped, undeclared culling of both faces replaced like an unsupported cull mode, the
+    /// provoking vertex one the profile reports flat values under): what the suite sends.
     #[must_use]
     pub fn fit(&self, state: DrawState) -> DrawState {
         let f = &self.features;
@@ -311,6 +318,12 @@ impl Profile {
         fitted.clip_far = f.far_clipping.fit(state.clip_far);
         fitted.depth_range = f.depth_ranges.fit(state.depth_range);
         fitted.scissor = state.scissor.filter(|_| self.state.scissor);
+        // Without flat values the mode changes nothing: the default is what such a draw has.
+        fitted.provoking_vertex = if self.state.flat.is_empty() {
+            ProvokingVertex::First
+        } else {
+            self.state.flat.fit(state.provoking_vertex)
+        };
         fitted
     }
 }
@@ -399,6 +412,17 @@ mod tests {
         assert_eq!(fitted.front_face, FrontFace::CounterClockwise);
         assert_eq!(fitted.cull, CullMode::Front);
         assert!(profile.supports(&fitted));
+        // The provoking vertex is fitted to a declared mode but never makes a draw unsupported.
+        let last_only = Profile {
+            state: StateSupport {
+                flat: Supported::only(&[ProvokingVertex::Last]),
+                ..StateSupport::NONE
+            },
+            ..profile.clone()
+        };
+        assert!(last_only.supports(&fitted));
+        assert_eq!(last_only.fit(fitted).provoking_vertex, ProvokingVertex::Last);
+        assert_eq!(profile.fit(fitted).provoking_vertex, ProvokingVertex::First);
         assert_eq!(profile.band_px(), 1.0 / 256.0);
         let float = Profile {
             snapping: Snapping::Float,

@@ -10,7 +10,8 @@ use crate::profile::Profile;
 /// Batch-oriented so that a GPU behind an API can implement it as well as a CPU loop: a
 /// [`Draw`] goes in, fragments (before the depth test) and resolved buffers (after) come out.
 /// It is sent only what its [`Profile`] declares: a triangle list at one sample per pixel
-/// unless it declares lines, points or sample counts ([`Profile::draws`]).
+/// unless it declares lines, points, sample counts, strips or fans ([`Profile::draws`]), and
+/// only the draw state it supports ([`Profile::supports`]).
 ///
 /// # Implementing it
 ///
@@ -98,6 +99,7 @@ mod tests {
             barycentric: [1.0, 0.0, 0.0],
             screen_barycentric: None,
             front_facing: true,
+            flat: None,
         }
     }
 

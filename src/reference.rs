@@ -139,6 +139,7 @@ impl Reference {
             None => (&scratch.front.raster, &scratch.front.fan),
         };
         let mut covered = 0;
+        let flat = setup.draw.provoking(primitive);
         traverse(
             fan,
             kept.winding,
@@ -154,6 +155,7 @@ impl Reference {
                 visit(&Sample::new(
                     primitive as u32,
                     kept.front_facing,
+                    flat,
                     hit,
                     fan,
                     raster,
@@ -177,6 +179,8 @@ pub struct Sample<'a> {
     pub depth: f32,
     /// Whether the triangle faces the viewer.
     pub front_facing: bool,
+    /// The vertex whose flat values it carries, as [`Fragment::flat`].
+    pub flat: Option<u32>,
     values: [i64; 3],
     area2: i64,
     corners: [&'a Varyings; 3],
@@ -187,6 +191,7 @@ impl<'a> Sample<'a> {
     pub(crate) fn new(
         primitive: u32,
         front_facing: bool,
+        flat: Option<u32>,
         hit: Hit,
         fan: &[FanTriangle],
         raster: &'a [RasterVertex],
@@ -200,6 +205,7 @@ impl<'a> Sample<'a> {
             primitive,
             depth: fragment_depth(interpolate_depth(corners, hit.values, t.setup.area2())),
             front_facing,
+            flat,
             values: hit.values,
             area2: t.setup.area2(),
             corners,
@@ -218,6 +224,7 @@ impl<'a> Sample<'a> {
             primitive: self.primitive,
             depth: self.depth,
             barycentric: b.perspective.as_vec3().to_array(),
+            flat: self.flat,
             screen_barycentric: b.screen.map(|s| s.as_vec3().to_array()),
             front_facing: self.front_facing,
         }

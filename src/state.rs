@@ -1,6 +1,6 @@
-//! A draw's state besides its geometry: facing, culling, depth, clipping and the scissor. Its
-//! own module because both the contract (a [`Draw`](crate::Draw) carries it) and a profile
-//! (which states it supports) need it.
+//! A draw's state besides its geometry: facing, culling, depth, clipping, the scissor and the
+//! provoking vertex. Its own module because both the contract (a [`Draw`](crate::Draw) carries
+//! it) and a profile (which states it supports) need it.
 
 use crate::depth::{DepthRange, DepthState};
 use crate::setup::{CullMode, FrontFace};
@@ -21,6 +21,23 @@ pub struct DrawState {
     /// The rectangle fragments must fall in; `None` tests nothing. Sent only to a rasterizer
     /// that declares it ([`StateSupport::scissor`](crate::StateSupport::scissor)).
     pub scissor: Option<Scissor>,
+    /// Which vertex of a primitive gives its flat values ([`Fragment::flat`](crate::Fragment::flat)).
+    /// Sent other than first only to a rasterizer that declares it
+    /// ([`StateSupport::flat`](crate::StateSupport::flat)).
+    pub provoking_vertex: ProvokingVertex,
+}
+
+/// Which vertex of a primitive gives its flat (not interpolated) values: Vulkan's
+/// `VkProvokingVertexModeEXT`, OpenGL's `ProvokingVertex`, D3D11's leading vertex (first).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum ProvokingVertex {
+    /// The primitive's first vertex (Vulkan's default, D3D11): a list's `3i`, a strip's `i`, a
+    /// fan's `i + 1`, a line's `2i` or `i`, a point's.
+    #[default]
+    First,
+    /// Its last vertex (OpenGL's default, OpenGL ES's only one): a list's `3i + 2`, a strip's or
+    /// fan's `i + 2`, a line's `2i + 1` or `i + 1`, a point's.
+    Last,
 }
 
 impl DrawState {

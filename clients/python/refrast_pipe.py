@@ -1,4 +1,4 @@
-"""The child side of refrast's pipe protocol, version 2 (docs/protocol.md), standard library only.
+"""The child side of refrast's pipe protocol, version 3 (docs/protocol.md), standard library only.
 
 Copy this file beside your rasterizer and call `serve(profile, rasterize)`: refrast starts your
 program, reads the profile, then sends draws on stdin and reads fragments from stdout. Print
@@ -9,17 +9,17 @@ import struct
 import sys
 from collections import namedtuple
 
-VERSION = 2
+VERSION = 3
 
 # x, y, primitive, front-facing (u32), depth, perspective barycentrics, screen barycentrics (f32),
-# sample (u32).
-FRAGMENT = struct.Struct("<4I7fI")
+# sample, flat vertex (u32; 0xFFFFFFFF for none).
+FRAGMENT = struct.Struct("<4I7f2I")
 
 Draw = namedtuple(
     "Draw",
     "width height positions triangles cull front_face depth_compare depth_write depth_clear "
-    "depth_range far_clipping topology samples scissor indices",
-    defaults=(None, None),
+    "depth_range far_clipping topology samples scissor indices provoking_vertex",
+    defaults=(None, None, "first"),
 )
 Draw.__doc__ = """One draw: clip-space positions (x, y, z, w), triangles (i, j, k) and state.
 
@@ -33,15 +33,19 @@ samples line lists more. indices are the draw's as sent; triangles are its trian
 order Vulkan makes them (triangle i of a strip: indices i, i+1+i%2, i+2-i%2; of a fan: i+1, i+2,
 0), so a triangle rasterizer draws strips and fans unchanged, barycentric k being the weight of
 its triangle's vertex k. Lines and points are read (their indices) but make no triangles.
-Indices are not checked: raise Refused for one that names no vertex."""
+provoking_vertex is first or last: which vertex of a primitive gives its flat values (a
+fragment's flat), last only for a profile whose provoking-vertex line lists it. Indices are not
+checked: raise Refused for one that names no vertex."""
 
 Fragment = namedtuple(
-    "Fragment", "x y primitive front_facing depth barycentric screen_barycentric sample"
+    "Fragment", "x y primitive front_facing depth barycentric screen_barycentric sample flat"
 )
-Fragment.__new__.__defaults__ = ((0.0, 0.0, 0.0), 0)
+Fragment.__new__.__defaults__ = ((0.0, 0.0, 0.0), 0, None)
 Fragment.__doc__ = """One covered sample. screen_barycentric may be None for a triangle with a
 vertex at w <= 0, which has no shape on screen (sent as three NaN words, "none"); for any other
-triangle of a profile declaring screen-barycentrics, None fails the bary. rules."""
+triangle of a profile declaring screen-barycentrics, None fails the bary. rules. flat is the
+draw's vertex whose flat values the fragment carries (its primitive's provoking vertex), or None
+for a profile without a provoking-vertex line."""
 
 # Three NaN words: no screen-space barycentrics (docs/protocol.md, fragment records).
 NO_WEIGHTS = (float("nan"),) * 3
@@ -77,7 +81,11 @@ def index_count(topology, primitives):
         return 0
     per = {"triangle-list": 3 * primitives, "line-list": 2 * primitives, "point-list": primitives}
     joined = {"line-strip": primitives + 1, "triangle-strip": primitives + 2, "triangle-fan": primitives + 2}
-    return per.get(topology, joined.get(topology, 0))
+    if topology in per:
+        return per[topology]
+    if topology in joined:
+        return joined[topology]
+    raise ValueError(f"topology {topology!r} is none this helper reads; docs/protocol.md lists them")
 
 
 def assemble(topology, indices):
@@ -116,6 +124,7 @@ def _read_draw(words, stream):
         topology=topology,
         samples=int(fields.get("samples", "1")),
         scissor=tuple(int(v) for v in fields["scissor"].split(",")) if "scissor" in fields else None,
+        provoking_vertex=fields.get("provoking-vertex", "first"),
     )
 
 
@@ -154,6 +163,7 @@ def serve(profile, rasterize, resolve=None):
                         FRAGMENT.pack(
                             f.x, f.y, f.primitive, 1 if f.front_facing else 0, f.depth,
                             *f.barycentric, *(f.screen_barycentric or NO_WEIGHTS), f.sample,
+                            0xFFFFFFFF if f.flat is None else f.flat,
                         )
                     )
             elif words[0] == "resolve" and resolve is not None:

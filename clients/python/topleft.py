@@ -8,7 +8,8 @@ near plane, the far plane when asked, and a guard band 16384 pixels from the vie
 each cut computed from the inside end; a clipped polygon covers the samples its snapped fan winds
 around. Barycentrics are perspective-correct, depth is z/w linear on screen, a scissor rectangle
 drops the fragments outside it, and its own depth buffer answers `resolve`. It draws triangle
-lists, strips and fans (refrast_pipe assembles a strip's or fan's triangles in Vulkan's order).
+lists, strips and fans (refrast_pipe assembles a strip's or fan's triangles in Vulkan's order),
+and each fragment carries its triangle's provoking vertex (first or last) as its flat vertex.
 
 Run it with refrast:  refrast certify --exec "python3 clients/python/topleft.py"
 
@@ -43,6 +44,7 @@ PROFILE = {
     # every side of every viewport.
     "guard-band": int(GUARD_BAND) - 16384 // 2,
     "topology": "triangle-list triangle-strip triangle-fan",
+    "provoking-vertex": "first last",
     "cull": "none front back front-and-back",
     "front-face": "ccw cw",
     "depth-compare": "never less equal less-equal greater not-equal greater-equal always",
@@ -264,7 +266,9 @@ def fan_fragments(draw, t, raster, front):
                 sa[1] * s0 + sb[1] * s1 + sc[1] * s2,
                 sa[2] * s0 + sb[2] * s1 + sc[2] * s2,
             )
-        out.append(Fragment(px, py, t, front, f32(min(max(depth, 0.0), 1.0)), bary, screen))
+        out.append(
+            Fragment(px, py, t, front, f32(min(max(depth, 0.0), 1.0)), bary, screen, flat=provoking(draw, t))
+        )
     return out
 
 
@@ -280,6 +284,17 @@ def rasterize(draw):
     for t, tri in enumerate(draw.triangles):
         out += triangle_fragments(draw, t, [draw.positions[i] for i in tri])
     return [f for f in out if in_scissor(draw, f.x, f.y)]
+
+
+def provoking(draw, t):
+    """The vertex giving triangle t its flat values: the first or last of its primitive in the
+    index stream (Vulkan's topology sections; OpenGL 4.6 Table 13.2)."""
+    first, last = {
+        "triangle-list": (3 * t, 3 * t + 2),
+        "triangle-strip": (t, t + 2),
+        "triangle-fan": (t + 1, t + 2),
+    }[draw.topology]
+    return draw.indices[last if draw.provoking_vertex == "last" else first]
 
 
 def in_scissor(draw, x, y):

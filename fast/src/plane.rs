@@ -148,6 +148,8 @@ impl Planes {
             primitive: self.primitive,
             depth: depth[lane],
             barycentric,
+            // No flat values: the profile declares none (StateSupport::flat empty).
+            flat: None,
             screen_barycentric: self.screen.map(|_| screen),
             front_facing: self.front_facing,
         };

@@ -3,22 +3,27 @@
 
 use refrast::{
     CompareOp, CullMode, DepthConvention, DepthRange, Draw, FillConvention, Fragment, FrontFace, LineRule,
-    PointClipping, Profile, SamplePattern, Setting, SnapAccuracy, Snapping, Spec, Supported,
+    PointClipping, Profile, ProvokingVertex, SamplePattern, Setting, SnapAccuracy, Snapping, Spec, Supported,
 };
 
 /// The newest protocol version this refrast speaks, the one its messages suggest.
-pub const VERSION: u32 = 2;
+pub const VERSION: u32 = 3;
 
-/// Every version this refrast speaks: 1, and 2, which adds a draw's topology and sample count
-/// and each fragment's sample (reserved for lines, points and multisampling, so that the
-/// protocol changes once).
-pub const VERSIONS: [u32; 2] = [1, 2];
+/// Every version this refrast speaks: 1; 2, which adds a draw's topology and sample count and
+/// each fragment's sample (reserved for lines, points and multisampling, so that the protocol
+/// changes once); 3, which adds the provoking vertex and each fragment's flat vertex.
+pub const VERSIONS: [u32; 3] = [1, 2, 3];
 
 /// Bytes per fragment record: x, y, primitive, front-facing (u32), depth, three perspective and
-/// three screen-space barycentrics (f32), all little-endian; version 2 adds the sample (u32).
+/// three screen-space barycentrics (f32), all little-endian; version 2 adds the sample (u32),
+/// version 3 the flat vertex (u32, `0xFFFF_FFFF` for none).
 #[must_use]
 pub fn fragment_bytes(version: u32) -> usize {
-    if version >= 2 { 48 } else { 44 }
+    match version {
+        0 | 1 => 44,
+        2 => 48,
+        _ => 52,
+    }
 }
 
 /// A primitive topology, as version 2 spells it in the profile and in requests: the
@@ -136,6 +141,18 @@ impl Word for DepthRange {
     }
 }
 
+/// Which vertex gives a primitive its flat values: a version 3 profile line listing the modes
+/// the child reports flat values under, and a version 3 request key.
+impl Word for ProvokingVertex {
+    const KEY: &'static str = "provoking-vertex";
+    fn word(self) -> &'static str {
+        match self {
+            Self::First => "first",
+            Self::Last => "last",
+        }
+    }
+}
+
 /// Depth writes; far clipping has the same words under its own key ([`FAR_CLIPPING`]).
 impl Word for bool {
     const KEY: &'static str = "depth-write";
@@ -186,6 +203,9 @@ pub fn request(op: Op, draw: &Draw, version: u32) -> Vec<u8> {
     } else {
         String::new()
     };
+    if version >= 3 {
+        extra += &format!(" {}={}", ProvokingVertex::KEY, s.provoking_vertex.word());
+    }
     // Only a child that declares the feature is ever sent a scissor (Profile::fit drops it).
     if let Some(r) = s.scissor {
         extra += &format!(" {SCISSOR}={},{},{},{}", r.x, r.y, r.width, r.height);
@@ -233,8 +253,8 @@ pub fn f32_at(record: &[u8], k: usize) -> f32 {
 }
 
 /// Decodes one fragment record of [`fragment_bytes`] of a draw at `samples` samples a pixel,
-/// its sample 0 in version 1; `Err` names a front-facing word that is neither 0 nor 1,
-/// or (version 2) a sample the draw does not have.
+/// its sample 0 in version 1 and no flat vertex before version 3; `Err` names a front-facing
+/// word that is neither 0 nor 1, or (version 2) a sample the draw does not have.
 pub fn fragment(record: &[u8], screen_barycentrics: bool, samples: u8) -> Result<Fragment, String> {
     let front = u32_at(record, 3);
     if front > 1 {
@@ -257,6 +277,9 @@ pub fn fragment(record: &[u8], screen_barycentrics: bool, samples: u8) -> Result
         front_facing: front == 1,
         depth: f32_at(record, 4),
         barycentric: [f32_at(record, 5), f32_at(record, 6), f32_at(record, 7)],
+        flat: (record.len() >= 52)
+            .then(|| u32_at(record, 12))
+            .filter(|&v| v != u32::MAX),
         // Three NaN words say "none": the triangle has a vertex at w ≤ 0 and no screen shape
         // (the rules accept none only there; docs/protocol.md).
         screen_barycentric: (screen_barycentrics && !screen.iter().all(|c| c.is_nan())).then_some(screen),
@@ -380,6 +403,15 @@ pub fn default_profile(name: &str) -> Profile {
     }
 }
 
+/// The versions this refrast speaks, as a sentence lists them: "1, 2 and 3".
+fn spoken() -> String {
+    let words: Vec<String> = VERSIONS.iter().map(u32::to_string).collect();
+    match words.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} and {last}", rest.join(", ")),
+        _ => words.join(""),
+    }
+}
+
 /// The version a first line declares: `Err` when it is not `refrast-protocol N`, or when this
 /// refrast does not speak version N.
 pub fn version(line: &str) -> Result<u32, String> {
@@ -387,12 +419,14 @@ pub fn version(line: &str) -> Result<u32, String> {
     match (words.next(), words.next().map(str::parse::<u32>), words.next()) {
         (Some("refrast-protocol"), Some(Ok(v)), None) if VERSIONS.contains(&v) => Ok(v),
         (Some("refrast-protocol"), Some(Ok(v)), None) => Err(format!(
-            "the child speaks refrast protocol version {v}, but this refrast speaks versions 1 and \
-             {VERSION} (docs/protocol.md): write `refrast-protocol {VERSION}` and the version {VERSION} \
-             messages, or use a refrast that speaks version {v}"
+            "the child speaks refrast protocol version {v}, but this refrast speaks versions {} \
+             (docs/protocol.md): write `refrast-protocol {VERSION}` and the version {VERSION} \
+             messages, or use a refrast that speaks version {v}",
+            spoken()
         )),
         _ => Err(format!(
-            "the child's first line must be `refrast-protocol {VERSION}` (or 1), but it is `{}`",
+            "the child's first line must be `refrast-protocol {VERSION}` (or an older version: {}), but it is `{}`",
+            spoken(),
             shown(line)
         )),
     }
@@ -604,11 +638,13 @@ impl Reading {
                 FrontFace::KEY => f.front_faces = supported(&words, bad)?,
                 CompareOp::KEY => f.compare_ops = supported(&words, bad)?,
                 DepthRange::KEY => f.depth_ranges = supported(&words, bad)?,
+                ProvokingVertex::KEY => self.profile.state.flat = supported(&words, bad)?,
                 bool::KEY => f.depth_writes = supported(&words, bad)?,
                 _ => f.far_clipping = supported(&words, bad)?,
             }
             Ok(())
         };
+        let flat = (self.declared.version >= 3).then_some(ProvokingVertex::KEY);
         let known = [
             "snap",
             CLIPPING,
@@ -620,7 +656,7 @@ impl Reading {
             bool::KEY,
             FAR_CLIPPING,
         ];
-        known.contains(&key).then(read)
+        (known.contains(&key) || flat == Some(key)).then(read)
     }
 
     /// Version 2's lines of lines, points and samples.
@@ -914,5 +950,47 @@ mod tests {
         );
         assert_eq!(bytes, 4 * 4);
         assert_eq!(body(vec![0, 1]).1, 0);
+    }
+
+    /// Version 3 declares the provoking modes, sends the draw's, and reads each fragment's flat
+    /// vertex from a thirteenth word (`0xFFFF_FFFF`: none); version 2 knows none of it.
+    #[test]
+    fn version_3_carries_the_provoking_vertex_and_the_flat_vertex() {
+        let line = vec!["provoking-vertex last".to_owned()];
+        let declared = parse_profile(&line, "child", 3).expect("version 3");
+        assert!(declared.profile.state.flat.contains(ProvokingVertex::Last));
+        assert!(!declared.profile.state.flat.contains(ProvokingVertex::First));
+        let refused = parse_profile(&line, "child", 2).expect_err("version 2");
+        assert!(refused.contains("unknown key `provoking-vertex`"), "{refused}");
+        let mut draw = Draw::new(
+            refrast::Viewport::new(4, 4).unwrap(),
+            vec![[0.0; 4]; 3],
+            vec![[0, 1, 2]],
+        );
+        draw.state.provoking_vertex = ProvokingVertex::Last;
+        let header = |version| {
+            let bytes = request(Op::Rasterize, &draw, version);
+            let end = bytes.iter().position(|&b| b == b'\n').unwrap();
+            String::from_utf8(bytes[..end].to_vec()).unwrap()
+        };
+        assert!(
+            header(3).ends_with(" samples=1 provoking-vertex=last"),
+            "{}",
+            header(3)
+        );
+        assert!(!header(2).contains("provoking"));
+        assert_eq!(
+            (fragment_bytes(1), fragment_bytes(2), fragment_bytes(3)),
+            (44, 48, 52)
+        );
+        let mut record = vec![0u8; 52];
+        record[48..].copy_from_slice(&7u32.to_le_bytes());
+        assert_eq!(fragment(&record, false, 1).unwrap().flat, Some(7));
+        record[48..].copy_from_slice(&u32::MAX.to_le_bytes());
+        assert_eq!(fragment(&record, false, 1).unwrap().flat, None);
+        assert_eq!(fragment(&record[..48], false, 1).unwrap().flat, None);
+        assert_eq!(version("refrast-protocol 3"), Ok(3));
+        let why = version("refrast-protocol 9").unwrap_err();
+        assert!(why.contains("speaks versions 1, 2 and 3"), "{why}");
     }
 }

@@ -172,7 +172,10 @@ pub(crate) fn triangle_draw(
         reference: Reference::default(),
         state: job.state,
     };
-    let draw = pipeline.mesh_draw(target.viewport(), job.mesh, job.view_projection);
+    let mut draw = pipeline.mesh_draw(target.viewport(), job.mesh, job.view_projection);
+    // A picture uses no flat values: the provoking vertex is the rasterizer's own (OpenGL ES
+    // drivers declare only the last).
+    draw.state.provoking_vertex = profile.fit(draw.state).provoking_vertex;
     draw.validate()?;
     Ok(draw)
 }

@@ -200,6 +200,7 @@ impl Rasterizer for Euc {
                     sample: 0,
                     primitive: primitive as u32,
                     depth: z,
+                    flat: None,
                     barycentric,
                     screen_barycentric: None,
                     front_facing,

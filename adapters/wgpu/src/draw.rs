@@ -26,6 +26,7 @@ pub struct RawSample {
     perspective: [f32; 3],
     screen: [f32; 3],
     sample: u32,
+    vertex: u32,
 }
 
 /// Every covered sample of every primitive of `draw`, as the driver rasterized them.
@@ -55,6 +56,8 @@ pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
                 .iter()
                 .map(|s| {
                     let mut f = fragment(s);
+                    // The provoking vertex's place in the stream names the draw's vertex.
+                    f.flat = draw.indices.get(s.vertex as usize).copied();
                     f.primitive = f.primitive.wrapping_sub(offset);
                     along(draw.topology, f)
                 })
@@ -123,6 +126,7 @@ fn fragment(s: &RawSample) -> Fragment {
         primitive: s.primitive,
         depth: s.depth,
         barycentric: s.perspective,
+        flat: None,
         screen_barycentric: Some(s.screen),
         front_facing: s.front_facing != 0,
     }

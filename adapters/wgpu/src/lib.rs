@@ -86,8 +86,8 @@ mod targets;
 use std::sync::{Arc, Mutex};
 
 use refrast::{
-    CompareOp, DepthConvention, DepthRange, Draw, DrawError, Features, Fragment, Profile, Rasterizer,
-    Resolved, StateSupport, Supported, Unavailable,
+    CompareOp, DepthConvention, DepthRange, Draw, DrawError, Features, Fragment, Profile, ProvokingVertex,
+    Rasterizer, Resolved, StateSupport, Supported, Unavailable,
 };
 
 pub use device::Driver;
@@ -281,12 +281,20 @@ impl Rasterizer for Gpu {
             // The scissor test is core in Vulkan, OpenGL and OpenGL ES, and wgpu sets it on
             // every backend (`set_scissor_rect`, in raster space on each); its `Face` has no
             // value for both faces, and its `PrimitiveTopology` no triangle fan, so neither is
-            // declared (their rules are n/a). Triangle strips are core everywhere.
+            // declared (their rules are n/a). Triangle strips are core everywhere. Flat values
+            // (WGSL `@interpolate(flat)`) come from the mode the API fixes, as wgpu sets no
+            // other: Vulkan's default, the first vertex; OpenGL ES's only one, the last (§12.4,
+            // Table 12.3); the rule checks each driver against it.
             state: StateSupport {
                 scissor: true,
                 cull_both: false,
                 triangle_strips: true,
                 triangle_fans: false,
+                flat: Supported::only(&[if self.driver.backends() == wgpu::Backends::GL {
+                    ProvokingVertex::Last
+                } else {
+                    ProvokingVertex::First
+                }]),
             },
         }
     }
@@ -313,7 +321,12 @@ impl Rasterizer for Gpu {
 
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
         self.check(draw)?;
-        draw::capture(&self.context, &mut self.pipelines(), draw)
+        let mut fragments = draw::capture(&self.context, &mut self.pipelines(), draw)?;
+        // Flat values come in the backend's one mode: under another, none is reported.
+        if !self.profile().state.flat.contains(draw.state.provoking_vertex) {
+            fragments.iter_mut().for_each(|f| f.flat = None);
+        }
+        Ok(fragments)
     }
 
     fn resolve(&mut self, draw: &Draw) -> Result<Resolved, DrawError> {

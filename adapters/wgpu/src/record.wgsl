@@ -12,6 +12,8 @@ struct Sample {
     screen: array<f32, 3>,
     // Which of the pixel's samples (0 at one sample per pixel).
     sample: u32,
+    // The provoking vertex's position in the vertex stream.
+    vertex: u32,
 }
 
 @group(0) @binding(0) var<storage, read_write> count: atomic<u32>;
@@ -32,6 +34,7 @@ fn append(in: Varyings, front_facing: bool, sample: u32) {
             array<f32, 3>(in.perspective.x, in.perspective.y, in.perspective.z),
             array<f32, 3>(in.screen.x, in.screen.y, in.screen.z),
             sample,
+            in.vertex,
         );
     }
 }

@@ -18,6 +18,7 @@ fn vertex(@location(0) position: vec4<f32>, @builtin(vertex_index) index: u32) -
     out.perspective = unit;
     out.screen = unit;
     out.primitive = select(index / corners, index, strip);
+    out.vertex = index;
     return out;
 }
 

@@ -85,8 +85,13 @@ pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
         let (weights, facing) = (first.read::<[f32; 4]>(ctx)?, second.read::<[f32; 4]>(ctx)?);
         for (i, (p, s)) in weights.iter().zip(&facing).enumerate() {
             // The marker is 0 (the clear) on an uncovered sample, else 1 for a front face and 2
-            // for a back face, plus 4 where the flat id is odd (`targets.wgsl`).
-            if s[3] == 0.0 || !is_drawn_primitive(draw.topology, primitive, s[3]) {
+            // for a back face, plus 4 times the provoking vertex's place in the stream
+            // (`targets.wgsl`).
+            if s[3] == 0.0 {
+                continue;
+            }
+            let (front_facing, vertex) = (s[3] % 4.0 == 1.0, (s[3] / 4.0).floor() as u32);
+            if !is_drawn_primitive(draw.topology, primitive, vertex) {
                 continue;
             }
             fragments.push(along(
@@ -98,8 +103,9 @@ pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
                     primitive,
                     depth: p[3],
                     barycentric: [p[0], p[1], p[2]],
+                    flat: draw.indices.get(vertex as usize).copied(),
                     screen_barycentric: Some([s[0], s[1], s[2]]),
-                    front_facing: s[3] % 4.0 == 1.0,
+                    front_facing,
                 },
             ));
         }
@@ -117,9 +123,10 @@ fn strip_pair(topology: Topology, first: u32, per: u32) -> (u32, u32) {
     }
 }
 
-/// Whether a sample marked `marker` belongs to `primitive` rather than to the triangle drawn
-/// with it ([`strip_pair`]): in a strip, triangle `i`'s flat id is its first or last vertex,
-/// `i` or `i + 2`, of `i`'s parity either way, and its partner's is of the other.
-fn is_drawn_primitive(topology: Topology, primitive: u32, marker: f32) -> bool {
-    topology != Topology::TriangleStrip || (marker >= 4.0) == (primitive % 2 == 1)
+/// Whether a sample whose provoking vertex is `vertex` in the stream belongs to `primitive`
+/// rather than to the triangle drawn with it ([`strip_pair`]): in a strip, triangle `i`'s is
+/// its first or last vertex, `i` or `i + 2`, of `i`'s parity either way, and its partner's is
+/// of the other.
+fn is_drawn_primitive(topology: Topology, primitive: u32, vertex: u32) -> bool {
+    topology != Topology::TriangleStrip || vertex % 2 == primitive % 2
 }

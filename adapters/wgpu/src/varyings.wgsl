@@ -7,4 +7,6 @@ struct Varyings {
     // The same, interpolated linearly in screen space.
     @location(1) @interpolate(linear) screen: vec3<f32>,
     @location(2) @interpolate(flat) primitive: u32,
+    // The provoking vertex's position in the vertex stream: whose flat values the fragment has.
+    @location(3) @interpolate(flat) vertex: u32,
 }

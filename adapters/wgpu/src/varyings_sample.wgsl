@@ -6,4 +6,5 @@ struct Varyings {
     @location(0) @interpolate(perspective, sample) perspective: vec3<f32>,
     @location(1) @interpolate(linear, sample) screen: vec3<f32>,
     @location(2) @interpolate(flat) primitive: u32,
+    @location(3) @interpolate(flat) vertex: u32,
 }

@@ -6,7 +6,7 @@
 use std::fmt;
 
 use arbitrary::Arbitrary;
-use refrast::{CompareOp, CullMode, DepthRange, DepthState, DrawState, FrontFace, Scissor};
+use refrast::{CompareOp, CullMode, DepthRange, DepthState, DrawState, FrontFace, ProvokingVertex, Scissor};
 
 use crate::scene::{Scene, clip_of, rust_f32};
 use crate::strategy::{self, GRID, triangulate};
@@ -61,9 +61,10 @@ impl RawDraw {
     }
 }
 
-/// Every draw state from 16 bits: cull mode (both faces included), front face, compare op, depth writes, depth range,
-/// far clipping, a clear value of 1, 0 or ½, and one of 16 scissor rectangles or none (empty
-/// ones, thin ones, and ones past a 64-px viewport's right and bottom sides).
+/// Every draw state from 16 bits: cull mode (both faces included), front face, compare op,
+/// depth writes, depth range, far clipping, a clear value of 1, 0 or ½ (1 twice, once with the
+/// last provoking vertex), and one of 16 scissor rectangles or none (empty ones, thin ones, and
+/// ones past a 64-px viewport's right and bottom sides).
 #[must_use]
 pub fn draw_state(bits: u16) -> DrawState {
     const OPS: [CompareOp; 8] = [
@@ -101,6 +102,12 @@ pub fn draw_state(bits: u16) -> DrawState {
                 height: [1, 70, 0, 33][b],
             }
         }),
+        // The clear's fourth value is its first again (1), with the last provoking vertex.
+        provoking_vertex: if field(7, 4) == 3 {
+            ProvokingVertex::Last
+        } else {
+            ProvokingVertex::First
+        },
     }
 }
 
@@ -373,8 +380,9 @@ mod tests {
     #[test]
     fn sixteen_bits_reach_every_draw_state() {
         let states: HashSet<String> = (0..=u16::MAX).map(|b| format!("{:?}", draw_state(b))).collect();
-        // 4 cull modes × 2 front faces × 8 compare ops × 2 write masks × 3 clears × 2 ranges × 2
-        // far-clipping settings × 17 scissors (none, and 16 rectangles).
-        assert_eq!(states.len(), 4 * 2 * 8 * 2 * 3 * 2 * 2 * 17);
+        // 4 cull modes × 2 front faces × 8 compare ops × 2 write masks × 4 (3 clears with the
+        // first provoking vertex, one with the last) × 2 ranges × 2 far-clipping settings × 17
+        // scissors (none, and 16 rectangles).
+        assert_eq!(states.len(), 4 * 2 * 8 * 2 * 4 * 2 * 2 * 17);
     }
 }

@@ -14,10 +14,13 @@
 //!   point squares and triangles at each declared sample position, exact in i128.
 //! - [`facing`]: which way a triangle turns as an implementation with a profile may snap it,
 //!   and where correct implementations may disagree; the grid points a vertex may snap to.
+//! - [`provoking`]: which vertex gives a primitive its flat values, from the specifications'
+//!   tables.
 
 pub mod brute_force;
 pub mod facing;
 pub mod outline;
+pub mod provoking;
 pub mod raster;
 pub mod ray_cast;
 pub mod segment;

@@ -137,9 +137,9 @@ pub const CUT_VERTICES_AND_SHARED_EDGES: &str = concat!(cut_vertices!(), "; and 
 /// Exact coverage at edges is a refrast convention under Vulkan and OpenGL.
 pub const EDGES_NOT_PINNED: &str = "Vulkan and OpenGL pin neither which polygon owns a sample on an edge nor that this is independent of vertex order or of the rest of the draw (\"The Vulkan specification is not pixel exact\", Invariance): only samples away from every edge are required";
 
-/// A strip or fan against its list: edges as above, and clipped triangles' values, which
-/// OpenGL's rotated vertex order may move.
-pub const STRIP_ORDER_NOT_PINNED: &str = "Vulkan and OpenGL pin neither which polygon owns a sample on an edge nor that this is independent of vertex order or of the rest of the draw (\"The Vulkan specification is not pixel exact\", Invariance), and OpenGL and OpenGL ES make a strip's or fan's triangle from the same vertices in another order (§10.1.5–§10.1.7: A, B, then the new vertex, a rotation of Vulkan's), which may move the vertices a clipping plane cuts: only samples away from every edge and from the near and far planes' cuts are required to be covered alike, and values only on triangles no plane cuts";
+/// A strip or fan against its list: edges, and clipped or thin triangles' values, which
+/// another vertex order than Vulkan's may move.
+pub const STRIP_ORDER_NOT_PINNED: &str = "Vulkan and OpenGL pin neither which polygon owns a sample on an edge nor that this is independent of vertex order or of the rest of the draw (\"The Vulkan specification is not pixel exact\", Invariance); OpenGL and OpenGL ES make a strip's or fan's triangle from the same vertices in another order (§10.1.5–§10.1.7: A, B, then the new vertex, a rotation of Vulkan's), and D3D11.3 gives its order only in a diagram (§8.10); another order may move the vertices a clipping plane cuts, and the weights of a triangle too thin for the claimed precision: only samples away from every edge and from the near and far planes' cuts are required to be covered alike, and values and facing only on triangles no plane cuts and wide enough for the claimed precision";
 
 /// What zero area means in every specification.
 pub const ZERO_AREA_LINE: &str = "zero area only makes a triangle back-facing (Vulkan: \"Any triangle which is not front-facing is back-facing, including zero-area triangles\"; D3D11.3 §15.11.1: \"Zero area geometry is considered back facing\"): samples away from its line are never inside it, but no specification says whether the samples on the line are covered";

@@ -6,6 +6,7 @@ pub mod clip;
 pub mod common;
 pub mod depth;
 pub mod fill;
+pub mod flat;
 pub mod hint;
 pub mod level;
 pub mod line;
@@ -412,6 +413,7 @@ pub fn catalogue() -> Vec<Rule> {
     rules.extend(point::rules());
     rules.extend(msaa::rules());
     rules.extend(scissor::rules());
+    rules.extend(flat::rules());
     rules
 }
 

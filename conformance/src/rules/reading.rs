@@ -1,7 +1,9 @@
 //! The rasterizer as a hint reads it: declaring what the hint suggests, or with the difference
 //! the hint names undone, so that the failing case can be run again to verify the hint.
 
-use refrast::{DepthRange, Draw, DrawError, FillConvention, Fragment, Profile, Rasterizer, Resolved};
+use refrast::{
+    DepthRange, Draw, DrawError, FillConvention, Fragment, Profile, Rasterizer, Resolved, Topology,
+};
 
 use super::ties::{self, Ties};
 use crate::oracle::facing::{Turn, turn};
@@ -87,10 +89,10 @@ impl Rasterizer for Read<'_> {
         }
     }
 
-    /// Lines, points and samples are read only for facing and weights: no triangle is reversed
-    /// and no tie rule applied.
+    /// Lines, points, samples, strips and fans are read only for facing and weights: no
+    /// triangle is reversed and no tie rule applied (a strip's triangles share their indices).
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
-        if !draw.is_triangles_at_one_sample() {
+        if draw.topology != Topology::TriangleList || draw.samples != 1 {
             let mut frags = self.inner.rasterize(draw)?;
             frags.iter_mut().for_each(|f| self.undo(f, &[]));
             return Ok(frags);
@@ -105,7 +107,7 @@ impl Rasterizer for Read<'_> {
     }
 
     fn resolve(&mut self, draw: &Draw) -> Result<Resolved, DrawError> {
-        if !draw.is_triangles_at_one_sample() {
+        if draw.topology != Topology::TriangleList || draw.samples != 1 {
             return self.inner.resolve(draw);
         }
         let (told, _) = self.told(draw);

@@ -136,6 +136,7 @@ pub fn with_tie_rule(
                 primitive: t as u32,
                 depth: 0.5,
                 barycentric: [1.0 / 3.0; 3],
+                flat: None,
                 screen_barycentric: Some([1.0 / 3.0; 3]),
                 front_facing: true,
             },
@@ -222,6 +223,7 @@ mod tests {
                             primitive: t as u32,
                             depth: 0.5,
                             barycentric: [1.0, 0.0, 0.0],
+                            flat: None,
                             screen_barycentric: None,
                             front_facing: true,
                         });

@@ -4,7 +4,8 @@
 use std::fmt;
 
 use refrast::{
-    CompareOp, CullMode, DepthRange, DepthState, DrawState, FrontFace, Scissor, Topology, Viewport,
+    CompareOp, CullMode, DepthRange, DepthState, DrawState, FrontFace, ProvokingVertex, Scissor, Topology,
+    Viewport,
 };
 use serde::de::{self, Visitor};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -98,7 +99,8 @@ pub struct DrawData {
     pub width: u32,
     /// Viewport height in pixels.
     pub height: u32,
-    /// `triangle-list`, `line-list`, `line-strip` or `point-list`.
+    /// `triangle-list`, `line-list`, `line-strip`, `point-list`, `triangle-strip` or
+    /// `triangle-fan`.
     pub topology: String,
     /// Samples per pixel.
     pub samples: u8,
@@ -123,6 +125,9 @@ pub struct DrawData {
     /// The scissor rectangle `[x, y, width, height]` in pixels, when the draw has one.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scissor: Option<[u32; 4]>,
+    /// `first` or `last`: which vertex gives a primitive its flat values; absent for first.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub provoking_vertex: Option<String>,
 }
 
 impl DrawData {
@@ -146,6 +151,8 @@ impl DrawData {
             depth_range: s.depth_range.word().to_owned(),
             far_clipping: s.clip_far.word().to_owned(),
             scissor: s.scissor.map(|r| [r.x, r.y, r.width, r.height]),
+            provoking_vertex: (s.provoking_vertex != ProvokingVertex::First)
+                .then(|| s.provoking_vertex.word().to_owned()),
         }
     }
 
@@ -154,10 +161,8 @@ impl DrawData {
     /// has it: a key's word, or a triangle list's indices not in threes.
     pub fn scene(&self) -> Result<(Scene, Topology, Vec<u32>, u8), String> {
         let topology = Topology::from_name(&self.topology).ok_or_else(|| {
-            format!(
-                "topology '{}' is none of triangle-list, line-list, line-strip, point-list",
-                self.topology
-            )
+            let names: Vec<&str> = Topology::ALL.iter().map(|t| t.name()).collect();
+            format!("topology '{}' is none of {}", self.topology, names.join(", "))
         })?;
         let state = DrawState {
             cull: word(CullMode::KEY, &self.cull)?,
@@ -172,6 +177,10 @@ impl DrawData {
             scissor: self
                 .scissor
                 .map(|[x, y, width, height]| Scissor { x, y, width, height }),
+            provoking_vertex: match &self.provoking_vertex {
+                Some(text) => word(ProvokingVertex::KEY, text)?,
+                None => ProvokingVertex::First,
+            },
         };
         // A draw needs a viewport in range; the rules build none other.
         Viewport::new(self.width, self.height)

@@ -6,7 +6,7 @@ mod primitive;
 
 use std::fmt;
 
-use refrast::{CullMode, DepthRange, Draw, DrawState, FrontFace, Profile, Viewport};
+use refrast::{CullMode, DepthRange, Draw, DrawState, FrontFace, Profile, ProvokingVertex, Viewport};
 
 use crate::oracle::facing::{Turn, turn};
 use crate::oracle::raster::to_ndc;
@@ -337,13 +337,23 @@ impl fmt::Debug for Scene {
         writeln!(f, "        clip_far: {},", s.clip_far)?;
         // State the contract gained later prints only when set, the rest left to the default,
         // so a counterexample without it reads as before it existed.
-        match s.scissor {
-            Some(r) => writeln!(
+        if let Some(r) = s.scissor {
+            writeln!(
                 f,
                 "        scissor: Some(Scissor {{ x: {}, y: {}, width: {}, height: {} }}),",
                 r.x, r.y, r.width, r.height
-            )?,
-            None => writeln!(f, "        ..DrawState::default()")?,
+            )?;
+        }
+        if s.provoking_vertex != ProvokingVertex::First {
+            writeln!(
+                f,
+                "        provoking_vertex: ProvokingVertex::{:?},",
+                s.provoking_vertex
+            )?;
+        }
+        // The rest, where a field was left out (a struct update with none left is a lint).
+        if s.scissor.is_none() || s.provoking_vertex == ProvokingVertex::First {
+            writeln!(f, "        ..DrawState::default()")?;
         }
         writeln!(f, "    }},")?;
         write!(f, "}}")

@@ -235,15 +235,15 @@ fn over(scene: Scene, topology: Topology, picks: &[prop::sample::Index]) -> Prim
 
 /// Vertices for a strip or fan of consistent winding on the 8-bit grid: a zigzag between two
 /// rows that may fold back (a strip), or a rim turning round a hub (a fan, the hub first); `w`
-/// of 1 or varied, `z` from before the near plane to the far one, so that some triangles are
-/// clipped.
+/// of 1 or varied, `z` from before the near plane to beyond the far one, so that some triangles
+/// are clipped by either.
 fn shaped(topology: Topology) -> impl Strategy<Value = PrimitiveScene> {
     (
         side(),
         side(),
         (coordinate(), coordinate(), coordinate()),
         prop::collection::vec((-4 * GRID..24 * GRID, -GRID..GRID), 2..10),
-        prop::collection::vec(-0.3f32..1.0, 1..6),
+        prop::collection::vec(-0.3f32..1.2, 1..6),
         prop::collection::vec(0.25f32..3.0, 1..4),
         any::<bool>(),
     )

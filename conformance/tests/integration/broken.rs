@@ -63,6 +63,7 @@ impl Rasterizer for InclusiveEdges {
                             barycentric: w,
                             screen_barycentric: Some(w),
                             front_facing: area < 0,
+                            flat: None,
                         });
                     }
                 }

@@ -33,6 +33,7 @@ impl Returned {
                 barycentric,
                 screen_barycentric: None,
                 front_facing: true,
+                flat: None,
             })
             .collect();
         Self {
@@ -209,6 +210,7 @@ fn per_sample_depth_is_required_of_the_depth_buffer_not_of_fragcoord_z() {
             barycentric: BARY,
             screen_barycentric: None,
             front_facing: true,
+            flat: None,
         })
         .collect();
     swiftshader.depth_buffer = Some([6.0, 14.0, 2.0, 10.0].map(at).to_vec());
@@ -303,6 +305,7 @@ impl Rasterizer for Sliver {
             barycentric: [f32::NAN, f32::INFINITY, f32::INFINITY],
             screen_barycentric: Some([f32::NAN; 3]),
             front_facing: true,
+            flat: None,
         }])
     }
 }
@@ -358,6 +361,7 @@ impl Rasterizer for Flat {
             barycentric: [weight; 3],
             screen_barycentric: Some([weight; 3]),
             front_facing: true,
+            flat: None,
         }])
     }
 }

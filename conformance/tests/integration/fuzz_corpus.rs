@@ -113,6 +113,7 @@ fn replay_catches_an_inclusive_rasterizer() {
                         barycentric: [1.0 / 3.0; 3],
                         screen_barycentric: None,
                         front_facing: true,
+                        flat: None,
                     })
                 })
                 .collect())

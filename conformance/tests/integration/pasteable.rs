@@ -32,18 +32,22 @@ fn a_printed_scene_compiles_and_round_trips() {
                 width: 9,
                 height: 16,
             }),
+            provoking_vertex: ProvokingVertex::Last,
         },
     };
     let printed = format!("{pasted:?}");
     assert!(
-        printed.contains("scissor: Some(Scissor { x: 2, y: 0, width: 9, height: 16 }),")
-            && !printed.contains(".."),
+        printed.contains(
+            "scissor: Some(Scissor { x: 2, y: 0, width: 9, height: 16 }),\n        provoking_vertex: ProvokingVertex::Last,\n    },"
+        ) && !printed.contains(".."),
         "{printed}"
     );
-    // Without a scissor, the state prints as before there was one, the rest left to the default.
+    // Without a scissor or the last provoking vertex, the state prints as before there were
+    // either, the rest left to the default.
     let unscissored = Scene {
         state: DrawState {
             scissor: None,
+            provoking_vertex: ProvokingVertex::First,
             ..pasted.state
         },
         ..pasted.clone()

@@ -112,6 +112,7 @@ fn snapping_within_one_step_is_judged_outside_two_steps_of_an_edge() {
         depth_range: range,
         clip_far,
         scissor: None,
+        ..refrast::DrawState::default()
     };
     let scenes = [
         (

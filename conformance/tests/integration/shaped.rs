@@ -278,6 +278,7 @@ impl Rasterizer for AtSample {
             barycentric: self.1,
             screen_barycentric: None,
             front_facing: true,
+            flat: None,
         }])
     }
 }

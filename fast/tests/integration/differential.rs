@@ -185,7 +185,7 @@ fn a_triangle_the_outcodes_call_cut_can_be_clipped_to_nothing() {
         },
         depth_range: DepthRange::ZeroToOne,
         clip_far: true,
-        scissor: None,
+        ..DrawState::default()
     };
     for threads in [1, 2] {
         agree(&draw, threads).unwrap();

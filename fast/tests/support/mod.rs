@@ -65,8 +65,8 @@ pub fn state() -> impl Strategy<Value = DrawState> {
             },
             depth_range,
             clip_far,
-            // fast declares no scissor.
-            scissor: None,
+            // fast declares no scissor and no flat values.
+            ..DrawState::default()
         },
     )
 }

@@ -271,6 +271,7 @@ impl Rasterizer for Misbehaving {
             primitive,
             depth: 0.5,
             barycentric: [f32::NAN, 1.0, 0.0],
+            flat: None,
             screen_barycentric: None,
             front_facing: true,
         };

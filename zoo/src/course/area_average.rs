@@ -148,6 +148,7 @@ fn draw_polygon(poly: &ScreenPolygon, draw: &Draw, pattern: SamplePattern, out: 
                     primitive: poly.primitive,
                     depth,
                     barycentric,
+                    flat: None,
                     screen_barycentric: None,
                     front_facing: poly.front_facing,
                 });

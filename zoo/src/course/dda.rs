@@ -49,6 +49,7 @@ impl Rasterizer for Dda {
                 primitive: primitive as u32,
                 depth: depth.clamp(0.0, 1.0) as f32,
                 barycentric: [(1.0 - t) as f32, t as f32, 0.0],
+                flat: None,
                 screen_barycentric: Some([(1.0 - t) as f32, t as f32, 0.0]),
                 front_facing: true,
             });

@@ -119,6 +119,7 @@ impl Lab000 {
                         primitive: t as u32,
                         depth: window_depth(z),
                         barycentric: weights,
+                        flat: None,
                         screen_barycentric: Some(weights),
                         front_facing,
                     };

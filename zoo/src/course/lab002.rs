@@ -211,6 +211,7 @@ impl Lab002 {
                         primitive: t as u32,
                         depth: window_depth(p.zinv),
                         barycentric,
+                        flat: None,
                         screen_barycentric: None,
                         front_facing,
                     };

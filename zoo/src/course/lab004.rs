@@ -295,6 +295,7 @@ impl Rasterizer for Lab004 {
                             primitive: t as u32,
                             depth: depth.clamp(0.0, 1.0) as f32,
                             barycentric: weights,
+                            flat: None,
                             screen_barycentric: Some(weights),
                             front_facing,
                         });

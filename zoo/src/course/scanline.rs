@@ -87,6 +87,7 @@ fn span(poly: &ScreenPolygon, y: u32, width: u32, out: &mut Vec<Fragment>) {
             primitive: poly.primitive,
             depth: z.clamp(0.0, 1.0),
             barycentric,
+            flat: None,
             screen_barycentric: None,
             front_facing: poly.front_facing,
         });

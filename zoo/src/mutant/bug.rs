@@ -112,11 +112,19 @@ pub enum Bug {
     /// A fan drawn as a strip of the same vertices: its hub left out of every triangle after
     /// the first.
     FanAsStrip,
+    /// Under the last provoking vertex, a triangle's flat values from its third corner in
+    /// Vulkan's order: right for a list, wrong for every odd strip triangle and every fan.
+    LastCornerFlat,
+    /// A triangle whose provoking vertex the near plane cuts away takes its flat values from
+    /// its first corner left standing.
+    ClippedFlat,
+    /// The provoking mode ignored: flat values always from the first vertex.
+    FirstOnlyFlat,
 }
 
 impl Bug {
     /// Every bug.
-    pub const ALL: [Bug; 43] = [
+    pub const ALL: [Bug; 46] = [
         Self::InclusiveEdges,
         Self::ExclusiveEdges,
         Self::BottomRightAsTopLeft,
@@ -160,6 +168,9 @@ impl Bug {
         Self::UnalternatedStrip,
         Self::ShortStrip,
         Self::FanAsStrip,
+        Self::LastCornerFlat,
+        Self::ClippedFlat,
+        Self::FirstOnlyFlat,
     ];
 
     /// The name after `mutant:` in `--impl`.
@@ -209,6 +220,9 @@ impl Bug {
             Self::UnalternatedStrip => "unalternated-strip",
             Self::ShortStrip => "short-strip",
             Self::FanAsStrip => "fan-as-strip",
+            Self::LastCornerFlat => "last-corner-flat",
+            Self::ClippedFlat => "clipped-flat",
+            Self::FirstOnlyFlat => "first-only-flat",
         }
     }
 
@@ -254,6 +268,7 @@ impl Bug {
             Self::DepthPastScissor => "depth",
             Self::FrontOnlyForBoth | Self::BothCullsLines => "meta",
             Self::UnalternatedStrip | Self::ShortStrip | Self::FanAsStrip => "meta",
+            Self::LastCornerFlat | Self::ClippedFlat | Self::FirstOnlyFlat => "bary",
         }
     }
 
@@ -265,8 +280,8 @@ impl Bug {
     }
 
     /// Whether it is a bug of the draw state beyond the first contract (the scissor, culling of
-    /// both faces, strips and fans): the mutant then declares everything the reference does,
-    /// and draws with it.
+    /// both faces, strips and fans, flat values): the mutant then declares everything the
+    /// reference does, and draws with it.
     #[must_use]
     pub fn is_state(self) -> bool {
         matches!(
@@ -280,6 +295,9 @@ impl Bug {
                 | Self::UnalternatedStrip
                 | Self::ShortStrip
                 | Self::FanAsStrip
+                | Self::LastCornerFlat
+                | Self::ClippedFlat
+                | Self::FirstOnlyFlat
         )
     }
 }

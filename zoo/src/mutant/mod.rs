@@ -319,6 +319,7 @@ impl Mutant {
                     primitive,
                     depth: depth as f32,
                     barycentric: bary.as_vec3().to_array(),
+                    flat: None,
                     screen_barycentric: screen.map(|s| s.as_vec3().to_array()),
                     front_facing: front,
                 });

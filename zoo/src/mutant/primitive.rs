@@ -132,6 +132,7 @@ fn with_last_pixels(draw: &Draw, mut out: Vec<Fragment>, also: impl Fn(usize) ->
             primitive: i as u32,
             depth,
             barycentric: [0.0, 1.0, 0.0],
+            flat: draw.provoking(i),
             screen_barycentric: Some([0.0, 1.0, 0.0]),
             front_facing: true,
         }));

@@ -1,8 +1,10 @@
 //! The bugs of the draw state the contract gained after its first rasterizers (the scissor,
-//! culling of both faces, strips and fans, so far): the reference's own drawing with that state
+//! culling of both faces, strips and fans, flat values, so far): the reference's own drawing with that state
 //! applied wrong in one way, so that every failure is that bug's doing.
 
-use refrast::{CullMode, Draw, DrawError, Fragment, Rasterizer, Reference, Resolved, Scissor, Topology};
+use refrast::{
+    CullMode, Draw, DrawError, Fragment, ProvokingVertex, Rasterizer, Reference, Resolved, Scissor, Topology,
+};
 
 use super::Bug;
 
@@ -11,6 +13,13 @@ pub fn rasterize(bug: Bug, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
     let mut reference = Reference::default();
     if let Some(assembled) = misassembled(bug, draw) {
         return reference.rasterize(&assembled);
+    }
+    if matches!(bug, Bug::LastCornerFlat | Bug::ClippedFlat | Bug::FirstOnlyFlat) {
+        let mut fragments = reference.rasterize(draw)?;
+        for f in &mut fragments {
+            f.flat = misprovoked(bug, draw, f.primitive as usize);
+        }
+        return Ok(fragments);
     }
     // The culling bugs first: no rule draws both faces culled with a scissor, so neither kind
     // of bug hides the other.
@@ -104,4 +113,37 @@ fn misassembled(bug: Bug, draw: &Draw) -> Option<Draw> {
         indices: list,
         ..draw.clone()
     })
+}
+
+/// The vertex whose flat values primitive `i` takes under `bug`.
+fn misprovoked(bug: Bug, draw: &Draw, i: usize) -> Option<u32> {
+    let right = draw.provoking(i);
+    let Some(corners) = draw.triangle(i) else {
+        return right;
+    };
+    match bug {
+        Bug::LastCornerFlat if draw.state.provoking_vertex == ProvokingVertex::Last => Some(corners[2]),
+        Bug::FirstOnlyFlat => {
+            let mut first = draw.clone();
+            first.state.provoking_vertex = ProvokingVertex::First;
+            first.provoking(i)
+        }
+        Bug::ClippedFlat => {
+            // Before the near plane: w ≤ 0, or z below the clip volume's near bound.
+            let cut = |v: u32| {
+                draw.positions.get(v as usize).is_none_or(|&[_, _, z, w]| {
+                    let near = match draw.state.depth_range {
+                        refrast::DepthRange::ZeroToOne => z,
+                        refrast::DepthRange::NegativeOneToOne => z + w,
+                    };
+                    w <= 0.0 || near < 0.0
+                })
+            };
+            match right {
+                Some(v) if cut(v) => corners.into_iter().find(|&c| !cut(c)).or(right),
+                _ => right,
+            }
+        }
+        _ => right,
+    }
 }

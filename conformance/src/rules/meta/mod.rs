@@ -98,7 +98,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .cases(600)
             .needs(STRIPS)
             .keeps_winding()
-            .vulkan_and_opengl(Level::Partly {
+            .every_spec(Level::Partly {
                 part: |r, cfg| property_for(r, cfg, strip::strips, check_same_as_list_away_from_edges),
                 note: STRIP_ORDER_NOT_PINNED,
             })
@@ -109,7 +109,7 @@ pub(super) fn rules() -> Vec<Rule> {
             .cases(600)
             .needs(FANS)
             .keeps_winding()
-            .vulkan_and_opengl(Level::Partly {
+            .every_spec(Level::Partly {
                 part: |r, cfg| property_for(r, cfg, strip::fans, check_same_as_list_away_from_edges),
                 note: STRIP_ORDER_NOT_PINNED,
             })

@@ -113,7 +113,7 @@ fn compare_permuted(
 /// Whether triangle 0 of `scene`, as projected, is wide enough for the precision `profile`
 /// claims to give its weights meaning: its area at least `2^-precision` of its extent squared
 /// (the error of weights computed at that precision grows as extent² / area).
-fn resolvable(scene: &Scene, profile: &Profile) -> bool {
+pub(super) fn resolvable(scene: &Scene, profile: &Profile) -> bool {
     let p = scene
         .positions_of(0)
         .map(|v| raster::project(scene.width, scene.height, v));

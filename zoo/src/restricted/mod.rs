@@ -5,6 +5,8 @@
 //! whatever a profile supports (`tests/integration/restricted.rs`, and `refrast certify --impl
 //! 'restricted:*'` at full cases).
 
+mod state;
+
 use refrast::{
     ClipMode, CompareOp, CullMode, DepthRange, Draw, DrawError, Features, Fragment, FrontFace, PointClipping,
     Profile, Rasterizer, Reference, ReferenceConfig, Resolved, SnapAccuracy, SnapRounding, Spec,
@@ -75,6 +77,9 @@ impl Rasterizer for Restricted {
             if !self.features.screen_barycentrics {
                 f.screen_barycentric = None;
             }
+            if self.state.flat.is_empty() {
+                f.flat = Some(u32::MAX - 1);
+            }
         }
         Ok(fragments)
     }
@@ -112,18 +117,6 @@ fn only(name: impl Into<String>, description: impl Into<String>, restrict: impl 
         description,
         ReferenceConfig::default(),
         restrict,
-        Spec::Refrast,
-    )
-}
-
-/// The default reference declaring only `state` of the state beyond [`Features`].
-fn stateful(name: impl Into<String>, description: impl Into<String>, state: StateSupport) -> Restriction {
-    restriction(
-        name,
-        description,
-        ReferenceConfig::default(),
-        |_: &mut Features| {},
-        state,
         Spec::Refrast,
     )
 }
@@ -337,39 +330,7 @@ pub fn restrictions() -> Vec<Restriction> {
         |_: &mut Features| {},
         Spec::Refrast,
     ));
-    all.push(stateful(
-        "scissor=none",
-        "no scissor",
-        StateSupport {
-            scissor: false,
-            ..StateSupport::ALL
-        },
-    ));
-    all.push(stateful(
-        "cull=one-face",
-        "culls one face or none, never both",
-        StateSupport {
-            cull_both: false,
-            ..StateSupport::ALL
-        },
-    ));
-    all.push(stateful(
-        "topology=lists",
-        "triangle lists only: no strips or fans",
-        StateSupport {
-            triangle_strips: false,
-            triangle_fans: false,
-            ..StateSupport::ALL
-        },
-    ));
-    all.push(stateful(
-        "fans=none",
-        "strips but no fans, as D3D11 and WebGPU",
-        StateSupport {
-            triangle_fans: false,
-            ..StateSupport::ALL
-        },
-    ));
+    all.extend(state::restrictions());
     all.extend(combinations());
     all
 }

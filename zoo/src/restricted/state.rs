@@ -1,0 +1,71 @@
+//! Restrictions of the draw state beyond [`Features`]: each leaves one part of
+//! [`StateSupport`] out of the default reference's declaration, or restricts its values.
+
+use refrast::{Features, ProvokingVertex, ReferenceConfig, Spec, StateSupport, Supported};
+
+use super::{Restriction, restriction};
+
+/// The default reference declaring only `state` of the state beyond [`Features`].
+fn stateful(name: &str, description: &str, state: StateSupport) -> Restriction {
+    restriction(
+        name,
+        description,
+        ReferenceConfig::default(),
+        |_: &mut Features| {},
+        state,
+        Spec::Refrast,
+    )
+}
+
+/// Every restriction of [`StateSupport`]: each part left out, and each provoking-vertex mode
+/// alone.
+pub(super) fn restrictions() -> Vec<Restriction> {
+    let all = StateSupport::ALL;
+    let flat = |flat| StateSupport { flat, ..all };
+    vec![
+        stateful(
+            "scissor=none",
+            "no scissor",
+            StateSupport {
+                scissor: false,
+                ..all
+            },
+        ),
+        stateful(
+            "cull=one-face",
+            "culls one face or none, never both",
+            StateSupport {
+                cull_both: false,
+                ..all
+            },
+        ),
+        stateful(
+            "topology=lists",
+            "triangle lists only: no strips or fans",
+            StateSupport {
+                triangle_strips: false,
+                triangle_fans: false,
+                ..all
+            },
+        ),
+        stateful(
+            "fans=none",
+            "strips but no fans, as D3D11 and WebGPU",
+            StateSupport {
+                triangle_fans: false,
+                ..all
+            },
+        ),
+        stateful("flat=none", "no flat values reported", flat(Supported::NONE)),
+        stateful(
+            "provoking=first",
+            "flat values from the first vertex only, as D3D11",
+            flat(Supported::only(&[ProvokingVertex::First])),
+        ),
+        stateful(
+            "provoking=last",
+            "flat values from the last vertex only, as OpenGL ES",
+            flat(Supported::only(&[ProvokingVertex::Last])),
+        ),
+    ]
+}

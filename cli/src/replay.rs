@@ -253,6 +253,9 @@ fn describe(case: &CaseFile) -> String {
             u64::from(y) + u64::from(h)
         ));
     }
+    if let Some(mode) = &d.provoking_vertex {
+        text.push_str(&format!("; provoking-vertex {mode}"));
+    }
     if let Some([dx, dy]) = case.case.translate {
         text.push_str(&format!("; drawn again moved by ({dx}, {dy}) pixels"));
     }
@@ -272,13 +275,14 @@ fn print_fragments(r: &mut dyn Rasterizer, case: &CaseFile) -> Result<(), String
     match r.rasterize(&draw) {
         Ok(fragments) => {
             say(&format!(
-                "fragments drawn for the draw ({}): x y primitive sample front-facing depth barycentric",
+                "fragments drawn for the draw ({}): x y primitive sample front-facing depth barycentric flat",
                 fragments.len()
             ));
             for f in &fragments {
                 let b = f.barycentric;
+                let flat = f.flat.map_or("-".to_owned(), |v| v.to_string());
                 say(&format!(
-                    "  {} {} {} {} {} {:?} [{:?}, {:?}, {:?}]",
+                    "  {} {} {} {} {} {:?} [{:?}, {:?}, {:?}] {flat}",
                     f.x, f.y, f.primitive, f.sample, f.front_facing, f.depth, b[0], b[1], b[2]
                 ));
             }

@@ -4,7 +4,8 @@
 use std::path::{Path, PathBuf};
 
 use refrast::{
-    CompareOp, CullMode, DepthRange, FillConvention, FrontFace, Profile, Rasterizer, SnapAccuracy, Supported,
+    CompareOp, CullMode, DepthRange, FillConvention, FrontFace, Profile, ProvokingVertex, Rasterizer,
+    SnapAccuracy, Supported,
 };
 use serde::{Deserialize, Serialize};
 
@@ -365,6 +366,9 @@ pub fn feature_list(p: &Profile) -> Vec<String> {
     list.push(setting(bool::KEY, f.depth_writes));
     list.push(format!("{FAR_CLIPPING} {}", words(f.far_clipping)));
     list.push(setting(DepthRange::KEY, f.depth_ranges));
+    if !p.state.flat.is_empty() {
+        list.push(setting(ProvokingVertex::KEY, p.state.flat));
+    }
     list
 }
 

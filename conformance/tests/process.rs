@@ -61,6 +61,10 @@ fn main() {
             "a_version_2_child_draws_lines_points_and_samples",
             a_version_2_child_draws_lines_points_and_samples,
         ),
+        trial(
+            "a_version_3_child_reports_flat_values_in_its_mode_only",
+            a_version_3_child_reports_flat_values,
+        ),
         trial("a_bad_profile_line_is_named", bad_profile),
         trial("a_child_that_dies_at_start_shows_its_stderr", dies_at_start),
         trial("a_missing_program_is_a_start_error", missing_program),
@@ -195,6 +199,29 @@ fn a_version_2_child_draws_lines_points_and_samples() -> Result<(), String> {
         Err(DrawError::Unsupported(why)) if why.contains("does not declare") => Ok(()),
         other => Err(format!("a version 1 child was sent a line list: {other:?}")),
     }
+}
+
+/// A version 3 child declaring the last provoking vertex is sent only that mode, whatever a draw
+/// asks; its flat vertices come back under it, and are none for a draw asking the first.
+fn a_version_3_child_reports_flat_values() -> Result<(), String> {
+    let mut p = spawn("v3", 10.0);
+    let mut reference = Reference::default();
+    let mut d = Draw::of(
+        draw(2).viewport,
+        draw(2).positions,
+        Topology::TriangleStrip,
+        vec![0, 1, 2, 3],
+    );
+    let first = p.rasterize(&d).map_err(|e| e.to_string())?;
+    if first.is_empty() || first.iter().any(|f| f.flat.is_some()) {
+        return Err(format!("under the undeclared first mode: {first:?}"));
+    }
+    d.state.provoking_vertex = refrast::ProvokingVertex::Last;
+    let last = p.rasterize(&d).map_err(|e| e.to_string())?;
+    if last != reference.rasterize(&d).map_err(|e| e.to_string())? || last.iter().any(|f| f.flat.is_none()) {
+        return Err(format!("under the last mode, fragments differ: {last:?}"));
+    }
+    Ok(())
 }
 
 /// Version 2's sample word names a sample the draw has: only 0 at one sample a pixel.
@@ -597,12 +624,19 @@ fn fake_child(mode: &str) {
         ""
     };
     // Modes starting `v2` speak version 2: the reserved profile lines, a request's topology and
-    // samples, a sample word in each fragment.
-    let version = if mode.starts_with("v2") { 2 } else { 1 };
-    let reserved = if version == 2 {
-        "topology triangle-list line-list line-strip point-list\nsamples 1 4\nlines diamond-exit\n"
+    // samples, a sample word in each fragment; `v3` also the last provoking vertex and a flat
+    // word in each fragment.
+    let version = if mode.starts_with("v3") {
+        3
+    } else if mode.starts_with("v2") {
+        2
     } else {
-        ""
+        1
+    };
+    let reserved = match version {
+        2 => "topology triangle-list line-list line-strip point-list\nsamples 1 4\nlines diamond-exit\n",
+        3 => "topology triangle-list triangle-strip\nprovoking-vertex last\n",
+        _ => "",
     };
     let _ = write!(
         out,
@@ -728,12 +762,16 @@ fn record(f: &refrast::Fragment, sample: u8, version: u32) -> Vec<u8> {
         f.barycentric[2].to_bits(),
     ];
     let screen = f.screen_barycentric.unwrap_or_default().map(f32::to_bits);
-    let sample = [u32::from(sample)];
-    let sample = if version >= 2 { &sample[..] } else { &[] };
+    let extra = [u32::from(sample), f.flat.unwrap_or(u32::MAX)];
+    let extra = match version {
+        1 => &extra[..0],
+        2 => &extra[..1],
+        _ => &extra[..],
+    };
     words
         .iter()
         .chain(&screen)
-        .chain(sample)
+        .chain(extra)
         .flat_map(|w| w.to_le_bytes())
         .collect()
 }
@@ -748,7 +786,7 @@ fn read_draw(header: &str, input: &mut impl Read, version: u32) -> Option<(Strin
     let given = (fields.get("topology").copied(), fields.get("samples").copied());
     let (topology, samples) = match (version, given) {
         (1, (None, None)) => (Topology::TriangleList, 1),
-        (2, (Some(t), Some(n))) => (Topology::from_name(t)?, n.parse().ok()?),
+        (2 | 3, (Some(t), Some(n))) => (Topology::from_name(t)?, n.parse().ok()?),
         _ => {
             eprintln!("version {version} request with topology and samples {given:?}");
             return None;
@@ -783,5 +821,8 @@ fn read_draw(header: &str, input: &mut impl Read, version: u32) -> Option<(Strin
     d.state.depth.clear = word("depth-clear").parse().ok()?;
     d.state.depth_range = DepthRange::parse(word("depth-range"))?;
     d.state.clip_far = bool::parse(word(wire::FAR_CLIPPING))?;
+    if version >= 3 {
+        d.state.provoking_vertex = refrast::ProvokingVertex::parse(word("provoking-vertex"))?;
+    }
     Some((op, d))
 }

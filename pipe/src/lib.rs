@@ -268,9 +268,12 @@ impl Process {
             ))));
         }
         let deadline = Instant::now() + self.timeout;
+        // Only a provoking mode the child declared is sent (any draw may ask any mode).
+        let mut sent = draw.clone();
+        sent.state.provoking_vertex = self.declared.profile.fit(draw.state).provoking_vertex;
         running
             .outgoing
-            .send(wire::request(op, draw, self.declared.version));
+            .send(wire::request(op, &sent, self.declared.version));
         match read_reply(
             &mut running.incoming,
             op,
@@ -366,7 +369,19 @@ impl Rasterizer for Process {
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
         self.declares(draw)?;
         match self.exchange(Op::Rasterize, draw)? {
-            Reply::Fragments(fragments) => Ok(fragments),
+            // Flat values under a mode the child does not report them in are none.
+            Reply::Fragments(mut fragments) => {
+                if !self
+                    .declared
+                    .profile
+                    .state
+                    .flat
+                    .contains(draw.state.provoking_vertex)
+                {
+                    fragments.iter_mut().for_each(|f| f.flat = None);
+                }
+                Ok(fragments)
+            }
             Reply::Refused(e) => Err(e),
             Reply::Resolved(_) => Err(DrawError::Misbehaved("answered rasterize with a resolve".into())),
         }

@@ -191,9 +191,10 @@ pub const GUARD_BAND_LIMIT: u32 = refrast::COORD_LIMIT as u32;
 /// indices. `triangles=T` counts the draw's primitives, whose indices follow: `3T` of a triangle
 /// list, `2T` of a line list, `T + 1` of a line strip and `T + 2` of a triangle strip or fan
 /// (none when `T = 0`), `T` of a point list.
-/// Version 2 ends the header with the topology and the samples per pixel; a version 1 child is
-/// only ever sent triangle lists at one sample. A draw with a scissor ends it with
-/// `scissor=X,Y,W,H`, in either version.
+/// Version 2 ends the header with the topology and the samples per pixel (a version 1 child is
+/// only ever sent triangle lists at one sample), version 3 then with the provoking vertex (the
+/// caller sends only a mode the child declared). A draw with a scissor ends it with
+/// `scissor=X,Y,W,H`, in any version.
 #[must_use]
 pub fn request(op: Op, draw: &Draw, version: u32) -> Vec<u8> {
     let s = &draw.state;
@@ -425,7 +426,7 @@ pub fn version(line: &str) -> Result<u32, String> {
             spoken()
         )),
         _ => Err(format!(
-            "the child's first line must be `refrast-protocol {VERSION}` (or an older version: {}), but it is `{}`",
+            "the child's first line must be `refrast-protocol N` for a version this refrast speaks ({}), but it is `{}`",
             spoken(),
             shown(line)
         )),

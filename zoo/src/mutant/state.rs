@@ -12,7 +12,12 @@ use super::Bug;
 pub fn rasterize(bug: Bug, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
     let mut reference = Reference::default();
     if let Some(assembled) = misassembled(bug, draw) {
-        return reference.rasterize(&assembled);
+        // The list's flat values are its own; the strip's are what its bug leaves alone.
+        let mut fragments = reference.rasterize(&assembled)?;
+        for f in &mut fragments {
+            f.flat = draw.provoking(f.primitive as usize);
+        }
+        return Ok(fragments);
     }
     if matches!(bug, Bug::LastCornerFlat | Bug::ClippedFlat | Bug::FirstOnlyFlat) {
         let mut fragments = reference.rasterize(draw)?;
@@ -118,16 +123,16 @@ fn misassembled(bug: Bug, draw: &Draw) -> Option<Draw> {
 /// The vertex whose flat values primitive `i` takes under `bug`.
 fn misprovoked(bug: Bug, draw: &Draw, i: usize) -> Option<u32> {
     let right = draw.provoking(i);
+    if bug == Bug::FirstOnlyFlat {
+        let mut first = draw.clone();
+        first.state.provoking_vertex = ProvokingVertex::First;
+        return first.provoking(i);
+    }
     let Some(corners) = draw.triangle(i) else {
         return right;
     };
     match bug {
         Bug::LastCornerFlat if draw.state.provoking_vertex == ProvokingVertex::Last => Some(corners[2]),
-        Bug::FirstOnlyFlat => {
-            let mut first = draw.clone();
-            first.state.provoking_vertex = ProvokingVertex::First;
-            first.provoking(i)
-        }
         Bug::ClippedFlat => {
             // Before the near plane: w ≤ 0, or z below the clip volume's near bound.
             let cut = |v: u32| {

@@ -125,8 +125,13 @@ impl Rasterizer for Shaped {
         profile.name = format!("shaped:{}", self.shape.name());
         match self.shape {
             Shape::ScanConverter => {
-                // Triangles at one sample, nothing else.
+                // Triangles at one sample, lists, strips and fans, with their flat vertices
+                // (a scan converter assembles and shades them as the reference does).
+                let all = profile.state;
                 profile = std::mem::take(&mut profile).triangles_only();
+                profile.state.triangle_strips = all.triangle_strips;
+                profile.state.triangle_fans = all.triangle_fans;
+                profile.state.flat = all.flat;
                 profile.snapping = Snapping::Grid(6);
                 profile.features.snap = SnapAccuracy::TowardZero;
                 profile.features.ties_to_even = false;

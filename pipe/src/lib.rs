@@ -269,11 +269,10 @@ impl Process {
         }
         let deadline = Instant::now() + self.timeout;
         // Only a provoking mode the child declared is sent (any draw may ask any mode).
-        let mut sent = draw.clone();
-        sent.state.provoking_vertex = self.declared.profile.fit(draw.state).provoking_vertex;
+        let provoking = self.declared.profile.fit(draw.state).provoking_vertex;
         running
             .outgoing
-            .send(wire::request(op, &sent, self.declared.version));
+            .send(wire::request_in(op, draw, self.declared.version, provoking));
         match read_reply(
             &mut running.incoming,
             op,

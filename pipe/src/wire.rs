@@ -197,6 +197,13 @@ pub const GUARD_BAND_LIMIT: u32 = refrast::COORD_LIMIT as u32;
 /// `scissor=X,Y,W,H`, in any version.
 #[must_use]
 pub fn request(op: Op, draw: &Draw, version: u32) -> Vec<u8> {
+    request_in(op, draw, version, draw.state.provoking_vertex)
+}
+
+/// [`request`] asking for flat values under `provoking` rather than the draw's own mode: the
+/// one the child declares (a draw may ask any), without copying the draw.
+#[must_use]
+pub fn request_in(op: Op, draw: &Draw, version: u32, provoking: ProvokingVertex) -> Vec<u8> {
     let s = &draw.state;
     let count = draw.primitive_count();
     let mut extra = if version >= 2 {
@@ -205,7 +212,7 @@ pub fn request(op: Op, draw: &Draw, version: u32) -> Vec<u8> {
         String::new()
     };
     if version >= 3 {
-        extra += &format!(" {}={}", ProvokingVertex::KEY, s.provoking_vertex.word());
+        extra += &format!(" {}={}", ProvokingVertex::KEY, provoking.word());
     }
     // Only a child that declares the feature is ever sent a scissor (Profile::fit drops it).
     if let Some(r) = s.scissor {

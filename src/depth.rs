@@ -30,15 +30,69 @@ impl DepthRange {
     }
 }
 
-/// The depth a fragment stores: interpolated window depth clamped to `[0, 1]`.
-///
-/// With far clipping off this is depth clamping (D3D11 `DepthClipEnable = FALSE`): geometry
-/// beyond the far plane is drawn at depth 1 instead of at an unbounded or infinite depth.
-/// With it on, it only removes rounding just outside the range.
-#[must_use]
-#[inline]
-pub fn fragment_depth(interpolated: f64) -> f32 {
-    interpolated.clamp(0.0, 1.0) as f32
+/// The viewport's depth range, Vulkan's `minDepth` and `maxDepth` (OpenGL's `DepthRange(n, f)`,
+/// D3D11's `MinDepth`, `MaxDepth`): where the clip volume's near and far planes land in
+/// window depth. Each lies in `[0, 1]`; `min` may exceed `max`, which reverses depth.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ViewportDepth {
+    /// Window depth at the near plane (`n`).
+    pub min: f32,
+    /// Window depth at the far plane (`f`).
+    pub max: f32,
+}
+
+impl Default for ViewportDepth {
+    /// `[0, 1]`: the whole depth buffer, near at 0.
+    fn default() -> Self {
+        Self::FULL
+    }
+}
+
+impl ViewportDepth {
+    /// `[0, 1]`, every API's default.
+    pub const FULL: Self = Self { min: 0.0, max: 1.0 };
+
+    /// Window depth of normalised depth `u` (0 at the near plane, 1 at the far one, as
+    /// [`DepthRange::window_depth`] gives it): `n + (f − n)·u`, Vulkan's `o_z + p_z·z_d` for
+    /// either clip volume.
+    #[must_use]
+    #[inline]
+    pub fn window(self, u: f64) -> f64 {
+        let (n, f) = (f64::from(self.min), f64::from(self.max));
+        n + (f - n) * u
+    }
+
+    /// The depth a fragment stores: interpolated window depth clamped to `[min(n, f), max(n, f)]`.
+    ///
+    /// With depth clipping off this is depth clamping (Vulkan, Depth Clamping and Range
+    /// Adjustment; D3D11 `DepthClipEnable = FALSE`): geometry before the near or beyond the far
+    /// plane is drawn at its depth instead of an unbounded or infinite one. With clipping on it
+    /// only removes rounding just outside the range (where Vulkan leaves the value undefined).
+    #[must_use]
+    #[inline]
+    pub fn fragment_depth(self, interpolated: f64) -> f32 {
+        let (lo, hi) = (self.min.min(self.max), self.min.max(self.max));
+        (interpolated as f32).clamp(lo, hi)
+    }
+
+    /// Whether `min > max`: depth reversed, the near plane at the larger window depth.
+    #[must_use]
+    pub fn is_inverted(self) -> bool {
+        self.min > self.max
+    }
+
+    /// `Err` naming what to fix unless both ends are in `[0, 1]` (Vulkan
+    /// VUID-VkViewport-minDepth-01234 and maxDepth-01235; NaN included).
+    pub fn validate(self) -> Result<(), String> {
+        let ok = |v: f32| (0.0..=1.0).contains(&v);
+        if ok(self.min) && ok(self.max) {
+            return Ok(());
+        }
+        Err(format!(
+            "viewport depth {}..{}: minDepth and maxDepth must each be in [0, 1]",
+            self.min, self.max
+        ))
+    }
 }
 
 /// How an incoming depth is compared with the stored one; the fragment passes when true.

@@ -176,8 +176,8 @@ impl Draw {
         self.topology.primitive_count(self.indices.len()).unwrap_or(0)
     }
 
-    /// Checks the sample count, the index count and every index, so that rasterizers can index
-    /// `positions` freely afterwards.
+    /// Checks the sample count, the index count, the viewport depth range and every index, so
+    /// that rasterizers can index `positions` freely afterwards.
     pub fn validate(&self) -> Result<(), DrawError> {
         if !SAMPLE_COUNTS.contains(&self.samples) {
             return Err(DrawError::Unsupported(format!(
@@ -187,6 +187,10 @@ impl Draw {
         }
         self.topology
             .primitive_count(self.indices.len())
+            .map_err(DrawError::Unsupported)?;
+        self.state
+            .viewport_depth
+            .validate()
             .map_err(DrawError::Unsupported)?;
         let vertices = self.positions.len();
         for i in 0..self.primitive_count() {

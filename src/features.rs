@@ -4,7 +4,7 @@
 use std::fmt;
 use std::marker::PhantomData;
 
-use crate::depth::{CompareOp, DepthRange};
+use crate::depth::{CompareOp, DepthRange, ViewportDepth};
 use crate::setup::{CullMode, FrontFace};
 use crate::state::ProvokingVertex;
 use crate::viewport::GUARD_BAND_REACH;
@@ -294,9 +294,32 @@ pub struct StateSupport {
     /// the vertex whose flat values a fragment carries; none when it reports none. A draw in
     /// another mode is drawn all the same, its `flat` unjudged (`None` is the honest answer).
     pub flat: Supported<ProvokingVertex>,
+    /// It honours [`DrawState::viewport_depth`](crate::DrawState::viewport_depth) with
+    /// `min ≤ max`: window depth `n + (f − n)·u`, clamped to `[n, f]`.
+    pub viewport_depth: bool,
+    /// It also honours `min > max` (Vulkan allows it; D3D11 and wgpu do not).
+    pub inverted_depth: bool,
+    /// It draws with depth clipping off ([`DrawState::clip_near`](crate::DrawState::clip_near)
+    /// and `clip_far` both `false`): nothing cut at the near or far plane, depth clamped to the
+    /// viewport's depth range (Vulkan's `depthClampEnable`, wgpu's `unclipped_depth`).
+    pub unclipped_depth: bool,
 }
 
 impl StateSupport {
+    /// `range` when declared; an inverted one in order where only ordered ones are, and the
+    /// whole range where none is.
+    #[must_use]
+    pub fn fit_viewport_depth(&self, range: ViewportDepth) -> ViewportDepth {
+        match (self.viewport_depth, self.inverted_depth || !range.is_inverted()) {
+            (false, _) => ViewportDepth::FULL,
+            (true, true) => range,
+            (true, false) => ViewportDepth {
+                min: range.max,
+                max: range.min,
+            },
+        }
+    }
+
     /// None of it: what a rasterizer written before it existed declares.
     pub const NONE: StateSupport = StateSupport {
         scissor: false,
@@ -304,6 +327,9 @@ impl StateSupport {
         triangle_strips: false,
         triangle_fans: false,
         flat: Supported::NONE,
+        viewport_depth: false,
+        inverted_depth: false,
+        unclipped_depth: false,
     };
     /// All of it, as the reference honours it.
     pub const ALL: StateSupport = StateSupport {
@@ -312,6 +338,9 @@ impl StateSupport {
         triangle_strips: true,
         triangle_fans: true,
         flat: Supported::ALL,
+        viewport_depth: true,
+        inverted_depth: true,
+        unclipped_depth: true,
     };
 }
 

@@ -70,17 +70,13 @@ impl<'d> FrontSetup<'d> {
         Self {
             draw,
             triangles: draw.triangles(),
-            planes: clip_planes(
-                config.clip,
-                draw.viewport,
-                draw.state.clip_far,
-                draw.state.depth_range,
-            ),
+            planes: clip_planes(config.clip, draw.viewport, &draw.state),
             transform: ViewportTransform {
                 viewport: draw.viewport,
                 bits: config.subpixel_bits,
                 rounding: config.snap_rounding,
                 depth_range: draw.state.depth_range,
+                viewport_depth: draw.state.viewport_depth,
             },
             fill: config.fill,
             traversal: config.traversal,

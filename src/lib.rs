@@ -129,7 +129,7 @@ mod viewport;
 
 pub use clip::ClipMode;
 pub use config::{ReferenceConfig, Traversal};
-pub use depth::{CompareOp, DepthRange, DepthState};
+pub use depth::{CompareOp, DepthRange, DepthState, ViewportDepth};
 pub use draw::{Draw, Fragment, Resolved};
 pub use edge::{FillConvention, is_top_left, orient2d};
 pub use error::{ConfigError, DrawError, Unavailable};

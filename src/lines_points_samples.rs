@@ -19,7 +19,6 @@ use glam::{DVec3, DVec4};
 
 use crate::clip::{ClipMode, ClipPlane, ClipVertex, clip_planes, clip_segment, outcode};
 use crate::config::Traversal;
-use crate::depth::fragment_depth;
 use crate::draw::{Draw, Fragment};
 use crate::error::DrawError;
 use crate::fixed::FixedPoint;
@@ -93,6 +92,7 @@ impl Reference {
             bits: self.config().subpixel_bits,
             rounding: self.config().snap_rounding,
             depth_range: draw.state.depth_range,
+            viewport_depth: draw.state.viewport_depth,
         }
     }
 
@@ -152,7 +152,16 @@ impl Reference {
                     stats.fragments += 1;
                     emit(Fragment {
                         sample: k as u8,
-                        ..Sample::new(primitive as u32, kept.front_facing, flat, hit, &fan, &moved).fragment()
+                        ..Sample::new(
+                            draw.state.viewport_depth,
+                            primitive as u32,
+                            kept.front_facing,
+                            flat,
+                            hit,
+                            &fan,
+                            &moved,
+                        )
+                        .fragment()
                     });
                 });
             }
@@ -163,12 +172,7 @@ impl Reference {
     /// Line lists and strips: clip, project and snap each segment, cover it by the line rule.
     fn draw_lines(&self, draw: &Draw, offsets: &Offsets, mut emit: impl FnMut(Fragment)) -> DrawStats {
         let transform = self.transform(draw);
-        let planes = clip_planes(
-            self.config().clip,
-            draw.viewport,
-            draw.state.clip_far,
-            draw.state.depth_range,
-        );
+        let planes = clip_planes(self.config().clip, draw.viewport, &draw.state);
         let mut stats = DrawStats {
             triangles: draw.primitive_count(),
             ..DrawStats::default()
@@ -235,7 +239,10 @@ impl Reference {
                 y: y as u32,
                 sample: sample as u8,
                 primitive,
-                depth: fragment_depth(va.varyings.depth + (vb.varyings.depth - va.varyings.depth) * t),
+                depth: draw
+                    .state
+                    .viewport_depth
+                    .fragment_depth(va.varyings.depth + (vb.varyings.depth - va.varyings.depth) * t),
                 barycentric: b.perspective.as_vec3().to_array(),
                 flat,
                 screen_barycentric: b.screen.map(|s| s.as_vec3().to_array()),
@@ -276,12 +283,7 @@ impl Reference {
     fn draw_points(&self, draw: &Draw, offsets: &Offsets, mut emit: impl FnMut(Fragment)) -> DrawStats {
         let transform = self.transform(draw);
         let config = self.config();
-        let mut planes = clip_planes(
-            ClipMode::Full,
-            draw.viewport,
-            draw.state.clip_far,
-            draw.state.depth_range,
-        );
+        let mut planes = clip_planes(ClipMode::Full, draw.viewport, &draw.state);
         // Kept pop-free, a point is clipped by the near and far planes alone.
         if config.point_clipping == PointClipping::UserClipPlanesOnly {
             planes.retain(|p| matches!(p, ClipPlane::Near(_) | ClipPlane::Far));
@@ -331,7 +333,7 @@ impl Reference {
                             y: y as u32,
                             sample: k as u8,
                             primitive: i as u32,
-                            depth: fragment_depth(point.depth),
+                            depth: draw.state.viewport_depth.fragment_depth(point.depth),
                             barycentric: [1.0, 0.0, 0.0],
                             flat: draw.provoking(i),
                             screen_barycentric: Some([1.0, 0.0, 0.0]),

@@ -315,7 +315,10 @@ impl Profile {
         fitted.front_face = f.front_faces.fit(state.front_face);
         fitted.depth.compare = f.compare_ops.fit(state.depth.compare);
         fitted.depth.write = f.depth_writes.fit(state.depth.write);
-        fitted.clip_far = f.far_clipping.fit(state.clip_far);
+        // Depth clipping off is both planes off; else far clipping as declared.
+        fitted.clip_near = !self.state.unclipped_depth || state.clip_near;
+        fitted.clip_far = fitted.clip_near && f.far_clipping.fit(state.clip_far);
+        fitted.viewport_depth = self.state.fit_viewport_depth(state.viewport_depth);
         fitted.depth_range = f.depth_ranges.fit(state.depth_range);
         fitted.scissor = state.scissor.filter(|_| self.state.scissor);
         // Without flat values the mode changes nothing: the default is what such a draw has.

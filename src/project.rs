@@ -7,7 +7,7 @@
 use glam::{DVec3, DVec4};
 
 use crate::clip::ClipVertex;
-use crate::depth::DepthRange;
+use crate::depth::{DepthRange, ViewportDepth};
 use crate::fixed::{FixedPoint, SnapRounding, SubpixelBits};
 use crate::interp::Varyings;
 use crate::viewport::Viewport;
@@ -60,7 +60,7 @@ impl ProjectedPoint {
 }
 
 /// The viewport transform of a draw: NDC to raster space, snapped to its grid, with window depth.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ViewportTransform {
     /// The render target.
     pub viewport: Viewport,
@@ -68,8 +68,10 @@ pub struct ViewportTransform {
     pub bits: SubpixelBits,
     /// How a coordinate becomes a grid point.
     pub rounding: SnapRounding,
-    /// How z/w maps to window depth.
+    /// How z/w maps to normalised depth.
     pub depth_range: DepthRange,
+    /// Where normalised depth lands in window depth.
+    pub viewport_depth: ViewportDepth,
 }
 
 impl ViewportTransform {
@@ -88,7 +90,9 @@ impl ViewportTransform {
         let (x, y) = self.viewport.to_raster(p.x / p.w, p.y / p.w);
         Some(ProjectedPoint {
             position: FixedPoint::snap_rounding(x, y, self.bits, self.rounding)?,
-            depth: self.depth_range.window_depth(p.z, p.w),
+            depth: self
+                .viewport_depth
+                .window(self.depth_range.window_depth(p.z, p.w)),
             inv_w: 1.0 / p.w,
         })
     }
@@ -147,6 +151,7 @@ pub(crate) mod tests {
             bits: SubpixelBits::DEFAULT,
             rounding: SnapRounding::NearestEven,
             depth_range: DepthRange::ZeroToOne,
+            viewport_depth: ViewportDepth::FULL,
         }
     }
 

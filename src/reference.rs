@@ -1,7 +1,7 @@
 //! The reference rasterizer: clip, project, snap, set up, traverse, interpolate — nothing clever.
 
 use crate::config::ReferenceConfig;
-use crate::depth::fragment_depth;
+use crate::depth::ViewportDepth;
 use crate::draw::{Draw, Fragment};
 use crate::error::DrawError;
 use crate::features::{Features, SnapAccuracy, StateSupport};
@@ -153,6 +153,7 @@ impl Reference {
                 }
                 covered += 1;
                 visit(&Sample::new(
+                    setup.draw.state.viewport_depth,
                     primitive as u32,
                     kept.front_facing,
                     flat,
@@ -187,8 +188,10 @@ pub struct Sample<'a> {
 }
 
 impl<'a> Sample<'a> {
-    /// The sample at `hit` of triangle `primitive`, its depth interpolated (screen-linear).
+    /// The sample at `hit` of triangle `primitive`, its depth interpolated (screen-linear) and
+    /// clamped to the viewport's depth range `range`.
     pub(crate) fn new(
+        range: ViewportDepth,
         primitive: u32,
         front_facing: bool,
         flat: Option<u32>,
@@ -203,7 +206,7 @@ impl<'a> Sample<'a> {
             x: hit.x,
             y: hit.y,
             primitive,
-            depth: fragment_depth(interpolate_depth(corners, hit.values, t.setup.area2())),
+            depth: range.fragment_depth(interpolate_depth(corners, hit.values, t.setup.area2())),
             front_facing,
             flat,
             values: hit.values,

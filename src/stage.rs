@@ -19,7 +19,7 @@
 //!    [`CullMode::culls`](crate::CullMode::culls));
 //! 6. **traverse** the bounding box ([`PixelRect::bounding`], [`traverse`]), edge values stepped
 //!    exactly ([`EdgeFunction`], [`TriangleSetup`]);
-//! 7. **interpolate** depth ([`interpolate_depth`], [`fragment_depth`]) and barycentrics
+//! 7. **interpolate** depth ([`interpolate_depth`], [`ViewportDepth::fragment_depth`](crate::ViewportDepth::fragment_depth)) and barycentrics
 //!    ([`screen_weights`], [`interpolate`]) from what the corners carry ([`Varyings`]).
 //!
 //! Lines and points have stages of their own: [`clip_segment`], then the exact coverage of
@@ -32,7 +32,6 @@ pub use crate::clip::{
     clip_triangle, intersect, outcode,
 };
 pub use crate::dda::{LineFragment, LineVertex, rasterize_line, rasterize_point};
-pub use crate::depth::fragment_depth;
 pub use crate::edge::EdgeFunction;
 pub use crate::front::{Corner, Discard, FrontScratch, FrontSetup, Kept, front_end};
 pub use crate::interp::{Barycentrics, Varyings, interpolate, interpolate_depth, screen_weights};

@@ -2,11 +2,11 @@
 //! provoking vertex. Its own module because both the contract (a [`Draw`](crate::Draw) carries
 //! it) and a profile (which states it supports) need it.
 
-use crate::depth::{DepthRange, DepthState};
+use crate::depth::{DepthRange, DepthState, ViewportDepth};
 use crate::setup::{CullMode, FrontFace};
 
 /// Everything about a draw besides its geometry.
-#[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DrawState {
     /// Facing to discard.
     pub cull: CullMode,
@@ -16,8 +16,17 @@ pub struct DrawState {
     pub depth: DepthState,
     /// The clip volume's z range.
     pub depth_range: DepthRange,
-    /// Whether triangles are clipped at the far plane `z = w` (near is always clipped).
+    /// Whether triangles are clipped at the far plane `z = w`; without it, depth is clamped.
     pub clip_far: bool,
+    /// Whether primitives are clipped at the near plane (`z = 0`, or `z = −w`); without it,
+    /// depth is clamped (depth clipping off: Vulkan's `depthClipEnable = VK_FALSE`, OpenGL's
+    /// `DEPTH_CLAMP`, D3D11's `DepthClipEnable = FALSE`). Sent off only to a rasterizer that
+    /// declares it ([`StateSupport::unclipped_depth`](crate::StateSupport::unclipped_depth)),
+    /// and then with far clipping off too. Points behind the eye are still clipped, by x and y.
+    pub clip_near: bool,
+    /// Where the near and far planes land in window depth. Sent other than `[0, 1]` only to a
+    /// rasterizer that declares it ([`StateSupport::viewport_depth`](crate::StateSupport::viewport_depth)).
+    pub viewport_depth: ViewportDepth,
     /// The rectangle fragments must fall in; `None` tests nothing. Sent only to a rasterizer
     /// that declares it ([`StateSupport::scissor`](crate::StateSupport::scissor)).
     pub scissor: Option<Scissor>,
@@ -38,6 +47,25 @@ pub enum ProvokingVertex {
     /// Its last vertex (OpenGL's default, OpenGL ES's only one): a list's `3i + 2`, a strip's or
     /// fan's `i + 2`, a line's `2i + 1` or `i + 1`, a point's.
     Last,
+}
+
+impl Default for DrawState {
+    /// No culling, counter-clockwise front faces, a LESS test, the `[0, 1]` clip volume with
+    /// near clipping on and far clipping off, the whole depth range, no scissor, the first
+    /// provoking vertex.
+    fn default() -> Self {
+        Self {
+            cull: CullMode::default(),
+            front_face: FrontFace::default(),
+            depth: DepthState::default(),
+            depth_range: DepthRange::default(),
+            clip_far: false,
+            clip_near: true,
+            viewport_depth: ViewportDepth::FULL,
+            scissor: None,
+            provoking_vertex: ProvokingVertex::default(),
+        }
+    }
 }
 
 impl DrawState {

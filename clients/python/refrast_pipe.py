@@ -18,8 +18,9 @@ FRAGMENT = struct.Struct("<4I7f2I")
 Draw = namedtuple(
     "Draw",
     "width height positions triangles cull front_face depth_compare depth_write depth_clear "
-    "depth_range far_clipping topology samples scissor indices provoking_vertex",
-    defaults=(None, None, "first"),
+    "depth_range far_clipping topology samples scissor indices provoking_vertex near_clipping "
+    "viewport_depth",
+    defaults=(None, None, "first", True, (0.0, 1.0)),
 )
 Draw.__doc__ = """One draw: clip-space positions (x, y, z, w), triangles (i, j, k) and state.
 
@@ -34,8 +35,13 @@ order Vulkan makes them (triangle i of a strip: indices i, i+1+i%2, i+2-i%2; of 
 0), so a triangle rasterizer draws strips and fans unchanged, barycentric k being the weight of
 its triangle's vertex k. Lines and points are read (their indices) but make no triangles.
 provoking_vertex is first or last: which vertex of a primitive gives its flat values (a
-fragment's flat), last only for a profile whose provoking-vertex line lists it. Indices are not
-checked: raise Refused for one that names no vertex."""
+fragment's flat), last only for a profile whose provoking-vertex line lists it. near_clipping is
+False only for a profile whose features name unclipped-depth (and far_clipping is then False too):
+nothing is cut at the near or far plane and depth is clamped to the viewport's depth range.
+viewport_depth is (min, max), where the near and far planes land in window depth (n + (f - n) * u),
+other than (0.0, 1.0) only for a profile whose features name viewport-depth (min > max only for
+inverted-depth); depth clamps to [min(n, f), max(n, f)]. Indices are not checked: raise Refused
+for one that names no vertex."""
 
 Fragment = namedtuple(
     "Fragment", "x y primitive front_facing depth barycentric screen_barycentric sample flat"
@@ -125,6 +131,10 @@ def _read_draw(words, stream):
         samples=int(fields.get("samples", "1")),
         scissor=tuple(int(v) for v in fields["scissor"].split(",")) if "scissor" in fields else None,
         provoking_vertex=fields.get("provoking-vertex", "first"),
+        near_clipping=fields.get("near-clipping", "on") == "on",
+        viewport_depth=tuple(float(v) for v in fields["viewport-depth"].split(","))
+        if "viewport-depth" in fields
+        else (0.0, 1.0),
     )
 
 

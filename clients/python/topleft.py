@@ -4,9 +4,11 @@
 Coverage is exact: vertices snap to 1/256 pixel (round half to even), edge functions are
 Python integers, and a sample exactly on an edge belongs to the triangle only if the edge is a
 top or a left edge (D3D11's top-left rule). Triangles are clipped in clip space against the
-near plane, the far plane when asked, and a guard band 16384 pixels from the viewport's centre,
+near plane (unless depth clipping is off), the far plane when asked, and a guard band 16384
+pixels from the viewport's centre,
 each cut computed from the inside end; a clipped polygon covers the samples its snapped fan winds
-around. Barycentrics are perspective-correct, depth is z/w linear on screen, a scissor rectangle
+around. Barycentrics are perspective-correct, depth is z/w through the viewport's depth range
+(reversed too), linear on screen and clamped to that range, a scissor rectangle
 drops the fragments outside it, and its own depth buffer answers `resolve`. It draws triangle
 lists, strips and fans (refrast_pipe assembles a strip's or fan's triangles in Vulkan's order),
 and each fragment carries its triangle's provoking vertex (first or last) as its flat vertex.
@@ -39,7 +41,8 @@ PROFILE = {
     "depth": "z-over-w",
     "tolerance": 1,
     "precision": 18,
-    "features": "perspective-barycentrics screen-barycentrics depth-test ties-to-even scissor",
+    "features": "perspective-barycentrics screen-barycentrics depth-test ties-to-even scissor "
+    "inverted-depth unclipped-depth",
     # The guard band's half-side less half the largest viewport (16384 px): its reach beyond
     # every side of every viewport.
     "guard-band": int(GUARD_BAND) - 16384 // 2,
@@ -80,10 +83,13 @@ def snap(v):
 def planes(draw):
     """Signed distances to the clip planes: inside when >= 0."""
     kx, ky = 2 * GUARD_BAND / draw.width, 2 * GUARD_BAND / draw.height
-    if draw.depth_range == "zero-to-one":
-        out = [lambda p: p[2]]
+    out = []
+    if not draw.near_clipping:
+        pass
+    elif draw.depth_range == "zero-to-one":
+        out.append(lambda p: p[2])
     else:
-        out = [lambda p: p[2] + p[3]]
+        out.append(lambda p: p[2] + p[3])
     if draw.far_clipping:
         out.append(lambda p: p[3] - p[2])
     out += [
@@ -123,7 +129,9 @@ def project(draw, vertex, input_w):
     sx, sy = snap(px), snap(py)
     if sx is None or sy is None:
         return None
-    depth = z / w if draw.depth_range == "zero-to-one" else (z / w + 1.0) * 0.5
+    u = z / w if draw.depth_range == "zero-to-one" else (z / w + 1.0) * 0.5
+    n, f = draw.viewport_depth
+    depth = n + (f - n) * u
     screen = None
     if input_w is not None:
         scaled = [b * wi for b, wi in zip(bary, input_w)]
@@ -267,7 +275,7 @@ def fan_fragments(draw, t, raster, front):
                 sa[2] * s0 + sb[2] * s1 + sc[2] * s2,
             )
         out.append(
-            Fragment(px, py, t, front, f32(min(max(depth, 0.0), 1.0)), bary, screen, flat=provoking(draw, t))
+            Fragment(px, py, t, front, f32(min(max(depth, min(draw.viewport_depth)), max(draw.viewport_depth))), bary, screen, flat=provoking(draw, t))
         )
     return out
 

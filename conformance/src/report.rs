@@ -343,6 +343,12 @@ pub fn feature_list(p: &Profile) -> Vec<String> {
         (p.state.cull_both, "cull front-and-back"),
         (p.state.triangle_strips, "triangle-strip"),
         (p.state.triangle_fans, "triangle-fan"),
+        (
+            p.state.viewport_depth && !p.state.inverted_depth,
+            "viewport-depth",
+        ),
+        (p.state.inverted_depth, "inverted-depth"),
+        (p.state.unclipped_depth, "unclipped-depth"),
     ];
     let mut list: Vec<String> = abilities
         .iter()

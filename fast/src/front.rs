@@ -91,14 +91,26 @@ impl Chunk {
                 let varyings = t.setup.order().map(|k| &t.vertices[k].varyings);
                 Some(Single {
                     steps: EdgeSteps::new(&t.setup, setup.front.transform.bits, rect),
-                    planes: Planes::new(primitive as u32, kept.front_facing, varyings, t.setup.area2()),
+                    planes: Planes::new(
+                        primitive as u32,
+                        kept.front_facing,
+                        varyings,
+                        t.setup.area2(),
+                        setup.front.draw.state.viewport_depth,
+                    ),
                 })
             }
             None => {
                 let (fan, polygon) = (&self.scratch.fan, &self.scratch.raster);
                 self.fan_planes.extend(fan.iter().map(|f| {
                     let corners = f.setup.order().map(|k| &polygon[f.corners[k]].varyings);
-                    Planes::new(primitive as u32, kept.front_facing, corners, f.setup.area2())
+                    Planes::new(
+                        primitive as u32,
+                        kept.front_facing,
+                        corners,
+                        f.setup.area2(),
+                        setup.front.draw.state.viewport_depth,
+                    )
                 }));
                 self.fans.extend_from_slice(fan);
                 None

@@ -206,10 +206,14 @@ impl Rasterizer for Fast {
             name: "fast".into(),
             precision_bits: PRECISION_BITS,
             // Triangles at one sample, lists, strips and fans (the front end reads every
-            // triangle through `Draw::triangles`): fast draws nothing else.
+            // triangle through `Draw::triangles`): fast draws nothing else. The reference's
+            // front end also gives it depth clipping off and the depth range; its planes clamp.
             state: StateSupport {
                 triangle_strips: true,
                 triangle_fans: true,
+                viewport_depth: true,
+                inverted_depth: true,
+                unclipped_depth: true,
                 ..triangles.state
             },
             ..triangles

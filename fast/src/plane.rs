@@ -20,8 +20,8 @@
 //! Every operation is a separate IEEE multiply or add in a fixed order (no fused multiply-add,
 //! which not every level has), so every SIMD level and the scalar code give the same bits.
 
-use refrast::Fragment;
 use refrast::stage::Varyings;
+use refrast::{Fragment, ViewportDepth};
 
 use crate::back::{LANES, Lanes, for_each_lane};
 
@@ -50,12 +50,21 @@ pub(crate) struct Planes {
     barycentric: [[f32; 3]; 3],
     /// Each corner's screen barycentrics in the input triangle, when it has them.
     screen: Option<[[f32; 3]; 3]>,
+    /// The viewport's depth range, lower end first: what depth is clamped to.
+    depth_bounds: [f32; 2],
 }
 
 impl Planes {
     /// Sets up a triangle with `corners` in its setup's order (the order of its edge values)
-    /// and twice its area `area2` (positive, the sum of its edge values).
-    pub fn new(primitive: u32, front_facing: bool, corners: [&Varyings; 3], area2: i64) -> Self {
+    /// and twice its area `area2` (positive, the sum of its edge values), drawn with the
+    /// viewport depth range `range`.
+    pub fn new(
+        primitive: u32,
+        front_facing: bool,
+        corners: [&Varyings; 3],
+        area2: i64,
+        range: ViewportDepth,
+    ) -> Self {
         let inv_area = 1.0 / area2 as f64;
         let max_inv_w = corners.iter().map(|c| c.inv_w).fold(0.0, f64::max);
         let to_f32 = |v: glam::DVec3| v.as_vec3().to_array();
@@ -75,17 +84,19 @@ impl Planes {
             inv_w: corners.map(|c| c.inv_w / max_inv_w),
             barycentric: corners.map(|c| to_f32(c.barycentric)),
             screen,
+            depth_bounds: [range.min.min(range.max), range.min.max(range.max)],
         }
     }
 
-    /// Window depth at eight samples from their exact edge values `e`, clamped to `[0, 1]`.
+    /// Window depth at eight samples from their exact edge values `e`, clamped to the
+    /// viewport's depth range (as [`ViewportDepth::fragment_depth`] does, in the same order).
     #[inline(always)]
     pub fn depth(&self, e: &[[f64; LANES]; 3]) -> [f32; LANES] {
         let mut depth = [0.0; LANES];
         for (i, d) in depth.iter_mut().enumerate() {
             let z = ((self.z0 + e[1][i] * self.gz[0]) + e[2][i] * self.gz[1]) as f32;
             // `clamp` is two comparisons (`max`/`min` may differ in zero signs and NaNs by level).
-            *d = z.clamp(0.0, 1.0);
+            *d = z.clamp(self.depth_bounds[0], self.depth_bounds[1]);
         }
         depth
     }
@@ -192,7 +203,13 @@ mod tests {
             corner(0.9, 0.011, [0.0, 0.0, 1.0]),
         ];
         let area2 = 1_000_003;
-        let planes = Planes::new(7, true, [&corners[0], &corners[1], &corners[2]], area2);
+        let planes = Planes::new(
+            7,
+            true,
+            [&corners[0], &corners[1], &corners[2]],
+            area2,
+            ViewportDepth::FULL,
+        );
         let e1: [f64; LANES] = std::array::from_fn(|i| 1237.0 * i as f64 + 3.0);
         let e2: [f64; LANES] = std::array::from_fn(|i| 98_765.0 - 4099.0 * i as f64);
         let e0 = std::array::from_fn(|i| area2 as f64 - e1[i] - e2[i]);

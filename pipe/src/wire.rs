@@ -177,6 +177,20 @@ pub const FAR_CLIPPING: &str = "far-clipping";
 /// it: `scissor=X,Y,WIDTH,HEIGHT` in pixels, origin top-left.
 pub const SCISSOR: &str = "scissor";
 
+/// The feature word a child declares to be sent a viewport depth range other than `[0, 1]`
+/// with `minDepth ≤ maxDepth`, and the request key that carries it: `viewport-depth=MIN,MAX`.
+pub const VIEWPORT_DEPTH: &str = "viewport-depth";
+
+/// The feature word a child declares to be sent `minDepth > maxDepth` too.
+pub const INVERTED_DEPTH: &str = "inverted-depth";
+
+/// The feature word a child declares to be sent draws with depth clipping off, and the
+/// request key that says so: `near-clipping=off` (with `far-clipping=off`).
+pub const UNCLIPPED_DEPTH: &str = "unclipped-depth";
+
+/// The request key of near clipping, sent only as `near-clipping=off`.
+pub const NEAR_CLIPPING: &str = "near-clipping";
+
 /// The key of the guard band's reach: pixels beyond each side of the viewport.
 pub const GUARD_BAND: &str = "guard-band";
 
@@ -194,7 +208,8 @@ pub const GUARD_BAND_LIMIT: u32 = refrast::COORD_LIMIT as u32;
 /// Version 2 ends the header with the topology and the samples per pixel (a version 1 child is
 /// only ever sent triangle lists at one sample), version 3 then with the provoking vertex (the
 /// caller sends only a mode the child declared). A draw with a scissor ends it with
-/// `scissor=X,Y,W,H`, in any version.
+/// `scissor=X,Y,W,H`, one with depth clipping off with `near-clipping=off`, one with a depth
+/// range other than `[0, 1]` with `viewport-depth=MIN,MAX`, in any version.
 #[must_use]
 pub fn request(op: Op, draw: &Draw, version: u32) -> Vec<u8> {
     request_in(op, draw, version, draw.state.provoking_vertex)
@@ -217,6 +232,14 @@ pub fn request_in(op: Op, draw: &Draw, version: u32, provoking: ProvokingVertex)
     // Only a child that declares the feature is ever sent a scissor (Profile::fit drops it).
     if let Some(r) = s.scissor {
         extra += &format!(" {SCISSOR}={},{},{},{}", r.x, r.y, r.width, r.height);
+    }
+    // The same for depth clipping off and the depth range (Profile::fit keeps the defaults).
+    if !s.clip_near {
+        extra += &format!(" {NEAR_CLIPPING}=off");
+    }
+    if s.viewport_depth != refrast::ViewportDepth::FULL {
+        let d = s.viewport_depth;
+        extra += &format!(" {VIEWPORT_DEPTH}={:?},{:?}", d.min, d.max);
     }
     let header = format!(
         "{} width={} height={} vertices={} triangles={count} cull={} front-face={} depth-compare={} \
@@ -590,7 +613,13 @@ impl Reading {
             f.ties_to_even,
             f.zero_area_before_clipping,
         ) = (false, false, false, false, false);
-        self.profile.state.scissor = false;
+        let state = &mut self.profile.state;
+        (
+            state.scissor,
+            state.viewport_depth,
+            state.inverted_depth,
+            state.unclipped_depth,
+        ) = (false, false, false, false);
         for word in rest.split_whitespace() {
             let flag = match word {
                 "perspective-barycentrics" => &mut f.perspective_barycentrics,
@@ -598,14 +627,22 @@ impl Reading {
                 "depth-test" => &mut f.depth_test,
                 "ties-to-even" => &mut f.ties_to_even,
                 "zero-area-before-clipping" => &mut f.zero_area_before_clipping,
-                SCISSOR => &mut self.profile.state.scissor,
+                SCISSOR => &mut state.scissor,
+                VIEWPORT_DEPTH => &mut state.viewport_depth,
+                // Reversed ranges are ranges too.
+                INVERTED_DEPTH => {
+                    state.viewport_depth = true;
+                    &mut state.inverted_depth
+                }
+                UNCLIPPED_DEPTH => &mut state.unclipped_depth,
                 // The word alone, from before the guard band had a size: the reach the rule drew
                 // then. A `guard-band PIXELS` line says more.
                 "guard-band" => &mut self.guard_band_word,
                 _ => {
                     return Err(bad(
                         "features are perspective-barycentrics, screen-barycentrics, depth-test, \
-                         ties-to-even, zero-area-before-clipping, scissor and guard-band",
+                         ties-to-even, zero-area-before-clipping, scissor, viewport-depth, \
+                         inverted-depth, unclipped-depth and guard-band",
                     ));
                 }
             };

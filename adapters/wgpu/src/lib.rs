@@ -284,7 +284,8 @@ impl Rasterizer for Gpu {
             // declared (their rules are n/a). Triangle strips are core everywhere. Flat values
             // (WGSL `@interpolate(flat)`) come from the mode the API fixes, as wgpu sets no
             // other: Vulkan's default, the first vertex; OpenGL ES's only one, the last (§12.4,
-            // Table 12.3); the rule checks each driver against it.
+            // Table 12.3); the rule checks each driver against it. The viewport's depth range is
+            // `set_viewport`'s, which rejects `min_depth > max_depth`.
             state: StateSupport {
                 scissor: true,
                 cull_both: false,
@@ -295,6 +296,9 @@ impl Rasterizer for Gpu {
                 } else {
                     ProvokingVertex::First
                 }]),
+                viewport_depth: true,
+                inverted_depth: false,
+                unclipped_depth: false,
             },
         }
     }

@@ -174,8 +174,15 @@ impl Readback {
 }
 
 /// The draw's scissor rectangle on `pass`, cut to the target, as wgpu requires of a rectangle
-/// (what lies past the target passes nothing there anyway); none leaves the whole target.
+/// (what lies past the target passes nothing there anyway), none leaving the whole target; and
+/// its viewport's depth range, over the whole target (wgpu's default viewport, with
+/// `min_depth ≤ max_depth`: `Profile::fit` sends no other).
 pub fn set_scissor(pass: &mut wgpu::RenderPass<'_>, draw: &Draw) {
+    let depth = draw.state.viewport_depth;
+    if depth != refrast::ViewportDepth::FULL {
+        let (w, h) = (draw.viewport.width() as f32, draw.viewport.height() as f32);
+        pass.set_viewport(0.0, 0.0, w, h, depth.min, depth.max);
+    }
     if let Some(s) = draw.state.scissor {
         let (w, h) = (draw.viewport.width(), draw.viewport.height());
         let (x, y) = (s.x.min(w), s.y.min(h));

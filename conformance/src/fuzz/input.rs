@@ -6,7 +6,10 @@
 use std::fmt;
 
 use arbitrary::Arbitrary;
-use refrast::{CompareOp, CullMode, DepthRange, DepthState, DrawState, FrontFace, ProvokingVertex, Scissor};
+use refrast::{
+    CompareOp, CullMode, DepthRange, DepthState, DrawState, FrontFace, ProvokingVertex, Scissor,
+    ViewportDepth,
+};
 
 use crate::scene::{Scene, clip_of, rust_f32};
 use crate::strategy::{self, GRID, triangulate};
@@ -63,8 +66,9 @@ impl RawDraw {
 
 /// Every draw state from 16 bits: cull mode (both faces included), front face, compare op,
 /// depth writes, depth range, far clipping, a clear value of 1, 0 or ½ (1 twice, once with the
-/// last provoking vertex), and one of 16 scissor rectangles or none (empty ones, thin ones, and
-/// ones past a 64-px viewport's right and bottom sides).
+/// last provoking vertex), and one of 16 scissor rectangles (empty ones, thin ones, and ones
+/// past a 64-px viewport's right and bottom sides) or, without one, a viewport depth range of
+/// four (whole, inside, inverted, a single depth) and depth clipping off one time in four.
 #[must_use]
 pub fn draw_state(bits: u16) -> DrawState {
     const OPS: [CompareOp; 8] = [
@@ -78,6 +82,9 @@ pub fn draw_state(bits: u16) -> DrawState {
         CompareOp::Always,
     ];
     let field = |shift: u16, n: u16| usize::from((bits >> shift) % n);
+    let scissored = field(11, 2) == 1;
+    // Without a scissor its bits choose the depth range and whether depth is clipped.
+    let viewport_depth = [(0.0, 1.0), (0.25, 0.75), (1.0, 0.0), (0.5, 0.5)][field(12, 4)];
     DrawState {
         cull: [
             CullMode::None,
@@ -93,7 +100,16 @@ pub fn draw_state(bits: u16) -> DrawState {
         },
         depth_range: [DepthRange::ZeroToOne, DepthRange::NegativeOneToOne][field(9, 2)],
         clip_far: field(10, 2) == 1,
-        scissor: (field(11, 2) == 1).then(|| {
+        clip_near: scissored || field(14, 4) != 3,
+        viewport_depth: if scissored {
+            ViewportDepth::FULL
+        } else {
+            ViewportDepth {
+                min: viewport_depth.0,
+                max: viewport_depth.1,
+            }
+        },
+        scissor: scissored.then(|| {
             let (a, b) = (field(12, 4), field(14, 4));
             Scissor {
                 x: 3 * a as u32,

@@ -15,7 +15,7 @@ use refrast::{DrawState, Profile};
 
 use super::brute_force::orient2d;
 use super::outline::visible_outline;
-use super::raster::{Point, near_distance, on_grid, project, to_raster};
+use super::raster::{Point, on_grid, outside_depth_planes, project, to_raster};
 
 /// How a triangle turns on screen as an implementation with some profile may see it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -138,9 +138,9 @@ pub fn turn(tri: &[[f32; 4]; 3], width: u32, height: u32, state: &DrawState, pro
     if wide.iter().flatten().any(|c| !c.is_finite()) {
         return Turn::Unsure;
     }
-    let cut = wide.iter().any(|&[_, _, z, w]| {
-        w <= 0.0 || near_distance(state.depth_range, z, w) < 0.0 || (state.clip_far && z > w)
-    });
+    let cut = wide
+        .iter()
+        .any(|&[_, _, z, w]| w <= 0.0 || outside_depth_planes(state, z, w));
     let band = profile.band_px();
     if cut {
         return clipped_turn(&wide, width, height, state, band);

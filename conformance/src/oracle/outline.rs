@@ -32,7 +32,10 @@ pub fn visible_outline(tri: &[[f64; 4]; 3], width: u32, height: u32, state: &Dra
         .map(|k| (tri[k], (1 << k) | (1 << ((k + 2) % 3))))
         .collect();
     let near = |p: &[f64; 4]| near_distance(state.depth_range, p[2], p[3]);
-    let mut planes: Vec<PlaneDistance<'_>> = vec![Box::new(|p: &[f64; 4]| p[3]), Box::new(near)];
+    let mut planes: Vec<PlaneDistance<'_>> = vec![Box::new(|p: &[f64; 4]| p[3])];
+    if state.clip_near {
+        planes.push(Box::new(near));
+    }
     if state.clip_far {
         planes.push(Box::new(|p: &[f64; 4]| p[3] - p[2]));
     }

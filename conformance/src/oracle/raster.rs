@@ -6,7 +6,7 @@
 
 use std::ops::Add;
 
-use refrast::{CompareOp, DepthRange, DepthState, Fragment};
+use refrast::{CompareOp, DepthRange, DepthState, DrawState, Fragment};
 
 /// A point in subpixel units.
 pub type Point = (i128, i128);
@@ -88,21 +88,53 @@ pub fn near_distance<T: Add<Output = T>>(range: DepthRange, z: T, w: T) -> T {
     }
 }
 
-/// Window depth from `z/w`: itself, or `(z/w + 1)/2` for the OpenGL range.
+/// Window depth from `z_d = z/w` under `state`, unclamped: Vulkan's `z_f = p_z·z_d + o_z` with
+/// `o_z = minDepth`, `p_z = maxDepth − minDepth`, or `(maxDepth + minDepth)/2` and
+/// `(maxDepth − minDepth)/2` for the OpenGL range (Controlling the Viewport; OpenGL 4.6 §13.8.1).
 #[must_use]
-pub fn window_depth(range: DepthRange, z_over_w: f64) -> f64 {
-    match range {
-        DepthRange::ZeroToOne => z_over_w,
-        DepthRange::NegativeOneToOne => (z_over_w + 1.0) * 0.5,
-    }
+pub fn window_depth(state: &DrawState, z_over_w: f64) -> f64 {
+    let (n, f) = (
+        f64::from(state.viewport_depth.min),
+        f64::from(state.viewport_depth.max),
+    );
+    let (o, p) = match state.depth_range {
+        DepthRange::ZeroToOne => (n, f - n),
+        DepthRange::NegativeOneToOne => ((f + n) * 0.5, (f - n) * 0.5),
+    };
+    p * z_over_w + o
 }
 
-/// Whether every vertex lies inside the clip volume (`w > 0`, near, far when enabled, and
-/// `|x|, |y| ≤ w`), so that no implementation clips the triangle.
+/// `[z_min, z_max] = [min(n, f), max(n, f)]`, the range depth clamping keeps a fragment's
+/// depth in (Vulkan, Depth Clamping and Range Adjustment).
 #[must_use]
-pub fn unclipped(p: &[[f32; 4]; 3], range: DepthRange, far: bool) -> bool {
+pub fn depth_bounds(state: &DrawState) -> [f64; 2] {
+    let (n, f) = (
+        f64::from(state.viewport_depth.min),
+        f64::from(state.viewport_depth.max),
+    );
+    [n.min(f), n.max(f)]
+}
+
+/// `depth` clamped to [`depth_bounds`]: what refrast's contract stores.
+#[must_use]
+pub fn clamp_depth(state: &DrawState, depth: f64) -> f64 {
+    let [lo, hi] = depth_bounds(state);
+    depth.clamp(lo, hi)
+}
+
+/// Whether a point at `z`, `w` lies outside a depth plane `state` clips at: before the near
+/// plane when near clipping is on, beyond the far plane when far clipping is.
+#[must_use]
+pub fn outside_depth_planes(state: &DrawState, z: f64, w: f64) -> bool {
+    (state.clip_near && near_distance(state.depth_range, z, w) < 0.0) || (state.clip_far && z > w)
+}
+
+/// Whether every vertex lies inside the clip volume of `state` (`w > 0`, near when enabled,
+/// far when enabled, and `|x|, |y| ≤ w`), so that no implementation clips the triangle.
+#[must_use]
+pub fn unclipped(p: &[[f32; 4]; 3], state: &DrawState) -> bool {
     p.iter().all(|&[x, y, z, w]| {
-        w > 0.0 && near_distance(range, z, w) >= 0.0 && (!far || z <= w) && x.abs() <= w && y.abs() <= w
+        w > 0.0 && !outside_depth_planes(state, f64::from(z), f64::from(w)) && x.abs() <= w && y.abs() <= w
     })
 }
 
@@ -152,6 +184,8 @@ pub fn replay_depth(
 
 #[cfg(test)]
 mod tests {
+    use refrast::ViewportDepth;
+
     use super::*;
 
     #[test]
@@ -191,7 +225,33 @@ mod tests {
     fn the_gl_range_moves_the_near_plane_to_minus_w() {
         assert_eq!(near_distance(DepthRange::ZeroToOne, -0.5, 1.0), -0.5);
         assert_eq!(near_distance(DepthRange::NegativeOneToOne, -0.5, 1.0), 0.5);
-        assert_eq!(window_depth(DepthRange::NegativeOneToOne, -1.0), 0.0);
-        assert_eq!(window_depth(DepthRange::ZeroToOne, 0.25), 0.25);
+        let gl = DrawState {
+            depth_range: DepthRange::NegativeOneToOne,
+            ..DrawState::default()
+        };
+        assert_eq!(window_depth(&gl, -1.0), 0.0);
+        assert_eq!(window_depth(&DrawState::default(), 0.25), 0.25);
+    }
+
+    /// The viewport's depth range maps the near plane to minDepth and the far one to maxDepth
+    /// under either volume, reversed too; depth clamps to the range between them.
+    #[test]
+    fn the_viewport_depth_range_maps_and_clamps() {
+        let mut state = DrawState {
+            viewport_depth: ViewportDepth { min: 0.75, max: 0.25 },
+            ..DrawState::default()
+        };
+        assert_eq!(window_depth(&state, 0.0), 0.75);
+        assert_eq!(window_depth(&state, 1.0), 0.25);
+        assert_eq!(window_depth(&state, 0.5), 0.5);
+        assert_eq!(clamp_depth(&state, 0.9), 0.75);
+        assert_eq!(clamp_depth(&state, -1.0), 0.25);
+        state.depth_range = DepthRange::NegativeOneToOne;
+        assert_eq!(window_depth(&state, -1.0), 0.75);
+        assert_eq!(window_depth(&state, 1.0), 0.25);
+        assert!(!outside_depth_planes(&state, -0.5, 1.0));
+        assert!(outside_depth_planes(&state, -1.5, 1.0));
+        state.clip_near = false;
+        assert!(!outside_depth_planes(&state, -1.5, 1.0));
     }
 }

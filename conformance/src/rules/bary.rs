@@ -272,7 +272,7 @@ pub fn check_reconstructs(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), V
     let profile = r.profile();
     let eps = precision(&profile);
     let exact = scene.corners(0);
-    let (tris, slack) = if unclipped(&exact, scene.state.depth_range, scene.state.clip_far) {
+    let (tris, slack) = if unclipped(&exact, &scene.state) {
         (snapped_triangles(scene, 0, &profile), 0.0)
     } else if exact.iter().all(|v| v[3] > 0.0) {
         (

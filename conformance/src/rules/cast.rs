@@ -122,7 +122,7 @@ pub fn raycast_expectations(profile: &Profile, scene: &Scene, frags: Vec<Fragmen
     else {
         return cast;
     };
-    if unclipped(&corners, state.depth_range, state.clip_far) {
+    if unclipped(&corners, &state) {
         let mut tris = snapped_triangles(scene, 0, profile).into_iter();
         let Some(tri) = tris.next() else {
             return cast;
@@ -153,7 +153,7 @@ pub fn raycast_expectations(profile: &Profile, scene: &Scene, frags: Vec<Fragmen
             corners
                 .iter()
                 .find_map(|(sx, sy)| ray_cast(&tri, nx + sx * half[0], ny + sy * half[1], &state))?;
-            let s = spread(&tri, nx, ny, half, state.depth_range)?;
+            let s = spread(&tri, nx, ny, half, &state)?;
             let expected = Expected {
                 barycentric: s.at.barycentric,
                 depth: s.at.depth,

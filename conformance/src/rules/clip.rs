@@ -17,8 +17,8 @@ pub(super) fn rules() -> Vec<Rule> {
     vec![
         Rule::invariant(Family::Clip, "clip.behind-eye.empty")
             .needs(CLIPS_IN_3D)
-            .sentence("A triangle wholly behind the eye (w < 0) or wholly before the near plane draws nothing.")
-            .source("MIT 6.837 seed 001 (why clip: w ≤ 0); Vulkan 1.4, Primitive Clipping")
+            .sentence("A triangle wholly behind the eye (w < 0) draws nothing, with depth clipping off too where declared; one wholly before the near plane draws nothing where the draw clips at it.")
+            .source("MIT 6.837 seed 001 (why clip: w ≤ 0); Vulkan 1.4, Primitive Clipping (−w_c ≤ x_c ≤ w_c holds for no point with w_c < 0, whether depth is clipped or not)")
             .cases(10000)
             .run(|r, cfg| property(r, cfg, behind_scene(), check_draws_nothing)),
         Rule::invariant(Family::Clip, "clip.interior.matches-raycast")
@@ -71,7 +71,8 @@ pub(super) fn rules() -> Vec<Rule> {
     ]
 }
 
-/// Triangles all behind the eye, or all in front of it but before the near plane.
+/// Triangles all behind the eye (half of them with depth clipping off, which `fit` turns back
+/// on for a profile without it), or all in front of it but before the near plane.
 ///
 /// Before the near plane means `z < −w`, which is before it under both clip volumes: a
 /// profile supporting only OpenGL's `−w ≤ z` has `fit` move the draw to that range, and a
@@ -83,9 +84,16 @@ fn behind_scene() -> impl Strategy<Value = Scene> {
         .prop_map(|(x, y, k, w)| [x * w, y * w, -w - k, w]);
     (
         strategy::side(),
-        prop_oneof![prop::array::uniform3(behind), prop::array::uniform3(before_near)],
+        prop_oneof![
+            (prop::array::uniform3(behind), any::<bool>()),
+            (prop::array::uniform3(before_near), Just(true)),
+        ],
     )
-        .prop_map(|(s, v)| Scene::new(s, s, v.to_vec(), vec![[0, 1, 2]]))
+        .prop_map(|(s, (v, clip_near))| {
+            let mut scene = Scene::new(s, s, v.to_vec(), vec![[0, 1, 2]]);
+            scene.state.clip_near = clip_near;
+            scene
+        })
 }
 
 /// Two triangles sharing a diagonal from 30000·w behind the near plane to 30000·w in front of
@@ -162,6 +170,8 @@ mod tests {
         for scene in strategy::samples(behind_scene(), 2000) {
             for p in &scene.positions {
                 let [_, _, z, w] = *p;
+                // Without near clipping only what lies behind the eye is sure to be invisible.
+                assert!(scene.state.clip_near || w < 0.0, "{p:?} with depth clipping off");
                 for range in [DepthRange::ZeroToOne, DepthRange::NegativeOneToOne] {
                     assert!(
                         w < 0.0 || near_distance(range, z, w) < 0.0,

@@ -7,7 +7,7 @@ use super::cast::{Expected, raycast_fragments, slack_note};
 use super::common::{Values, check_values_finite, fragments, precision, reaches_far};
 use super::level::{FAR_VALUES, Level};
 use super::{DEPTH_TEST, EXTREME_OPS, EXTREME_WINS, Family, Rule, Z_OVER_W_DEPTH};
-use crate::oracle::raster::{replay_depth, window_depth};
+use crate::oracle::raster::{depth_bounds, replay_depth, window_depth};
 use crate::runner::{property, property_for};
 use crate::scene::Scene;
 use crate::strategy;
@@ -164,11 +164,10 @@ fn depth_state_scene() -> impl Strategy<Value = Scene> {
 /// Depth stays between the vertices' smallest and largest z/w.
 pub fn check_within_vertices(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let eps = precision(&r.profile()) as f32;
-    let range = scene.state.depth_range;
     let z: Vec<f32> = scene
         .positions
         .iter()
-        .map(|p| window_depth(range, f64::from(p[2] / p[3])) as f32)
+        .map(|p| window_depth(&scene.state, f64::from(p[2] / p[3])) as f32)
         .collect();
     let (lo, hi) = z
         .iter()
@@ -195,19 +194,20 @@ pub fn check_depth_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Res
     let mut found = Findings::new();
     let cast = raycast_fragments(r, scene)?;
     // Clamping moves two values no further apart, so the slack still holds.
-    let off =
-        |f: &refrast::Fragment, want: &Expected| (f64::from(f.depth) - want.depth.clamp(0.0, 1.0)).abs();
+    let [lo, hi] = depth_bounds(&scene.state);
+    let off = |f: &refrast::Fragment, want: &Expected| (f64::from(f.depth) - want.depth.clamp(lo, hi)).abs();
     // Whether the first wrong fragment lies where the ray cast's depth is clamped, and its own
     // is not: depth beyond the far plane (far clipping off) or before the near one.
     let mut unclamped = None;
     for &(f, want) in &cast.pairs {
-        let depth = want.depth.clamp(0.0, 1.0);
+        let depth = want.depth.clamp(lo, hi);
         let off_by = off(&f, &want);
         if off_by > eps + want.depth_slack
             && !cast.another_snap_accepts(&f, |w| off(&f, w) <= eps + w.depth_slack)
         {
-            unclamped
-                .get_or_insert((want.depth > 1.0 && f.depth > 1.0) || (want.depth < 0.0 && f.depth < 0.0));
+            unclamped.get_or_insert(
+                (want.depth > hi && f64::from(f.depth) > hi) || (want.depth < lo && f64::from(f.depth) < lo),
+            );
             let off = off_by;
             found.add((f.x, f.y), || {
                 format!(
@@ -222,7 +222,7 @@ pub fn check_depth_matches_raycast(r: &mut dyn Rasterizer, scene: &Scene) -> Res
     found.verdict(|n| {
         let clamp = if unclamped == Some(true) {
             " (the first lies outside the clip volume's depth range, which the draw does not clip \
-             at: there depth is clamped to [0, 1], so clamp the fragment's depth)"
+             at: there depth is clamped to the viewport's depth range, so clamp the fragment's depth)"
         } else {
             ""
         };

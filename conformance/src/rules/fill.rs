@@ -139,7 +139,7 @@ pub fn check_exactly_once_between_two_cuts_apart(
 /// is unsure.
 pub fn check_matches_reference(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     // Where the triangle needs clipping, the cut vertices are each implementation's own rounding.
-    if !raster::unclipped(&scene.corners(0), scene.state.depth_range, scene.state.clip_far) {
+    if !raster::unclipped(&scene.corners(0), &scene.state) {
         return Ok(());
     }
     let profile = r.profile();
@@ -171,7 +171,7 @@ pub fn check_matches_reference(r: &mut dyn Rasterizer, scene: &Scene) -> Result<
 pub fn check_matches_brute_force(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let p = scene.corners(0);
     // The oracle knows nothing of clipping: triangles leaving the view volume are not judged here.
-    if !raster::unclipped(&p, scene.state.depth_range, scene.state.clip_far) {
+    if !raster::unclipped(&p, &scene.state) {
         return Ok(());
     }
     compare_brute_force(r, scene)

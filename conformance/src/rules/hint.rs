@@ -313,7 +313,7 @@ fn explains_coverage(
 ) -> Option<bool> {
     for t in 0..scene.triangles.len() {
         let corners = scene.corners(t);
-        if !raster::unclipped(&corners, scene.state.depth_range, scene.state.clip_far) {
+        if !raster::unclipped(&corners, &scene.state) {
             return None;
         }
         let variants: Vec<[Point; 3]> = match declared {
@@ -366,7 +366,7 @@ fn other_depth_range(
     }
     let eps = precision(profile);
     let off = |f: &Fragment, w: &Expected| {
-        (f64::from(f.depth) - w.depth.clamp(0.0, 1.0)).abs() > eps + w.depth_slack
+        (f64::from(f.depth) - raster::clamp_depth(&scene.state, w.depth)).abs() > eps + w.depth_slack
     };
     let declared = raycast_fragments(r, scene).ok()?;
     if !declared.pairs.iter().any(|(f, w)| off(f, w)) {

@@ -470,6 +470,10 @@ fn clip_expectations(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<Op
     let Some([pa, pb]) = case.segment(0) else {
         return Ok(None);
     };
+    // Without near clipping there is no cut to judge.
+    if !case.scene.state.clip_near {
+        return Ok(None);
+    }
     let (w, h) = (case.scene.width, case.scene.height);
     let range = case.scene.state.depth_range;
     let near = |p: [f32; 4]| near_distance(range, f64::from(p[2]), f64::from(p[3]));
@@ -569,8 +573,7 @@ pub fn check_depth_linear(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Resu
     let Some(ends) = case.segment(0) else {
         return Ok(());
     };
-    let [za, zb] =
-        ends.map(|p| window_depth(case.scene.state.depth_range, f64::from(p[2]) / f64::from(p[3])));
+    let [za, zb] = ends.map(|p| window_depth(&case.scene.state, f64::from(p[2]) / f64::from(p[3])));
     let p = precision(&d.profile);
     let mut found = Findings::new();
     for f in &frags {

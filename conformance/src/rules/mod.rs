@@ -21,6 +21,7 @@ pub mod samples;
 pub mod scissor;
 pub mod ties;
 pub mod vertices;
+pub mod viewport_depth;
 mod weights;
 pub mod why;
 
@@ -414,6 +415,7 @@ pub fn catalogue() -> Vec<Rule> {
     rules.extend(msaa::rules());
     rules.extend(scissor::rules());
     rules.extend(flat::rules());
+    rules.extend(viewport_depth::rules());
     rules
 }
 

@@ -9,7 +9,7 @@ use super::samples::{
 };
 use super::{Family, Rule, needs};
 use crate::oracle::facing::snap_candidates;
-use crate::oracle::raster::{Point, near_distance, project, window_depth};
+use crate::oracle::raster::{Point, clamp_depth, outside_depth_planes, project, window_depth};
 use crate::runner::property;
 use crate::scene::PrimitiveScene;
 use crate::strategy::primitive as points;
@@ -120,10 +120,7 @@ fn outside_xy(spec: Spec, clipping: PointClipping, cts: bool) -> Outside {
 fn in_view(case: &PrimitiveScene, i: usize, xy: bool) -> bool {
     let [x, y, z, w] = point(case, i).map(f64::from);
     let state = &case.scene.state;
-    w > 0.0
-        && (!xy || ((-w..=w).contains(&x) && (-w..=w).contains(&y)))
-        && near_distance(state.depth_range, z, w) >= 0.0
-        && (!state.clip_far || z <= w)
+    w > 0.0 && (!xy || ((-w..=w).contains(&x) && (-w..=w).contains(&y))) && !outside_depth_planes(state, z, w)
 }
 
 /// Each point's samples equal the square oracle's on its snapped position.
@@ -243,8 +240,10 @@ pub fn check_depth(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), 
     let mut found = Findings::new();
     for f in &frags {
         let v = point(case, f.primitive as usize);
-        let want =
-            window_depth(case.scene.state.depth_range, f64::from(v[2]) / f64::from(v[3])).clamp(0.0, 1.0);
+        let want = clamp_depth(
+            &case.scene.state,
+            window_depth(&case.scene.state, f64::from(v[2]) / f64::from(v[3])),
+        );
         let bary_off = profile.features.perspective_barycentrics
             && (f64::from(f.barycentric[0]) - 1.0)
                 .abs()

@@ -122,7 +122,7 @@ pub(super) fn rules() -> Vec<Rule> {
             })
             .run(|r, cfg| property(r, cfg, bit_pattern_scene(), check_raw_bits)),
         Rule::invariant(Family::Robust, "robust.output.well-formed")
-            .sentence("Fragments lie in the viewport, name a real primitive, cover a pixel at most once per primitive, and have depth in [0, 1] within the claimed precision.")
+            .sentence("Fragments lie in the viewport, name a real primitive, cover a pixel at most once per primitive, and have depth in the viewport's depth range ([0, 1] unless the draw sets one) within the claimed precision.")
             .source("the Rasterizer contract (src/rasterizer.rs: Fragment); Vulkan 1.4, Rasterization (no fragments outside the framebuffer) and Depth Clamping and Range Adjustment")
             .cases(5000)
             .vulkan_and_opengl(Level::Partly {
@@ -259,7 +259,7 @@ pub fn check_poisoned(r: &mut dyn Rasterizer, p: &Poisoned) -> Result<(), Violat
     )
 }
 
-/// Fragments are unique, have depth in [0, 1] within [`precision`] and finite barycentrics where
+/// Fragments are unique, have depth in the viewport's depth range within [`precision`] and finite barycentrics where
 /// the profile declares them (that they lie in the viewport and name real primitives,
 /// [`fragments`] checks for every rule).
 pub fn check_well_formed(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
@@ -373,12 +373,7 @@ pub fn within_float_range(scene: &Scene) -> bool {
     let Some(viewport) = scene.viewport() else {
         return false;
     };
-    let planes = clip_planes(
-        refrast::ClipMode::Full,
-        viewport,
-        scene.state.clip_far,
-        scene.state.depth_range,
-    );
+    let planes = clip_planes(refrast::ClipMode::Full, viewport, &scene.state);
     let (mut polygon, mut scratch) = (Vec::new(), Vec::new());
     finite
         && scene.triangles.iter().all(|&t| {
@@ -399,15 +394,17 @@ pub fn within_float_range(scene: &Scene) -> bool {
 struct Judged {
     /// Declared barycentrics finite.
     barycentrics: bool,
-    /// Depth in [0, 1] within the claimed precision.
+    /// Depth in the viewport's depth range within the claimed precision.
     depth: bool,
 }
 
 /// Fragments well formed; their depth in range and barycentrics finite as `judged` says.
 fn well_formed(r: &mut dyn Rasterizer, scene: &Scene, judged: Judged) -> Result<(), Violation> {
-    // Window depth is claimed within the precision of its exact value, which lies in [0, 1].
+    // Window depth is claimed within the precision of its exact value, which lies in the
+    // viewport's depth range ([0, 1] unless the draw sets one).
     let profile = r.profile();
-    let eps = precision(&profile) as f32;
+    let eps = precision(&profile);
+    let [lo, hi] = crate::oracle::raster::depth_bounds(&scene.state);
     // Barycentrics the profile does not declare are whatever the fragment carries.
     let declared = judged.barycentrics && profile.features.perspective_barycentrics;
     let frags = fragments(r, scene)?;
@@ -416,12 +413,12 @@ fn well_formed(r: &mut dyn Rasterizer, scene: &Scene, judged: Judged) -> Result<
     // What to change for the first fragment found wrong.
     let mut fix = None;
     for f in &frags {
-        let (problem, change) = if judged.depth && !(-eps..=1.0 + eps).contains(&f.depth) {
+        let (problem, change) = if judged.depth && !(lo - eps..=hi + eps).contains(&f64::from(f.depth)) {
             (
-                "has depth outside [0, 1] by more than the claimed precision",
+                "has depth outside the viewport's depth range by more than the claimed precision",
                 "clip triangles against the near plane (z < 0, or z < -w under \
-                 negative-one-to-one) and the far plane when the draw asks for far clipping, \
-                 else clamp depth to [0, 1]",
+                 negative-one-to-one) and the far plane when the draw asks for them, else clamp \
+                 depth to the viewport's depth range [min(minDepth, maxDepth), max(…)]",
             )
         } else if declared && f.barycentric.iter().any(|b| !b.is_finite()) {
             (

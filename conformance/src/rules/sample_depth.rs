@@ -8,7 +8,7 @@ use super::common::precision;
 use super::samples::{positions, sample_fragments};
 use crate::oracle::facing::snapped_variants;
 use crate::oracle::outline::segment_distance;
-use crate::oracle::raster::{project, window_depth};
+use crate::oracle::raster::{depth_bounds, project, window_depth};
 use crate::scene::PrimitiveScene;
 use crate::scene::Scene;
 use crate::violation::{Findings, Violation, plural};
@@ -57,6 +57,8 @@ pub(super) struct DepthPlane {
     z: [f64; 3],
     /// Twice the signed area, never zero.
     area: f64,
+    /// The viewport's depth range, which depth is clamped to.
+    bounds: [f64; 2],
     /// How far from the plane a depth may be: twice the claimed precision, plus how far a
     /// snapping variant may move the plane (its slope times the band, both ways).
     pub tolerance: f64,
@@ -76,7 +78,7 @@ impl DepthPlane {
             }
             None => scene.positions_of(t).map(|p| project(w, h, p)),
         };
-        let z = corners.map(|p| window_depth(scene.state.depth_range, f64::from(p[2]) / f64::from(p[3])));
+        let z = corners.map(|p| window_depth(&scene.state, f64::from(p[2]) / f64::from(p[3])));
         let area = (v[1][0] - v[0][0]) * (v[2][1] - v[0][1]) - (v[1][1] - v[0][1]) * (v[2][0] - v[0][0]);
         if area == 0.0 || !area.is_finite() {
             return None;
@@ -85,6 +87,7 @@ impl DepthPlane {
             v,
             z,
             area,
+            bounds: depth_bounds(&scene.state),
             tolerance: 0.0,
         };
         let slope = (plane.unclamped([1.0, 0.0]) - plane.unclamped([0.0, 0.0])).abs()
@@ -100,9 +103,9 @@ impl DepthPlane {
         (e(v[1], v[2]) * self.z[0] + e(v[2], v[0]) * self.z[1] + e(v[0], v[1]) * self.z[2]) / self.area
     }
 
-    /// The window depth at `s` in pixels, clamped to `[0, 1]`.
+    /// The window depth at `s` in pixels, clamped to the viewport's depth range.
     pub fn at(&self, s: [f64; 2]) -> f64 {
-        self.unclamped(s).clamp(0.0, 1.0)
+        self.unclamped(s).clamp(self.bounds[0], self.bounds[1])
     }
 }
 

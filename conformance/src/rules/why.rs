@@ -351,9 +351,10 @@ impl<'a> View<'a> {
         if tri.iter().any(|v| v[3] <= 0.0) {
             planes.push("w = 0 (the eye)");
         }
-        if tri
-            .iter()
-            .any(|v| near_distance(state.depth_range, v[2], v[3]) < 0.0)
+        if state.clip_near
+            && tri
+                .iter()
+                .any(|v| near_distance(state.depth_range, v[2], v[3]) < 0.0)
         {
             planes.push(match state.depth_range {
                 DepthRange::ZeroToOne => "the near plane z = 0",
@@ -378,7 +379,13 @@ type PlaneDistance<'a> = dyn Fn(&[f64; 4]) -> f64 + 'a;
 /// when enabled, far) plane, as the outline is.
 fn clipped_w(tri: &[[f64; 4]; 3], state: &refrast::DrawState) -> Vec<f64> {
     let mut poly: Vec<[f64; 4]> = tri.to_vec();
-    let near = |p: &[f64; 4]| near_distance(state.depth_range, p[2], p[3]);
+    let near = |p: &[f64; 4]| {
+        if state.clip_near {
+            near_distance(state.depth_range, p[2], p[3])
+        } else {
+            1.0
+        }
+    };
     let far = |p: &[f64; 4]| if state.clip_far { p[3] - p[2] } else { 1.0 };
     let eye = |p: &[f64; 4]| p[3];
     let planes: [&PlaneDistance<'_>; 3] = [&eye, &near, &far];

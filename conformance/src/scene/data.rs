@@ -5,13 +5,13 @@ use std::fmt;
 
 use refrast::{
     CompareOp, CullMode, DepthRange, DepthState, DrawState, FrontFace, ProvokingVertex, Scissor, Topology,
-    Viewport,
+    Viewport, ViewportDepth,
 };
 use serde::de::{self, Visitor};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::Scene;
-use refrast_pipe::wire::{FAR_CLIPPING, Word};
+use refrast_pipe::wire::{FAR_CLIPPING, NEAR_CLIPPING, Word};
 
 /// One f32 of a draw: a JSON number when finite (the shortest decimal that reads back to the
 /// same f32); a string otherwise, which JSON has no number for: `"NaN"`, `"Infinity"`,
@@ -128,6 +128,12 @@ pub struct DrawData {
     /// `first` or `last`: which vertex gives a primitive its flat values; absent for first.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub provoking_vertex: Option<String>,
+    /// `off` when depth clipping is off (the near plane clips nothing); absent for on.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub near_clipping: Option<String>,
+    /// The viewport's depth range `[minDepth, maxDepth]`; absent for `[0, 1]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub viewport_depth: Option<[Coordinate; 2]>,
 }
 
 impl DrawData {
@@ -153,6 +159,9 @@ impl DrawData {
             scissor: s.scissor.map(|r| [r.x, r.y, r.width, r.height]),
             provoking_vertex: (s.provoking_vertex != ProvokingVertex::First)
                 .then(|| s.provoking_vertex.word().to_owned()),
+            near_clipping: (!s.clip_near).then(|| s.clip_near.word().to_owned()),
+            viewport_depth: (s.viewport_depth != ViewportDepth::FULL)
+                .then_some([Coordinate(s.viewport_depth.min), Coordinate(s.viewport_depth.max)]),
         }
     }
 
@@ -181,6 +190,16 @@ impl DrawData {
                 Some(text) => word(ProvokingVertex::KEY, text)?,
                 None => ProvokingVertex::First,
             },
+            clip_near: match &self.near_clipping {
+                Some(text) => word(NEAR_CLIPPING, text)?,
+                None => true,
+            },
+            viewport_depth: self
+                .viewport_depth
+                .map_or(ViewportDepth::FULL, |[min, max]| ViewportDepth {
+                    min: min.0,
+                    max: max.0,
+                }),
         };
         // A draw needs a viewport in range; the rules build none other.
         Viewport::new(self.width, self.height)

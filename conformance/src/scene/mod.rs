@@ -6,7 +6,9 @@ mod primitive;
 
 use std::fmt;
 
-use refrast::{CullMode, DepthRange, Draw, DrawState, FrontFace, Profile, ProvokingVertex, Viewport};
+use refrast::{
+    CullMode, DepthRange, Draw, DrawState, FrontFace, Profile, ProvokingVertex, Viewport, ViewportDepth,
+};
 
 use crate::oracle::facing::{Turn, turn};
 use crate::oracle::raster::to_ndc;
@@ -140,7 +142,9 @@ impl Scene {
                 DepthRange::ZeroToOne => 0.0,
                 DepthRange::NegativeOneToOne => -v[3],
             };
-            v[2] = v[2].max(near);
+            if state.clip_near {
+                v[2] = v[2].max(near);
+            }
             if state.clip_far {
                 v[2] = v[2].min(v[3]);
             }
@@ -351,8 +355,23 @@ impl fmt::Debug for Scene {
                 s.provoking_vertex
             )?;
         }
+        if !s.clip_near {
+            writeln!(f, "        clip_near: false,")?;
+        }
+        if s.viewport_depth != ViewportDepth::FULL {
+            writeln!(
+                f,
+                "        viewport_depth: ViewportDepth {{ min: {}, max: {} }},",
+                rust_f32(s.viewport_depth.min),
+                rust_f32(s.viewport_depth.max)
+            )?;
+        }
         // The rest, where a field was left out (a struct update with none left is a lint).
-        if s.scissor.is_none() || s.provoking_vertex == ProvokingVertex::First {
+        if s.scissor.is_none()
+            || s.provoking_vertex == ProvokingVertex::First
+            || s.clip_near
+            || s.viewport_depth == ViewportDepth::FULL
+        {
             writeln!(f, "        ..DrawState::default()")?;
         }
         writeln!(f, "    }},")?;

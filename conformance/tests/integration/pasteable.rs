@@ -33,12 +33,14 @@ fn a_printed_scene_compiles_and_round_trips() {
                 height: 16,
             }),
             provoking_vertex: ProvokingVertex::Last,
+            clip_near: false,
+            viewport_depth: ViewportDepth { min: 0.75, max: 0.25 },
         },
     };
     let printed = format!("{pasted:?}");
     assert!(
         printed.contains(
-            "scissor: Some(Scissor { x: 2, y: 0, width: 9, height: 16 }),\n        provoking_vertex: ProvokingVertex::Last,\n    },"
+            "scissor: Some(Scissor { x: 2, y: 0, width: 9, height: 16 }),\n        provoking_vertex: ProvokingVertex::Last,\n        clip_near: false,\n        viewport_depth: ViewportDepth { min: 0.75, max: 0.25 },\n    },"
         ) && !printed.contains(".."),
         "{printed}"
     );
@@ -48,6 +50,8 @@ fn a_printed_scene_compiles_and_round_trips() {
         state: DrawState {
             scissor: None,
             provoking_vertex: ProvokingVertex::First,
+            clip_near: true,
+            viewport_depth: ViewportDepth::FULL,
             ..pasted.state
         },
         ..pasted.clone()

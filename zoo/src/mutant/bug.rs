@@ -120,11 +120,18 @@ pub enum Bug {
     ClippedFlat,
     /// The provoking mode ignored: flat values always from the first vertex.
     FirstOnlyFlat,
+    /// The viewport's depth range ignored: window depth always in `[0, 1]`.
+    IgnoredViewportDepth,
+    /// A reversed depth range put in order (`minDepth` taken as the smaller end), as an API that
+    /// rejects `minDepth > maxDepth` might: depth runs the wrong way.
+    SortedDepthRange,
+    /// Depth clipping off taken as far clipping off alone: the near plane still cuts.
+    NearClippedAnyway,
 }
 
 impl Bug {
     /// Every bug.
-    pub const ALL: [Bug; 46] = [
+    pub const ALL: [Bug; 49] = [
         Self::InclusiveEdges,
         Self::ExclusiveEdges,
         Self::BottomRightAsTopLeft,
@@ -171,6 +178,9 @@ impl Bug {
         Self::LastCornerFlat,
         Self::ClippedFlat,
         Self::FirstOnlyFlat,
+        Self::IgnoredViewportDepth,
+        Self::SortedDepthRange,
+        Self::NearClippedAnyway,
     ];
 
     /// The name after `mutant:` in `--impl`.
@@ -223,6 +233,9 @@ impl Bug {
             Self::LastCornerFlat => "last-corner-flat",
             Self::ClippedFlat => "clipped-flat",
             Self::FirstOnlyFlat => "first-only-flat",
+            Self::IgnoredViewportDepth => "ignored-viewport-depth",
+            Self::SortedDepthRange => "sorted-depth-range",
+            Self::NearClippedAnyway => "near-clipped-anyway",
         }
     }
 
@@ -269,6 +282,8 @@ impl Bug {
             Self::FrontOnlyForBoth | Self::BothCullsLines => "meta",
             Self::UnalternatedStrip | Self::ShortStrip | Self::FanAsStrip => "meta",
             Self::LastCornerFlat | Self::ClippedFlat | Self::FirstOnlyFlat => "bary",
+            Self::IgnoredViewportDepth | Self::SortedDepthRange => "depth",
+            Self::NearClippedAnyway => "clip",
         }
     }
 
@@ -280,7 +295,7 @@ impl Bug {
     }
 
     /// Whether it is a bug of the draw state beyond the first contract (the scissor, culling of
-    /// both faces, strips and fans, flat values): the mutant then declares everything the
+    /// both faces, strips and fans, flat values, the depth range and clamp): the mutant then declares everything the
     /// reference does, and draws with it.
     #[must_use]
     pub fn is_state(self) -> bool {
@@ -298,6 +313,9 @@ impl Bug {
                 | Self::LastCornerFlat
                 | Self::ClippedFlat
                 | Self::FirstOnlyFlat
+                | Self::IgnoredViewportDepth
+                | Self::SortedDepthRange
+                | Self::NearClippedAnyway
         )
     }
 }

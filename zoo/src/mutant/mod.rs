@@ -68,12 +68,7 @@ impl Rasterizer for Mutant {
         }
         draw.validate()?;
         let state = &draw.state;
-        let planes = clip_planes(
-            ClipMode::GuardBand,
-            draw.viewport,
-            state.clip_far,
-            state.depth_range,
-        );
+        let planes = clip_planes(ClipMode::GuardBand, draw.viewport, state);
         let mut out = Vec::new();
         for (primitive, t) in draw.triangles().iter().enumerate() {
             let p = t.map(|i| draw.positions[i as usize]);

@@ -1,9 +1,10 @@
 //! The bugs of the draw state the contract gained after its first rasterizers (the scissor,
-//! culling of both faces, strips and fans, flat values, so far): the reference's own drawing with that state
+//! culling of both faces, strips and fans, flat values, the depth range and clamp, so far): the reference's own drawing with that state
 //! applied wrong in one way, so that every failure is that bug's doing.
 
 use refrast::{
     CullMode, Draw, DrawError, Fragment, ProvokingVertex, Rasterizer, Reference, Resolved, Scissor, Topology,
+    ViewportDepth,
 };
 
 use super::Bug;
@@ -25,6 +26,9 @@ pub fn rasterize(bug: Bug, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
             f.flat = misprovoked(bug, draw, f.primitive as usize);
         }
         return Ok(fragments);
+    }
+    if let Some(moved) = misranged(bug, draw) {
+        return reference.rasterize(&moved);
     }
     // The culling bugs first: no rule draws both faces culled with a scissor, so neither kind
     // of bug hides the other.
@@ -88,6 +92,24 @@ pub fn resolve(bug: Bug, draw: &Draw) -> Result<Resolved, DrawError> {
         depth: written.depth,
         ..cut
     })
+}
+
+/// `draw` with its depth range or depth clipping applied wrong by `bug`; `None` for other bugs.
+fn misranged(bug: Bug, draw: &Draw) -> Option<Draw> {
+    let mut moved = draw.clone();
+    let range = draw.state.viewport_depth;
+    match bug {
+        Bug::IgnoredViewportDepth => moved.state.viewport_depth = ViewportDepth::FULL,
+        Bug::SortedDepthRange => {
+            moved.state.viewport_depth = ViewportDepth {
+                min: range.min.min(range.max),
+                max: range.min.max(range.max),
+            };
+        }
+        Bug::NearClippedAnyway => moved.state.clip_near = true,
+        _ => return None,
+    }
+    Some(moved)
 }
 
 /// A strip or fan assembled into triangles wrong by `bug`, as the triangle list it then draws

@@ -17,8 +17,8 @@ fn stateful(name: &str, description: &str, state: StateSupport) -> Restriction {
     )
 }
 
-/// Every restriction of [`StateSupport`]: each part left out, and each provoking-vertex mode
-/// alone.
+/// Every restriction of [`StateSupport`]: each part left out, each provoking-vertex mode
+/// alone, and depth ranges in order only.
 pub(super) fn restrictions() -> Vec<Restriction> {
     let all = StateSupport::ALL;
     let flat = |flat| StateSupport { flat, ..all };
@@ -66,6 +66,31 @@ pub(super) fn restrictions() -> Vec<Restriction> {
             "provoking=last",
             "flat values from the last vertex only, as OpenGL ES",
             flat(Supported::only(&[ProvokingVertex::Last])),
+        ),
+        stateful(
+            "viewport-depth=none",
+            "depth always in [0, 1]: no viewport depth range",
+            StateSupport {
+                viewport_depth: false,
+                inverted_depth: false,
+                ..all
+            },
+        ),
+        stateful(
+            "viewport-depth=ordered",
+            "depth ranges with minDepth ≤ maxDepth only, as D3D11 and wgpu",
+            StateSupport {
+                inverted_depth: false,
+                ..all
+            },
+        ),
+        stateful(
+            "depth-clip=on",
+            "depth always clipped: no depth clamping",
+            StateSupport {
+                unclipped_depth: false,
+                ..all
+            },
         ),
     ]
 }

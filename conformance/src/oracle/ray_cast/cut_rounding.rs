@@ -14,7 +14,7 @@
 //! For an f32 clipper these are real: lavapipe's clipper covers a sample 0.005 px beyond a far-plane
 //! cut that runs from a vertex at x = −30000, w = 0 (`clip_rounding_covers_lavapipes_far_cut`).
 
-use refrast::{DepthRange, DrawState};
+use refrast::DrawState;
 
 use super::spread::{CANCELLATION, plane_at};
 use crate::oracle::raster::{near_distance, to_ndc};
@@ -145,7 +145,7 @@ pub struct CutRounding {
     tri: [[f64; 4]; 3],
     width: u32,
     height: u32,
-    range: DepthRange,
+    state: DrawState,
     plane: Plane,
     /// Whether [`plane_at`] evaluates the plane everywhere in view, so no sample needs checks.
     settled_in_view: bool,
@@ -157,12 +157,17 @@ pub struct CutRounding {
     size: [f64; 3],
 }
 
+/// Whether plane `k` (w = 0, near, far) clips a draw in `state`.
+fn cuts_at(state: &DrawState, k: usize) -> bool {
+    [true, state.clip_near, state.clip_far][k]
+}
+
 impl CutRounding {
     /// The bound for clip-space triangle `tri` in a `width` × `height` viewport.
     #[must_use]
     pub fn new(tri: &[[f64; 4]; 3], width: u32, height: u32, state: &DrawState) -> Self {
         let range = state.depth_range;
-        // The signed distances to the planes that clip: w = 0, near, and far when enabled.
+        // The signed distances to the planes that clip: w = 0, near and far when enabled.
         let distance = |plane: usize, p: &[f64; 4]| match plane {
             0 => p[3],
             1 => near_distance(range, p[2], p[3]),
@@ -172,7 +177,7 @@ impl CutRounding {
         let mut differences = [[[0.0; 2]; 2]; 3];
         let mut cuts = 0;
         for k in 0..3 {
-            if (k < 2 || state.clip_far) && tri.iter().any(|v| distance(k, v) < 0.0) {
+            if cuts_at(state, k) && tri.iter().any(|v| distance(k, v) < 0.0) {
                 let f = tri.map(|v| distance(k, &v));
                 let [n0, nx, ny]: [f64; 3] =
                     std::array::from_fn(|c| (0..3).map(|i| plane.n[i][c] * f[i]).sum());
@@ -190,7 +195,7 @@ impl CutRounding {
             tri: *tri,
             width,
             height,
-            range,
+            state: *state,
             settled_in_view: plane.settled_in_view(),
             plane,
             differences,
@@ -218,7 +223,7 @@ impl CutRounding {
             // Only near the threshold does plane_at itself decide, exactly as before.
             if !in_view
                 && !self.plane.surely_settled(p, dp)
-                && plane_at(&self.tri, p[0], p[1], self.range).is_none()
+                && plane_at(&self.tri, p[0], p[1], &self.state).is_none()
             {
                 return f64::INFINITY;
             }

@@ -70,13 +70,13 @@ pub(super) fn ray_cast_exact(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &Draw
     let non_negative = |x: &BigInt| x.is_zero() || positive(x);
     let weighted = |k: usize| &n[0] * c(0, k) + &n[1] * c(1, k) + &n[2] * c(2, k);
     let (z, w) = (weighted(2), weighted(3));
-    let near = non_negative(&near_distance(state.depth_range, z.clone(), w.clone()));
+    let near = !state.clip_near || non_negative(&near_distance(state.depth_range, z.clone(), w.clone()));
     let beyond_far = state.clip_far && positive(&(&z - &w));
     if !n.iter().all(non_negative) || !positive(&w) || !near || beyond_far {
         return None;
     }
     let zw = ratio(&z, &w)?;
-    let depth = window_depth(state.depth_range, zw);
+    let depth = window_depth(state, zw);
     Some(Hit {
         barycentric: [ratio(&n[0], &d)?, ratio(&n[1], &d)?, ratio(&n[2], &d)?],
         depth,
@@ -117,12 +117,12 @@ mod tests {
         }
         let at = |k: usize| &b[0] * &p[0][k] + &b[1] * &p[1][k] + &b[2] * &p[2][k];
         let (z, w) = (at(2), at(3));
-        let near = !near_distance(state.depth_range, z.clone(), w.clone()).is_negative();
+        let near = !state.clip_near || !near_distance(state.depth_range, z.clone(), w.clone()).is_negative();
         if !w.is_positive() || !near || (state.clip_far && z > w) {
             return None;
         }
         let zw = (&z / &w).to_f64()?;
-        let depth = window_depth(state.depth_range, zw);
+        let depth = window_depth(state, zw);
         Some(Hit {
             barycentric: [b[0].to_f64()?, b[1].to_f64()?, b[2].to_f64()?],
             depth,
@@ -142,13 +142,15 @@ mod tests {
     }
 
     fn state() -> impl Strategy<Value = DrawState> {
-        (any::<bool>(), any::<bool>()).prop_map(|(gl, clip_far)| DrawState {
+        (any::<bool>(), any::<bool>(), any::<bool>()).prop_map(|(gl, clip_far, clip_near)| DrawState {
             depth_range: if gl {
                 DepthRange::NegativeOneToOne
             } else {
                 DepthRange::ZeroToOne
             },
             clip_far,
+            clip_near,
+            viewport_depth: refrast::ViewportDepth { min: 0.75, max: 0.25 },
             ..DrawState::default()
         })
     }

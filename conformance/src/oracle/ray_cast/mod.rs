@@ -3,8 +3,8 @@
 //! The ray through a sample centre meets the triangle's plane where the homogeneous
 //! barycentrics `b` satisfy `Σ bᵢ (xᵢ − x_ndc·wᵢ) = 0`, `Σ bᵢ (yᵢ − y_ndc·wᵢ) = 0`, `Σ bᵢ = 1`.
 //! Those `b` are the true perspective-correct barycentrics; the hit is visible when every
-//! `bᵢ ≥ 0`, `w > 0` and it lies inside the near (and far) plane. No clipping is involved, so
-//! this works for triangles crossing `w = 0` as it does for any other.
+//! `bᵢ ≥ 0`, `w > 0` and it lies inside the near and far planes the draw clips at. No clipping
+//! is involved, so this works for triangles crossing `w = 0` as it does for any other.
 
 mod cut_rounding;
 mod exact;
@@ -34,8 +34,7 @@ pub struct Hit {
 
 /// Casts the ray through NDC point `(nx, ny)` at the clip-space triangle `tri`.
 ///
-/// `None` when it misses, the hit is behind the eye or outside the near (or enabled far)
-/// plane, or the triangle is seen edge-on. Every decision is exact: f64 first, with a forward
+/// `None` when it misses, the hit is behind the eye or outside an enabled near or far plane, or the triangle is seen edge-on. Every decision is exact: f64 first, with a forward
 /// error bound on each sign; when a sign is within its bound of zero (a sample on an edge, a
 /// triangle nearly edge-on), the same solve runs again in exact integers.
 #[must_use]
@@ -123,7 +122,10 @@ fn ray_cast_f64(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Fil
     let (nz, nw) = (weighted(2), weighted(3));
     let near = near_distance(state.depth_range, nz, nw);
     let far = sub(nw, nz);
-    let mut signs = vec![d, n[0], n[1], n[2], nw, near];
+    let mut signs = vec![d, n[0], n[1], n[2], nw];
+    if state.clip_near {
+        signs.push(near);
+    }
     if state.clip_far {
         signs.push(far);
     }
@@ -134,13 +136,13 @@ fn ray_cast_f64(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Fil
     let s = d.v.signum();
     let hit = n.iter().all(|ni| ni.v * s > 0.0)
         && nw.v * s > 0.0
-        && near.v * s > 0.0
+        && (!state.clip_near || near.v * s > 0.0)
         && (!state.clip_far || far.v * s > 0.0);
     if !hit {
         return Filtered::Sure(None);
     }
     let (z, w) = (nz.v / d.v, nw.v / d.v);
-    let depth = window_depth(state.depth_range, z / w);
+    let depth = window_depth(state, z / w);
     Filtered::Sure(Some(Hit {
         barycentric: n.map(|ni| ni.v / d.v),
         depth,

@@ -15,7 +15,7 @@
 //! their sign their level sets are lines, and their extremes over the box lie at its corners:
 //! the bound is the largest difference between a corner and the sample itself.
 
-use refrast::DepthRange;
+use refrast::DrawState;
 
 use crate::oracle::raster::window_depth;
 
@@ -58,7 +58,7 @@ pub(super) fn plane_at(
     tri: &[[f64; 4]; 3],
     nx: f64,
     ny: f64,
-    range: DepthRange,
+    state: &DrawState,
 ) -> Option<(PlaneValue, [bool; 2])> {
     let u = tri.map(|p| p[0] - nx * p[3]);
     let v = tri.map(|p| p[1] - ny * p[3]);
@@ -84,7 +84,7 @@ pub(super) fn plane_at(
     }
     let value = PlaneValue {
         barycentric: n.map(|ni| ni / d),
-        depth: window_depth(range, zw),
+        depth: window_depth(state, zw),
     };
     Some((value, [d > 0.0, ws > 0.0]))
 }
@@ -94,8 +94,8 @@ pub(super) fn plane_at(
 /// `None` when a denominator may change sign in the box (the ray turns parallel to the
 /// plane: the values there are unbounded) or is too close to zero to evaluate.
 #[must_use]
-pub fn spread(tri: &[[f64; 4]; 3], nx: f64, ny: f64, half: [f64; 2], range: DepthRange) -> Option<Spread> {
-    let (at, signs) = plane_at(tri, nx, ny, range)?;
+pub fn spread(tri: &[[f64; 4]; 3], nx: f64, ny: f64, half: [f64; 2], state: &DrawState) -> Option<Spread> {
+    let (at, signs) = plane_at(tri, nx, ny, state)?;
     let mut out = Spread {
         at,
         barycentric: 0.0,
@@ -104,7 +104,7 @@ pub fn spread(tri: &[[f64; 4]; 3], nx: f64, ny: f64, half: [f64; 2], range: Dept
     // Both denominators are affine in (nx, ny): the same sign at the four corners means the
     // same sign everywhere in the box.
     for (sx, sy) in [(-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0)] {
-        let (corner, corner_signs) = plane_at(tri, nx + sx * half[0], ny + sy * half[1], range)?;
+        let (corner, corner_signs) = plane_at(tri, nx + sx * half[0], ny + sy * half[1], state)?;
         if corner_signs != signs {
             return None;
         }
@@ -120,7 +120,17 @@ pub fn spread(tri: &[[f64; 4]; 3], nx: f64, ny: f64, half: [f64; 2], range: Dept
 
 #[cfg(test)]
 mod tests {
+    use refrast::DepthRange;
+
     use super::*;
+
+    /// The default state under clip volume `range`.
+    fn volume(range: DepthRange) -> DrawState {
+        DrawState {
+            depth_range: range,
+            ..DrawState::default()
+        }
+    }
 
     /// At w = 1 everything is affine: the spread is the gradient times the box, exactly.
     #[test]
@@ -131,7 +141,7 @@ mod tests {
             [1.0, 0.0, 0.75, 1.0],
             [-1.0, 2.0, 0.25, 1.0],
         ];
-        let s = spread(&tri, 0.0, 0.5, [0.01, 0.02], DepthRange::ZeroToOne).unwrap();
+        let s = spread(&tri, 0.0, 0.5, [0.01, 0.02], &volume(DepthRange::ZeroToOne)).unwrap();
         assert!((s.at.barycentric[1] - 0.5).abs() < 1e-15, "{s:?}");
         assert!((s.at.depth - 0.5).abs() < 1e-15, "{s:?}");
         // b₂ = y/2 moves by 0.01 over ±0.02; b₀ = 1 − b₁ − b₂ by 0.005 + 0.01.
@@ -148,7 +158,7 @@ mod tests {
             [0.0, 3.0, 0.5, 0.5],
         ];
         let half = [0.05, 0.03];
-        let s = spread(&tri, 0.1, 0.2, half, DepthRange::NegativeOneToOne).unwrap();
+        let s = spread(&tri, 0.1, 0.2, half, &volume(DepthRange::NegativeOneToOne)).unwrap();
         for i in 0..=10 {
             for j in 0..=10 {
                 let (fx, fy) = (f64::from(i) / 5.0 - 1.0, f64::from(j) / 5.0 - 1.0);
@@ -156,7 +166,7 @@ mod tests {
                     &tri,
                     0.1 + fx * half[0],
                     0.2 + fy * half[1],
-                    DepthRange::NegativeOneToOne,
+                    &volume(DepthRange::NegativeOneToOne),
                 )
                 .unwrap();
                 for k in 0..3 {
@@ -180,7 +190,7 @@ mod tests {
             centre in proptest::array::uniform2(-1.0f64..1.0),
             half in proptest::array::uniform2(0.0f64..0.1),
         ) {
-            let range = DepthRange::ZeroToOne;
+            let range = &volume(DepthRange::ZeroToOne);
             // With every w positive the plane is rarely edge-on, so most cases give a bound.
             if let Some(s) = spread(&tri, centre[0], centre[1], half, range) {
                 for i in 0..=8 {
@@ -207,7 +217,7 @@ mod tests {
         // The plane's points (b₁, b₂, ·, 1 − b₁) reach x/w = b₁/(1 − b₁) → −1 only as b₁ → ∞:
         // the vertical line x = −1 is its horizon, where the ray runs parallel to it.
         let tri = [[0.0, 0.0, 0.5, 1.0], [1.0, 0.0, 0.5, 0.0], [0.0, 1.0, 0.5, 1.0]];
-        assert!(spread(&tri, 0.5, 0.2, [0.1, 0.1], DepthRange::ZeroToOne).is_some());
-        assert!(spread(&tri, -0.95, 0.2, [0.1, 0.1], DepthRange::ZeroToOne).is_none());
+        assert!(spread(&tri, 0.5, 0.2, [0.1, 0.1], &volume(DepthRange::ZeroToOne)).is_some());
+        assert!(spread(&tri, -0.95, 0.2, [0.1, 0.1], &volume(DepthRange::ZeroToOne)).is_none());
     }
 }

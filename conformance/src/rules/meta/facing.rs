@@ -156,9 +156,7 @@ pub fn check_facing(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violati
             });
         }
     };
-    if profile.snapping.grid_bits().is_some()
-        && raster::unclipped(&p, scene.state.depth_range, scene.state.clip_far)
-    {
+    if profile.snapping.grid_bits().is_some() && raster::unclipped(&p, &scene.state) {
         // Unclipped on a grid: exactly as the snapped triangle turns, for every way the
         // profile lets it snap (not judged where those disagree).
         let clockwise = match sure {
@@ -244,10 +242,11 @@ fn collinear_scene() -> impl Strategy<Value = Scene> {
 pub fn check_degenerate(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let profile = r.profile();
     let range = scene.state.depth_range;
-    let cut = scene
-        .corners(0)
-        .iter()
-        .any(|&[_, _, z, w]| raster::near_distance(range, z, w) < 0.0);
+    let cut = scene.state.clip_near
+        && scene
+            .corners(0)
+            .iter()
+            .any(|&[_, _, z, w]| raster::near_distance(range, z, w) < 0.0);
     if cut && !profile.features.zero_area_before_clipping {
         // Clipping first, a cut vertex snapped off the line makes a sliver along it (Vulkan
         // decides zero area on the clipped polygon).

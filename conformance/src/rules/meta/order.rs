@@ -70,7 +70,7 @@ fn compare_permuted(
     // may differ by more than their whole range, which no specification bounds ("accurate to
     // about 1 part in 10^5" per operation); there they are not compared.
     let p = scene.corners(0);
-    let unclipped = raster::unclipped(&p, scene.state.depth_range, scene.state.clip_far);
+    let unclipped = raster::unclipped(&p, &scene.state);
     let weighed = unclipped && profile.features.perspective_barycentrics && resolvable(scene, profile);
     // Fragment pairs by pixel (one triangle covers a pixel once), in row order.
     let by_pixel: HashMap<(u32, u32), &Fragment> = other.iter().map(|f| ((f.x, f.y), f)).collect();

@@ -91,7 +91,6 @@ impl Unpinned {
             0.0
         };
         let limit = profile.band_px() + snap_slack(profile) + spread;
-        let (range, far) = (scene.state.depth_range, scene.state.clip_far);
         for &t in &scene.triangles {
             let alone = Scene {
                 triangles: vec![t],
@@ -107,7 +106,7 @@ impl Unpinned {
                 continue;
             };
             let corners = [corners[0], corners[1], corners[2]];
-            let unclipped = raster::unclipped(&corners, range, far);
+            let unclipped = raster::unclipped(&corners, &scene.state);
             unpinned.values.push(!unclipped || !resolvable(&alone, profile));
             let projectable = corners
                 .iter()
@@ -119,7 +118,7 @@ impl Unpinned {
             }
             let depth_cut = corners
                 .iter()
-                .any(|&[_, _, z, w]| raster::near_distance(range, z, w) < 0.0 || (far && z > w));
+                .any(|&[_, _, z, w]| raster::outside_depth_planes(&scene.state, f64::from(z), f64::from(w)));
             let points = corners.map(|p| raster::project(width, height, p.map(f64::from)));
             let reach = limit + 1.0;
             let span = |k: usize, side: u32| {

@@ -17,14 +17,16 @@ pub fn cut_rounding_px(tri: &[[f64; 4]; 3], width: u32, height: u32, s: [f64; 2]
         1 => near_distance(range, p[2], p[3]),
         _ => p[3] - p[2],
     };
-    let cuts = |plane: usize| (plane < 2 || state.clip_far) && tri.iter().any(|v| distance(plane, v) < 0.0);
+    let cuts = |plane: usize| {
+        [true, state.clip_near, state.clip_far][plane] && tri.iter().any(|v| distance(plane, v) < 0.0)
+    };
     let planes = [cuts(0), cuts(1), cuts(2)];
     if planes == [false; 3] {
         return 0.0;
     }
     let at = |x: f64, y: f64| {
         let [nx, ny] = to_ndc(width, height, x, y);
-        plane_at(tri, nx, ny, range).map(|(value, _)| value.barycentric)
+        plane_at(tri, nx, ny, state).map(|(value, _)| value.barycentric)
     };
     let h = 0.5;
     let (Some(b), Some(left), Some(right), Some(up), Some(down)) = (
@@ -133,7 +135,7 @@ mod tests {
         .map(|[x, y]| to_ndc(width, height, x, y));
         let mut b = [[0.0; 3]; 5];
         for (k, p) in points.iter().enumerate() {
-            b[k] = plane_at(tri, p[0], p[1], state.depth_range)?.0.barycentric;
+            b[k] = plane_at(tri, p[0], p[1], state)?.0.barycentric;
         }
         // plane_at's sums and their terms' magnitudes, which bound their rounding.
         let terms = |[nx, ny]: [f64; 2]| {
@@ -160,7 +162,7 @@ mod tests {
             .map(|k| tri.map(|v| [v[3], near_distance(range, v[2], v[3]), v[3] - v[2]][k]))
             .into_iter()
             .enumerate()
-            .filter(|&(k, f)| (k < 2 || state.clip_far) && f.iter().any(|&d| d < 0.0))
+            .filter(|&(k, f)| [true, state.clip_near, state.clip_far][k] && f.iter().any(|&d| d < 0.0))
             .map(|(_, f)| {
                 let v = b.map(|b| (0..3).map(|i| b[i] * f[i]).sum::<f64>());
                 let an_f = t.map(|t| (0..3).map(|i| t[i].1 * f[i].abs()).sum::<f64>());

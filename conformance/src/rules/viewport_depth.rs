@@ -1,0 +1,123 @@
+//! The viewport's depth range and depth clamping: window depth is `minDepth + (maxDepth −
+//! minDepth)·z/w` (reversed when `minDepth > maxDepth`), and with depth clipping off nothing is
+//! cut at the near or far plane, its depth clamped to the range instead.
+//!
+//! Both rules are the ray cast's (`rules::cast`) under the draw's state: the oracle maps `z/w`
+//! through the viewport's range with Vulkan's `o_z` and `p_z` and leaves out the planes the draw
+//! does not clip at, written apart from the reference's `ViewportDepth`.
+
+use proptest::prelude::*;
+use refrast::{DepthConvention, Profile, Rasterizer, ViewportDepth};
+
+use super::depth::{check_depth_matches_raycast, check_depth_matches_raycast_where_bounded};
+use super::fill::check_exactly_once;
+use super::level::{FAR_VALUES, Level};
+use super::{CLIPS_IN_3D, Family, Need, Rule, Z_OVER_W_DEPTH, needs};
+use crate::runner::property_for;
+use crate::scene::Scene;
+use crate::strategy;
+use crate::violation::Violation;
+
+/// The implementation honours a viewport depth range other than `[0, 1]`.
+const VIEWPORT_DEPTH: Need = needs(|p| p.state.viewport_depth, "no viewport depth range");
+
+/// The implementation draws with depth clipping off.
+const UNCLIPPED_DEPTH: Need = needs(|p| p.state.unclipped_depth, "no unclipped depth");
+
+/// What the specifications say of the viewport's depth range.
+const RANGE_SOURCE: &str = "Vulkan 1.4, Controlling the Viewport (o_z = minDepth, p_z = maxDepth − minDepth; \"minDepth can be less than, equal to, or greater than maxDepth\") and Depth Clamping and Range Adjustment; OpenGL 4.6 §13.8.1 and OpenGL ES 3.2 §12.6.1 (DepthRange); D3D11.3 §15.6 (MinDepth ≤ MaxDepth, §15.6.1); dEQP-VK.draw.inverted_depth_ranges.*";
+
+/// What they say of depth clipping off.
+const CLAMP_SOURCE: &str = "Vulkan 1.4, Primitive Clipping (\"Depth clipping is disabled when depthClampEnable is VK_TRUE\") and Depth Clamping and Range Adjustment (z_f clamped to [min(n, f), max(n, f)]); OpenGL 4.6 §13.7 and §17.3.4 (DEPTH_CLAMP); OpenGL ES 3.2 has it only through EXT_depth_clamp; D3D11.3 §15.4 (DepthClipEnable) and §15.6, §17.10 (depth clamped to the viewport's range); dEQP-VK.clipping.clip_volume.depth_clamp.*";
+
+pub(super) fn rules() -> Vec<Rule> {
+    vec![
+        Rule::invariant(Family::Depth, "depth.viewport.maps-range")
+            .sentence("Fragment depth is the ray-cast hit's z/w through the viewport's depth range, minDepth + (maxDepth − minDepth)·z/w (under −w ≤ z ≤ w, (maxDepth + minDepth)/2 + (maxDepth − minDepth)/2·z/w), within the claimed precision, for any minDepth and maxDepth in [0, 1], equal or reversed (maxDepth below minDepth) where declared; on a clipped triangle also within how far it moves when the sample moves one grid step.")
+            .source(RANGE_SOURCE)
+            .cases(3000)
+            .needs(Z_OVER_W_DEPTH)
+            .needs(VIEWPORT_DEPTH)
+            .every_spec(Level::Partly {
+                part: |r, cfg| property_for(r, cfg, ranged_scene, check_depth_matches_raycast_where_bounded),
+                note: FAR_VALUES,
+            })
+            .run(|r, cfg| property_for(r, cfg, ranged_scene, check_depth_matches_raycast)),
+        Rule::invariant(Family::Clip, "clip.unclipped-depth.clamped")
+            .sentence("With depth clipping off, a triangle crossing the near and far planes (and w = 0) covers exactly the samples whose ray-cast hit lies in front of the eye, nothing cut at either plane, outside the tolerance band; and each fragment's depth is the hit's window depth clamped to the viewport's depth range [min(minDepth, maxDepth), max(minDepth, maxDepth)], within the claimed precision.")
+            .source(CLAMP_SOURCE)
+            .cases(3000)
+            .needs(CLIPS_IN_3D)
+            .needs(UNCLIPPED_DEPTH)
+            .every_spec(Level::Partly {
+                part: |r, cfg| property_for(r, cfg, unclipped_scene, check_clamped_where_bounded),
+                note: FAR_VALUES,
+            })
+            .run(|r, cfg| property_for(r, cfg, unclipped_scene, check_clamped)),
+    ]
+}
+
+/// Depth ranges worth drawing: the whole one reversed, a single depth, each end alone, and any
+/// two depths in either order (the profile's fit puts a reversed one in order where only
+/// ordered ones are declared).
+pub fn viewport_depth() -> impl Strategy<Value = ViewportDepth> {
+    let end = prop_oneof![Just(0.0f32), Just(1.0), Just(0.5), 0.0f32..=1.0];
+    (end.clone(), end).prop_map(|(min, max)| ViewportDepth { min, max })
+}
+
+/// Triangles inside the viewport or crossing the clip planes, under either clip volume the
+/// profile supports, each drawn with a [`viewport_depth`] range.
+fn ranged_scene(p: &Profile) -> BoxedStrategy<Scene> {
+    (
+        strategy::either_depth_range(p, strategy::inside_or_crossing_scene()),
+        viewport_depth(),
+    )
+        .prop_map(|(mut s, range)| {
+            s.state.viewport_depth = range;
+            s
+        })
+        .boxed()
+}
+
+/// Triangles crossing the near and far planes and `w = 0`, drawn with depth clipping off under
+/// a [`viewport_depth`] range, in either clip volume the profile supports.
+fn unclipped_scene(p: &Profile) -> BoxedStrategy<Scene> {
+    let crossing = prop_oneof![strategy::crossing_scene(), deep_scene()];
+    (strategy::either_depth_range(p, crossing), viewport_depth())
+        .prop_map(|(mut s, range)| {
+            s.state.clip_near = false;
+            s.state.clip_far = false;
+            s.state.viewport_depth = range;
+            s
+        })
+        .boxed()
+}
+
+/// A triangle in front of the eye whose vertices lie well before the near plane and beyond
+/// the far one: z/w from −3 to 4.
+fn deep_scene() -> impl Strategy<Value = Scene> {
+    (strategy::float_scene(), prop::array::uniform3(-3.0f32..4.0)).prop_map(|(mut s, z)| {
+        for (p, z) in s.positions.iter_mut().zip(z) {
+            p[2] = z * p[3];
+        }
+        s
+    })
+}
+
+/// Coverage as the ray cast without depth planes, then depth clamped (where depth is z/w).
+pub fn check_clamped(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    check_exactly_once(r, scene)?;
+    if r.profile().depth != DepthConvention::ScreenLinearZOverW {
+        return Ok(());
+    }
+    check_depth_matches_raycast(r, scene)
+}
+
+/// [`check_clamped`] with depth judged only where the specifications bound it ([`FAR_VALUES`]).
+fn check_clamped_where_bounded(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    check_exactly_once(r, scene)?;
+    if r.profile().depth != DepthConvention::ScreenLinearZOverW {
+        return Ok(());
+    }
+    check_depth_matches_raycast_where_bounded(r, scene)
+}

@@ -3,8 +3,7 @@
 
 use glam::{DVec3, DVec4};
 
-use crate::depth::DepthRange;
-use crate::state::DrawState;
+use crate::depth::{DepthClip, DepthRange};
 use crate::viewport::Viewport;
 
 /// A polygon vertex in clip space with its barycentric coordinates in the original triangle.
@@ -98,20 +97,20 @@ impl ClipPlane {
     }
 }
 
-/// The planes a draw in `state` clips against, in a fixed order: near and far as `state`
-/// enables them, then x and y (which also keep out what lies behind the eye).
+/// The planes a draw clips against, in a fixed order: near and far as `depth` enables them,
+/// then x and y (which also keep out what lies behind the eye).
 #[must_use]
-pub fn clip_planes(mode: ClipMode, viewport: Viewport, state: &DrawState) -> Vec<ClipPlane> {
+pub fn clip_planes(mode: ClipMode, viewport: Viewport, depth: DepthClip) -> Vec<ClipPlane> {
     let (kx, ky) = match mode {
         ClipMode::GuardBand => viewport.guard_band_ndc(),
         ClipMode::Full => (1.0, 1.0),
         ClipMode::Reach(_) => viewport.reach_ndc(mode.reach()),
     };
     let mut planes = Vec::with_capacity(6);
-    if state.clip_near {
-        planes.push(ClipPlane::Near(state.depth_range));
+    if depth.near {
+        planes.push(ClipPlane::Near(depth.range));
     }
-    if state.clip_far {
+    if depth.far {
         planes.push(ClipPlane::Far);
     }
     planes.extend([
@@ -249,9 +248,10 @@ mod tests {
         let planes = clip_planes(
             ClipMode::Full,
             Viewport::new(8, 8).expect("8×8 is a valid viewport"),
-            &DrawState {
-                clip_far: true,
-                ..DrawState::default()
+            DepthClip {
+                near: true,
+                far: true,
+                range: DepthRange::ZeroToOne,
             },
         );
         let code = |x: f64, y: f64, z: f64| outcode(&planes, DVec4::new(x, y, z, 1.0));

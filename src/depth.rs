@@ -30,6 +30,18 @@ impl DepthRange {
     }
 }
 
+/// What clipping needs of a draw's state: the depth planes it clips at and its clip volume's z
+/// range ([`DrawState::depth_clip`](crate::DrawState::depth_clip)).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct DepthClip {
+    /// Whether the near plane clips.
+    pub near: bool,
+    /// Whether the far plane clips.
+    pub far: bool,
+    /// The clip volume's z range, which places the near plane.
+    pub range: DepthRange,
+}
+
 /// The viewport's depth range, Vulkan's `minDepth` and `maxDepth` (OpenGL's `DepthRange(n, f)`,
 /// D3D11's `MinDepth`, `MaxDepth`): where the clip volume's near and far planes land in
 /// window depth. Each lies in `[0, 1]`; `min` may exceed `max`, which reverses depth.

@@ -70,7 +70,7 @@ impl<'d> FrontSetup<'d> {
         Self {
             draw,
             triangles: draw.triangles(),
-            planes: clip_planes(config.clip, draw.viewport, &draw.state),
+            planes: clip_planes(config.clip, draw.viewport, draw.state.depth_clip()),
             transform: ViewportTransform {
                 viewport: draw.viewport,
                 bits: config.subpixel_bits,

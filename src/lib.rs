@@ -24,7 +24,7 @@
 //! | the contract | `rasterizer.rs`, `draw.rs` | [`Rasterizer`], [`Draw`], [`Fragment`], [`Resolved`] |
 //! | lines, points, samples | `primitive.rs` | [`Topology`], [`LineRule`], [`PointClipping`], [`SamplePattern`], [`SAMPLE_COUNTS`] |
 //! | what an implementation declares | `profile.rs`, `features.rs` | [`Profile`], [`Snapping`], [`Spec`], [`Features`], [`StateSupport`], [`Supported`], [`SnapAccuracy`] |
-//! | state | `state.rs`, `setup.rs`, `depth.rs` | [`DrawState`], [`Scissor`], [`ProvokingVertex`], [`CullMode`], [`FrontFace`], [`DepthState`], [`CompareOp`], [`DepthRange`] |
+//! | state | `state.rs`, `setup.rs`, `depth.rs` | [`DrawState`], [`Scissor`], [`ProvokingVertex`], [`CullMode`], [`FrontFace`], [`DepthState`], [`CompareOp`], [`DepthRange`], [`ViewportDepth`] |
 //! | the reference | `reference.rs` | [`Reference`], [`ReferenceConfig`], [`Traversal`], [`ClipMode`], [`DrawStats`], [`Sample`] |
 //! | fixed point | `fixed.rs` | [`SubpixelBits`], [`FixedPoint`], [`snap`], [`SnapRounding`], [`COORD_LIMIT`] |
 //! | viewport | `viewport.rs` | [`Viewport`], [`MAX_VIEWPORT`] |
@@ -74,8 +74,9 @@
 //!   [`stage::clipped_winding`]). Front
 //!   face CCW by default, CW optional ([`FrontFace::is_front`]); culling by facing, of
 //!   triangles only: none, front, back or both ([`CullMode::culls`]).
-//! - **Clip volume**: `−w ≤ x, y ≤ w`, `0 ≤ z ≤ w` (or `−w ≤ z`, [`DepthRange`]). Near is always
-//!   clipped, far when enabled, x/y at the guard band ([`stage::GUARD_BAND`]) and clamped by
+//! - **Clip volume**: `−w ≤ x, y ≤ w`, `0 ≤ z ≤ w` (or `−w ≤ z`, [`DepthRange`]). Near is
+//!   clipped unless depth clipping is off ([`DrawState::clip_near`]), far when enabled, x/y (which
+//!   also keep out what lies behind the eye) at the guard band ([`stage::GUARD_BAND`]) and clamped by
 //!   traversal, or at the viewport with [`ClipMode::Full`]. Intersections are canonical
 //!   ([`stage::intersect`]).
 //! - **Scissor**: a fragment is produced only where its pixel lies in the draw's scissor
@@ -90,9 +91,10 @@
 //!   [`ProvokingVertex`] says, also where clipping cut it away ([`Draw::provoking`]).
 //! - **Coverage of a clipped polygon**: its snapped fan's winding number
 //!   ([`stage::traverse`]), so a sliver turned over by snapping neither doubles nor leaks.
-//! - **Depth**: window depth `z/w` interpolated linearly in screen space
-//!   ([`stage::interpolate_depth`]), then clamped to `[0, 1]` ([`stage::fragment_depth`]; depth
-//!   clamping when far clipping is off).
+//! - **Depth**: window depth `n + (f − n)·z/w` through the viewport's depth range
+//!   ([`ViewportDepth`], reversed when `n > f`), interpolated linearly in screen space
+//!   ([`stage::interpolate_depth`]), then clamped to `[min(n, f), max(n, f)]`
+//!   ([`ViewportDepth::fragment_depth`]; depth clamping when a depth plane is not clipped at).
 //! - **Attributes**: perspective-correct, `Σ sᵢ fᵢ/wᵢ / Σ sᵢ/wᵢ`, for triangles and lines alike
 //!   ([`stage::interpolate`]); screen-space barycentrics also given.
 //! - **Bad numbers**: a triangle with a NaN or infinite coordinate is discarded and counted
@@ -129,7 +131,7 @@ mod viewport;
 
 pub use clip::ClipMode;
 pub use config::{ReferenceConfig, Traversal};
-pub use depth::{CompareOp, DepthRange, DepthState, ViewportDepth};
+pub use depth::{CompareOp, DepthClip, DepthRange, DepthState, ViewportDepth};
 pub use draw::{Draw, Fragment, Resolved};
 pub use edge::{FillConvention, is_top_left, orient2d};
 pub use error::{ConfigError, DrawError, Unavailable};

@@ -172,7 +172,7 @@ impl Reference {
     /// Line lists and strips: clip, project and snap each segment, cover it by the line rule.
     fn draw_lines(&self, draw: &Draw, offsets: &Offsets, mut emit: impl FnMut(Fragment)) -> DrawStats {
         let transform = self.transform(draw);
-        let planes = clip_planes(self.config().clip, draw.viewport, &draw.state);
+        let planes = clip_planes(self.config().clip, draw.viewport, draw.state.depth_clip());
         let mut stats = DrawStats {
             triangles: draw.primitive_count(),
             ..DrawStats::default()
@@ -283,7 +283,7 @@ impl Reference {
     fn draw_points(&self, draw: &Draw, offsets: &Offsets, mut emit: impl FnMut(Fragment)) -> DrawStats {
         let transform = self.transform(draw);
         let config = self.config();
-        let mut planes = clip_planes(ClipMode::Full, draw.viewport, &draw.state);
+        let mut planes = clip_planes(ClipMode::Full, draw.viewport, draw.state.depth_clip());
         // Kept pop-free, a point is clipped by the near and far planes alone.
         if config.point_clipping == PointClipping::UserClipPlanesOnly {
             planes.retain(|p| matches!(p, ClipPlane::Near(_) | ClipPlane::Far));

@@ -2,7 +2,7 @@
 //! provoking vertex. Its own module because both the contract (a [`Draw`](crate::Draw) carries
 //! it) and a profile (which states it supports) need it.
 
-use crate::depth::{DepthRange, DepthState, ViewportDepth};
+use crate::depth::{DepthClip, DepthRange, DepthState, ViewportDepth};
 use crate::setup::{CullMode, FrontFace};
 
 /// Everything about a draw besides its geometry.
@@ -69,6 +69,16 @@ impl Default for DrawState {
 }
 
 impl DrawState {
+    /// The depth planes it clips at and its clip volume's z range: what clipping needs of it.
+    #[must_use]
+    pub fn depth_clip(&self) -> DepthClip {
+        DepthClip {
+            near: self.clip_near,
+            far: self.clip_far,
+            range: self.depth_range,
+        }
+    }
+
     /// Whether a fragment at pixel `(x, y)` passes the scissor test: the one place the
     /// reference applies it, as Vulkan's Scissor Test does, to each fragment's pixel.
     #[must_use]

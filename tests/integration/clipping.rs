@@ -95,7 +95,7 @@ fn crossing_all_six_planes_leaves_the_slab_between_near_and_far() {
     }
     // The clipper itself: every vertex it leaves is inside all six planes, its barycentrics convex.
     let tri = [0, 1, 2].map(|i| ClipVertex::corner(draw.positions[i], i));
-    let planes = clip_planes(ClipMode::Full, draw.viewport, &draw.state);
+    let planes = clip_planes(ClipMode::Full, draw.viewport, draw.state.depth_clip());
     let (mut polygon, mut scratch) = (Vec::new(), Vec::new());
     assert_eq!(
         clip_triangle(&tri, &planes, &mut polygon, &mut scratch),

@@ -397,8 +397,8 @@ mod tests {
     fn sixteen_bits_reach_every_draw_state() {
         let states: HashSet<String> = (0..=u16::MAX).map(|b| format!("{:?}", draw_state(b))).collect();
         // 4 cull modes × 2 front faces × 8 compare ops × 2 write masks × 4 (3 clears with the
-        // first provoking vertex, one with the last) × 2 ranges × 2 far-clipping settings × 17
-        // scissors (none, and 16 rectangles).
-        assert_eq!(states.len(), 4 * 2 * 8 * 2 * 4 * 2 * 2 * 17);
+        // first provoking vertex, one with the last) × 2 ranges × 2 far-clipping settings × 24
+        // (16 scissor rectangles; without one, 4 viewport depth ranges × near clipping on, off).
+        assert_eq!(states.len(), 4 * 2 * 8 * 2 * 4 * 2 * 2 * 24);
     }
 }

@@ -9,10 +9,11 @@ use super::samples::{
     compare_samples, counts, endpoint_bits, expect_covered, grid, keys, positions, sample_fragments,
     within_guard_band,
 };
+use super::viewport_depth::sometimes_ranged;
 use super::{CLIPS_IN_3D, Family, PERSPECTIVE_BARYCENTRICS, Rule, needs};
 use crate::oracle::raster::{Point, near_distance, project, snap, window_depth};
 use crate::oracle::segment::SampleGrid;
-use crate::runner::property;
+use crate::runner::{property, property_for};
 use crate::scene::PrimitiveScene;
 use crate::strategy::primitive as lines;
 use crate::violation::{Expect, Findings, Violation, plural};
@@ -86,11 +87,18 @@ pub(super) fn rules() -> Vec<Rule> {
             })
             .run(|r, cfg| property(r, cfg, lines::near_crossing_line(), check_clip)),
         Rule::invariant(Family::Line, "line.depth.linear")
-            .sentence("A line fragment's depth is the ends' window depths interpolated linearly in screen space at the sample's projection on the segment's line (held at the end's or extrapolated beyond it), within a pixel's worth and the claimed precision.")
+            .sentence("A line fragment's depth is the ends' window depths (through the viewport's depth range, where declared) interpolated linearly in screen space at the sample's projection on the segment's line (held at the end's or extrapolated beyond it), within a pixel's worth and the claimed precision.")
             .source("Vulkan 1.4, Basic Line Segment Rasterization (z_f = (1 − t) z_a + t z_b); seed 004 (lines with depth)")
             .cases(800)
             .needs(LINES)
-            .run(|r, cfg| property(r, cfg, lines::perspective_line(), check_depth_linear)),
+            .run(|r, cfg| {
+                property_for(
+                    r,
+                    cfg,
+                    |p| sometimes_ranged(p, lines::perspective_line()),
+                    check_depth_linear,
+                )
+            }),
         Rule::invariant(Family::Line, "line.bary.perspective")
             .sentence("A line fragment's barycentrics are (1 − t′, t′, 0) with t′ the perspective-correct position along the segment's line (held at an end or extrapolated beyond it), within a pixel's worth and the claimed precision.")
             .source("Vulkan 1.4, Basic Line Segment Rasterization (perspective-correct interpolation along the line)")

@@ -373,7 +373,7 @@ pub fn within_float_range(scene: &Scene) -> bool {
     let Some(viewport) = scene.viewport() else {
         return false;
     };
-    let planes = clip_planes(refrast::ClipMode::Full, viewport, &scene.state);
+    let planes = clip_planes(refrast::ClipMode::Full, viewport, scene.state.depth_clip());
     let (mut polygon, mut scratch) = (Vec::new(), Vec::new());
     finite
         && scene.triangles.iter().all(|&t| {

@@ -6,6 +6,8 @@
 //! through the viewport's range with Vulkan's `o_z` and `p_z` and leaves out the planes the draw
 //! does not clip at, written apart from the reference's `ViewportDepth`.
 
+use std::fmt;
+
 use proptest::prelude::*;
 use refrast::{DepthConvention, Profile, Rasterizer, ViewportDepth};
 
@@ -14,7 +16,7 @@ use super::fill::check_exactly_once;
 use super::level::{FAR_VALUES, Level};
 use super::{CLIPS_IN_3D, Family, Need, Rule, Z_OVER_W_DEPTH, needs};
 use crate::runner::property_for;
-use crate::scene::Scene;
+use crate::scene::{Case, Scene};
 use crate::strategy;
 use crate::violation::Violation;
 
@@ -63,6 +65,26 @@ pub(super) fn rules() -> Vec<Rule> {
 pub fn viewport_depth() -> impl Strategy<Value = ViewportDepth> {
     let end = prop_oneof![Just(0.0f32), Just(1.0), Just(0.5), 0.0f32..=1.0];
     (end.clone(), end).prop_map(|(min, max)| ViewportDepth { min, max })
+}
+
+/// `cases` drawn half of the time with a [`viewport_depth`] range where `p` declares ranges:
+/// for the line and point depth rules, whose values go through the range as triangles' do.
+pub fn sometimes_ranged<C, S>(p: &Profile, cases: S) -> BoxedStrategy<C>
+where
+    C: Case + Clone + fmt::Debug + 'static,
+    S: Strategy<Value = C> + 'static,
+{
+    if !p.state.viewport_depth {
+        return cases.boxed();
+    }
+    (cases, viewport_depth(), any::<bool>())
+        .prop_map(|(mut case, range, ranged)| {
+            if ranged {
+                case.scene_mut().state.viewport_depth = range;
+            }
+            case
+        })
+        .boxed()
 }
 
 /// Triangles inside the viewport or crossing the clip planes, under either clip volume the

@@ -59,7 +59,7 @@ impl Rasterizer for Dda {
                 return Reference::default().rasterize(draw);
             }
             Topology::PointList => {
-                let planes = clip_planes(ClipMode::Full, vp, state);
+                let planes = clip_planes(ClipMode::Full, vp, state.depth_clip());
                 for (i, &index) in draw.indices.iter().enumerate() {
                     let p = DVec4::from(draw.positions[index as usize].map(f64::from));
                     if !p.is_finite() || p.w <= 0.0 || planes.iter().any(|plane| plane.distance(p) < 0.0) {
@@ -71,7 +71,7 @@ impl Rasterizer for Dda {
                 }
             }
             Topology::LineList | Topology::LineStrip => {
-                let planes = clip_planes(ClipMode::GuardBand, vp, state);
+                let planes = clip_planes(ClipMode::GuardBand, vp, state.depth_clip());
                 for i in 0..draw.primitive_count() {
                     let Some(&[a, b]) = draw.primitive(i).as_deref() else {
                         continue;

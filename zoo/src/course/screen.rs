@@ -127,7 +127,7 @@ pub fn area2(corners: &[[f64; 2]]) -> f64 {
 pub fn polygons(draw: &Draw) -> Vec<ScreenPolygon> {
     let vp = draw.viewport;
     let state = &draw.state;
-    let planes = clip_planes(ClipMode::Full, vp, state);
+    let planes = clip_planes(ClipMode::Full, vp, state.depth_clip());
     let (mut polygon, mut scratch) = (Vec::new(), Vec::new());
     let mut out = Vec::new();
     for (t, &indices) in draw.triangles().iter().enumerate() {

@@ -68,7 +68,7 @@ impl Rasterizer for Mutant {
         }
         draw.validate()?;
         let state = &draw.state;
-        let planes = clip_planes(ClipMode::GuardBand, draw.viewport, state);
+        let planes = clip_planes(ClipMode::GuardBand, draw.viewport, state.depth_clip());
         let mut out = Vec::new();
         for (primitive, t) in draw.triangles().iter().enumerate() {
             let p = t.map(|i| draw.positions[i as usize]);

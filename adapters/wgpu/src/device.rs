@@ -152,6 +152,9 @@ pub struct Context {
     /// Why it cannot draw at 4 samples per pixel and capture each sample, if it cannot: a
     /// multisampled depth and id target, and fragment shaders run per sample.
     pub no_multisampling: Option<String>,
+    /// Whether it draws with depth clipping off (`unclipped_depth`): the adapter reports
+    /// `Features::DEPTH_CLIP_CONTROL` (Vulkan's `depthClamp`, OpenGL ES's `EXT_depth_clamp`).
+    pub unclipped_depth: bool,
 }
 
 /// What opening a driver gave: its device, or why there is none.
@@ -227,7 +230,9 @@ fn open(driver: Driver) -> Result<Context, Unavailable> {
         required_limits: limits.clone(),
         // WebGPU's core formats hold no 32-bit integer at several samples; the id targets of a
         // multisampled resolve need the adapter's own format features.
-        required_features: adapter.features() & wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES,
+        // Depth clipping off where the adapter has it.
+        required_features: adapter.features()
+            & (wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES | wgpu::Features::DEPTH_CLIP_CONTROL),
         ..wgpu::DeviceDescriptor::default()
     }))
     .map_err(|e| Unavailable(format!("{} refused a device: {e}", describe(info))))?;
@@ -242,6 +247,7 @@ fn open(driver: Driver) -> Result<Context, Unavailable> {
             .flags
             .contains(wgpu::DownlevelFlags::DEPTH_TEXTURE_AND_BUFFER_COPIES),
         no_multisampling,
+        unclipped_depth: adapter.features().contains(wgpu::Features::DEPTH_CLIP_CONTROL),
     })
 }
 

@@ -63,8 +63,10 @@
 //! to even, no guard band, 12 (14.9). What stays declared, not measured: depth is z/w
 //! interpolated linearly on screen (Vulkan, Basic Polygon Rasterization), zero area is not decided before clipping
 //! (Mesa and SwiftShader clip first), and the draw states WebGPU allows: it clips depth to
-//! `0 ≤ z ≤ w` always (far clipping cannot be switched off without a feature that also drops
-//! near clipping) and has no `−w ≤ z` range, so the suite sends no such draw. Vulkan asks only
+//! `0 ≤ z ≤ w` (far clipping cannot be switched off alone: `unclipped_depth`, declared where the
+//! adapter reports `DEPTH_CLIP_CONTROL`, drops both planes and clamps) and has no `−w ≤ z`
+//! range, so the suite sends no such draw; its viewport depth ranges are `set_viewport`'s,
+//! `minDepth ≤ maxDepth` only. Vulkan asks only
 //! that a sample on an edge shared by two polygons be covered by exactly one of them (Basic Polygon Rasterization);
 //! the `fill.*.exactly-once` rules judge that whatever the profile says.
 //!
@@ -155,12 +157,22 @@ impl Gpu {
     pub fn resolve_timed(&mut self, draw: &Draw) -> Result<(Resolved, Timings), DrawError> {
         self.check(draw)?;
         let r = draw::resolve(&self.context, &mut self.pipelines(), draw)?;
-        let resolved = Resolved {
+        let mut resolved = Resolved {
             viewport: draw.viewport,
             samples: draw.samples,
             depth: r.depth,
             primitive: r.primitive,
         };
+        // Without a depth copy, the depth read back is the passing fragment's FragCoord.z,
+        // unclamped where depth clipping is off: the buffer itself holds it clamped.
+        if !self.context.copies_depth && !draw.state.clip_near {
+            let range = draw.state.viewport_depth;
+            for (depth, primitive) in resolved.depth.iter_mut().zip(&resolved.primitive) {
+                if primitive.is_some() && draw.state.depth.write {
+                    *depth = range.fragment_depth(f64::from(*depth));
+                }
+            }
+        }
         Ok((resolved, r.timings))
     }
 
@@ -285,7 +297,8 @@ impl Rasterizer for Gpu {
             // (WGSL `@interpolate(flat)`) come from the mode the API fixes, as wgpu sets no
             // other: Vulkan's default, the first vertex; OpenGL ES's only one, the last (§12.4,
             // Table 12.3); the rule checks each driver against it. The viewport's depth range is
-            // `set_viewport`'s, which rejects `min_depth > max_depth`.
+            // `set_viewport`'s, which rejects `min_depth > max_depth`. Depth clipping off is
+            // `unclipped_depth` where the adapter reports DEPTH_CLIP_CONTROL.
             state: StateSupport {
                 scissor: true,
                 cull_both: false,
@@ -298,7 +311,7 @@ impl Rasterizer for Gpu {
                 }]),
                 viewport_depth: true,
                 inverted_depth: false,
-                unclipped_depth: false,
+                unclipped_depth: self.context.unclipped_depth,
             },
         }
     }
@@ -326,6 +339,16 @@ impl Rasterizer for Gpu {
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
         self.check(draw)?;
         let mut fragments = draw::capture(&self.context, &mut self.pipelines(), draw)?;
+        // The capture reads FragCoord.z, which no specification clamps (Vulkan clamps z_f on its
+        // way to the depth test, D3D11.3 §16.3.1 leaves the shader's input unclamped): the
+        // depth a fragment tests, the contract's, is it clamped to the range where depth
+        // clipping is off. The depth buffer `resolve` reads shows the driver's own clamp.
+        if !draw.state.clip_near {
+            let range = draw.state.viewport_depth;
+            for f in &mut fragments {
+                f.depth = range.fragment_depth(f64::from(f.depth));
+            }
+        }
         // Flat values come in the backend's one mode: under another, none is reported.
         if !self.profile().state.flat.contains(draw.state.provoking_vertex) {
             fragments.iter_mut().for_each(|f| f.flat = None);

@@ -39,6 +39,7 @@ pub struct Key {
     write: bool,
     topology: Topology,
     samples: u8,
+    unclipped: bool,
 }
 
 impl Key {
@@ -57,6 +58,8 @@ impl Key {
             write,
             topology: Topology::TriangleList,
             samples: 1,
+            // Depth clipping off is both planes off (`Profile::fit` sends no other).
+            unclipped: !state.clip_near,
         }
     }
 
@@ -301,6 +304,7 @@ impl Pipelines {
                 topology: primitive_topology(key.topology).unwrap_or_default(),
                 front_face: front_face(key.front_face),
                 cull_mode: cull,
+                unclipped_depth: key.unclipped,
                 ..wgpu::PrimitiveState::default()
             },
             depth_stencil: Some(wgpu::DepthStencilState {

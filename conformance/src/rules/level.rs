@@ -165,5 +165,8 @@ pub const BAD_INDEX_UNDEFINED: &str = "an index past the vertex buffer reads as 
 /// D3D11.3 defines another outcome for a bad index.
 pub const BAD_INDEX_D3D: &str = "D3D11.3 §8.19.2 reads a vertex past the buffer as zeros (\"the return is 0 in all non-missing components\") and draws on; it does not fail the draw";
 
+/// Depth clipping off: what crosses the eye's plane is cut where no bound holds.
+pub const EYE_CROSSING_UNCLIPPED: &str = "with depth clipping off, only the x and y planes (−w ≤ x, y ≤ w) remove what lies behind the eye (Vulkan, Primitive Clipping: \"there is no near or far plane clipping\"; OpenGL 4.6 §13.7 likewise), and an implementation cuts them in floating point, at a guard band far outside the viewport: on a triangle crossing w = 0 a cut vertex's w is a difference of nearly equal numbers, and \"accurate to about 1 part in 10^5\" (Floating-Point Computation; OpenGL 4.6 §2.3.4.1) then puts it anywhere on screen, so only triangles wholly in front of the eye are required, crossing the near and far planes; and as everywhere, no specification bounds interpolation error thousands of pixels beyond the viewport (there only finite depth is required)";
+
 /// D3D11.3 has no −w ≤ z volume.
 pub const NO_GL_RANGE: &str = "D3D11.3 has only the 0 ≤ z ≤ w volume (§15.4)";

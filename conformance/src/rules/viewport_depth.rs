@@ -13,7 +13,7 @@ use refrast::{DepthConvention, Profile, Rasterizer, ViewportDepth};
 
 use super::depth::{check_depth_matches_raycast, check_depth_matches_raycast_where_bounded};
 use super::fill::check_exactly_once;
-use super::level::{FAR_VALUES, Level};
+use super::level::{EYE_CROSSING_UNCLIPPED, FAR_VALUES, Level};
 use super::{CLIPS_IN_3D, Family, Need, Rule, Z_OVER_W_DEPTH, needs};
 use crate::runner::property_for;
 use crate::scene::{Case, Scene};
@@ -52,8 +52,8 @@ pub(super) fn rules() -> Vec<Rule> {
             .needs(CLIPS_IN_3D)
             .needs(UNCLIPPED_DEPTH)
             .every_spec(Level::Partly {
-                part: |r, cfg| property_for(r, cfg, unclipped_scene, check_clamped_where_bounded),
-                note: FAR_VALUES,
+                part: |r, cfg| property_for(r, cfg, unclipped_in_front, check_clamped_where_bounded),
+                note: EYE_CROSSING_UNCLIPPED,
             })
             .run(|r, cfg| property_for(r, cfg, unclipped_scene, check_clamped)),
     ]
@@ -104,8 +104,19 @@ fn ranged_scene(p: &Profile) -> BoxedStrategy<Scene> {
 /// Triangles crossing the near and far planes and `w = 0`, drawn with depth clipping off under
 /// a [`viewport_depth`] range, in either clip volume the profile supports.
 fn unclipped_scene(p: &Profile) -> BoxedStrategy<Scene> {
-    let crossing = prop_oneof![strategy::crossing_scene(), deep_scene()];
-    (strategy::either_depth_range(p, crossing), viewport_depth())
+    unclipped(p, prop_oneof![strategy::crossing_scene(), deep_scene()])
+}
+
+/// [`unclipped_scene`] wholly in front of the eye: what every specification requires
+/// ([`EYE_CROSSING_UNCLIPPED`]).
+fn unclipped_in_front(p: &Profile) -> BoxedStrategy<Scene> {
+    unclipped(p, deep_scene())
+}
+
+/// `scenes` drawn with depth clipping off under a [`viewport_depth`] range, in either clip
+/// volume the profile supports.
+fn unclipped<S: Strategy<Value = Scene> + 'static>(p: &Profile, scenes: S) -> BoxedStrategy<Scene> {
+    (strategy::either_depth_range(p, scenes), viewport_depth())
         .prop_map(|(mut s, range)| {
             s.state.clip_near = false;
             s.state.clip_far = false;

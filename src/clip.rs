@@ -39,7 +39,7 @@ pub fn assemble(positions: &[[f32; 4]], indices: [u32; 3]) -> Option<[ClipVertex
     Some([0, 1, 2].map(|k| ClipVertex::corner(p[k], k)))
 }
 
-/// How x and y are clipped; z is always clipped at the near plane (and far when enabled).
+/// How x and y are clipped; z is clipped at the near and far planes a draw enables.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub enum ClipMode {
     /// Clip x/y only at the guard band and let traversal clamp to the viewport (what GPUs do).
@@ -280,5 +280,28 @@ mod tests {
             ClipOutcome::Clipped
         );
         assert!(polygon.len() >= 3);
+    }
+
+    /// With depth clipping off no depth plane is among the planes; what lies behind the eye
+    /// is still outside, by x or y.
+    #[test]
+    fn depth_clipping_off_leaves_only_x_and_y() {
+        let viewport = Viewport::new(8, 8).expect("8×8 is a valid viewport");
+        let off = DepthClip {
+            near: false,
+            far: false,
+            range: DepthRange::ZeroToOne,
+        };
+        let planes = clip_planes(ClipMode::Full, viewport, off);
+        assert_eq!(planes.len(), 4);
+        assert!(
+            !planes
+                .iter()
+                .any(|p| matches!(p, ClipPlane::Near(_) | ClipPlane::Far))
+        );
+        let code = |x: f64, z: f64, w: f64| outcode(&planes, DVec4::new(x, 0.0, z, w));
+        assert_eq!(code(0.0, -5.0, 1.0), 0, "before the near plane, kept");
+        assert_eq!(code(0.0, 5.0, 1.0), 0, "beyond the far plane, kept");
+        assert_ne!(code(0.5, 0.5, -1.0), 0, "behind the eye, outside");
     }
 }

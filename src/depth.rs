@@ -20,7 +20,8 @@ impl DepthRange {
         }
     }
 
-    /// Window depth of a clip-space point inside the volume (`> 1` beyond an unclipped far plane).
+    /// Normalised depth of a clip-space point: 0 at the near plane, 1 at the far one (beyond
+    /// `[0, 1]` before or past a plane not clipped at); [`ViewportDepth::window`] maps it.
     #[must_use]
     pub fn window_depth(self, z: f64, w: f64) -> f64 {
         match self {
@@ -178,5 +179,35 @@ impl DepthState {
             *stored = new;
         }
         pass
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The range maps the near plane to `min` and the far one to `max`, reversed too, and a
+    /// fragment's depth is clamped between them; each end must lie in `[0, 1]`.
+    #[test]
+    fn the_viewport_depth_range_maps_clamps_and_validates() {
+        let reversed = ViewportDepth { min: 0.75, max: 0.25 };
+        assert_eq!(reversed.window(0.0), 0.75);
+        assert_eq!(reversed.window(1.0), 0.25);
+        assert_eq!(reversed.window(0.5), 0.5);
+        assert!(reversed.is_inverted() && !ViewportDepth::FULL.is_inverted());
+        assert_eq!(reversed.fragment_depth(reversed.window(-1.0)), 0.75);
+        assert_eq!(reversed.fragment_depth(reversed.window(2.0)), 0.25);
+        assert_eq!(ViewportDepth::FULL.fragment_depth(1.5), 1.0);
+        let single = ViewportDepth { min: 0.5, max: 0.5 };
+        assert_eq!(single.fragment_depth(single.window(0.9)), 0.5);
+        assert!(reversed.validate().is_ok() && single.validate().is_ok());
+        for bad in [(-0.1, 0.5), (0.5, 1.5), (f32::NAN, 0.5)] {
+            let range = ViewportDepth {
+                min: bad.0,
+                max: bad.1,
+            };
+            assert!(range.validate().is_err_and(|m| m.contains("[0, 1]")), "{bad:?}");
+        }
+        assert!(ViewportDepth::FULL.fragment_depth(f64::NAN).is_nan());
     }
 }

@@ -306,11 +306,21 @@ pub struct StateSupport {
 }
 
 impl StateSupport {
+    /// Whether it honours viewport depth ranges at all: declared ordered, or reversed (which
+    /// implies ordered).
+    #[must_use]
+    pub fn honours_viewport_depth(&self) -> bool {
+        self.viewport_depth || self.inverted_depth
+    }
+
     /// `range` when declared; an inverted one in order where only ordered ones are, and the
     /// whole range where none is.
     #[must_use]
     pub fn fit_viewport_depth(&self, range: ViewportDepth) -> ViewportDepth {
-        match (self.viewport_depth, self.inverted_depth || !range.is_inverted()) {
+        match (
+            self.honours_viewport_depth(),
+            self.inverted_depth || !range.is_inverted(),
+        ) {
             (false, _) => ViewportDepth::FULL,
             (true, true) => range,
             (true, false) => ViewportDepth {

@@ -334,8 +334,8 @@ impl Profile {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::depth::CompareOp;
-    use crate::features::{SnapAccuracy, Supported};
+    use crate::depth::{CompareOp, ViewportDepth};
+    use crate::features::{SnapAccuracy, StateSupport, Supported};
     use crate::setup::{CullMode, FrontFace};
 
     /// The words `certify` prints for a profile's snapping (docs/certified.md).
@@ -440,6 +440,42 @@ mod tests {
             2.0 / 256.0,
             "either neighbour moves an edge up to √2 steps"
         );
+    }
+
+    /// Depth clipping off goes only to a profile declaring it, and then with far clipping off
+    /// whatever far clipping it declares; a depth range only to one honouring ranges, a
+    /// reversed one in order where only ordered ones are declared.
+    #[test]
+    fn depth_clipping_and_ranges_are_fitted_to_what_is_declared() {
+        let reversed = ViewportDepth { min: 0.75, max: 0.25 };
+        let asked = DrawState {
+            clip_near: false,
+            clip_far: true,
+            viewport_depth: reversed,
+            ..DrawState::default()
+        };
+        let mut profile = gpu(Features {
+            far_clipping: Supported::only(&[true]),
+            ..Features::ALL
+        });
+        let plain = profile.fit(asked);
+        assert!(plain.clip_near && plain.clip_far && plain.viewport_depth == ViewportDepth::FULL);
+        assert!(!profile.supports(&asked));
+        profile.state = StateSupport {
+            unclipped_depth: true,
+            viewport_depth: true,
+            ..StateSupport::NONE
+        };
+        let fitted = profile.fit(asked);
+        assert!(!fitted.clip_near && !fitted.clip_far);
+        assert_eq!(fitted.viewport_depth, ViewportDepth { min: 0.25, max: 0.75 });
+        assert!(profile.supports(&fitted));
+        profile.state = StateSupport {
+            inverted_depth: true,
+            ..StateSupport::NONE
+        };
+        assert!(profile.state.honours_viewport_depth());
+        assert_eq!(profile.fit(asked).viewport_depth, reversed);
     }
 
     /// A profile with a setting left empty, or a grid the oracles cannot snap to, is refused

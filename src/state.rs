@@ -22,7 +22,8 @@ pub struct DrawState {
     /// depth is clamped (depth clipping off: Vulkan's `depthClipEnable = VK_FALSE`, OpenGL's
     /// `DEPTH_CLAMP`, D3D11's `DepthClipEnable = FALSE`). Sent off only to a rasterizer that
     /// declares it ([`StateSupport::unclipped_depth`](crate::StateSupport::unclipped_depth)),
-    /// and then with far clipping off too. Points behind the eye are still clipped, by x and y.
+    /// and then with far clipping off too (the reference also draws near off with far on, as
+    /// `GL_AMD_depth_clamp_separate` would). What lies behind the eye is still clipped, by x and y.
     pub clip_near: bool,
     /// Where the near and far planes land in window depth. Sent other than `[0, 1]` only to a
     /// rasterizer that declares it ([`StateSupport::viewport_depth`](crate::StateSupport::viewport_depth)).

@@ -344,7 +344,7 @@ pub fn feature_list(p: &Profile) -> Vec<String> {
         (p.state.triangle_strips, "triangle-strip"),
         (p.state.triangle_fans, "triangle-fan"),
         (
-            p.state.viewport_depth && !p.state.inverted_depth,
+            p.state.honours_viewport_depth() && !p.state.inverted_depth,
             "viewport-depth",
         ),
         (p.state.inverted_depth, "inverted-depth"),

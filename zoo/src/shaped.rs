@@ -110,7 +110,7 @@ impl Shaped {
             let [_, _, z, w] = p.map(f64::from);
             let finite = p.iter().all(|c| c.is_finite());
             let outside = w <= 0.0
-                || near_distance(draw.state.depth_range, z, w) < 0.0
+                || (draw.state.clip_near && near_distance(draw.state.depth_range, z, w) < 0.0)
                 || (draw.state.clip_far && z > w);
             (finite && outside).then(|| {
                 format!("vertex {i} {p:?} needs clipping in 3D, which this scan converter does not do")
@@ -159,7 +159,7 @@ impl Rasterizer for Shaped {
             for f in &mut fragments {
                 let centre = [f64::from(f.x) + 0.5, f64::from(f.y) + 0.5];
                 if let Some(z) = screen_depth(draw, f.primitive, centre) {
-                    f.depth = z.clamp(0.0, 1.0) as f32;
+                    f.depth = draw.state.viewport_depth.fragment_depth(z);
                 }
             }
         }
@@ -247,7 +247,8 @@ fn screen_depth(draw: &Draw, t: u32, s: [f64; 2]) -> Option<f64> {
         return None;
     }
     let b = plane_weights(v.map(|(q, _)| q), s)?;
-    let z = v.map(|(_, p)| draw.state.depth_range.window_depth(p[2], p[3]));
+    let range = draw.state.viewport_depth;
+    let z = v.map(|(_, p)| range.window(draw.state.depth_range.window_depth(p[2], p[3])));
     Some(b[0] * z[0] + b[1] * z[1] + b[2] * z[2])
 }
 

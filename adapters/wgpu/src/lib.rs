@@ -209,8 +209,9 @@ impl Gpu {
     ) -> Result<(), DrawError> {
         if !profile.supports(state) {
             return Err(DrawError::Unsupported(format!(
-                "{} cannot draw with {state:?}: far clipping is always on, z runs 0 ≤ z ≤ w, and \
-                 wgpu culls one face or none (the nearest it draws: {:?})",
+                "{} cannot draw with {state:?}: far clipping is on unless depth clipping is off \
+                 altogether, z runs 0 ≤ z ≤ w, depth ranges run up, and wgpu culls one face or \
+                 none (the nearest it draws: {:?})",
                 profile.name,
                 profile.fit(*state)
             )));

@@ -143,7 +143,7 @@ fn invisible(scene: &Scene, t: usize) -> Option<String> {
              outside it) before dividing",
             listed(|p| p[3])
         ))
-    } else if v.iter().all(|&p| near(p)) {
+    } else if scene.state.clip_near && v.iter().all(|&p| near(p)) {
         Some(format!(
             "its vertices all have {plane} (z = {}; w = {}): it lies wholly before the near \
              plane; clip against the near plane (or drop a triangle wholly outside it)",

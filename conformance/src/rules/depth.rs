@@ -241,7 +241,7 @@ fn reorder(scene: &Scene, order: &[usize]) -> Scene {
 }
 
 /// The rasterizer's resolved buffers; an error, or buffers of the wrong size, is a violation.
-fn resolve(r: &mut dyn Rasterizer, scene: &Scene) -> Result<Resolved, Violation> {
+pub(super) fn resolve(r: &mut dyn Rasterizer, scene: &Scene) -> Result<Resolved, Violation> {
     let resolved = r
         .resolve(&scene.draw())
         .map_err(|e| Violation::of_draw_error("resolve", &e))?;

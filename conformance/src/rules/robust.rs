@@ -259,9 +259,9 @@ pub fn check_poisoned(r: &mut dyn Rasterizer, p: &Poisoned) -> Result<(), Violat
     )
 }
 
-/// Fragments are unique, have depth in the viewport's depth range within [`precision`] and finite barycentrics where
-/// the profile declares them (that they lie in the viewport and name real primitives,
-/// [`fragments`] checks for every rule).
+/// Fragments are unique, have depth in the viewport's depth range within [`precision`] and
+/// finite barycentrics where the profile declares them (that they lie in the viewport and name
+/// real primitives, [`fragments`] checks for every rule).
 pub fn check_well_formed(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     well_formed(
         r,

@@ -9,19 +9,21 @@
 use std::fmt;
 
 use proptest::prelude::*;
-use refrast::{DepthConvention, Profile, Rasterizer, ViewportDepth};
+use refrast::{CompareOp, DepthConvention, DepthState, Profile, Rasterizer, ViewportDepth};
 
-use super::depth::{check_depth_matches_raycast, check_depth_matches_raycast_where_bounded};
+use super::common::{fragments, precision};
+use super::depth::{check_depth_matches_raycast, check_depth_matches_raycast_where_bounded, resolve};
 use super::fill::check_exactly_once;
 use super::level::{EYE_CROSSING_UNCLIPPED, FAR_VALUES, Level};
 use super::{CLIPS_IN_3D, Family, Need, Rule, Z_OVER_W_DEPTH, needs};
+use crate::oracle::raster::replay_depth;
 use crate::runner::property_for;
 use crate::scene::{Case, Scene};
 use crate::strategy;
-use crate::violation::Violation;
+use crate::violation::{Findings, Violation, plural};
 
 /// The implementation honours a viewport depth range other than `[0, 1]`.
-const VIEWPORT_DEPTH: Need = needs(|p| p.state.viewport_depth, "no viewport depth range");
+const VIEWPORT_DEPTH: Need = needs(|p| p.state.honours_viewport_depth(), "no viewport depth range");
 
 /// The implementation draws with depth clipping off.
 const UNCLIPPED_DEPTH: Need = needs(|p| p.state.unclipped_depth, "no unclipped depth");
@@ -46,7 +48,7 @@ pub(super) fn rules() -> Vec<Rule> {
             })
             .run(|r, cfg| property_for(r, cfg, ranged_scene, check_depth_matches_raycast)),
         Rule::invariant(Family::Clip, "clip.unclipped-depth.clamped")
-            .sentence("With depth clipping off, a triangle crossing the near and far planes (and w = 0) covers exactly the samples whose ray-cast hit lies in front of the eye, nothing cut at either plane, outside the tolerance band; and each fragment's depth is the hit's window depth clamped to the viewport's depth range [min(minDepth, maxDepth), max(minDepth, maxDepth)], within the claimed precision.")
+            .sentence("With depth clipping off, a triangle crossing the near and far planes (and w = 0) covers exactly the samples whose ray-cast hit lies in front of the eye, nothing cut at either plane, outside the tolerance band; and each fragment's depth is the hit's window depth clamped to the viewport's depth range [min(minDepth, maxDepth), max(minDepth, maxDepth)], within the claimed precision, as is what the depth test writes.")
             .source(CLAMP_SOURCE)
             .cases(3000)
             .needs(CLIPS_IN_3D)
@@ -74,7 +76,7 @@ where
     C: Case + Clone + fmt::Debug + 'static,
     S: Strategy<Value = C> + 'static,
 {
-    if !p.state.viewport_depth {
+    if !p.state.honours_viewport_depth() {
         return cases.boxed();
     }
     (cases, viewport_depth(), any::<bool>())
@@ -137,20 +139,72 @@ fn deep_scene() -> impl Strategy<Value = Scene> {
     })
 }
 
-/// Coverage as the ray cast without depth planes, then depth clamped (where depth is z/w).
+/// Coverage as the ray cast without depth planes, then depth clamped (where depth is z/w), in
+/// the fragments and in the depth buffer.
 pub fn check_clamped(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     check_exactly_once(r, scene)?;
-    if r.profile().depth != DepthConvention::ScreenLinearZOverW {
-        return Ok(());
+    if r.profile().depth == DepthConvention::ScreenLinearZOverW {
+        check_depth_matches_raycast(r, scene)?;
     }
-    check_depth_matches_raycast(r, scene)
+    check_buffer(r, scene)
 }
 
 /// [`check_clamped`] with depth judged only where the specifications bound it ([`FAR_VALUES`]).
 fn check_clamped_where_bounded(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     check_exactly_once(r, scene)?;
-    if r.profile().depth != DepthConvention::ScreenLinearZOverW {
+    if r.profile().depth == DepthConvention::ScreenLinearZOverW {
+        check_depth_matches_raycast_where_bounded(r, scene)?;
+    }
+    check_buffer(r, scene)
+}
+
+/// Where the implementation runs its own depth test, the buffer it leaves with every fragment
+/// written (`Always`, writes on) is its fragments replayed, within the claimed precision: the
+/// clamp is the depth test's, not only the fragment's (a GPU's fragments come from the shader's
+/// FragCoord.z, which no specification clamps nor ties to the tested depth bit for bit, so its
+/// adapter may clamp them itself).
+fn check_buffer(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let profile = r.profile();
+    let f = &profile.features;
+    if !f.depth_test || !f.compare_ops.contains(CompareOp::Always) || !f.depth_writes.contains(true) {
         return Ok(());
     }
-    check_depth_matches_raycast_where_bounded(r, scene)
+    let mut every = scene.clone();
+    every.state.depth = DepthState {
+        compare: CompareOp::Always,
+        write: true,
+        clear: scene.state.depth.clear,
+    };
+    let got = resolve(r, &every)?;
+    let (depths, ids) = replay_depth(
+        every.state.depth,
+        scene.width,
+        scene.height,
+        &fragments(r, &every)?,
+    );
+    let eps = precision(&profile);
+    let mut found = Findings::new();
+    for i in 0..depths.len() {
+        let off = (f64::from(got.depth[i]) - f64::from(depths[i])).abs();
+        if got.primitive[i] != ids[i] || off > eps {
+            let (x, y) = (i as u32 % scene.width, i as u32 / scene.width);
+            found.add((x, y), || {
+                format!(
+                    "{:?}: the depth test left ({}, {:?}), its fragments replayed ({}, {:?})",
+                    (x, y),
+                    got.depth[i],
+                    got.primitive[i],
+                    depths[i],
+                    ids[i]
+                )
+            });
+        }
+    }
+    found.verdict(|n| {
+        format!(
+            "with every fragment written, the depth buffer differs from the fragments (clamped to \
+             the viewport's depth range) by more than the claimed precision at {}",
+            plural(n, "pixel")
+        )
+    })
 }

@@ -201,9 +201,10 @@ impl DrawData {
                     max: max.0,
                 }),
         };
-        // A draw needs a viewport in range; the rules build none other.
+        // A draw needs a viewport and a depth range in range; the rules build none other.
         Viewport::new(self.width, self.height)
             .map_err(|e| format!("width {} and height {}: {e}", self.width, self.height))?;
+        state.viewport_depth.validate()?;
         let mut scene = Scene {
             width: self.width,
             height: self.height,

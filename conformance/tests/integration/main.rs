@@ -17,3 +17,4 @@ mod segment_oracle;
 mod shaped;
 mod shrinking;
 mod spec_map;
+mod unclipped_depth;

@@ -124,7 +124,13 @@ fn with_last_pixels(draw: &Draw, mut out: Vec<Fragment>, also: impl Fn(usize) ->
         {
             continue;
         }
-        let depth = (end[2] / end[3]).clamp(0.0, 1.0);
+        let state = &draw.state;
+        let u = state
+            .depth_range
+            .window_depth(f64::from(end[2]), f64::from(end[3]));
+        let depth = state
+            .viewport_depth
+            .fragment_depth(state.viewport_depth.window(u));
         out.extend((0..draw.samples).map(|sample| Fragment {
             x: px,
             y: py,

@@ -34,8 +34,9 @@ pub struct Hit {
 
 /// Casts the ray through NDC point `(nx, ny)` at the clip-space triangle `tri`.
 ///
-/// `None` when it misses, the hit is behind the eye or outside an enabled near or far plane, or the triangle is seen edge-on. Every decision is exact: f64 first, with a forward
-/// error bound on each sign; when a sign is within its bound of zero (a sample on an edge, a
+/// `None` when it misses, the hit is behind the eye or outside an enabled near or far plane, or
+/// the triangle is seen edge-on. Every decision is exact: f64 first, with a forward error bound
+/// on each sign; when a sign is within its bound of zero (a sample on an edge, a
 /// triangle nearly edge-on), the same solve runs again in exact integers.
 #[must_use]
 pub fn ray_cast(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Option<Hit> {

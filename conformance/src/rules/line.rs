@@ -9,9 +9,9 @@ use super::samples::{
     compare_samples, counts, endpoint_bits, expect_covered, grid, keys, positions, sample_fragments,
     within_guard_band,
 };
-use super::viewport_depth::sometimes_ranged;
+use super::viewport_depth::varied_depth;
 use super::{CLIPS_IN_3D, Family, PERSPECTIVE_BARYCENTRICS, Rule, needs};
-use crate::oracle::raster::{Point, near_distance, project, snap, window_depth};
+use crate::oracle::raster::{Point, clamp_depth, near_distance, project, snap, window_depth};
 use crate::oracle::segment::SampleGrid;
 use crate::runner::{property, property_for};
 use crate::scene::PrimitiveScene;
@@ -87,7 +87,7 @@ pub(super) fn rules() -> Vec<Rule> {
             })
             .run(|r, cfg| property(r, cfg, lines::near_crossing_line(), check_clip)),
         Rule::invariant(Family::Line, "line.depth.linear")
-            .sentence("A line fragment's depth is the ends' window depths (through the viewport's depth range, where declared) interpolated linearly in screen space at the sample's projection on the segment's line (held at the end's or extrapolated beyond it), within a pixel's worth and the claimed precision.")
+            .sentence("A line fragment's depth is the ends' window depths (through the viewport's depth range, where declared) interpolated linearly in screen space at the sample's projection on the segment's line (held at the end's or extrapolated beyond it), clamped to the range with depth clipping off (where declared), within a pixel's worth and the claimed precision.")
             .source("Vulkan 1.4, Basic Line Segment Rasterization (z_f = (1 − t) z_a + t z_b); seed 004 (lines with depth)")
             .cases(800)
             .needs(LINES)
@@ -95,7 +95,7 @@ pub(super) fn rules() -> Vec<Rule> {
                 property_for(
                     r,
                     cfg,
-                    |p| sometimes_ranged(p, lines::perspective_line()),
+                    |p| varied_depth(p, lines::perspective_line()),
                     check_depth_linear,
                 )
             }),
@@ -588,7 +588,16 @@ pub fn check_depth_linear(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Resu
         let Some((t, span)) = along(case, &d, &positions, f) else {
             continue;
         };
+        // Clamping is monotone: the clamped values lie between the clamped bounds. With depth
+        // clipping off the clamp is required; with it on, a value outside the range is
+        // undefined (Depth Clamping and Range Adjustment), so the extrapolated one stands too.
         let (lo, hi) = either_side(t, span, |t| za + (zb - za) * t);
+        let state = &case.scene.state;
+        let (lo, hi) = if state.clip_near {
+            (lo.min(clamp_depth(state, lo)), hi.max(clamp_depth(state, hi)))
+        } else {
+            (clamp_depth(state, lo), clamp_depth(state, hi))
+        };
         let z = f64::from(f.depth);
         if z < lo - 2.0 * p || z > hi + 2.0 * p {
             found.add((f.x, f.y), || {

@@ -7,7 +7,7 @@ use super::level::Level;
 use super::samples::{
     cell, compare_samples, counts, expect_covered, grid, point_bits, positions, sample_fragments,
 };
-use super::viewport_depth::sometimes_ranged;
+use super::viewport_depth::varied_depth;
 use super::{Family, Rule, needs};
 use crate::oracle::facing::snap_candidates;
 use crate::oracle::raster::{Point, clamp_depth, outside_depth_planes, project, window_depth};
@@ -72,11 +72,11 @@ pub(super) fn rules() -> Vec<Rule> {
             })
             .run(|r, cfg| property(r, cfg, points::points(), check_pixel_holding)),
         Rule::invariant(Family::Point, "point.depth.vertex")
-            .sentence("A point's fragments carry its vertex's window depth (through the viewport's depth range, where declared) and barycentrics (1, 0, 0), within the claimed precision.")
+            .sentence("A point's fragments carry its vertex's window depth (through the viewport's depth range, where declared; clamped to it with depth clipping off, where declared) and barycentrics (1, 0, 0), within the claimed precision.")
             .source("Vulkan 1.4, Basic Point Rasterization (\"all fragments produced in rasterizing a point are assigned the same associated data\")")
             .cases(800)
             .needs(POINTS)
-            .run(|r, cfg| property_for(r, cfg, |p| sometimes_ranged(p, points::points()), check_depth)),
+            .run(|r, cfg| property_for(r, cfg, |p| varied_depth(p, points::points()), check_depth)),
     ]
 }
 

@@ -69,20 +69,28 @@ pub fn viewport_depth() -> impl Strategy<Value = ViewportDepth> {
     (end.clone(), end).prop_map(|(min, max)| ViewportDepth { min, max })
 }
 
-/// `cases` drawn half of the time with a [`viewport_depth`] range where `p` declares ranges:
-/// for the line and point depth rules, whose values go through the range as triangles' do.
-pub fn sometimes_ranged<C, S>(p: &Profile, cases: S) -> BoxedStrategy<C>
+/// `cases` drawn half of the time with a [`viewport_depth`] range where `p` declares ranges,
+/// and half of the time with depth clipping off where it declares that, each vertex's `z/w`
+/// then stretched from `[0, 1]` to `[−1, 2]`, before the near and beyond the far plane: for the
+/// line and point depth rules, whose values go through the range and the clamp as triangles' do.
+pub fn varied_depth<C, S>(p: &Profile, cases: S) -> BoxedStrategy<C>
 where
     C: Case + Clone + fmt::Debug + 'static,
     S: Strategy<Value = C> + 'static,
 {
-    if !p.state.honours_viewport_depth() {
-        return cases.boxed();
-    }
-    (cases, viewport_depth(), any::<bool>())
-        .prop_map(|(mut case, range, ranged)| {
-            if ranged {
-                case.scene_mut().state.viewport_depth = range;
+    let (ranges, unclipped) = (p.state.honours_viewport_depth(), p.state.unclipped_depth);
+    (cases, viewport_depth(), any::<bool>(), any::<bool>())
+        .prop_map(move |(mut case, range, ranged, stretched)| {
+            let scene = case.scene_mut();
+            if ranges && ranged {
+                scene.state.viewport_depth = range;
+            }
+            if unclipped && stretched {
+                scene.state.clip_near = false;
+                scene.state.clip_far = false;
+                for v in &mut scene.positions {
+                    v[2] = 3.0 * v[2] - v[3];
+                }
             }
             case
         })

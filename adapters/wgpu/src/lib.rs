@@ -184,8 +184,8 @@ impl Gpu {
 
     /// Refuses a draw the driver cannot do as asked, rather than draw something else: lines,
     /// points or samples its measured profile does not declare, and what
-    /// [`Gpu::check_target`] refuses.
-    fn check(&self, draw: &Draw) -> Result<(), DrawError> {
+    /// [`Gpu::check_target`] refuses. The profile it checked against, built once a draw.
+    fn check(&self, draw: &Draw) -> Result<Profile, DrawError> {
         draw.validate()?;
         let profile = self.profile();
         if !profile.draws(draw.topology, draw.samples) {
@@ -196,7 +196,8 @@ impl Gpu {
                 self.measured.summary()
             )));
         }
-        self.check_target(&profile, draw.viewport, &draw.state)
+        self.check_target(&profile, draw.viewport, &draw.state)?;
+        Ok(profile)
     }
 
     /// Refuses a state WebGPU cannot set (far clipping off, `−w ≤ z`) and a target beyond the
@@ -338,7 +339,7 @@ impl Rasterizer for Gpu {
     }
 
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
-        self.check(draw)?;
+        let profile = self.check(draw)?;
         let mut fragments = draw::capture(&self.context, &mut self.pipelines(), draw)?;
         // The capture reads FragCoord.z, which no specification clamps (Vulkan clamps z_f on its
         // way to the depth test, D3D11.3 §16.3.1 leaves the shader's input unclamped): the
@@ -351,7 +352,7 @@ impl Rasterizer for Gpu {
             }
         }
         // Flat values come in the backend's one mode: under another, none is reported.
-        if !self.profile().state.flat.contains(draw.state.provoking_vertex) {
+        if !profile.state.flat.contains(draw.state.provoking_vertex) {
             fragments.iter_mut().for_each(|f| f.flat = None);
         }
         Ok(fragments)

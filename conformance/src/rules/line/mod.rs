@@ -1,9 +1,8 @@
 //! Lines of width one: exact coverage under the declared rule, strips, clipping, depth and
-//! barycentrics along the segment, and what reversing a segment may change.
+//! barycentrics along the segment (`values.rs`), and what reversing a segment may change.
 
 use refrast::{FillConvention, Fragment, LineRule, Profile, Rasterizer, Topology};
 
-use super::common::precision;
 use super::level::Level;
 use super::samples::{
     compare_samples, counts, endpoint_bits, expect_covered, grid, keys, positions, sample_fragments,
@@ -11,12 +10,17 @@ use super::samples::{
 };
 use super::viewport_depth::varied_depth;
 use super::{CLIPS_IN_3D, Family, PERSPECTIVE_BARYCENTRICS, Rule, needs};
-use crate::oracle::raster::{Point, clamp_depth, near_distance, project, snap, window_depth};
+use crate::oracle::raster::{Point, near_distance, project, snap};
 use crate::oracle::segment::SampleGrid;
 use crate::runner::{property, property_for};
 use crate::scene::PrimitiveScene;
 use crate::strategy::primitive as lines;
 use crate::violation::{Expect, Findings, Violation, plural};
+
+mod clip;
+mod values;
+pub use clip::{check_clip, check_clip_allowance};
+pub use values::{check_bary_perspective, check_depth_linear};
 
 /// The implementation draws lines by the diamond-exit rule.
 const DIAMOND_EXIT: super::Need = needs(
@@ -403,249 +407,6 @@ pub fn check_shared_end_once(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> R
         }
     }
     Ok(())
-}
-
-/// The segment from its front end to where it crosses the near plane, against the oracle of
-/// that visible part; samples the cut's rounding could change are not judged.
-pub fn check_clip(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
-    let Some((frags, expected, _)) = clip_expectations(r, case)? else {
-        return Ok(());
-    };
-    compare_samples(
-        case,
-        &counts(case, &frags, Some(0)),
-        &expected,
-        "the visible part's oracle",
-    )
-}
-
-/// [`check_clip`] under Vulkan's allowance for other line algorithms (diamond-exit lines only;
-/// the area rules are judged whole): every fragment within a pixel of the visible part's, and
-/// every pixel of the visible part 2 px from the cut within a pixel of a fragment.
-pub fn check_clip_allowance(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
-    if r.profile().lines != Some(LineRule::DiamondExit) {
-        return check_clip(r, case);
-    }
-    let Some((frags, expected, cut)) = clip_expectations(r, case)? else {
-        return Ok(());
-    };
-    let w = case.scene.width;
-    let at = |i: usize| (i as u32 % w, i as u32 / w);
-    let near = |(x, y): (u32, u32), set: &[(u32, u32)]| {
-        set.iter().any(|&(u, v)| x.abs_diff(u) <= 1 && y.abs_diff(v) <= 1)
-    };
-    let got: Vec<(u32, u32)> = frags.iter().map(|f| (f.x, f.y)).collect();
-    let may: Vec<(u32, u32)> = (0..expected.len())
-        .filter(|&i| expected[i] != Expect::Zero)
-        .map(at)
-        .collect();
-    let mut found = Findings::new();
-    for &p in got.iter().filter(|&&p| !near(p, &may)) {
-        found.add(p, || {
-            format!(
-                "({}, {}) is more than a pixel from the visible part's pixels",
-                p.0, p.1
-            )
-        });
-    }
-    for i in (0..expected.len()).filter(|&i| expected[i] == Expect::One) {
-        let p = at(i);
-        let c = [f64::from(p.0) + 0.5, f64::from(p.1) + 0.5];
-        if (c[0] - cut[0]).abs().max((c[1] - cut[1]).abs()) >= 2.0 && !near(p, &got) {
-            found.add(p, || {
-                format!(
-                    "({}, {}) of the visible part has no fragment within a pixel",
-                    p.0, p.1
-                )
-            });
-        }
-    }
-    found.verdict(|n| {
-        format!(
-            "the clipped segment breaks Vulkan's allowance for other line algorithms at {}",
-            plural(n, "pixel")
-        )
-    })
-}
-
-/// What [`check_clip`] judges: the rasterizer's fragments, the expectations per sample, and
-/// where the segment meets the near plane (pixels).
-type ClipJudged = (Vec<Fragment>, Vec<Expect>, [f64; 2]);
-
-/// [`ClipJudged`] of a case, `None` for a case the rule does not judge.
-fn clip_expectations(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<Option<ClipJudged>, Violation> {
-    let Some(d) = declared(r) else { return Ok(None) };
-    let Some([pa, pb]) = case.segment(0) else {
-        return Ok(None);
-    };
-    // Without near clipping there is no cut to judge.
-    if !case.scene.state.clip_near {
-        return Ok(None);
-    }
-    let (w, h) = (case.scene.width, case.scene.height);
-    let range = case.scene.state.depth_range;
-    let near = |p: [f32; 4]| near_distance(range, f64::from(p[2]), f64::from(p[3]));
-    let (da, db) = (near(pa), near(pb));
-    if da < 0.0 || !within_guard_band(case, &d.profile) {
-        return Ok(None);
-    }
-    let frags = sample_fragments(r, case)?;
-    let one = f64::from(1u32 << d.bits);
-    let [a, b] = [pa, pb].map(|p| project(w, h, p.map(f64::from)));
-    let s = if db < 0.0 { da / (da - db) } else { 1.0 };
-    let cut = [a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])];
-    let Some(start) = snap(pa, w, h, d.bits) else {
-        return Ok(None);
-    };
-    let cut_grid = (cut[0] * one, cut[1] * one);
-    let positions = positions(r, case);
-    let g = grid(case, d.bits, &positions);
-    let band = d.profile.band_px();
-    // The cut rounded each way on each axis: where they disagree, rounding decides.
-    let variants: Vec<Vec<Expect>> = [(0.0, 0.0), (1.0, 1.0), (-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0)]
-        .iter()
-        .map(|&(ox, oy)| {
-            let end = (
-                (cut_grid.0 + ox).round() as i128,
-                (cut_grid.1 + oy).round() as i128,
-            );
-            segment_expectations(case, &g, &d, [start, end], band)
-        })
-        .collect();
-    let mut expected = variants[0].clone();
-    for (i, e) in expected.iter_mut().enumerate() {
-        if variants.iter().any(|v| v[i] != variants[0][i]) {
-            *e = Expect::ZeroOrOne;
-        }
-    }
-    // Within 1.5 px of the cut, the end's own rule (its diamond left out) may go either way.
-    if db < 0.0 {
-        for y in 0..h {
-            for x in 0..w {
-                let c = [f64::from(x) + 0.5, f64::from(y) + 0.5];
-                if (c[0] - cut[0]).abs().max((c[1] - cut[1]).abs()) < 1.5 {
-                    for k in 0..positions.len() {
-                        expected[super::samples::cell(case, x, y, k as u8)] = Expect::ZeroOrOne;
-                    }
-                }
-            }
-        }
-    }
-    Ok(Some((frags, expected, cut)))
-}
-
-/// For each fragment of segment 0: where on the snapped segment's line its sample projects
-/// (`t`, below 0 or above 1 for a sample beyond an end), and the span of `t` a pixel makes (so a
-/// rule evaluating at another point of the pixel, such as the labs' DDA, is not failed).
-fn along(case: &PrimitiveScene, d: &Declared, positions: &[[u8; 2]], f: &Fragment) -> Option<(f64, f64)> {
-    let [a, b] = snapped_ends(case, 0, d)?;
-    let one = f64::from(1u32 << d.bits);
-    let (ax, ay, dx, dy) = (
-        a.0 as f64 / one,
-        a.1 as f64 / one,
-        (b.0 - a.0) as f64 / one,
-        (b.1 - a.1) as f64 / one,
-    );
-    let length2 = dx * dx + dy * dy;
-    if length2 == 0.0 {
-        return None;
-    }
-    let [u, v] = positions.get(usize::from(f.sample)).copied().unwrap_or([8, 8]);
-    let s = [
-        f64::from(f.x) + f64::from(u) / 16.0,
-        f64::from(f.y) + f64::from(v) / 16.0,
-    ];
-    let t = ((s[0] - ax) * dx + (s[1] - ay) * dy) / length2;
-    // A pixel spans 1/length of t, however short the segment: extrapolated, t can be anything.
-    Some((t, 1.0 / length2.sqrt()))
-}
-
-/// The range `value` takes over `t ± span`, `t` taken as it is and clamped to `[0, 1]`: Vulkan's
-/// and OpenGL's formula, `t = (p_r − p_a)·(p_b − p_a) / ‖p_b − p_a‖²`, does not clamp, so a
-/// fragment whose sample lies beyond an end may extrapolate (llvmpipe and SwiftShader do) or
-/// hold the end's value (the reference does).
-fn either_side(t: f64, span: f64, value: impl Fn(f64) -> f64) -> (f64, f64) {
-    let all = [t - span, t + span]
-        .into_iter()
-        .flat_map(|t| [value(t), value(t.clamp(0.0, 1.0))]);
-    all.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-        (lo.min(v), hi.max(v))
-    })
-}
-
-/// Depth is the ends' window depths linear in `t`, within a pixel's span of `t` and the precision.
-pub fn check_depth_linear(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
-    let Some(d) = declared(r) else { return Ok(()) };
-    let frags = sample_fragments(r, case)?;
-    let positions = positions(r, case);
-    let Some(ends) = case.segment(0) else {
-        return Ok(());
-    };
-    let [za, zb] = ends.map(|p| window_depth(&case.scene.state, f64::from(p[2]) / f64::from(p[3])));
-    let p = precision(&d.profile);
-    let mut found = Findings::new();
-    for f in &frags {
-        let Some((t, span)) = along(case, &d, &positions, f) else {
-            continue;
-        };
-        // Clamping is monotone: the clamped values lie between the clamped bounds. With depth
-        // clipping off the clamp is required; with it on, a value outside the range is
-        // undefined (Depth Clamping and Range Adjustment), so the extrapolated one stands too.
-        let (lo, hi) = either_side(t, span, |t| za + (zb - za) * t);
-        let state = &case.scene.state;
-        let (lo, hi) = if state.clip_near {
-            (lo.min(clamp_depth(state, lo)), hi.max(clamp_depth(state, hi)))
-        } else {
-            (clamp_depth(state, lo), clamp_depth(state, hi))
-        };
-        let z = f64::from(f.depth);
-        if z < lo - 2.0 * p || z > hi + 2.0 * p {
-            found.add((f.x, f.y), || {
-                format!(
-                    "({}, {}) sample {}: depth {z}, expected {lo}..={hi} (t = {t:.4} between depths {za} and {zb})",
-                    f.x, f.y, f.sample
-                )
-            });
-        }
-    }
-    found.verdict(|n| format!("depth is not linear along the line at {}", plural(n, "fragment")))
-}
-
-/// Barycentrics are `(1 − t′, t′, 0)`, `t′` perspective-correct, within a pixel's span and the precision.
-pub fn check_bary_perspective(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
-    let Some(d) = declared(r) else { return Ok(()) };
-    let frags = sample_fragments(r, case)?;
-    let positions = positions(r, case);
-    let Some([pa, pb]) = case.segment(0) else {
-        return Ok(());
-    };
-    let (wa, wb) = (f64::from(pa[3]), f64::from(pb[3]));
-    let denominator = |t: f64| (1.0 - t) / wa + t / wb;
-    let correct = |t: f64| (t / wb) / denominator(t);
-    let p = precision(&d.profile);
-    let mut found = Findings::new();
-    for f in &frags {
-        let Some((t, span)) = along(case, &d, &positions, f) else {
-            continue;
-        };
-        let [b0, b1, b2] = f.barycentric.map(f64::from);
-        // Extrapolated far enough beyond an end, t′ passes a pole (1/w reaches 0 on the line):
-        // no value is then out of range.
-        let (lo, hi) = if denominator(t - span) * denominator(t + span) <= 0.0 {
-            (f64::NEG_INFINITY, f64::INFINITY)
-        } else {
-            either_side(t, span, correct)
-        };
-        if b1 < lo - p || b1 > hi + p || b2.abs() > p || (b0 + b1 - 1.0).abs() > 3.0 * p {
-            found.add((f.x, f.y), || {
-                format!(
-                    "({}, {}) sample {}: barycentrics {:?}, expected (1 − t′, t′, 0) with t′ in {lo}..={hi}",
-                    f.x, f.y, f.sample, f.barycentric
-                )
-            });
-        }
-    }
-    found.verdict(|n| format!("barycentrics along the line are off at {}", plural(n, "fragment")))
 }
 
 /// The case with every segment drawn from its other end, and which segment each one is.

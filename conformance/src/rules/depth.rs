@@ -241,7 +241,7 @@ fn reorder(scene: &Scene, order: &[usize]) -> Scene {
 }
 
 /// The rasterizer's resolved buffers; an error, or buffers of the wrong size, is a violation.
-pub(super) fn resolve(r: &mut dyn Rasterizer, scene: &Scene) -> Result<Resolved, Violation> {
+fn resolve(r: &mut dyn Rasterizer, scene: &Scene) -> Result<Resolved, Violation> {
     let resolved = r
         .resolve(&scene.draw())
         .map_err(|e| Violation::of_draw_error("resolve", &e))?;
@@ -314,18 +314,35 @@ pub fn check_order_independent(r: &mut dyn Rasterizer, scene: &Scene) -> Result<
 
 /// `resolve` equals the fragments replayed through the draw's depth state.
 pub fn check_resolve(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
-    let draw = scene.draw();
+    replay_differences(r, scene, None)?.verdict(|n| {
+        format!(
+            "the resolved buffers differ from the fragments replayed at {}",
+            plural(n, "pixel")
+        )
+    })
+}
+
+/// The pixels where `resolve` differs from the fragments replayed through the draw's depth
+/// state: in the primitive, or in depth bit for bit (`tolerance` `None`) or by more than it.
+pub(super) fn replay_differences(
+    r: &mut dyn Rasterizer,
+    scene: &Scene,
+    tolerance: Option<f64>,
+) -> Result<Findings, Violation> {
     let got = resolve(r, scene)?;
-    let (depths, ids) = replay_depth(draw.state.depth, scene.width, scene.height, &fragments(r, scene)?);
-    let want = Resolved {
-        viewport: draw.viewport,
-        samples: 1,
-        depth: depths,
-        primitive: ids,
+    let (depths, ids) = replay_depth(
+        scene.state.depth,
+        scene.width,
+        scene.height,
+        &fragments(r, scene)?,
+    );
+    let differs = |a: f32, b: f32| match tolerance {
+        None => a.to_bits() != b.to_bits(),
+        Some(eps) => (f64::from(a) - f64::from(b)).abs() > eps,
     };
     let mut found = Findings::new();
-    for i in 0..want.depth.len() {
-        if got.depth[i].to_bits() != want.depth[i].to_bits() || got.primitive[i] != want.primitive[i] {
+    for i in 0..depths.len() {
+        if differs(got.depth[i], depths[i]) || got.primitive[i] != ids[i] {
             let (x, y) = (i as u32 % scene.width, i as u32 / scene.width);
             found.add((x, y), || {
                 format!(
@@ -333,18 +350,13 @@ pub fn check_resolve(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violat
                     (x, y),
                     got.depth[i],
                     got.primitive[i],
-                    want.depth[i],
-                    want.primitive[i]
+                    depths[i],
+                    ids[i]
                 )
             });
         }
     }
-    found.verdict(|n| {
-        format!(
-            "the resolved buffers differ from the fragments replayed at {}",
-            plural(n, "pixel")
-        )
-    })
+    Ok(found)
 }
 
 /// [`check_depth_matches_raycast`] where the triangle stays near the viewport, finite values

@@ -11,16 +11,17 @@ use std::fmt;
 use proptest::prelude::*;
 use refrast::{CompareOp, DepthConvention, DepthState, Profile, Rasterizer, ViewportDepth};
 
-use super::common::{fragments, precision};
-use super::depth::{check_depth_matches_raycast, check_depth_matches_raycast_where_bounded, resolve};
+use super::common::precision;
+use super::depth::{
+    check_depth_matches_raycast, check_depth_matches_raycast_where_bounded, replay_differences,
+};
 use super::fill::check_exactly_once;
 use super::level::{EYE_CROSSING_UNCLIPPED, FAR_VALUES, Level};
 use super::{CLIPS_IN_3D, Family, Need, Rule, Z_OVER_W_DEPTH, needs};
-use crate::oracle::raster::replay_depth;
 use crate::runner::property_for;
 use crate::scene::{Case, Scene};
 use crate::strategy;
-use crate::violation::{Findings, Violation, plural};
+use crate::violation::{Violation, plural};
 
 /// The implementation honours a viewport depth range other than `[0, 1]`.
 const VIEWPORT_DEPTH: Need = needs(|p| p.state.honours_viewport_depth(), "no viewport depth range");
@@ -183,32 +184,8 @@ fn check_buffer(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> 
         write: true,
         clear: scene.state.depth.clear,
     };
-    let got = resolve(r, &every)?;
-    let (depths, ids) = replay_depth(
-        every.state.depth,
-        scene.width,
-        scene.height,
-        &fragments(r, &every)?,
-    );
     let eps = precision(&profile);
-    let mut found = Findings::new();
-    for i in 0..depths.len() {
-        let off = (f64::from(got.depth[i]) - f64::from(depths[i])).abs();
-        if got.primitive[i] != ids[i] || off > eps {
-            let (x, y) = (i as u32 % scene.width, i as u32 / scene.width);
-            found.add((x, y), || {
-                format!(
-                    "{:?}: the depth test left ({}, {:?}), its fragments replayed ({}, {:?})",
-                    (x, y),
-                    got.depth[i],
-                    got.primitive[i],
-                    depths[i],
-                    ids[i]
-                )
-            });
-        }
-    }
-    found.verdict(|n| {
+    replay_differences(r, &every, Some(eps))?.verdict(|n| {
         format!(
             "with every fragment written, the depth buffer differs from the fragments (clamped to \
              the viewport's depth range) by more than the claimed precision at {}",

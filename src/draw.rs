@@ -192,6 +192,9 @@ impl Draw {
             .viewport_depth
             .validate()
             .map_err(DrawError::Unsupported)?;
+        if let Some(bias) = self.state.depth_bias {
+            bias.validate().map_err(DrawError::Unsupported)?;
+        }
         let vertices = self.positions.len();
         for i in 0..self.primitive_count() {
             let out_of_range = |p: &[u32]| p.iter().copied().find(|&v| v as usize >= vertices);

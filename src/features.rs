@@ -4,6 +4,7 @@
 use std::fmt;
 use std::marker::PhantomData;
 
+use crate::bias::{BiasSupport, DepthBias};
 use crate::depth::{CompareOp, DepthRange, ViewportDepth};
 use crate::setup::{CullMode, FrontFace};
 use crate::state::ProvokingVertex;
@@ -303,6 +304,9 @@ pub struct StateSupport {
     /// and `clip_far` both `false`): nothing cut at the near or far plane, depth clamped to the
     /// viewport's depth range (Vulkan's `depthClampEnable`, wgpu's `unclipped_depth`).
     pub unclipped_depth: bool,
+    /// The depth bias it honours on triangles ([`DrawState::depth_bias`](crate::DrawState::depth_bias)),
+    /// declared with the format and slope measure it computes it for; `None` when it has none.
+    pub depth_bias: Option<BiasSupport>,
 }
 
 impl StateSupport {
@@ -330,6 +334,16 @@ impl StateSupport {
         }
     }
 
+    /// `bias` where declared, its clamp 0 where the clamp is not; none where bias is not.
+    #[must_use]
+    pub fn fit_depth_bias(&self, bias: Option<DepthBias>) -> Option<DepthBias> {
+        let support = self.depth_bias?;
+        bias.map(|b| DepthBias {
+            clamp: if support.clamp { b.clamp } else { 0.0 },
+            ..b
+        })
+    }
+
     /// None of it: what a rasterizer written before it existed declares.
     pub const NONE: StateSupport = StateSupport {
         scissor: false,
@@ -340,6 +354,7 @@ impl StateSupport {
         viewport_depth: false,
         inverted_depth: false,
         unclipped_depth: false,
+        depth_bias: None,
     };
     /// All of it, as the reference honours it.
     pub const ALL: StateSupport = StateSupport {
@@ -351,6 +366,7 @@ impl StateSupport {
         viewport_depth: true,
         inverted_depth: true,
         unclipped_depth: true,
+        depth_bias: Some(BiasSupport::REFERENCE),
     };
 }
 

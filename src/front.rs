@@ -8,6 +8,7 @@
 
 use std::borrow::Cow;
 
+use crate::bias::polygon_offset;
 use crate::clip::{
     ClipOutcome, ClipPlane, ClipVertex, assemble, classify, clip_planes, clip_triangle, outcode,
 };
@@ -131,6 +132,9 @@ pub struct Kept {
     /// The triangle itself when it needed no clipping (then it is its own fan); `None` when
     /// clipped, its polygon and fan then in the scratch's `raster` and `fan`.
     pub whole: Option<SnappedTriangle>,
+    /// Its depth bias `o`, added to every fragment's depth before the clamp; 0 unbiased
+    /// ([`polygon_offset`]).
+    pub depth_offset: f64,
 }
 
 /// Takes triangle `primitive`, whose corners are `corners` (as [`FrontSetup::corners`] gives
@@ -164,7 +168,12 @@ pub fn front_end(
             let triangle = snapped.ok_or(Discard::Degenerate)?;
             let winding = triangle.setup.winding();
             let positions = triangle.vertices.map(|v| v.position);
-            kept(setup, winding, positions, Some(triangle))
+            let offset = polygon_offset(
+                setup.draw.state.depth_bias,
+                &triangle.vertices,
+                setup.transform.bits,
+            );
+            kept(setup, winding, positions, Some(triangle), offset)
         }
         ClipOutcome::Clipped => {
             let input =
@@ -183,7 +192,14 @@ pub fn front_end(
             }
             build_fan(&scratch.raster, setup.fill, &mut scratch.fan);
             let winding = drawn_winding(&input, true, scratch.fan.iter().map(|t| &t.setup));
-            kept(setup, winding, scratch.raster.iter().map(|v| v.position), None)
+            let offset = polygon_offset(setup.draw.state.depth_bias, &scratch.raster, setup.transform.bits);
+            kept(
+                setup,
+                winding,
+                scratch.raster.iter().map(|v| v.position),
+                None,
+                offset,
+            )
         }
     }
 }
@@ -195,6 +211,7 @@ fn kept(
     winding: Winding,
     polygon: impl IntoIterator<Item = FixedPoint>,
     whole: Option<SnappedTriangle>,
+    depth_offset: f64,
 ) -> Result<Kept, Discard> {
     let state = &setup.draw.state;
     let front_facing = state.front_face.is_front(winding).ok_or(Discard::Degenerate)?;
@@ -211,5 +228,6 @@ fn kept(
         winding,
         rect,
         whole,
+        depth_offset,
     })
 }

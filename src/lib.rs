@@ -25,6 +25,7 @@
 //! | lines, points, samples | `primitive.rs` | [`Topology`], [`LineRule`], [`PointClipping`], [`SamplePattern`], [`SAMPLE_COUNTS`] |
 //! | what an implementation declares | `profile.rs`, `features.rs` | [`Profile`], [`Snapping`], [`Spec`], [`Features`], [`StateSupport`], [`Supported`], [`SnapAccuracy`] |
 //! | state | `state.rs`, `setup.rs`, `depth.rs` | [`DrawState`], [`Scissor`], [`ProvokingVertex`], [`CullMode`], [`FrontFace`], [`DepthState`], [`CompareOp`], [`DepthRange`], [`ViewportDepth`] |
+//! | depth bias | `bias.rs` | [`DepthBias`], [`DepthFormat`], [`DepthSlope`], [`BiasSupport`], [`bias::polygon_offset`] |
 //! | the reference | `reference.rs` | [`Reference`], [`ReferenceConfig`], [`Traversal`], [`ClipMode`], [`DrawStats`], [`Sample`] |
 //! | fixed point | `fixed.rs` | [`SubpixelBits`], [`FixedPoint`], [`snap`], [`SnapRounding`], [`COORD_LIMIT`] |
 //! | viewport | `viewport.rs` | [`Viewport`], [`MAX_VIEWPORT`] |
@@ -95,6 +96,10 @@
 //!   ([`ViewportDepth`], reversed when `n > f`), interpolated linearly in screen space
 //!   ([`stage::interpolate_depth`]), then clamped to `[min(n, f), max(n, f)]`
 //!   ([`ViewportDepth::fragment_depth`]; depth clamping when a depth plane is not clipped at).
+//! - **Depth bias**: a triangle's depth is offset by `o = dbclamp(m·slope + r·constant)`, one
+//!   value per polygon, before the clamp: `m` the exact slope `√((∂z/∂x)² + (∂z/∂y)²)` of its
+//!   snapped widest fan triangle, `r = 2^(e − 23)` for its largest depth `2^e ≤ z < 2^(e+1)`,
+//!   refrast's depth being f32 ([`bias::polygon_offset`]); lines and points are not biased.
 //! - **Attributes**: perspective-correct, `Σ sᵢ fᵢ/wᵢ / Σ sᵢ/wᵢ`, for triangles and lines alike
 //!   ([`stage::interpolate`]); screen-space barycentrics also given.
 //! - **Bad numbers**: a triangle with a NaN or infinite coordinate is discarded and counted
@@ -102,6 +107,7 @@
 //!   [`ConfigError`]; a bad index is a [`DrawError`]. Nothing panics.
 #![forbid(unsafe_code)]
 
+pub mod bias;
 pub mod camera;
 mod clip;
 mod config;
@@ -129,6 +135,7 @@ mod state;
 mod traverse;
 mod viewport;
 
+pub use bias::{BiasSupport, DepthBias, DepthFormat, DepthSlope};
 pub use clip::ClipMode;
 pub use config::{ReferenceConfig, Traversal};
 pub use depth::{CompareOp, DepthClip, DepthRange, DepthState, ViewportDepth};

@@ -17,6 +17,7 @@
 
 use glam::{DVec3, DVec4};
 
+use crate::bias::FragmentDepth;
 use crate::clip::{ClipMode, ClipPlane, ClipVertex, clip_planes, clip_segment, outcode};
 use crate::config::Traversal;
 use crate::draw::{Draw, Fragment};
@@ -153,7 +154,7 @@ impl Reference {
                     emit(Fragment {
                         sample: k as u8,
                         ..Sample::new(
-                            draw.state.viewport_depth,
+                            FragmentDepth::new(draw.state.viewport_depth, kept.depth_offset),
                             primitive as u32,
                             kept.front_facing,
                             flat,

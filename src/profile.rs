@@ -319,6 +319,7 @@ impl Profile {
         fitted.clip_near = !self.state.unclipped_depth || state.clip_near;
         fitted.clip_far = fitted.clip_near && f.far_clipping.fit(state.clip_far);
         fitted.viewport_depth = self.state.fit_viewport_depth(state.viewport_depth);
+        fitted.depth_bias = self.state.fit_depth_bias(state.depth_bias);
         fitted.depth_range = f.depth_ranges.fit(state.depth_range);
         fitted.scissor = state.scissor.filter(|_| self.state.scissor);
         // Without flat values the mode changes nothing: the default is what such a draw has.

@@ -1,7 +1,7 @@
 //! The reference rasterizer: clip, project, snap, set up, traverse, interpolate — nothing clever.
 
+use crate::bias::FragmentDepth;
 use crate::config::ReferenceConfig;
-use crate::depth::ViewportDepth;
 use crate::draw::{Draw, Fragment};
 use crate::error::DrawError;
 use crate::features::{Features, SnapAccuracy, StateSupport};
@@ -153,7 +153,7 @@ impl Reference {
                 }
                 covered += 1;
                 visit(&Sample::new(
-                    setup.draw.state.viewport_depth,
+                    FragmentDepth::new(setup.draw.state.viewport_depth, kept.depth_offset),
                     primitive as u32,
                     kept.front_facing,
                     flat,
@@ -188,10 +188,10 @@ pub struct Sample<'a> {
 }
 
 impl<'a> Sample<'a> {
-    /// The sample at `hit` of triangle `primitive`, its depth interpolated (screen-linear) and
-    /// clamped to the viewport's depth range `range`.
+    /// The sample at `hit` of triangle `primitive`, its depth interpolated (screen-linear),
+    /// biased and clamped as `depth` says.
     pub(crate) fn new(
-        range: ViewportDepth,
+        depth: FragmentDepth,
         primitive: u32,
         front_facing: bool,
         flat: Option<u32>,
@@ -206,7 +206,7 @@ impl<'a> Sample<'a> {
             x: hit.x,
             y: hit.y,
             primitive,
-            depth: range.fragment_depth(interpolate_depth(corners, hit.values, t.setup.area2())),
+            depth: depth.of(interpolate_depth(corners, hit.values, t.setup.area2())),
             front_facing,
             flat,
             values: hit.values,

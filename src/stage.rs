@@ -27,6 +27,7 @@
 //! ends ([`Reference::draw_with_pattern`](crate::Reference::draw_with_pattern)); the labs' DDA,
 //! [`rasterize_line`] and [`rasterize_point`], stays for the course implementations.
 
+pub use crate::bias::{FragmentDepth, polygon_offset};
 pub use crate::clip::{
     ClipOutcome, ClipPlane, ClipVertex, assemble, classify, clip_planes, clip_polygon, clip_segment,
     clip_triangle, intersect, outcode,

@@ -2,6 +2,7 @@
 //! provoking vertex. Its own module because both the contract (a [`Draw`](crate::Draw) carries
 //! it) and a profile (which states it supports) need it.
 
+use crate::bias::DepthBias;
 use crate::depth::{DepthClip, DepthRange, DepthState, ViewportDepth};
 use crate::setup::{CullMode, FrontFace};
 
@@ -28,6 +29,10 @@ pub struct DrawState {
     /// Where the near and far planes land in window depth. Sent other than `[0, 1]` only to a
     /// rasterizer that declares it ([`StateSupport::viewport_depth`](crate::StateSupport::viewport_depth)).
     pub viewport_depth: ViewportDepth,
+    /// The depth bias of triangles; `None` biases nothing (Vulkan's `depthBiasEnable` off).
+    /// Sent only to a rasterizer that declares it
+    /// ([`StateSupport::depth_bias`](crate::StateSupport::depth_bias)).
+    pub depth_bias: Option<DepthBias>,
     /// The rectangle fragments must fall in; `None` tests nothing. Sent only to a rasterizer
     /// that declares it ([`StateSupport::scissor`](crate::StateSupport::scissor)).
     pub scissor: Option<Scissor>,
@@ -52,8 +57,8 @@ pub enum ProvokingVertex {
 
 impl Default for DrawState {
     /// No culling, counter-clockwise front faces, a LESS test, the `[0, 1]` clip volume with
-    /// near clipping on and far clipping off, the whole depth range, no scissor, the first
-    /// provoking vertex.
+    /// near clipping on and far clipping off, the whole depth range, no depth bias, no scissor,
+    /// the first provoking vertex.
     fn default() -> Self {
         Self {
             cull: CullMode::default(),
@@ -63,6 +68,7 @@ impl Default for DrawState {
             clip_far: false,
             clip_near: true,
             viewport_depth: ViewportDepth::FULL,
+            depth_bias: None,
             scissor: None,
             provoking_vertex: ProvokingVertex::default(),
         }

@@ -19,8 +19,8 @@ Draw = namedtuple(
     "Draw",
     "width height positions triangles cull front_face depth_compare depth_write depth_clear "
     "depth_range far_clipping topology samples scissor indices provoking_vertex near_clipping "
-    "viewport_depth",
-    defaults=(None, None, "first", True, (0.0, 1.0)),
+    "viewport_depth depth_bias",
+    defaults=(None, None, "first", True, (0.0, 1.0), None),
 )
 Draw.__doc__ = """One draw: clip-space positions (x, y, z, w), triangles (i, j, k) and state.
 
@@ -40,8 +40,11 @@ False only for a profile whose features name unclipped-depth (and far_clipping i
 nothing is cut at the near or far plane and depth is clamped to the viewport's depth range.
 viewport_depth is (min, max), where the near and far planes land in window depth (n + (f - n) * u),
 other than (0.0, 1.0) only for a profile whose features name viewport-depth (min > max only for
-inverted-depth); depth clamps to [min(n, f), max(n, f)]. Indices are not checked: raise Refused
-for one that names no vertex."""
+inverted-depth); depth clamps to [min(n, f), max(n, f)]. depth_bias is None, or (constant, slope,
+clamp) for a triangle draw to a profile with a depth-bias line: each triangle's depth is offset
+by o = m * slope + r * constant (min(o, clamp) when clamp > 0, max(o, clamp) when clamp < 0),
+m its depth slope and r its format's resolvable difference, before the clamp to the range.
+Indices are not checked: raise Refused for one that names no vertex."""
 
 Fragment = namedtuple(
     "Fragment", "x y primitive front_facing depth barycentric screen_barycentric sample flat"
@@ -135,6 +138,7 @@ def _read_draw(words, stream):
         viewport_depth=tuple(float(v) for v in fields["viewport-depth"].split(","))
         if "viewport-depth" in fields
         else (0.0, 1.0),
+        depth_bias=tuple(float(v) for v in fields["depth-bias"].split(",")) if "depth-bias" in fields else None,
     )
 
 

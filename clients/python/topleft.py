@@ -21,6 +21,7 @@ must still judge it on every rule (its triangles are turned to face front).
 """
 
 import argparse
+import math
 import os
 import struct
 import sys
@@ -54,6 +55,8 @@ PROFILE = {
     "depth-write": "on off",
     "far-clipping": "off on",
     "depth-range": "zero-to-one negative-one-to-one",
+    # f32 depth, the slope as max(|dz/dx|, |dz/dy|) (the approximation Vulkan allows), the clamp.
+    "depth-bias": "float32 max clamp",
 }
 
 
@@ -202,6 +205,34 @@ def edge_function(p, q):
     return p[1] - q[1], q[0] - p[0], (q[1] - p[1]) * p[0] - (q[0] - p[0]) * p[1]
 
 
+def depth_offset(draw, raster):
+    """The polygon's depth bias o: m from its widest fan triangle (max measure), r = 2^(e - 23)."""
+    if draw.depth_bias is None:
+        return 0.0
+    constant, slope, clamp = draw.depth_bias
+    (ax, ay), az = raster[0][0], raster[0][1]
+    widest = max(
+        ((raster[k], raster[k + 1]) for k in range(1, len(raster) - 1)),
+        key=lambda bc: abs(orient2d(raster[0][0], bc[0][0], bc[1][0])),
+    )
+    (bx, by), bz = widest[0][0], widest[0][1]
+    (cx, cy), cz = widest[1][0], widest[1][1]
+    det = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax)
+    m = 0.0
+    if det != 0:
+        dzdx = ((bz - az) * (cy - ay) - (cz - az) * (by - ay)) / det * ONE
+        dzdy = ((cz - az) * (bx - ax) - (bz - az) * (cx - ax)) / det * ONE
+        m = max(abs(dzdx), abs(dzdy))
+    largest = max(abs(f32(v[1])) for v in raster)
+    exponent = math.frexp(largest)[1] - 1 if largest >= 2.0**-126 else -126
+    o = m * slope + 2.0 ** (exponent - 23) * constant
+    if clamp > 0:
+        o = min(o, clamp)
+    elif clamp < 0:
+        o = max(o, clamp)
+    return o
+
+
 def fan_fragments(draw, t, raster, front):
     """Samples the snapped fan winds around, each with its interpolated values."""
     # A lone triangle covers each of its samples once; a fan's windings are summed per sample.
@@ -255,9 +286,10 @@ def fan_fragments(draw, t, raster, front):
     if not lone:
         hits = [(px, py, *found) for (px, py), (winding, found) in covered.items() if winding != 0]
     out = []
+    offset = depth_offset(draw, raster)
     for px, py, (ca, cb, cc), (v0, v1, v2), area in hits:
         s0, s1, s2 = v0 / area, v1 / area, v2 / area
-        depth = (ca[1] * v0 + cb[1] * v1 + cc[1] * v2) / area
+        depth = (ca[1] * v0 + cb[1] * v1 + cc[1] * v2) / area + offset
         q0, q1, q2 = s0 * ca[2], s1 * cb[2], s2 * cc[2]
         total = q0 + q1 + q2
         ba, bb, bc = ca[3], cb[3], cc[3]

@@ -375,6 +375,15 @@ pub fn feature_list(p: &Profile) -> Vec<String> {
     if !p.state.flat.is_empty() {
         list.push(setting(ProvokingVertex::KEY, p.state.flat));
     }
+    if let Some(b) = p.state.depth_bias {
+        // As the pipe protocol's `depth-bias` line says it.
+        let clamp = if b.clamp { " clamp" } else { "" };
+        list.push(format!(
+            "depth-bias {} {}{clamp}",
+            b.format.name(),
+            b.slope.name()
+        ));
+    }
     list
 }
 

@@ -97,6 +97,7 @@ impl Chunk {
                         varyings,
                         t.setup.area2(),
                         setup.front.draw.state.viewport_depth,
+                        kept.depth_offset,
                     ),
                 })
             }
@@ -110,6 +111,7 @@ impl Chunk {
                         corners,
                         f.setup.area2(),
                         setup.front.draw.state.viewport_depth,
+                        kept.depth_offset,
                     )
                 }));
                 self.fans.extend_from_slice(fan);

@@ -47,7 +47,8 @@ use std::sync::Arc;
 
 use rayon::ThreadPool;
 use refrast::{
-    Draw, DrawError, Fragment, Profile, Rasterizer, Reference, ReferenceConfig, Resolved, StateSupport,
+    BiasSupport, Draw, DrawError, Fragment, Profile, Rasterizer, Reference, ReferenceConfig, Resolved,
+    StateSupport,
 };
 
 pub use crate::plane::PRECISION_BITS;
@@ -207,13 +208,16 @@ impl Rasterizer for Fast {
             precision_bits: PRECISION_BITS,
             // Triangles at one sample, lists, strips and fans (the front end reads every
             // triangle through `Draw::triangles`): fast draws nothing else. The reference's
-            // front end also gives it depth clipping off and the depth range; its planes clamp.
+            // front end also gives it depth clipping off, the depth range and depth bias; its planes
+            // offset and clamp.
             state: StateSupport {
                 triangle_strips: true,
                 triangle_fans: true,
                 viewport_depth: true,
                 inverted_depth: true,
                 unclipped_depth: true,
+                // The front end's offset, added to each plane's depth.
+                depth_bias: Some(BiasSupport::REFERENCE),
                 ..triangles.state
             },
             ..triangles

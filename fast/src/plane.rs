@@ -38,7 +38,7 @@ pub(crate) struct Planes {
     pub primitive: u32,
     /// Whether it faces the viewer.
     pub front_facing: bool,
-    /// Depth at corner 0.
+    /// Depth at corner 0, the polygon's depth bias added.
     z0: f64,
     /// Depth's change per unit of `e₁` and of `e₂`: `(zₖ − z₀) / A`.
     gz: [f64; 2],
@@ -57,13 +57,14 @@ pub(crate) struct Planes {
 impl Planes {
     /// Sets up a triangle with `corners` in its setup's order (the order of its edge values)
     /// and twice its area `area2` (positive, the sum of its edge values), drawn with the
-    /// viewport depth range `range`.
+    /// viewport depth range `range` and its polygon's depth bias `offset`.
     pub fn new(
         primitive: u32,
         front_facing: bool,
         corners: [&Varyings; 3],
         area2: i64,
         range: ViewportDepth,
+        offset: f64,
     ) -> Self {
         let inv_area = 1.0 / area2 as f64;
         let max_inv_w = corners.iter().map(|c| c.inv_w).fold(0.0, f64::max);
@@ -78,7 +79,8 @@ impl Planes {
         Self {
             primitive,
             front_facing,
-            z0: corners[0].depth,
+            // The bias is one value for the whole plane: added where it starts.
+            z0: corners[0].depth + offset,
             gz: [1, 2].map(|k| (corners[k].depth - corners[0].depth) * inv_area),
             inv_area,
             inv_w: corners.map(|c| c.inv_w / max_inv_w),
@@ -209,6 +211,7 @@ mod tests {
             [&corners[0], &corners[1], &corners[2]],
             area2,
             ViewportDepth::FULL,
+            0.0,
         );
         let e1: [f64; LANES] = std::array::from_fn(|i| 1237.0 * i as f64 + 3.0);
         let e2: [f64; LANES] = std::array::from_fn(|i| 98_765.0 - 4099.0 * i as f64);

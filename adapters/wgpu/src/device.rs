@@ -155,6 +155,9 @@ pub struct Context {
     /// Whether it draws with depth clipping off (`unclipped_depth`): the adapter reports
     /// `Features::DEPTH_CLIP_CONTROL` (Vulkan's `depthClamp`, OpenGL ES's `EXT_depth_clamp`).
     pub unclipped_depth: bool,
+    /// Whether it clamps depth bias: the adapter reports `DownlevelFlags::DEPTH_BIAS_CLAMP`
+    /// (Vulkan's `depthBiasClamp`; wgpu's OpenGL ES backend has none).
+    pub bias_clamp: bool,
 }
 
 /// What opening a driver gave: its device, or why there is none.
@@ -248,6 +251,10 @@ fn open(driver: Driver) -> Result<Context, Unavailable> {
             .contains(wgpu::DownlevelFlags::DEPTH_TEXTURE_AND_BUFFER_COPIES),
         no_multisampling,
         unclipped_depth: adapter.features().contains(wgpu::Features::DEPTH_CLIP_CONTROL),
+        bias_clamp: adapter
+            .get_downlevel_capabilities()
+            .flags
+            .contains(wgpu::DownlevelFlags::DEPTH_BIAS_CLAMP),
     })
 }
 

@@ -88,8 +88,8 @@ mod targets;
 use std::sync::{Arc, Mutex};
 
 use refrast::{
-    CompareOp, DepthConvention, DepthRange, Draw, DrawError, Features, Fragment, Profile, ProvokingVertex,
-    Rasterizer, Resolved, StateSupport, Supported, Unavailable,
+    BiasSupport, CompareOp, DepthConvention, DepthFormat, DepthRange, DepthSlope, Draw, DrawError, Features,
+    Fragment, Profile, ProvokingVertex, Rasterizer, Resolved, StateSupport, Supported, Unavailable,
 };
 
 pub use device::Driver;
@@ -163,13 +163,20 @@ impl Gpu {
             depth: r.depth,
             primitive: r.primitive,
         };
-        // Without a depth copy, the depth read back is the passing fragment's FragCoord.z,
-        // unclamped where depth clipping is off: the buffer itself holds it clamped.
-        if !self.context.copies_depth && !draw.state.clip_near {
+        // Without a depth copy (OpenGL ES), the depth read back is the passing fragment's
+        // FragCoord.z, which the buffer itself holds clamped: to the range where depth clipping
+        // is off, and to [0, 1] where a bias may carry it out ("Fragment depth values are
+        // clamped even when the depth buffer uses a floating-point representation", OpenGL ES
+        // 3.2 §13.7.2; FragCoord.z "already has a polygon offset added in", unclamped).
+        let biased = draw.state.depth_bias.is_some() && draw.topology.is_triangles();
+        if !self.context.copies_depth && (!draw.state.clip_near || biased) {
             let range = draw.state.viewport_depth;
             for (depth, primitive) in resolved.depth.iter_mut().zip(&resolved.primitive) {
                 if primitive.is_some() && draw.state.depth.write {
-                    *depth = range.fragment_depth(f64::from(*depth));
+                    *depth = depth.clamp(0.0, 1.0);
+                    if !draw.state.clip_near {
+                        *depth = range.fragment_depth(f64::from(*depth));
+                    }
                 }
             }
         }
@@ -197,6 +204,15 @@ impl Gpu {
             )));
         }
         self.check_target(&profile, draw.viewport, &draw.state)?;
+        if let Some(b) = draw.state.depth_bias.filter(|_| draw.topology.is_triangles()) {
+            // `as` saturates: a constant that reads back unchanged is a whole i32.
+            if f64::from(b.constant as i32) != f64::from(b.constant) {
+                return Err(DrawError::Unsupported(format!(
+                    "wgpu takes a depth bias constant as an i32 (DepthBiasState::constant), not {}",
+                    b.constant
+                )));
+            }
+        }
         Ok(profile)
     }
 
@@ -314,6 +330,13 @@ impl Rasterizer for Gpu {
                 viewport_depth: true,
                 inverted_depth: false,
                 unclipped_depth: self.context.unclipped_depth,
+                // The attachment is Depth32Float; which slope measure the driver takes is not
+                // measured, so it is held to what the specifications allow, either.
+                depth_bias: Some(BiasSupport {
+                    format: DepthFormat::Float32,
+                    slope: DepthSlope::Either,
+                    clamp: self.context.bias_clamp,
+                }),
             },
         }
     }
@@ -344,8 +367,11 @@ impl Rasterizer for Gpu {
         // The capture reads FragCoord.z, which no specification clamps (Vulkan clamps z_f on its
         // way to the depth test, D3D11.3 §16.3.1 leaves the shader's input unclamped): the
         // depth a fragment tests, the contract's, is it clamped to the range where depth
-        // clipping is off. The depth buffer `resolve` reads shows the driver's own clamp.
-        if !draw.state.clip_near {
+        // clipping is off or a bias may carry it out (OpenGL's FragCoord.z "already has a
+        // polygon offset added in"). The depth buffer `resolve` reads shows the driver's own
+        // clamp.
+        let biased = draw.state.depth_bias.is_some() && draw.topology.is_triangles();
+        if !draw.state.clip_near || biased {
             let range = draw.state.viewport_depth;
             for f in &mut fragments {
                 f.depth = range.fragment_depth(f64::from(f.depth));

@@ -40,6 +40,9 @@ pub struct Key {
     topology: Topology,
     samples: u8,
     unclipped: bool,
+    /// The depth bias as wgpu takes it: the constant (an `i32`), the slope factor's and the
+    /// clamp's bits; `None` unbiased.
+    bias: Option<(i32, u32, u32)>,
 }
 
 impl Key {
@@ -60,6 +63,10 @@ impl Key {
             samples: 1,
             // Depth clipping off is both planes off (`Profile::fit` sends no other).
             unclipped: !state.clip_near,
+            // `Gpu::check` refuses a constant that is not a whole i32.
+            bias: state
+                .depth_bias
+                .map(|b| (b.constant as i32, b.slope.to_bits(), b.clamp.to_bits())),
         }
     }
 
@@ -69,6 +76,9 @@ impl Key {
         Self {
             topology,
             samples,
+            // WebGPU biases triangles only, and refuses a bias on other topologies; refrast
+            // biases none but triangles either.
+            bias: self.bias.filter(|_| topology.is_triangles()),
             ..self
         }
     }
@@ -312,7 +322,15 @@ impl Pipelines {
                 depth_write_enabled: Some(depth.1),
                 depth_compare: Some(depth.0),
                 stencil: wgpu::StencilState::default(),
-                bias: wgpu::DepthBiasState::default(),
+                bias: key
+                    .bias
+                    .map_or_else(wgpu::DepthBiasState::default, |(constant, slope, clamp)| {
+                        wgpu::DepthBiasState {
+                            constant,
+                            slope_scale: f32::from_bits(slope),
+                            clamp: f32::from_bits(clamp),
+                        }
+                    }),
             }),
             multisample: wgpu::MultisampleState {
                 count: u32::from(key.samples),

@@ -7,7 +7,7 @@ use std::fmt;
 
 use arbitrary::Arbitrary;
 use refrast::{
-    CompareOp, CullMode, DepthRange, DepthState, DrawState, FrontFace, ProvokingVertex, Scissor,
+    CompareOp, CullMode, DepthBias, DepthRange, DepthState, DrawState, FrontFace, ProvokingVertex, Scissor,
     ViewportDepth,
 };
 
@@ -68,7 +68,8 @@ impl RawDraw {
 /// depth writes, depth range, far clipping, a clear value of 1, 0 or ½ (1 twice, once with the
 /// last provoking vertex), and one of 16 scissor rectangles (empty ones, thin ones, and ones
 /// past a 64-px viewport's right and bottom sides) or, without one, a viewport depth range of
-/// four (whole, inside, inverted, a single depth) and depth clipping off one time in four.
+/// four (whole, inside, inverted, a single depth) and one time in four depth clipping off, one
+/// in four a depth bias of four (each sign of each factor, clamped above, below or not).
 #[must_use]
 pub fn draw_state(bits: u16) -> DrawState {
     const OPS: [CompareOp; 8] = [
@@ -101,6 +102,19 @@ pub fn draw_state(bits: u16) -> DrawState {
         depth_range: [DepthRange::ZeroToOne, DepthRange::NegativeOneToOne][field(9, 2)],
         clip_far: field(10, 2) == 1,
         clip_near: scissored || field(14, 4) != 3,
+        depth_bias: (!scissored && field(14, 4) == 2).then(|| {
+            let [constant, slope, clamp] = [
+                [4096.0, 1.5, 0.0],
+                [-4096.0, -2.0, 0.0],
+                [100_000.0, 4.0, 0.01],
+                [-64.0, 0.5, -0.001],
+            ][field(12, 4)];
+            DepthBias {
+                constant,
+                slope,
+                clamp,
+            }
+        }),
         viewport_depth: if scissored {
             ViewportDepth::FULL
         } else {
@@ -397,8 +411,9 @@ mod tests {
     fn sixteen_bits_reach_every_draw_state() {
         let states: HashSet<String> = (0..=u16::MAX).map(|b| format!("{:?}", draw_state(b))).collect();
         // 4 cull modes × 2 front faces × 8 compare ops × 2 write masks × 4 (3 clears with the
-        // first provoking vertex, one with the last) × 2 ranges × 2 far-clipping settings × 24
-        // (16 scissor rectangles; without one, 4 viewport depth ranges × near clipping on, off).
-        assert_eq!(states.len(), 4 * 2 * 8 * 2 * 4 * 2 * 2 * 24);
+        // first provoking vertex, one with the last) × 2 ranges × 2 far-clipping settings × 28
+        // (16 scissor rectangles; without one, 4 viewport depth ranges × near clipping on, off,
+        // or on with one of 4 depth biases, each range with its own).
+        assert_eq!(states.len(), 4 * 2 * 8 * 2 * 4 * 2 * 2 * 28);
     }
 }

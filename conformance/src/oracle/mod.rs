@@ -14,9 +14,12 @@
 //!   point squares and triangles at each declared sample position, exact in i128.
 //! - [`facing`]: which way a triangle turns as an implementation with a profile may snap it,
 //!   and where correct implementations may disagree; the grid points a vertex may snap to.
+//! - [`bias`]: the interval a triangle's depth bias may take under each specification, from
+//!   its exact plane, with bounds for snapping and f32.
 //! - [`provoking`]: which vertex gives a primitive its flat values, from the specifications'
 //!   tables.
 
+pub mod bias;
 pub mod brute_force;
 pub mod facing;
 pub mod outline;

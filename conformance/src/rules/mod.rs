@@ -1,6 +1,7 @@
 //! The rule catalogue: one entry per rule, grouped by family.
 
 pub mod bary;
+pub mod bias;
 pub mod cast;
 pub mod clip;
 pub mod common;
@@ -297,6 +298,7 @@ pub fn catalogue() -> Vec<Rule> {
     rules.extend(scissor::rules());
     rules.extend(flat::rules());
     rules.extend(viewport_depth::rules());
+    rules.extend(bias::rules());
     rules
 }
 

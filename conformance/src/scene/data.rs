@@ -4,8 +4,8 @@
 use std::fmt;
 
 use refrast::{
-    CompareOp, CullMode, DepthRange, DepthState, DrawState, FrontFace, ProvokingVertex, Scissor, Topology,
-    Viewport, ViewportDepth,
+    CompareOp, CullMode, DepthBias, DepthRange, DepthState, DrawState, FrontFace, ProvokingVertex, Scissor,
+    Topology, Viewport, ViewportDepth,
 };
 use serde::de::{self, Visitor};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -134,6 +134,9 @@ pub struct DrawData {
     /// The viewport's depth range `[minDepth, maxDepth]`; absent for `[0, 1]`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub viewport_depth: Option<[Coordinate; 2]>,
+    /// The triangles' depth bias `[constant, slope, clamp]`; absent for none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub depth_bias: Option<[Coordinate; 3]>,
 }
 
 impl DrawData {
@@ -162,6 +165,9 @@ impl DrawData {
             near_clipping: (!s.clip_near).then(|| s.clip_near.word().to_owned()),
             viewport_depth: (s.viewport_depth != ViewportDepth::FULL)
                 .then_some([Coordinate(s.viewport_depth.min), Coordinate(s.viewport_depth.max)]),
+            depth_bias: s
+                .depth_bias
+                .map(|b| [Coordinate(b.constant), Coordinate(b.slope), Coordinate(b.clamp)]),
         }
     }
 
@@ -200,11 +206,17 @@ impl DrawData {
                     min: min.0,
                     max: max.0,
                 }),
+            depth_bias: self.depth_bias.map(|[constant, slope, clamp]| DepthBias {
+                constant: constant.0,
+                slope: slope.0,
+                clamp: clamp.0,
+            }),
         };
         // A draw needs a viewport and a depth range in range; the rules build none other.
         Viewport::new(self.width, self.height)
             .map_err(|e| format!("width {} and height {}: {e}", self.width, self.height))?;
         state.viewport_depth.validate()?;
+        state.depth_bias.map_or(Ok(()), DepthBias::validate)?;
         let mut scene = Scene {
             width: self.width,
             height: self.height,

@@ -366,11 +366,21 @@ impl fmt::Debug for Scene {
                 rust_f32(s.viewport_depth.max)
             )?;
         }
+        if let Some(b) = s.depth_bias {
+            writeln!(
+                f,
+                "        depth_bias: Some(DepthBias {{ constant: {}, slope: {}, clamp: {} }}),",
+                rust_f32(b.constant),
+                rust_f32(b.slope),
+                rust_f32(b.clamp)
+            )?;
+        }
         // The rest, where a field was left out (a struct update with none left is a lint).
         if s.scissor.is_none()
             || s.provoking_vertex == ProvokingVertex::First
             || s.clip_near
             || s.viewport_depth == ViewportDepth::FULL
+            || s.depth_bias.is_none()
         {
             writeln!(f, "        ..DrawState::default()")?;
         }

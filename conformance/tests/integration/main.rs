@@ -3,6 +3,7 @@
 //! without the test harness and stay apart).
 
 mod broken;
+mod depth_bias;
 mod driver_findings;
 mod expect;
 mod facing;

@@ -35,12 +35,17 @@ fn a_printed_scene_compiles_and_round_trips() {
             provoking_vertex: ProvokingVertex::Last,
             clip_near: false,
             viewport_depth: ViewportDepth { min: 0.75, max: 0.25 },
+            depth_bias: Some(DepthBias {
+                constant: -4096.0,
+                slope: 1.5,
+                clamp: 0.0,
+            }),
         },
     };
     let printed = format!("{pasted:?}");
     assert!(
         printed.contains(
-            "scissor: Some(Scissor { x: 2, y: 0, width: 9, height: 16 }),\n        provoking_vertex: ProvokingVertex::Last,\n        clip_near: false,\n        viewport_depth: ViewportDepth { min: 0.75, max: 0.25 },\n    },"
+            "scissor: Some(Scissor { x: 2, y: 0, width: 9, height: 16 }),\n        provoking_vertex: ProvokingVertex::Last,\n        clip_near: false,\n        viewport_depth: ViewportDepth { min: 0.75, max: 0.25 },\n        depth_bias: Some(DepthBias { constant: -4096.0, slope: 1.5, clamp: 0.0 }),\n    },"
         ) && !printed.contains(".."),
         "{printed}"
     );
@@ -52,6 +57,7 @@ fn a_printed_scene_compiles_and_round_trips() {
             provoking_vertex: ProvokingVertex::First,
             clip_near: true,
             viewport_depth: ViewportDepth::FULL,
+            depth_bias: None,
             ..pasted.state
         },
         ..pasted.clone()

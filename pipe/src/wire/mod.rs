@@ -194,6 +194,30 @@ pub const UNCLIPPED_DEPTH: &str = "unclipped-depth";
 /// The request key of near clipping, sent only as `near-clipping=off`.
 pub const NEAR_CLIPPING: &str = "near-clipping";
 
+/// The profile line a child declares depth bias with (`depth-bias FORMAT SLOPE [clamp]`), and
+/// the request key that carries a triangle draw's: `depth-bias=CONSTANT,SLOPE,CLAMP`.
+pub const DEPTH_BIAS: &str = "depth-bias";
+
+/// The `depth-bias` line's words: the depth format (`unorm16`, `unorm24`, `float32`), the slope
+/// measure (`exact`, `max`, `either`), then `clamp` when it honours the bias clamp.
+pub fn depth_bias(words: &[&str]) -> Result<refrast::BiasSupport, String> {
+    let shape = "say `depth-bias FORMAT SLOPE` or `depth-bias FORMAT SLOPE clamp`, FORMAT one of \
+                 unorm16, unorm24, float32 (what r is computed for) and SLOPE one of exact, max, \
+                 either (how m is measured)";
+    let (format, slope, clamp) = match words {
+        [f, s] => (f, s, false),
+        [f, s, c] if *c == "clamp" => (f, s, true),
+        _ => return Err(shape.to_owned()),
+    };
+    match (
+        refrast::DepthFormat::from_name(format),
+        refrast::DepthSlope::from_name(slope),
+    ) {
+        (Some(format), Some(slope)) => Ok(refrast::BiasSupport { format, slope, clamp }),
+        _ => Err(shape.to_owned()),
+    }
+}
+
 /// The key of the guard band's reach: pixels beyond each side of the viewport.
 pub const GUARD_BAND: &str = "guard-band";
 
@@ -212,7 +236,8 @@ pub const GUARD_BAND_LIMIT: u32 = refrast::COORD_LIMIT as u32;
 /// only ever sent triangle lists at one sample), version 3 then with the provoking vertex (the
 /// caller sends only a mode the child declared). A draw with a scissor ends it with
 /// `scissor=X,Y,W,H`, one with depth clipping off with `near-clipping=off`, one with a depth
-/// range other than `[0, 1]` with `viewport-depth=MIN,MAX`, in any version.
+/// range other than `[0, 1]` with `viewport-depth=MIN,MAX`, a triangle draw with depth bias
+/// with `depth-bias=CONSTANT,SLOPE,CLAMP`, in any version.
 #[must_use]
 pub fn request(op: Op, draw: &Draw, version: u32) -> Vec<u8> {
     request_in(op, draw, version, draw.state.provoking_vertex)
@@ -243,6 +268,10 @@ pub fn request_in(op: Op, draw: &Draw, version: u32, provoking: ProvokingVertex)
     if s.viewport_depth != refrast::ViewportDepth::FULL {
         let d = s.viewport_depth;
         extra += &format!(" {VIEWPORT_DEPTH}={:?},{:?}", d.min, d.max);
+    }
+    // Lines and points are drawn unbiased: the key goes with triangles only.
+    if let Some(b) = s.depth_bias.filter(|_| draw.topology.is_triangles()) {
+        extra += &format!(" {DEPTH_BIAS}={:?},{:?},{:?}", b.constant, b.slope, b.clamp);
     }
     let header = format!(
         "{} width={} height={} vertices={} triangles={count} cull={} front-face={} depth-compare={} \

@@ -354,6 +354,7 @@ impl Reading {
                     }
                     f.cull_modes = supported(&modes, bad)?;
                 }
+                DEPTH_BIAS => self.profile.state.depth_bias = Some(depth_bias(&words).map_err(|w| bad(&w))?),
                 FrontFace::KEY => f.front_faces = supported(&words, bad)?,
                 CompareOp::KEY => f.compare_ops = supported(&words, bad)?,
                 DepthRange::KEY => f.depth_ranges = supported(&words, bad)?,
@@ -374,6 +375,7 @@ impl Reading {
             DepthRange::KEY,
             bool::KEY,
             FAR_CLIPPING,
+            DEPTH_BIAS,
         ];
         (known.contains(&key) || flat == Some(key)).then(read)
     }

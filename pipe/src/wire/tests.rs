@@ -182,6 +182,58 @@ fn the_depth_range_and_unclipped_depth_are_declared_and_sent() {
     );
 }
 
+/// Depth bias is a profile line naming the format, the slope measure and the clamp, and a key
+/// at the end of a triangle draw's request, never of a line or point draw's.
+#[test]
+fn depth_bias_is_declared_with_its_format_and_sent_with_triangles() {
+    assert_eq!(parsed(&["features depth-test"]).unwrap().state.depth_bias, None);
+    let declared = parsed(&["depth-bias float32 max clamp"])
+        .unwrap()
+        .state
+        .depth_bias;
+    assert_eq!(
+        declared,
+        Some(refrast::BiasSupport {
+            format: refrast::DepthFormat::Float32,
+            slope: refrast::DepthSlope::Max,
+            clamp: true,
+        })
+    );
+    let unclamped = parsed(&["depth-bias unorm24 either"]).unwrap().state.depth_bias;
+    assert!(unclamped.is_some_and(|b| !b.clamp && b.format == refrast::DepthFormat::Unorm24));
+    for bad in [
+        "depth-bias float32",
+        "depth-bias float64 max",
+        "depth-bias float32 max clamped",
+    ] {
+        let why = parsed(&[bad]).unwrap_err();
+        assert!(why.contains("FORMAT SLOPE"), "{bad}: {why}");
+    }
+    let mut draw = Draw::new(
+        refrast::Viewport::new(4, 4).unwrap(),
+        vec![[0.0; 4]; 3],
+        vec![[0, 1, 2]],
+    );
+    draw.state.depth_bias = Some(refrast::DepthBias {
+        constant: -4096.0,
+        slope: 1.5,
+        clamp: 0.001,
+    });
+    let header = |draw: &Draw| {
+        let bytes = request(Op::Rasterize, draw, 2);
+        let end = bytes.iter().position(|&b| b == b'\n').unwrap();
+        String::from_utf8(bytes[..end].to_vec()).unwrap()
+    };
+    assert!(
+        header(&draw).ends_with(" depth-bias=-4096.0,1.5,0.001"),
+        "{}",
+        header(&draw)
+    );
+    draw.topology = Topology::PointList;
+    draw.indices = vec![0, 1, 2];
+    assert!(!header(&draw).contains("depth-bias"), "{}", header(&draw));
+}
+
 /// Strips and fans are declared in the topology line, each on its own, and a request sends
 /// `T + 2` indices for `T` triangles, none for a strip too short to make one.
 #[test]

@@ -127,11 +127,23 @@ pub enum Bug {
     SortedDepthRange,
     /// Depth clipping off taken as far clipping off alone: the near plane still cuts.
     NearClippedAnyway,
+    /// Depth bias with the slope factor's sign lost.
+    FlippedBiasSlope,
+    /// The depth bias clamp ignored.
+    IgnoredBiasClamp,
+    /// Depth bias given to the fragments but not to what the depth test stores.
+    FragmentOnlyBias,
+    /// The slope measured as `max(|∂z/∂x|, |∂z/∂y|)` by a rasterizer that declares the exact
+    /// length.
+    MaxSlopeDeclaredExact,
+    /// `r` taken as `2^-24` on an f32 depth buffer, whatever the triangle's depths (the
+    /// exponent of the largest depth ignored).
+    FixedBiasExponent,
 }
 
 impl Bug {
     /// Every bug.
-    pub const ALL: [Bug; 49] = [
+    pub const ALL: [Bug; 54] = [
         Self::InclusiveEdges,
         Self::ExclusiveEdges,
         Self::BottomRightAsTopLeft,
@@ -181,6 +193,11 @@ impl Bug {
         Self::IgnoredViewportDepth,
         Self::SortedDepthRange,
         Self::NearClippedAnyway,
+        Self::FlippedBiasSlope,
+        Self::IgnoredBiasClamp,
+        Self::FragmentOnlyBias,
+        Self::MaxSlopeDeclaredExact,
+        Self::FixedBiasExponent,
     ];
 
     /// The name after `mutant:` in `--impl`.
@@ -236,6 +253,11 @@ impl Bug {
             Self::IgnoredViewportDepth => "ignored-viewport-depth",
             Self::SortedDepthRange => "sorted-depth-range",
             Self::NearClippedAnyway => "near-clipped-anyway",
+            Self::FlippedBiasSlope => "flipped-bias-slope",
+            Self::IgnoredBiasClamp => "ignored-bias-clamp",
+            Self::FragmentOnlyBias => "fragment-only-bias",
+            Self::MaxSlopeDeclaredExact => "max-slope-declared-exact",
+            Self::FixedBiasExponent => "fixed-bias-exponent",
         }
     }
 
@@ -284,6 +306,11 @@ impl Bug {
             Self::LastCornerFlat | Self::ClippedFlat | Self::FirstOnlyFlat => "bary",
             Self::IgnoredViewportDepth | Self::SortedDepthRange => "depth",
             Self::NearClippedAnyway => "clip",
+            Self::FlippedBiasSlope
+            | Self::IgnoredBiasClamp
+            | Self::FragmentOnlyBias
+            | Self::MaxSlopeDeclaredExact
+            | Self::FixedBiasExponent => "depth",
         }
     }
 
@@ -295,7 +322,7 @@ impl Bug {
     }
 
     /// Whether it is a bug of the draw state beyond the first contract (the scissor, culling of
-    /// both faces, strips and fans, flat values, the depth range and clamp): the mutant then declares everything the
+    /// both faces, strips and fans, flat values, the depth range and clamp, depth bias): the mutant then declares everything the
     /// reference does, and draws with it.
     #[must_use]
     pub fn is_state(self) -> bool {
@@ -316,6 +343,11 @@ impl Bug {
                 | Self::IgnoredViewportDepth
                 | Self::SortedDepthRange
                 | Self::NearClippedAnyway
+                | Self::FlippedBiasSlope
+                | Self::IgnoredBiasClamp
+                | Self::FragmentOnlyBias
+                | Self::MaxSlopeDeclaredExact
+                | Self::FixedBiasExponent
         )
     }
 }

@@ -11,6 +11,7 @@ use refrast::{
     Rasterizer, Reference, Resolved, Viewport, is_top_left,
 };
 
+mod bias;
 mod bug;
 mod primitive;
 mod state;

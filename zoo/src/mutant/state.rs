@@ -1,5 +1,5 @@
 //! The bugs of the draw state the contract gained after its first rasterizers (the scissor,
-//! culling of both faces, strips and fans, flat values, the depth range and clamp, so far): the reference's own drawing with that state
+//! culling of both faces, strips and fans, flat values, the depth range and clamp, depth bias, so far): the reference's own drawing with that state
 //! applied wrong in one way, so that every failure is that bug's doing.
 
 use refrast::{
@@ -11,6 +11,9 @@ use super::Bug;
 
 /// Draws `draw` as the reference does, with `bug`.
 pub fn rasterize(bug: Bug, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+    if let Some(biased) = super::bias::rasterize(bug, draw) {
+        return biased;
+    }
     let mut reference = Reference::default();
     if let Some(assembled) = misassembled(bug, draw) {
         // The list's flat values are its own; the strip's are what its bug leaves alone.
@@ -79,6 +82,9 @@ pub fn rasterize(bug: Bug, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
 
 /// Resolves `draw` as the reference does, with `bug`.
 pub fn resolve(bug: Bug, draw: &Draw) -> Result<Resolved, DrawError> {
+    if let Some(biased) = super::bias::resolve(bug, draw) {
+        return biased;
+    }
     let cut = Resolved::from_fragments(draw, rasterize(bug, draw)?);
     if bug != Bug::DepthPastScissor || draw.state.scissor.is_none() {
         return Ok(cut);

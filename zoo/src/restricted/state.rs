@@ -1,7 +1,7 @@
 //! Restrictions of the draw state beyond [`Features`]: each leaves one part of
 //! [`StateSupport`] out of the default reference's declaration, or restricts its values.
 
-use refrast::{Features, ProvokingVertex, ReferenceConfig, Spec, StateSupport, Supported};
+use refrast::{BiasSupport, Features, ProvokingVertex, ReferenceConfig, Spec, StateSupport, Supported};
 
 use super::{Restriction, restriction};
 
@@ -89,6 +89,22 @@ pub(super) fn restrictions() -> Vec<Restriction> {
             "depth always clipped: no depth clamping",
             StateSupport {
                 unclipped_depth: false,
+                ..all
+            },
+        ),
+        stateful(
+            "depth-bias=none",
+            "no depth bias",
+            StateSupport {
+                depth_bias: None,
+                ..all
+            },
+        ),
+        stateful(
+            "bias-clamp=off",
+            "depth bias without its clamp, as wgpu's OpenGL ES backend",
+            StateSupport {
+                depth_bias: all.depth_bias.map(|b| BiasSupport { clamp: false, ..b }),
                 ..all
             },
         ),

@@ -4,7 +4,7 @@
 //! one was also reproduced bit for bit by an f32 trace of SwiftShader's source (`VertexRoutine`,
 //! `Clipper`, `SetupRoutine`, `QuadRasterizer`, `PixelRoutine`).
 
-use refrast::{ClipMode, Draw, Fragment, Rasterizer};
+use refrast::{ClipMode, CompareOp, DepthBias, Draw, Fragment, Rasterizer, Resolved};
 use refrast_wgpu::Gpu;
 
 use super::{apart, at, draw, exact_barycentrics, reference};
@@ -53,18 +53,23 @@ fn pixels(f: &[Fragment]) -> Vec<(u32, u32)> {
 /// Every finding, each checked whatever the others do; those that moved are named together.
 pub fn swiftshader(gpu: &mut Gpu) {
     let mut run = |d: &Draw| gpu.rasterize(d).expect("SwiftShader draws");
-    let moved = crate::common::moved_findings(&FINDINGS, |check| check(&mut run));
+    let mut moved = crate::common::moved_findings(&FINDINGS, |check| check(&mut run));
+    let mut resolve = |d: &Draw| gpu.resolve(d).expect("SwiftShader resolves");
+    let resolved: [ResolvedFinding; 1] = [(
+        "depth bias's r from other depths than the largest",
+        bias_exponent_not_the_largest,
+    )];
+    moved.extend(crate::common::moved_findings(&resolved, |check| {
+        check(&mut resolve)
+    }));
+    let all = FINDINGS.len() + resolved.len();
     assert!(
         moved.is_empty(),
-        "swiftshader: {} of {} hand-checked findings moved:\n{}",
+        "swiftshader: {} of {all} hand-checked findings moved:\n{}",
         moved.len(),
-        FINDINGS.len(),
         moved.join("\n")
     );
-    println!(
-        "swiftshader: every hand-checked finding holds ({})",
-        FINDINGS.len()
-    );
+    println!("swiftshader: every hand-checked finding holds ({all})");
 }
 
 /// Finding 1 (docs/certified.md): a vertex at w = 0 whose winding comes out backwards draws nothing.
@@ -361,4 +366,57 @@ fn behind_the_eye_screen_weights(run: &mut Run<'_>) {
         "swiftshader: screen weights with a vertex behind the eye: {f:?}"
     );
     println!("swiftshader: a vertex behind the eye: screen weights {screen:?} at (8, 2)");
+}
+
+/// SwiftShader's depth and id buffers for a draw.
+type Resolve<'a> = dyn FnMut(&Draw) -> Resolved + 'a;
+
+/// A finding read off the depth buffer: what it is, and its check.
+type ResolvedFinding = (&'static str, fn(&mut Resolve<'_>));
+
+/// Depth bias: r on a `D32_SFLOAT` attachment taken from other depths than the triangle's
+/// largest (`SetupRoutine` takes the exponent from one vertex's depth and the others'
+/// differences from it), where Vulkan defines `r = 2^(e − n)` with `e` "the maximum exponent …
+/// in the range of z values spanned by the primitive" (Depth Bias Computation).
+fn bias_exponent_not_the_largest(resolve: &mut Resolve<'_>) {
+    // Depths 0.75, 0.3, 0.3: e = −1, r = 2^-24, so a constant factor of 321027 offsets every
+    // depth by 0.019135. SwiftShader offsets by 2^-25 × 321027 = 0.009567; with the 0.75 on
+    // the last vertex instead, by 0.019135.
+    let corners = |z: [f32; 3]| {
+        let xyw = [
+            (-0.118_379_354, 0.0, 0.25),
+            (0.060_459_49, 0.0, 0.25),
+            (0.0, 1.545_491_7, 3.137_995_7),
+        ];
+        (0..3)
+            .map(|k| [xyw[k].0, xyw[k].1, z[k] * xyw[k].2, xyw[k].2])
+            .collect::<Vec<_>>()
+    };
+    let offset = |z: [f32; 3], resolve: &mut Resolve<'_>| {
+        let mut plain = draw(64, 32, corners(z));
+        (plain.state.clip_near, plain.state.clip_far) = (false, false);
+        plain.state.depth.compare = CompareOp::Always;
+        let mut biased = plain.clone();
+        biased.state.depth_bias = Some(DepthBias {
+            constant: 321_027.0,
+            slope: 0.0,
+            clamp: 0.0,
+        });
+        let (a, b) = (resolve(&plain), resolve(&biased));
+        let i = (0..a.depth.len())
+            .find(|&i| a.primitive[i].is_some() && b.primitive[i].is_some())
+            .expect("a covered pixel");
+        f64::from(b.depth[i]) - f64::from(a.depth[i])
+    };
+    let required = 321_027.0 * 2f64.powi(-24);
+    let first = offset([0.75, 0.3, 0.3], resolve);
+    assert!(
+        (first - required / 2.0).abs() < 1e-6,
+        "swiftshader: the largest depth first offsets by {first} (half of Vulkan's {required} was seen)"
+    );
+    let last = offset([0.3, 0.3, 0.75], resolve);
+    assert!(
+        (last - required).abs() < 1e-6,
+        "swiftshader: the largest depth last offsets by {last} (Vulkan's {required} was seen)"
+    );
 }

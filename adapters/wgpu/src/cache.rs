@@ -14,15 +14,18 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, OnceLock};
 
-use refrast::{FillConvention, LineRule, PointClipping, SamplePattern, SnapAccuracy, Snapping, Unavailable};
+use refrast::{
+    DepthSlope, FillConvention, LineRule, PointClipping, SamplePattern, SnapAccuracy, Snapping, Unavailable,
+};
 
 use crate::device::{Context, Driver};
 use crate::measured::Measured;
 
 /// The sources whose change must measure again.
-const SOURCES: [&str; 10] = [
+const SOURCES: [&str; 11] = [
     include_str!("probe/mod.rs"),
     include_str!("probe/band.rs"),
+    include_str!("probe/bias.rs"),
     include_str!("probe/coverage.rs"),
     include_str!("probe/fill.rs"),
     include_str!("probe/grid.rs"),
@@ -173,6 +176,7 @@ fn load(file: &Path, key: &str) -> Option<Measured> {
             bits => Some(Snapping::Grid(bits.parse().ok()?)),
         },
         point_clipping: PointClipping::from_name(get("point_clipping")?)?,
+        bias_slope: DepthSlope::from_name(get("bias_slope")?)?,
         multisample: match get("samples")? {
             "none" => Vec::new(),
             list => {
@@ -210,7 +214,7 @@ fn store(file: &Path, key: &str, m: &Measured) {
     let text = format!(
         "{key}\nsnapping = {}\nfill = {}\nties_to_even = {}\nsnap = {:?}\nguard_band = {}\n\
          precision_bits = {}\ntolerance_subpixels = {}\nlines = {}\npoints = {}\npoint_snapping = {}\nsamples = {}\n\
-         point_clipping = {}\nreported = {}\nwhy = {}\n",
+         point_clipping = {}\nbias_slope = {}\nreported = {}\nwhy = {}\n",
         match m.snapping {
             Snapping::Grid(bits) => bits.to_string(),
             Snapping::Float => "float".to_owned(),
@@ -230,6 +234,7 @@ fn store(file: &Path, key: &str, m: &Measured) {
         },
         samples(m),
         m.point_clipping.name(),
+        m.bias_slope.name(),
         m.reported,
         m.why
     );
@@ -266,6 +271,7 @@ mod tests {
             point_snapping: None,
             multisample: SamplePattern::standard(4).into_iter().collect(),
             point_clipping: PointClipping::AllClipPlanes,
+            bias_slope: DepthSlope::Max,
             reported: "SwiftShader driver (driverVersion 5.0.0)".into(),
             why: "4 subpixel bits (vulkaninfo; probe agrees), top-left (38/38)".into(),
         };
@@ -280,6 +286,7 @@ mod tests {
             point_snapping: Some(Snapping::Grid(4)),
             multisample: vec![SamplePattern::new(&[[1, 2], [3, 4], [5, 6], [7, 8]]).expect("4 samples")],
             point_clipping: PointClipping::UserClipPlanesOnly,
+            bias_slope: DepthSlope::Either,
             ..m
         };
         store(&file, "the key", &float);

@@ -53,6 +53,8 @@
 //!   each covered sample, and the resolve's multisampled targets are read back by a pass that
 //!   loads each sample (`unpack.wgsl`). A strip's primitive ids are measured too: OpenGL ES
 //!   takes flat values from a segment's last vertex, Vulkan from its first.
+//! - **Depth bias slope** (`probe/bias.rs`): whether the bias's `m` is the depth gradient's
+//!   length or its largest component, read off the depth buffer (every driver here: the max).
 //!
 //! Every probe is a few batched draws read back by primitive id (`probe/`, well under a second
 //! a process); the result is kept per driver and version under the target folder (`cache.rs`),
@@ -88,8 +90,8 @@ mod targets;
 use std::sync::{Arc, Mutex};
 
 use refrast::{
-    BiasSupport, CompareOp, DepthConvention, DepthFormat, DepthRange, DepthSlope, Draw, DrawError, Features,
-    Fragment, Profile, ProvokingVertex, Rasterizer, Resolved, StateSupport, Supported, Unavailable,
+    BiasSupport, CompareOp, DepthConvention, DepthFormat, DepthRange, Draw, DrawError, Features, Fragment,
+    Profile, ProvokingVertex, Rasterizer, Resolved, StateSupport, Supported, Unavailable,
 };
 
 pub use device::Driver;
@@ -264,8 +266,18 @@ fn probe_now(
     };
     let bits = reported.as_ref().and_then(|r| r.subpixel_bits);
     let multisampling = ctx.no_multisampling.clone().map_or(Ok(()), Err);
-    let probes = probe::measure(&mut |d| draw::capture(ctx, pipelines, d), bits, multisampling)
-        .map_err(|e| Unavailable(format!("measuring {}'s profile failed: {e}", driver.name())))?;
+    let failed = |e: DrawError| Unavailable(format!("measuring {}'s profile failed: {e}", driver.name()));
+    let mut probes =
+        probe::measure(&mut |d| draw::capture(ctx, pipelines, d), bits, multisampling).map_err(failed)?;
+    probes.slope = probe::bias::probe(&mut |d| {
+        draw::resolve(ctx, pipelines, d).map(|r| Resolved {
+            viewport: d.viewport,
+            samples: d.samples,
+            depth: r.depth,
+            primitive: r.primitive,
+        })
+    })
+    .map_err(failed)?;
     Ok((reported, probes))
 }
 
@@ -330,11 +342,10 @@ impl Rasterizer for Gpu {
                 viewport_depth: true,
                 inverted_depth: false,
                 unclipped_depth: self.context.unclipped_depth,
-                // The attachment is Depth32Float; which slope measure the driver takes is not
-                // measured, so it is held to what the specifications allow, either.
+                // The attachment is Depth32Float; the slope measure is the probe's.
                 depth_bias: Some(BiasSupport {
                     format: DepthFormat::Float32,
-                    slope: DepthSlope::Either,
+                    slope: m.bias_slope,
                     clamp: self.context.bias_clamp,
                 }),
             },

@@ -2,7 +2,9 @@
 //! probe measures (OpenGL, which reports nothing through wgpu), and each probe's choice among the
 //! declarations the specification permits, with why.
 
-use refrast::{FillConvention, LineRule, PointClipping, SamplePattern, SnapAccuracy, Snapping, Spec};
+use refrast::{
+    DepthSlope, FillConvention, LineRule, PointClipping, SamplePattern, SnapAccuracy, Snapping, Spec,
+};
 
 use crate::probe::{Probes, fill_name};
 use crate::reported::Reported;
@@ -42,6 +44,8 @@ pub struct Measured {
     pub multisample: Vec<SamplePattern>,
     /// What clipping does to a point outside the viewport in x or y.
     pub point_clipping: PointClipping,
+    /// How its depth bias measures the depth slope.
+    pub bias_slope: DepthSlope,
     /// What the driver reported through `vulkaninfo`, if anything.
     pub reported: String,
     /// Why each declaration, one clause each.
@@ -96,6 +100,7 @@ pub fn choose(spec: Spec, reported: Option<&Reported>, probes: &Probes) -> Measu
     why.push(p.describe());
     let (point_clipping, clipping_why) = point_clipping(spec, reported);
     why.push(clipping_why);
+    why.push(probes.slope.describe());
     Measured {
         snapping,
         fill,
@@ -107,6 +112,7 @@ pub fn choose(spec: Spec, reported: Option<&Reported>, probes: &Probes) -> Measu
         point_snapping: point_grid(probes, snapping),
         multisample: p.pattern().into_iter().collect(),
         point_clipping,
+        bias_slope: probes.slope.measure(),
         ties_to_even,
         snap,
         guard_band,

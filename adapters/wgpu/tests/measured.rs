@@ -10,7 +10,8 @@ use std::process::Command;
 use std::time::Instant;
 
 use refrast::{
-    FillConvention, LineRule, PointClipping, Profile, Rasterizer, SamplePattern, SnapAccuracy, Snapping,
+    DepthSlope, FillConvention, LineRule, PointClipping, Profile, Rasterizer, SamplePattern, SnapAccuracy,
+    Snapping,
 };
 use refrast_wgpu::measured::{Measured, choose};
 use refrast_wgpu::{Driver, Gpu};
@@ -81,6 +82,9 @@ fn pinned(d: Driver) -> Option<Pinned> {
             point_snapping: primitives.point_snapping,
             multisample: primitives.multisample.clone(),
             point_clipping: primitives.point_clipping,
+            // Each computes max(|∂z/∂x|, |∂z/∂y|) (Mesa's `lp_state_setup.c` and
+            // `draw_pipe_offset.c`, SwiftShader's `SetupRoutine`), which the probe reads.
+            bias_slope: DepthSlope::Max,
             reported: String::new(),
             why: String::new(),
         },

@@ -23,6 +23,15 @@ use super::raster::{depth_bounds, project, window_depth};
 /// terms).
 const F32_FEW_ULPS: f64 = 1.0 / (1u64 << 21) as f64;
 
+/// How far an implementation's f32 window depth of a vertex may be from exact: a few ulps of
+/// the largest value its viewport transform meets, at least 1 (`p_z·z_d + o_z` with `|o_z|`,
+/// `|p_z|` up to 1; OpenGL's `(z_d + 1)/2`, and wgpu's rewrite of `z` to `2z − w`, round at
+/// that size whatever the depth): on a triangle at depth 2^-12 that is far more than an ulp of
+/// its depths.
+fn depth_rounding(max_z: f64) -> f64 {
+    F32_FEW_ULPS * max_z.max(1.0)
+}
+
 /// The worst relative change of the slope a triangle may be judged with: past it, snapping
 /// could move `m` by more than a sixteenth, too ill-conditioned (a sliver) to tell a wrong
 /// measure from rounding.
@@ -75,7 +84,10 @@ pub fn offset_bounds(
     let gy = (dz2 * d1.0 - dz1 * d2.0) / det;
     let max_z = a.2.abs().max(b.2.abs()).max(c.2.abs());
     let frobenius = (d1.0 * d1.0 + d1.1 * d1.1 + d2.0 * d2.0 + d2.1 * d2.1).sqrt();
-    let error = slope_error(det.abs(), frobenius, grid_step, gx.hypot(gy), max_z)?;
+    // A fixed-point buffer stores each depth to its own step: an implementation measuring the
+    // slope on stored depths, or reporting them, is off by up to one step a value.
+    let stored = support.format.unorm_bits().map_or(0.0, |n| 2f64.powi(-n));
+    let error = slope_error(det.abs(), frobenius, grid_step, gx.hypot(gy), max_z, stored)?;
     let slope = slope_interval(support.slope, gx, gy, error);
     let resolvable = resolvable_interval(support.format, spec, max_z);
     let (s, k) = (f64::from(bias.slope), f64::from(bias.constant));
@@ -113,8 +125,9 @@ pub fn offset_bounds(
     Some(OffsetBounds {
         lo,
         hi,
-        // Results below f32's smallest normal may be flushed to zero, as above.
-        slack: F32_FEW_ULPS * (largest + slope[1] * reach) + f64::from(f32::MIN_POSITIVE),
+        // Results below f32's smallest normal may be flushed to zero, as above; a fixed-point
+        // buffer's two stored depths each round to its step.
+        slack: F32_FEW_ULPS * (largest + slope[1] * reach) + f64::from(f32::MIN_POSITIVE) + stored,
         slope,
         resolvable,
     })
@@ -122,11 +135,11 @@ pub fn offset_bounds(
 
 /// The most the measured slope's gradient may differ from the exact one's, or `None` past
 /// [`MAX_SLOPE_ERROR`] of it: vertices moved up to `step` px per axis change the two edges
-/// `M` (rows `v₁ − v₀`, `v₂ − v₀`) by `E` with `‖E‖ ≤ 4·step`, and depths rounded to f32 (a
-/// few ulps of `max_z`) change the depth differences; the gradient solves `M'g' = Mg + Δz`,
+/// `M` (rows `v₁ − v₀`, `v₂ − v₀`) by `E` with `‖E‖ ≤ 4·step`, and depths rounded to f32
+/// ([`depth_rounding`]), or stored to a fixed-point step (`stored`), change the depth differences; the gradient solves `M'g' = Mg + Δz`,
 /// so `‖g' − g‖ ≤ ‖M'⁻¹‖·(‖E‖·‖g‖ + ‖Δz‖)` with `‖M'⁻¹‖ ≤ ‖M'‖_F / |det M'|`, and
 /// `|det M'| ≥ |det M| − ‖M‖_F·‖E‖ − ‖E‖²/2`.
-fn slope_error(det: f64, frobenius: f64, step: f64, gradient: f64, max_z: f64) -> Option<f64> {
+fn slope_error(det: f64, frobenius: f64, step: f64, gradient: f64, max_z: f64, stored: f64) -> Option<f64> {
     let e = 4.0 * step;
     let det_least = det - frobenius * e - e * e / 2.0;
     if det_least <= 0.0 || !det_least.is_finite() {
@@ -136,7 +149,7 @@ fn slope_error(det: f64, frobenius: f64, step: f64, gradient: f64, max_z: f64) -
     if inverse * e > MAX_SLOPE_ERROR {
         return None;
     }
-    let depth_error = 2.0 * std::f64::consts::SQRT_2 * F32_FEW_ULPS * max_z;
+    let depth_error = 2.0 * std::f64::consts::SQRT_2 * (depth_rounding(max_z) + stored);
     Some(inverse * (e * gradient + depth_error))
 }
 
@@ -153,10 +166,11 @@ fn slope_interval(measure: DepthSlope, gx: f64, gy: f64, error: f64) -> [f64; 2]
 }
 
 /// The `r` allowed for `format` under `spec` with the triangle's largest depth magnitude
-/// `max_z` (exact, before the implementation rounds it to f32).
+/// `max_z` (exact, before the implementation rounds it: [`depth_rounding`]).
 fn resolvable_interval(format: DepthFormat, spec: Spec, max_z: f64) -> [f64; 2] {
     let Some(n) = format.unorm_bits() else {
-        // f32 rounding may carry a depth just under 2^e up to it; r from either exponent.
+        // The implementation's rounding of the largest depth may carry it across 2^e; r from
+        // either exponent.
         let exponent = |z: f64| {
             let z = z as f32;
             if z < f32::MIN_POSITIVE {
@@ -166,8 +180,8 @@ fn resolvable_interval(format: DepthFormat, spec: Spec, max_z: f64) -> [f64; 2] 
             }
         };
         let (low, high) = (
-            exponent(max_z * (1.0 - F32_FEW_ULPS)),
-            exponent(max_z * (1.0 + F32_FEW_ULPS)),
+            exponent(max_z - depth_rounding(max_z)),
+            exponent(max_z + depth_rounding(max_z)),
         );
         // An r below f32's normal range may be flushed to zero (Vulkan, Floating-Point
         // Computation: denormalized values "may be flushed to zero"; Mesa takes r = 0 there).

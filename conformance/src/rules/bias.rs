@@ -17,7 +17,7 @@ use refrast::{BiasSupport, CompareOp, DepthBias, DepthState, Profile, Rasterizer
 use super::common::fragments;
 use super::level::Level;
 use super::viewport_depth::viewport_depth;
-use super::{Family, Need, Rule, Z_OVER_W_DEPTH, needs};
+use super::{Family, Need, Rule, RuleDraft, Run, Z_OVER_W_DEPTH, needs};
 use crate::oracle::bias::{OffsetBounds, biased_depth_clamp, offset_bounds};
 use crate::oracle::raster::depth_bounds;
 use crate::runner::property_for;
@@ -48,45 +48,41 @@ const D3D11_R: &str = "D3D11.3 §15.10 takes r of an n-bit UNORM buffer as \"the
 
 pub(super) fn rules() -> Vec<Rule> {
     vec![
-        Rule::invariant(Family::Depth, "depth.bias.offset")
-            .sentence("A triangle drawn with depth bias (constant and slope factors, no clamp) covers exactly the samples it covers without, and its depth there is its unbiased depth plus one offset o = m·slope + r·constant, clamped to the viewport's depth range: m the triangle's depth slope as declared (√((∂z/∂x)² + (∂z/∂y)²) or max(|∂z/∂x|, |∂z/∂y|)) within how far snapping moves it, r the declared format's resolvable difference (2^(e − 23) for f32 depth whose largest value is in [2^e, 2^(e+1)), 2^-n for n-bit fixed point), within f32 rounding.")
-            .source(SOURCE)
-            .cases(1000)
-            .needs(Z_OVER_W_DEPTH)
-            .needs(DEPTH_BIAS)
-            .vulkan_and_opengl(Level::Partly {
-                part: |r, cfg| property_for(r, cfg, unclamped_scene, check_as_specified),
-                note: OPENGL_FREEDOM,
-            })
-            .vulkan(Level::Partly {
-                part: |r, cfg| property_for(r, cfg, unclamped_scene, check_as_specified),
-                note: VULKAN_FREEDOM,
-            })
-            .d3d11(Level::Partly {
-                part: |r, cfg| property_for(r, cfg, unclamped_scene, check_as_specified),
-                note: D3D11_R,
-            })
-            .run(|r, cfg| property_for(r, cfg, unclamped_scene, check_bias)),
-        Rule::invariant(Family::Depth, "depth.bias.clamp")
-            .sentence("With a bias clamp k, the offset is min(o, k) when k > 0 and max(o, k) when k < 0 (Vulkan's dbclamp), otherwise as depth.bias.offset says.")
-            .source(SOURCE)
-            .cases(500)
-            .needs(Z_OVER_W_DEPTH)
-            .needs(BIAS_CLAMP)
-            .vulkan_and_opengl(Level::Partly {
-                part: |r, cfg| property_for(r, cfg, clamped_scene, check_as_specified),
-                note: OPENGL_FREEDOM,
-            })
-            .vulkan(Level::Partly {
-                part: |r, cfg| property_for(r, cfg, clamped_scene, check_as_specified),
-                note: VULKAN_FREEDOM,
-            })
-            .d3d11(Level::Partly {
-                part: |r, cfg| property_for(r, cfg, clamped_scene, check_as_specified),
-                note: D3D11_R,
-            })
-            .run(|r, cfg| property_for(r, cfg, clamped_scene, check_bias)),
+        each_spec(
+            Rule::invariant(Family::Depth, "depth.bias.offset")
+                .sentence("A triangle drawn with depth bias (constant and slope factors, no clamp) covers exactly the samples it covers without, and its depth there is its unbiased depth plus one offset o = m·slope + r·constant, clamped to the viewport's depth range: m the triangle's depth slope as declared (√((∂z/∂x)² + (∂z/∂y)²) or max(|∂z/∂x|, |∂z/∂y|)) within how far snapping moves it, r the declared format's resolvable difference (2^(e − 23) for f32 depth whose largest value is in [2^e, 2^(e+1)), 2^-n for n-bit fixed point), within f32 rounding.")
+                .source(SOURCE)
+                .cases(1000)
+                .needs(Z_OVER_W_DEPTH)
+                .needs(DEPTH_BIAS),
+            |r, cfg| property_for(r, cfg, unclamped_scene, check_as_specified),
+        )
+        .run(|r, cfg| property_for(r, cfg, unclamped_scene, check_bias)),
+        each_spec(
+            Rule::invariant(Family::Depth, "depth.bias.clamp")
+                .sentence("With a bias clamp k, the offset is min(o, k) when k > 0 and max(o, k) when k < 0 (Vulkan's dbclamp), otherwise as depth.bias.offset says.")
+                .source(SOURCE)
+                .cases(500)
+                .needs(Z_OVER_W_DEPTH)
+                .needs(BIAS_CLAMP),
+            |r, cfg| property_for(r, cfg, clamped_scene, check_as_specified),
+        )
+        .run(|r, cfg| property_for(r, cfg, clamped_scene, check_bias)),
     ]
+}
+
+/// `draft` with what each specification leaves open of it: `part` runs what it requires.
+fn each_spec(draft: RuleDraft, part: Run) -> RuleDraft {
+    draft
+        .vulkan_and_opengl(Level::Partly {
+            part,
+            note: OPENGL_FREEDOM,
+        })
+        .vulkan(Level::Partly {
+            part,
+            note: VULKAN_FREEDOM,
+        })
+        .d3d11(Level::Partly { part, note: D3D11_R })
 }
 
 /// A factor of either sign, `2^t` for `t` in `exponents` (whole for a constant, as wgpu's
@@ -99,7 +95,7 @@ fn factor(exponents: std::ops::Range<f32>, whole: bool) -> impl Strategy<Value =
     prop_oneof![1 => Just(0.0f32), 4 => scaled]
 }
 
-/// A depth bias: a constant up to 2^20 (at most a sixteenth of f32 depth), a slope factor from
+/// A depth bias: a constant up to 2^20 (at most an eighth of f32 depth), a slope factor from
 /// 1/16 to 8, never both zero; with a clamp of either sign from 2^-26 to 1/16 when `clamped`.
 pub fn depth_bias(clamped: bool) -> impl Strategy<Value = DepthBias> {
     let clamp = (any::<bool>(), -26.0f32..-4.0).prop_map(|(negative, t)| {
@@ -186,7 +182,11 @@ fn bounds(profile: &Profile, scene: &Scene, spec: Spec) -> Option<OffsetBounds> 
     let support: BiasSupport = profile.state.depth_bias?;
     let fitted = profile.fit(scene.state);
     let t = scene.triangles.first()?;
-    let p = t.map(|i| scene.positions[i as usize]);
+    let p = [
+        *scene.positions.get(t[0] as usize)?,
+        *scene.positions.get(t[1] as usize)?,
+        *scene.positions.get(t[2] as usize)?,
+    ];
     offset_bounds(
         &p,
         (scene.width, scene.height),

@@ -5,11 +5,13 @@
 //! but fails refrast's conventions and D3D11.3; one taking r one binade low (SwiftShader's class)
 //! fails them all.
 
+use refrast::DepthBias;
 use refrast::{
     BiasSupport, DepthFormat, DepthSlope, Draw, DrawError, Fragment, Profile, Rasterizer, Reference, Spec,
     StateSupport,
 };
-use refrast_conformance::{Options, RuleReport, Status, certify};
+use refrast_conformance::rules::bias;
+use refrast_conformance::{Options, RuleReport, Scene, Status, certify};
 
 /// How the wrapper biases depth.
 #[derive(Clone, Copy, PartialEq, Debug)]
@@ -21,6 +23,11 @@ enum Way {
     ClampsToUnit,
     /// `r = 2^(e − 24)`: half the resolvable difference.
     HalfR,
+    /// [`Way::Max`] from window depths computed in f32 as wgpu's OpenGL ES backend and an
+    /// OpenGL driver compute them: `z` rewritten to `2z − w` (under `0 ≤ z ≤ w`), divided by `w`, then
+    /// `(f − n)/2·z_ndc + (f + n)/2`. On a triangle at depth 2^-12 that rounds at the size of
+    /// 1, not of its depths (llvmpipe's case).
+    GlF32,
 }
 
 /// The reference drawing unbiased, then biasing each fragment itself.
@@ -38,13 +45,22 @@ impl Biased {
         };
         let s = &draw.state;
         let corner = |i: u32| {
-            let p = draw.positions[i as usize].map(f64::from);
+            let v = draw.positions[i as usize];
+            let p = v.map(f64::from);
             let (x, y) = draw.viewport.to_raster(p[0] / p[3], p[1] / p[3]);
-            [
-                x,
-                y,
-                s.viewport_depth.window(s.depth_range.window_depth(p[2], p[3])),
-            ]
+            let z = if self.way == Way::GlF32 {
+                let (n, f) = (s.viewport_depth.min, s.viewport_depth.max);
+                // wgpu rewrites Vulkan's `0 ≤ z ≤ w` to OpenGL's `−w ≤ z ≤ w`.
+                let z = match s.depth_range {
+                    refrast::DepthRange::ZeroToOne => 2.0 * v[2] - v[3],
+                    refrast::DepthRange::NegativeOneToOne => v[2],
+                };
+                let ndc = z / v[3];
+                f64::from((f - n) / 2.0 * ndc + (f + n) / 2.0)
+            } else {
+                s.viewport_depth.window(s.depth_range.window_depth(p[2], p[3]))
+            };
+            [x, y, z]
         };
         let [a, b, c] = t.map(corner);
         let (x1, y1, z1) = (b[0] - a[0], b[1] - a[1], b[2] - a[2]);
@@ -127,15 +143,48 @@ fn run(spec: Spec, way: Way) -> Vec<RuleReport> {
     certify(&mut r, &options, |_| {}).rules
 }
 
-/// The max measure, the bias added to each fragment's f32 depth after interpolation: right
-/// under every specification, refrast's conventions included.
+/// The max measure, the bias added to each fragment's f32 depth after interpolation, from
+/// exact depths or from OpenGL's f32 ones: right under every specification, refrast's
+/// conventions included.
 #[test]
 fn a_correct_bias_computed_another_way_passes_everywhere() {
-    for spec in Spec::ALL {
-        for report in run(spec, Way::Max) {
-            assert_eq!(report.status, Status::Pass, "{spec:?}: {report:#?}");
+    for way in [Way::Max, Way::GlF32] {
+        for spec in Spec::ALL {
+            for report in run(spec, way) {
+                assert_eq!(report.status, Status::Pass, "{way:?}, {spec:?}: {report:#?}");
+            }
         }
     }
+}
+
+/// Regression (llvmpipe through OpenGL ES, once its slope measure was probed): a triangle at
+/// depth 2^-12.4 whose f32 window depths round at the size of 1, so its slope comes out 0.1 %
+/// off the exact plane's; the oracle first bounded that rounding by the depths' own size.
+#[test]
+fn f32_depths_of_a_shallow_plane_pass() {
+    let mut scene = Scene::new(
+        64,
+        32,
+        vec![
+            [0.200_499_07, 0.0, 4.864_864e-5, 0.25],
+            [0.0, 0.212_513_74, 4.490_044e-5, 0.25],
+            [-0.023_486_024, 0.0, 4.682_403_2e-5, 0.25],
+        ],
+        vec![[0, 1, 2]],
+    );
+    scene.state.clip_near = false;
+    scene.state.depth_bias = Some(DepthBias {
+        constant: 0.0,
+        slope: 1.0,
+        clamp: 0.0,
+    });
+    let mut r = Biased {
+        spec: Spec::OpenGlEs,
+        way: Way::GlF32,
+        inner: Reference::default(),
+    };
+    let judged = bias::check_bias_under(&mut r, &scene, Spec::OpenGlEs);
+    assert!(judged.is_ok(), "{judged:?}");
 }
 
 /// A biased depth clamped to `[0, 1]` rather than to a narrower viewport range: what OpenGL

@@ -10,6 +10,7 @@
 //! [`crate::measured`] chooses the declarations from that.
 
 mod band;
+pub mod bias;
 mod coverage;
 mod fill;
 mod grid;
@@ -20,6 +21,7 @@ mod snap;
 use refrast::{Draw, DrawError, Fragment, Viewport};
 
 pub use band::{Band, REACHES};
+pub use bias::Slope;
 pub use coverage::Coverage;
 pub use fill::{TieRule, name as fill_name};
 pub use grid::{FINEST, Grid};
@@ -46,6 +48,9 @@ pub struct Probes {
     pub precision: Precision,
     /// The line rule, points, and where the 4 samples lie.
     pub primitives: PrimitiveProbes,
+    /// The depth slope its bias takes ([`bias::probe`], through the depth buffer: the driver
+    /// runs it apart, after the others).
+    pub slope: Slope,
 }
 
 /// Runs every probe through `draw`. `reported_bits` is the grid the driver reports, if it
@@ -76,6 +81,7 @@ pub fn measure(
         band,
         precision,
         primitives,
+        slope: Slope::unmeasured(),
     })
 }
 

@@ -139,3 +139,17 @@ fn the_line_probe_tells_every_rule_apart() {
     let off: Vec<usize> = counts.iter().map(|(_, n)| *n).collect();
     assert_eq!(off.iter().filter(|&&n| n == 0).count(), 1, "{counts:?}");
 }
+
+/// The slope probe reads the reference's measure, the gradient's length, off its depth buffer.
+#[test]
+fn the_slope_probe_reads_the_references_exact_measure() {
+    let mut r = Reference::default();
+    let slope = super::bias::probe(&mut |d| r.resolve(d)).expect("the reference resolves");
+    assert_eq!(
+        slope.measure(),
+        refrast::DepthSlope::Exact,
+        "{}",
+        slope.describe()
+    );
+    assert!(super::Slope::unmeasured().describe().contains("nothing drawn"));
+}

@@ -9,6 +9,10 @@
 mod common;
 #[path = "drivers/findings.rs"]
 mod findings;
+#[path = "drivers/resolved.rs"]
+mod resolved;
+#[path = "drivers/softpipe.rs"]
+mod softpipe;
 
 use std::time::Duration;
 

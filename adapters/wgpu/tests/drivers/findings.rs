@@ -1,10 +1,10 @@
 //! The hand-checked findings of docs/certified.md (lavapipe, llvmpipe, softpipe), each as the
 //! driver does it today.
 
-use refrast::{
-    CompareOp, DepthBias, Draw, Fragment, FrontFace, Rasterizer, Reference, Resolved, Scissor, Viewport,
-};
+use refrast::{Draw, Fragment, FrontFace, Rasterizer, Reference, Scissor, Viewport};
 use refrast_wgpu::{Driver, Gpu};
+
+use crate::{resolved, softpipe};
 
 /// A draw on a `width`×`height` target with far clipping on (WebGPU cannot turn it off).
 pub fn draw(width: u32, height: u32, positions: Vec<[f32; 4]>, triangles: Vec<[u32; 3]>) -> Draw {
@@ -29,7 +29,7 @@ pub fn at(frags: &[Fragment], x: u32, y: u32) -> Vec<Fragment> {
 }
 
 /// A driver's fragments for a draw.
-type Run<'a> = dyn FnMut(&Draw) -> Vec<Fragment> + 'a;
+pub(crate) type Run<'a> = dyn FnMut(&Draw) -> Vec<Fragment> + 'a;
 
 /// One hand-checked finding: what it is, and its check, which panics with what moved.
 type Finding = (&'static str, fn(Driver, &mut Run<'_>));
@@ -60,10 +60,22 @@ const ON_A_GRID: [Finding; 5] = [
 
 /// softpipe's own findings: float edges on no grid.
 const SOFTPIPE: [Finding; 4] = [
-    ("a shared edge's sample covered twice", softpipe_shared_edge_twice),
-    ("a vertex sample as top-right keeps it", softpipe_vertex_sample),
-    ("a flat triangle weighted nothing", softpipe_flat_triangle),
-    ("non-finite weights across w = 0", softpipe_across_w_zero),
+    (
+        "a shared edge's sample covered twice",
+        softpipe::softpipe_shared_edge_twice,
+    ),
+    (
+        "a vertex sample as top-right keeps it",
+        softpipe::softpipe_vertex_sample,
+    ),
+    (
+        "a flat triangle weighted nothing",
+        softpipe::softpipe_flat_triangle,
+    ),
+    (
+        "non-finite weights across w = 0",
+        softpipe::softpipe_across_w_zero,
+    ),
 ];
 
 /// lavapipe's own findings: at 4 samples, which only it draws through wgpu of Mesa's three.
@@ -89,11 +101,14 @@ pub fn findings(d: Driver, gpu: &mut Gpu) {
         .copied()
         .collect();
     let mut moved = crate::common::moved_findings(&all, |check| check(d, &mut run));
-    let resolved: &[ResolvedFinding] = match d {
-        Driver::Softpipe => &[("depth bias saturated per vertex", softpipe_bias_per_vertex)],
+    let resolved: &[resolved::ResolvedFinding] = match d {
+        Driver::Softpipe => &[(
+            "depth bias saturated per vertex",
+            resolved::softpipe_bias_per_vertex,
+        )],
         Driver::Llvmpipe => &[(
             "a biased depth read back clamped as the buffer holds it",
-            llvmpipe_biased_copy_clamped,
+            resolved::llvmpipe_biased_copy_clamped,
         )],
         _ => &[],
     };
@@ -430,140 +445,6 @@ fn snap_tie_to_even(d: Driver, run: &mut Run<'_>) {
     );
 }
 
-/// Two triangles of softpipe's findings on 64×64, sharing the edge (32.5, 32.5)–(18.5, 50.5).
-fn softpipe_fan() -> Draw {
-    draw(
-        64,
-        64,
-        vec![
-            [0.015625, -0.015625, 0.5, 1.0],
-            [0.0, -0.1875, 0.5, 1.0],
-            [-0.421875, -0.578125, 0.5, 1.0],
-            [-0.046875, -0.015625, 0.5, 1.0],
-        ],
-        vec![[0, 1, 2], [0, 2, 3]],
-    )
-}
-
-/// softpipe: a shared edge's midpoint covered by both triangles.
-fn softpipe_shared_edge_twice(_: Driver, run: &mut Run<'_>) {
-    // Two triangles sharing the edge (32.5, 32.5)–(18.5, 50.5); its midpoint is the sample of
-    // pixel (25, 41), covered by both.
-    let fan = softpipe_fan();
-    assert_eq!(
-        at(&run(&fan), 25, 41).len(),
-        2,
-        "softpipe: the shared-edge sample twice"
-    );
-}
-
-/// softpipe: the sample on a vertex where two right edges meet.
-fn softpipe_vertex_sample(_: Driver, run: &mut Run<'_>) {
-    let fan = softpipe_fan();
-    // The sample (12.5, 0.5) is vertex 1, where two right edges meet: softpipe covers it, as
-    // top-right would; its float edges follow top-right on 259 of the probe's 262 tie samples,
-    // not all, so it declares no tie rule (tests/measured.rs).
-    let corner = draw(
-        16,
-        16,
-        vec![
-            [-1.0, 1.0, 0.5, 1.0],
-            [0.5625, 0.9375, 0.5, 1.0],
-            [-1.0, 0.937_011_7, 0.5, 1.0],
-        ],
-        vec![[0, 1, 2]],
-    );
-    assert_eq!(at(&run(&corner), 12, 0).len(), 1, "softpipe: the vertex sample");
-    assert!(at(&expected(&corner), 12, 0).is_empty(), "top-left leaves it out");
-    assert_eq!(
-        at(&expected(&fan), 25, 41).len(),
-        1,
-        "exactly one triangle covers it"
-    );
-}
-
-/// softpipe: a triangle flat on the reference's grid draws a pixel weighted nothing.
-fn softpipe_flat_triangle(_: Driver, run: &mut Run<'_>) {
-    // All three vertices project to y = 4.5000004 to 4.5000005 (exact area 1.2·10⁻⁸ px²; on an
-    // 8-bit grid zero, but softpipe snaps to no grid), and (24, 4), whose sample lies 4·10⁻⁷ px
-    // outside the triangle, is drawn weighted 0, 0, 0: the weights sum to 0, not 1.
-    let flat = draw(
-        32,
-        32,
-        vec![
-            [0.053125, 0.071875, 0.0, 0.1],
-            [1.355_272_4, 2.509_384_9, 0.0, 3.491_318_2],
-            [0.050_903_32, 0.071875, 0.0, 0.1],
-        ],
-        vec![[0, 1, 2]],
-    );
-    assert!(
-        expected(&flat).is_empty(),
-        "zero area on the reference's grid: nothing drawn"
-    );
-    let frags = run(&flat);
-    assert_eq!(frags.len(), 1, "softpipe: one fragment of the flat triangle");
-    assert_eq!(
-        (frags[0].x, frags[0].y),
-        (24, 4),
-        "softpipe: the flat triangle's pixel"
-    );
-    assert_eq!(frags[0].barycentric, [0.0; 3], "softpipe: weighted nothing");
-    assert_eq!(
-        frags[0].screen_barycentric,
-        Some([2.0, 0.0, -2.0]),
-        "softpipe: screen weights"
-    );
-}
-
-/// softpipe: non-finite weights on triangles crossing w = 0, within 2³² too.
-fn softpipe_across_w_zero(_: Driver, run: &mut Run<'_>) {
-    // A triangle crossing w = 0 (w = 0, −2·10⁻⁶, 27.7): (2, 10) is weighted (∞, NaN, ∞).
-    let crossing = draw(
-        3,
-        21,
-        vec![
-            [1.876_499_6e14, 0.0, 0.0, 0.0],
-            [-0.0, 0.0, 0.0, -2.011_305e-6],
-            [0.0, -1.257_901_8e-6, 0.0, 27.699_118],
-        ],
-        vec![[0, 1, 2]],
-    );
-    let weights = at(&run(&crossing), 2, 10);
-    assert!(
-        weights.len() == 1 && weights[0].barycentric.iter().all(|b| !b.is_finite()),
-        "softpipe: non-finite weights at (2, 10): {weights:?}"
-    );
-    // The same within 2³², every clipped vertex at w ≥ 2⁻³² (so required of OpenGL): two
-    // vertices behind the eye, vertex 1 a hair before the near plane; the sample on vertex 1.
-    let within = draw(
-        9,
-        1,
-        vec![
-            [-1.175_494_4e-38, -3.996_676, 1.175_494_4e-38, -3.999_976_4],
-            [-1.175_494_4e-38, 1.175_494_4e-38, -2.970_919e-7, 2.546_645_2],
-            [-1.515_625, 22_237_420.0, 2.484_375, -0.576_177_6],
-        ],
-        vec![[0, 1, 2]],
-    );
-    let scene = refrast_conformance::Scene {
-        width: 9,
-        height: 1,
-        positions: within.positions.clone(),
-        triangles: within.triangles().to_vec(),
-        state: within.state,
-    };
-    assert!(
-        refrast_conformance::rules::robust::within_float_range(&scene),
-        "the 9×1 draw stays within 2³²"
-    );
-    let weights = at(&run(&within), 4, 0);
-    assert!(
-        weights.len() == 1 && weights[0].barycentric.iter().all(|b| !b.is_finite()),
-        "softpipe: non-finite weights at (4, 0) within range: {weights:?}"
-    );
-}
-
 /// At 4 samples, the scissor keeps the samples of the column left of it and of the row above
 /// it that lie within half a pixel of the rectangle; at one sample it is exact.
 fn lavapipe_multisample_scissor(d: Driver, run: &mut Run<'_>) {
@@ -617,64 +498,4 @@ fn lavapipe_multisample_scissor(d: Driver, run: &mut Run<'_>) {
         "{}: at one sample, fragments outside the scissor",
         d.name()
     );
-}
-
-/// A driver's depth and id buffers for a draw.
-type Resolve<'a> = dyn FnMut(&Draw) -> Resolved + 'a;
-
-/// A finding read off the depth buffer: what it is, and its check.
-type ResolvedFinding = (&'static str, fn(&mut Resolve<'_>));
-
-/// softpipe: depth bias added to each vertex and clamped to [0, 1] there, before interpolation
-/// (Mesa's `draw_pipe_offset.c`: "we're applying the offset and clamping per-vertex"), where
-/// OpenGL ES 3.2 §13.7.2 adds `o` to each fragment's depth and then clamps ("Fragment depth
-/// values are clamped even when the depth buffer uses a floating-point representation").
-fn softpipe_bias_per_vertex(resolve: &mut Resolve<'_>) {
-    let got = resolve(&biased_past_zero());
-    let i = got.index(8, 7, 0);
-    assert_eq!(got.primitive[i], Some(0), "softpipe: (8, 7) covered");
-    assert!(
-        (got.depth[i] - 0.011_589).abs() < 1e-5,
-        "softpipe: (8, 7) biased to {} (the bent plane gives 0.011589; OpenGL ES requires 0)",
-        got.depth[i]
-    );
-}
-
-/// llvmpipe, a false verdict of refrast's: OpenGL ES copies no depth texture, so the adapter
-/// reads the depth test's result back as the passing fragment's FragCoord.z, which carries the
-/// bias unclamped (−0.014503 here); the buffer holds it clamped to [0, 1] (§13.7.2), and so
-/// must the copy, or `depth.bias.offset` fails a driver that is right.
-fn llvmpipe_biased_copy_clamped(resolve: &mut Resolve<'_>) {
-    let got = resolve(&biased_past_zero());
-    let i = got.index(8, 7, 0);
-    assert_eq!(
-        (got.primitive[i], got.depth[i]),
-        (Some(0), 0.0),
-        "llvmpipe: (8, 7) biased below 0, read back clamped"
-    );
-}
-
-/// A triangle whose bias carries part of it below depth 0, written with every fragment.
-fn biased_past_zero() -> Draw {
-    // A triangle at (8, 8), (8, 7.205), (12.976, 8) px, depth 0, 0 and 0.1443: ∂z/∂x = 0.029006,
-    // ∂z/∂y = 0, so slope factor −1 makes o = −0.029006. At (8, 7), sample (8.5, 7.5), depth
-    // 0.014503; biased −0.014503, clamped to 0. softpipe clamps the vertices instead (0, 0,
-    // 0.1153) and interpolates the bent plane: 0.011589.
-    let mut biased = draw(
-        16,
-        16,
-        vec![
-            [0.0, 0.0, 0.0, 0.25],
-            [0.0, 0.024_832_683, 0.0, 0.25],
-            [0.155_489_34, 0.0, 0.036_083_46, 0.25],
-        ],
-        vec![[0, 1, 2]],
-    );
-    biased.state.depth.compare = CompareOp::Always;
-    biased.state.depth_bias = Some(DepthBias {
-        constant: 0.0,
-        slope: -1.0,
-        clamp: 0.0,
-    });
-    biased
 }

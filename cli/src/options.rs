@@ -5,7 +5,7 @@ use std::path::Path;
 
 use glam::Vec3;
 use refrast::{
-    CullMode, DrawState, FrontFace, MAX_VIEWPORT, Rasterizer, Reference, ReferenceConfig, Scissor,
+    CullMode, DepthBias, DrawState, FrontFace, MAX_VIEWPORT, Rasterizer, Reference, ReferenceConfig, Scissor,
 };
 use refrast_render::scene::{self, Framed, Setup};
 use refrast_render::{Job, Light, Mode, Overrides, Sampling, Shading, Texture, load};
@@ -59,6 +59,12 @@ pub struct SceneArgs {
     /// (the scissor test); the rasterizer must declare a scissor (the reference does).
     #[arg(long, value_name = "X,Y,W,H", value_parser = parse_scissor)]
     pub scissor: Option<Scissor>,
+    /// Offset each triangle's depth by CONSTANT units of its depth format's resolution plus
+    /// SLOPE times its depth slope, at most CLAMP from where it was (0 or absent: no clamp);
+    /// the rasterizer must declare depth bias (the reference does). Lines and points are not
+    /// biased.
+    #[arg(long, value_name = "CONSTANT,SLOPE[,CLAMP]", value_parser = parse_depth_bias, allow_hyphen_values = true)]
+    pub depth_bias: Option<DepthBias>,
     /// Light position, X,Y,Z [default: the scene's light, or a headlight above the eye].
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
     pub light: Option<Vec3>,
@@ -173,6 +179,7 @@ pub fn prepare(args: &SceneArgs) -> Result<Prepared, Failure> {
     state.cull = args.cull.unwrap_or(state.cull);
     state.front_face = args.front_face;
     state.scissor = args.scissor;
+    state.depth_bias = args.depth_bias;
     Ok(Prepared {
         headlight: setup.light.is_none() && args.light.is_none(),
         shading: args.shading.unwrap_or(setup.shading),
@@ -240,6 +247,38 @@ fn parse_scissor(s: &str) -> Result<Scissor, String> {
         .collect::<Result<_, _>>()?;
     match v[..] {
         [x, y, width, height] => Ok(Scissor { x, y, width, height }),
+        _ => Err(bad()),
+    }
+}
+
+/// `CONSTANT,SLOPE` or `CONSTANT,SLOPE,CLAMP`: finite numbers.
+fn parse_depth_bias(s: &str) -> Result<DepthBias, String> {
+    let bad = || {
+        format!(
+            "'{s}' is not a depth bias; give CONSTANT,SLOPE or CONSTANT,SLOPE,CLAMP, finite numbers, e.g. 1000,1.5 or -4,-2,0.001"
+        )
+    };
+    let v: Vec<f32> = s
+        .split(',')
+        .map(|n| {
+            n.trim()
+                .parse::<f32>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(bad)
+        })
+        .collect::<Result<_, _>>()?;
+    match v[..] {
+        [constant, slope] => Ok(DepthBias {
+            constant,
+            slope,
+            clamp: 0.0,
+        }),
+        [constant, slope, clamp] => Ok(DepthBias {
+            constant,
+            slope,
+            clamp,
+        }),
         _ => Err(bad()),
     }
 }

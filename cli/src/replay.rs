@@ -256,6 +256,12 @@ fn describe(case: &CaseFile) -> String {
     if let Some(mode) = &d.provoking_vertex {
         text.push_str(&format!("; provoking-vertex {mode}"));
     }
+    if let Some([constant, slope, clamp]) = d.depth_bias {
+        text.push_str(&format!(
+            "; depth bias constant {} slope {} clamp {}",
+            constant.0, slope.0, clamp.0
+        ));
+    }
     if let Some([dx, dy]) = case.case.translate {
         text.push_str(&format!("; drawn again moved by ({dx}, {dy}) pixels"));
     }

@@ -181,13 +181,29 @@ pub(crate) fn triangle_draw(
 }
 
 /// `Err(Unsupported)` when `job` asks for state `profile` does not declare ([`Profile::state`]:
-/// a scissor, culling of both faces): such a draw is refused with what to do, never drawn as if
+/// a scissor, depth bias, culling of both faces): such a draw is refused with what to do, never drawn as if
 /// it had not been asked.
 pub(crate) fn undeclared_state(profile: &Profile, job: &Job<'_>) -> Result<(), DrawError> {
     if job.state.scissor.is_some() && !profile.state.scissor {
         return Err(DrawError::Unsupported(
             "a scissor, which this rasterizer does not declare (the reference does)".to_owned(),
         ));
+    }
+    if let Some(bias) = job.state.depth_bias {
+        match profile.state.depth_bias {
+            None => {
+                return Err(DrawError::Unsupported(
+                    "depth bias, which this rasterizer does not declare (the reference does)".to_owned(),
+                ));
+            }
+            Some(support) if bias.clamp != 0.0 && !support.clamp => {
+                return Err(DrawError::Unsupported(
+                    "a depth bias clamp, which this rasterizer does not declare (the reference does)"
+                        .to_owned(),
+                ));
+            }
+            Some(_) => {}
+        }
     }
     if job.state.cull == refrast::CullMode::FrontAndBack && !profile.state.cull_both {
         return Err(DrawError::Unsupported(

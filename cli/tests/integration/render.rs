@@ -215,6 +215,67 @@ fn a_scissor_keeps_every_mode_inside_it() {
     refused(&["room", "--scissor", "1,2,3"], "is not a scissor");
 }
 
+/// `--depth-bias` moves the depth picture and nothing else: the same pixels drawn, each at
+/// its depth plus the triangle's offset (a slope factor of −64 pulls the room's sloped walls
+/// toward the eye; pushed away, a surface could reach the far plane and fail the depth test
+/// against the clear, as it should); a rasterizer without depth bias refuses the draw (exit 1),
+/// and a malformed bias is a usage error (exit 2).
+#[test]
+fn a_depth_bias_moves_depth_and_nothing_else() {
+    let dir = scratch("bias");
+    let draw = |name: &str, extra: &[&str]| {
+        let path = dir.join(name);
+        let mut args = vec![
+            "room",
+            "--size",
+            "160x120",
+            "--mode",
+            "depth",
+            "-o",
+            path.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let out = render(&args);
+        assert!(
+            out.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        png(&path)
+    };
+    let plain = draw("plain.png", &[]);
+    let biased = draw("biased.png", &["--depth-bias", "0,-64"]);
+    let background = |p: &image::Rgba<u8>| p.0 == [0, 0, 0, 255];
+    let moved = plain
+        .pixels()
+        .zip(biased.pixels())
+        .filter(|(a, b)| {
+            assert_eq!(
+                background(a),
+                background(b),
+                "the bias changed which pixels are drawn"
+            );
+            a != b
+        })
+        .count();
+    assert!(moved > 0, "a slope factor of −64 moved no pixel's depth");
+    let path = dir.join("refused.png");
+    let out = render(&[
+        "room",
+        "--impl",
+        "restricted:depth-bias=none",
+        "--depth-bias",
+        "0,64",
+        "-o",
+        path.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("does not declare") && !path.exists(), "{stderr}");
+    refused(&["room", "--depth-bias", "1"], "is not a depth bias");
+    refused(&["room", "--depth-bias", "1,NaN"], "is not a depth bias");
+}
+
 #[test]
 fn an_interrupted_or_failed_render_leaves_no_file() {
     let dir = scratch("atomic");

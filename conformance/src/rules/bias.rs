@@ -12,9 +12,10 @@
 use std::collections::HashMap;
 
 use proptest::prelude::*;
-use refrast::{BiasSupport, CompareOp, DepthBias, DepthState, Profile, Rasterizer, Spec};
+use refrast::{BiasSupport, DepthBias, Profile, Rasterizer, Spec};
 
 use super::common::fragments;
+use super::depth::{every_fragment_written, resolve, writes_every_fragment};
 use super::level::Level;
 use super::viewport_depth::viewport_depth;
 use super::{Family, Need, Rule, RuleDraft, Run, Z_OVER_W_DEPTH, needs};
@@ -203,18 +204,8 @@ type Stored = HashMap<(u32, u32), (u32, f32)>;
 /// What the implementation stores at each pixel: its depth buffer after a depth test that
 /// writes every fragment, where it runs one; else its fragments.
 fn stored(r: &mut dyn Rasterizer, scene: &Scene) -> Result<Stored, Violation> {
-    let profile = r.profile();
-    let f = &profile.features;
-    if f.depth_test && f.compare_ops.contains(CompareOp::Always) && f.depth_writes.contains(true) {
-        let mut every = scene.clone();
-        every.state.depth = DepthState {
-            compare: CompareOp::Always,
-            write: true,
-            clear: 1.0,
-        };
-        let resolved = r
-            .resolve(&every.draw())
-            .map_err(|e| Violation::of_draw_error("resolve", &e))?;
+    if writes_every_fragment(&r.profile()) {
+        let resolved = resolve(r, &every_fragment_written(scene))?;
         let mut out = HashMap::new();
         for y in 0..scene.height {
             for x in 0..scene.width {

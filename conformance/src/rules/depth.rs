@@ -240,8 +240,26 @@ fn reorder(scene: &Scene, order: &[usize]) -> Scene {
     s
 }
 
+/// Whether the implementation runs its own depth test and can be asked to write every fragment
+/// (`Always`, writes on): then the buffer it leaves shows each fragment's stored depth.
+pub(super) fn writes_every_fragment(profile: &Profile) -> bool {
+    let f = &profile.features;
+    f.depth_test && f.compare_ops.contains(CompareOp::Always) && f.depth_writes.contains(true)
+}
+
+/// `scene` with a depth test that writes every fragment (`Always`, writes on, its own clear).
+pub(super) fn every_fragment_written(scene: &Scene) -> Scene {
+    let mut every = scene.clone();
+    every.state.depth = DepthState {
+        compare: CompareOp::Always,
+        write: true,
+        clear: scene.state.depth.clear,
+    };
+    every
+}
+
 /// The rasterizer's resolved buffers; an error, or buffers of the wrong size, is a violation.
-fn resolve(r: &mut dyn Rasterizer, scene: &Scene) -> Result<Resolved, Violation> {
+pub(super) fn resolve(r: &mut dyn Rasterizer, scene: &Scene) -> Result<Resolved, Violation> {
     let resolved = r
         .resolve(&scene.draw())
         .map_err(|e| Violation::of_draw_error("resolve", &e))?;

@@ -9,11 +9,12 @@
 use std::fmt;
 
 use proptest::prelude::*;
-use refrast::{CompareOp, DepthConvention, DepthState, Profile, Rasterizer, ViewportDepth};
+use refrast::{DepthConvention, Profile, Rasterizer, ViewportDepth};
 
 use super::common::precision;
 use super::depth::{
-    check_depth_matches_raycast, check_depth_matches_raycast_where_bounded, replay_differences,
+    check_depth_matches_raycast, check_depth_matches_raycast_where_bounded, every_fragment_written,
+    replay_differences, writes_every_fragment,
 };
 use super::fill::check_exactly_once;
 use super::level::{EYE_CROSSING_UNCLIPPED, FAR_VALUES, Level};
@@ -174,18 +175,11 @@ fn check_clamped_where_bounded(r: &mut dyn Rasterizer, scene: &Scene) -> Result<
 /// adapter may clamp them itself).
 fn check_buffer(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
     let profile = r.profile();
-    let f = &profile.features;
-    if !f.depth_test || !f.compare_ops.contains(CompareOp::Always) || !f.depth_writes.contains(true) {
+    if !writes_every_fragment(&profile) {
         return Ok(());
     }
-    let mut every = scene.clone();
-    every.state.depth = DepthState {
-        compare: CompareOp::Always,
-        write: true,
-        clear: scene.state.depth.clear,
-    };
     let eps = precision(&profile);
-    replay_differences(r, &every, Some(eps))?.verdict(|n| {
+    replay_differences(r, &every_fragment_written(scene), Some(eps))?.verdict(|n| {
         format!(
             "with every fragment written, the depth buffer differs from the fragments (clamped to \
              the viewport's depth range) by more than the claimed precision at {}",

@@ -10,6 +10,7 @@
 use std::borrow::Cow;
 
 use crate::error::DrawError;
+use crate::polygon::PolygonMode;
 use crate::primitive::{SAMPLE_COUNTS, Topology};
 use crate::state::DrawState;
 use crate::viewport::Viewport;
@@ -125,11 +126,11 @@ impl Draw {
         }
     }
 
-    /// Whether it is triangles (a list, a strip or a fan) at one sample: what a triangle
-    /// rasterizer reading [`Draw::triangles`] draws.
+    /// Whether it is filled triangles (a list, a strip or a fan) at one sample: what a
+    /// triangle rasterizer reading [`Draw::triangles`] draws.
     #[must_use]
     pub fn is_triangles_at_one_sample(&self) -> bool {
-        self.topology.is_triangles() && self.samples == 1
+        self.topology.is_triangles() && self.samples == 1 && self.state.polygon_mode == PolygonMode::Fill
     }
 
     /// The vertex indices of primitive `i` (one, two or three of them; a triangle's in

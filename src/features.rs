@@ -6,6 +6,7 @@ use std::marker::PhantomData;
 
 use crate::bias::{BiasSupport, DepthBias};
 use crate::depth::{CompareOp, DepthRange, ViewportDepth};
+use crate::polygon::PolygonMode;
 use crate::setup::{CullMode, FrontFace};
 use crate::state::ProvokingVertex;
 use crate::viewport::GUARD_BAND_REACH;
@@ -45,6 +46,12 @@ impl Setting for DepthRange {
 
 impl Setting for ProvokingVertex {
     const VALUES: &'static [Self] = &[Self::First, Self::Last];
+}
+
+/// Fill is not among the values: every rasterizer fills, so [`StateSupport::polygon_modes`]
+/// declares only the line and point modes it has besides.
+impl Setting for PolygonMode {
+    const VALUES: &'static [Self] = &[Self::Line, Self::Point];
 }
 
 /// On and off, for switches such as far clipping and depth writes.
@@ -307,6 +314,12 @@ pub struct StateSupport {
     /// The depth bias it honours on triangles ([`DrawState::depth_bias`](crate::DrawState::depth_bias)),
     /// declared with the format and slope measure it computes it for; `None` when it has none.
     pub depth_bias: Option<BiasSupport>,
+    /// The polygon modes besides fill it draws triangles in
+    /// ([`DrawState::polygon_mode`](crate::DrawState::polygon_mode)): line (edges drawn by its
+    /// line rule, so with [`Profile::lines`](crate::Profile::lines) declared) and point (its
+    /// points, with [`Profile::points`](crate::Profile::points)), at every sample count at
+    /// which it draws both triangles and those.
+    pub polygon_modes: Supported<PolygonMode>,
 }
 
 impl StateSupport {
@@ -344,6 +357,16 @@ impl StateSupport {
         })
     }
 
+    /// `mode` where declared, else fill.
+    #[must_use]
+    pub fn fit_polygon_mode(&self, mode: PolygonMode) -> PolygonMode {
+        if self.polygon_modes.contains(mode) {
+            mode
+        } else {
+            PolygonMode::Fill
+        }
+    }
+
     /// None of it: what a rasterizer written before it existed declares.
     pub const NONE: StateSupport = StateSupport {
         scissor: false,
@@ -355,6 +378,7 @@ impl StateSupport {
         inverted_depth: false,
         unclipped_depth: false,
         depth_bias: None,
+        polygon_modes: Supported::NONE,
     };
     /// All of it, as the reference honours it.
     pub const ALL: StateSupport = StateSupport {
@@ -367,6 +391,7 @@ impl StateSupport {
         inverted_depth: true,
         unclipped_depth: true,
         depth_bias: Some(BiasSupport::REFERENCE),
+        polygon_modes: Supported::ALL,
     };
 }
 

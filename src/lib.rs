@@ -25,6 +25,7 @@
 //! | lines, points, samples | `primitive.rs` | [`Topology`], [`LineRule`], [`PointClipping`], [`SamplePattern`], [`SAMPLE_COUNTS`] |
 //! | what an implementation declares | `profile.rs`, `features.rs` | [`Profile`], [`Snapping`], [`Spec`], [`Features`], [`StateSupport`], [`Supported`], [`SnapAccuracy`] |
 //! | state | `state.rs`, `setup.rs`, `depth.rs` | [`DrawState`], [`Scissor`], [`ProvokingVertex`], [`CullMode`], [`FrontFace`], [`DepthState`], [`CompareOp`], [`DepthRange`], [`ViewportDepth`] |
+//! | polygon modes | `polygon.rs` | [`PolygonMode`] |
 //! | depth bias | `bias.rs` | [`DepthBias`], [`DepthFormat`], [`DepthSlope`], [`BiasSupport`], [`bias::polygon_offset`] |
 //! | the reference | `reference.rs` | [`Reference`], [`ReferenceConfig`], [`Traversal`], [`ClipMode`], [`DrawStats`], [`Sample`] |
 //! | fixed point | `fixed.rs` | [`SubpixelBits`], [`FixedPoint`], [`snap`], [`SnapRounding`], [`COORD_LIMIT`] |
@@ -100,6 +101,10 @@
 //!   value per polygon, before the clamp: `m` the exact slope `√((∂z/∂x)² + (∂z/∂y)²)` of its
 //!   snapped widest fan triangle, `r = 2^(e − 23)` for its largest depth `2^e ≤ z < 2^(e+1)`,
 //!   refrast's depth being f32 ([`bias::polygon_offset`]); lines and points are not biased.
+//! - **Polygon modes**: a triangle in line or point mode is clipped, faced and culled as a
+//!   filled one, then draws its edges `0 → 1`, `1 → 2`, `2 → 0` as a line list of them would
+//!   and its vertices as a point list would, with the triangle's index, facing, flat vertex and
+//!   bias; edges and vertices made by clipping are not drawn ([`PolygonMode`]).
 //! - **Attributes**: perspective-correct, `Σ sᵢ fᵢ/wᵢ / Σ sᵢ/wᵢ`, for triangles and lines alike
 //!   ([`stage::interpolate`]); screen-space barycentrics also given.
 //! - **Bad numbers**: a triangle with a NaN or infinite coordinate is discarded and counted
@@ -122,6 +127,7 @@ mod front;
 mod interp;
 mod lines_points_samples;
 pub mod pipeline;
+mod polygon;
 mod primitive;
 mod profile;
 mod project;
@@ -144,6 +150,7 @@ pub use edge::{FillConvention, is_top_left, orient2d};
 pub use error::{ConfigError, DrawError, Unavailable};
 pub use features::{Features, Setting, SnapAccuracy, StateSupport, Supported};
 pub use fixed::{COORD_LIMIT, FixedPoint, SnapRounding, SubpixelBits, snap};
+pub use polygon::PolygonMode;
 pub use primitive::{LineRule, PointClipping, SAMPLE_COUNTS, SamplePattern, Topology};
 pub use profile::{DepthConvention, Profile, Snapping, Spec};
 pub use rasterizer::Rasterizer;

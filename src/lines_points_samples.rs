@@ -23,8 +23,9 @@ use crate::config::Traversal;
 use crate::draw::{Draw, Fragment};
 use crate::error::DrawError;
 use crate::fixed::FixedPoint;
-use crate::front::{FrontSetup, front_end};
+use crate::front::{Discard, FrontSetup, front_end};
 use crate::interp::interpolate;
+use crate::polygon::PolygonMode;
 use crate::primitive::{PointClipping, SamplePattern, Topology};
 use crate::project::{RasterVertex, ViewportTransform};
 use crate::reference::{DrawStats, Reference, Sample, Scratch};
@@ -32,7 +33,32 @@ use crate::segment;
 use crate::traverse::{PixelRect, build_fan, traverse};
 
 /// A pattern's sample offsets in grid units from the pixel's top-left corner.
-type Offsets = Vec<(i64, i64)>;
+pub(crate) type Offsets = Vec<(i64, i64)>;
+
+/// What a line's or point's fragments carry of the primitive that made them: its own, or, in a
+/// polygon mode, the triangle's.
+pub(crate) struct Owner {
+    /// The primitive's index in the draw.
+    pub(crate) primitive: u32,
+    /// Its facing: always front for a line or a point.
+    pub(crate) front_facing: bool,
+    /// The vertex whose flat values it carries.
+    pub(crate) flat: Option<u32>,
+    /// Its depth bias and the viewport's depth range.
+    pub(crate) depth: FragmentDepth,
+}
+
+impl Owner {
+    /// Primitive `i` of `draw`, a line or a point: front-facing, unbiased.
+    fn of(draw: &Draw, i: usize) -> Self {
+        Self {
+            primitive: i as u32,
+            front_facing: true,
+            flat: draw.provoking(i),
+            depth: FragmentDepth::new(draw.state.viewport_depth, 0.0),
+        }
+    }
+}
 
 impl Reference {
     /// Rasterizes a draw of any topology with samples at `pattern`, handing each covered sample
@@ -57,6 +83,9 @@ impl Reference {
         }
         let offsets = self.offsets(pattern)?;
         match draw.topology {
+            t if t.is_triangles() && draw.state.polygon_mode != PolygonMode::Fill => {
+                Ok(self.draw_polygon_mode(draw, &offsets, emit))
+            }
             t if t.is_triangles() && draw.samples == 1 => self.draw_samples(draw, |s| emit(s.fragment())),
             Topology::TriangleList | Topology::TriangleStrip | Topology::TriangleFan => {
                 self.draw_triangles_at(draw, &offsets, emit)
@@ -172,8 +201,6 @@ impl Reference {
 
     /// Line lists and strips: clip, project and snap each segment, cover it by the line rule.
     fn draw_lines(&self, draw: &Draw, offsets: &Offsets, mut emit: impl FnMut(Fragment)) -> DrawStats {
-        let transform = self.transform(draw);
-        let planes = clip_planes(self.config().clip, draw.viewport, draw.state.depth_clip());
         let mut stats = DrawStats {
             triangles: draw.primitive_count(),
             ..DrawStats::default()
@@ -183,37 +210,56 @@ impl Reference {
                 continue;
             };
             let (pa, pb) = (draw.positions[ia as usize], draw.positions[ib as usize]);
-            if pa.iter().chain(&pb).any(|c| !c.is_finite()) {
-                stats.non_finite += 1;
-                continue;
+            let w = DVec3::new(f64::from(pa[3]), f64::from(pb[3]), 1.0);
+            let ends = ([pa, pb], [DVec3::X, DVec3::Y]);
+            match self.segment(draw, ends, w, &Owner::of(draw, i), offsets, &mut emit) {
+                Ok(covered) => {
+                    stats.traversed += 1;
+                    stats.fragments += covered;
+                }
+                Err(discard) => stats.count(discard),
             }
-            let end = |p: [f32; 4], barycentric| ClipVertex {
-                position: DVec4::from(p.map(f64::from)),
-                barycentric,
-            };
-            let Some((ca, cb)) = clip_segment(end(pa, DVec3::X), end(pb, DVec3::Y), &planes) else {
-                stats.clipped_away += 1;
-                continue;
-            };
-            // Screen-space barycentrics along the input segment exist when both ends project.
-            let input_w =
-                (pa[3] > 0.0 && pb[3] > 0.0).then(|| DVec3::new(f64::from(pa[3]), f64::from(pb[3]), 1.0));
-            let (Some(va), Some(vb)) = (transform.project(&ca, input_w), transform.project(&cb, input_w))
-            else {
-                stats.degenerate += 1;
-                continue;
-            };
-            stats.traversed += 1;
-            stats.fragments += self.cover_segment(draw, i as u32, [va, vb], offsets, &mut emit);
         }
         stats
+    }
+
+    /// One segment from `positions[0]` to `positions[1]`, whose ends have barycentrics
+    /// `barycentrics` over corners whose `w`s are `corner_w`: clipped, projected and snapped,
+    /// then covered by the line rule; the number of samples covered, or why it drew nothing.
+    pub(crate) fn segment(
+        &self,
+        draw: &Draw,
+        (positions, barycentrics): ([[f32; 4]; 2], [DVec3; 2]),
+        corner_w: DVec3,
+        owner: &Owner,
+        offsets: &Offsets,
+        emit: &mut impl FnMut(Fragment),
+    ) -> Result<usize, Discard> {
+        let [pa, pb] = positions;
+        if pa.iter().chain(&pb).any(|c| !c.is_finite()) {
+            return Err(Discard::NonFinite);
+        }
+        let end = |p: [f32; 4], barycentric| ClipVertex {
+            position: DVec4::from(p.map(f64::from)),
+            barycentric,
+        };
+        let planes = clip_planes(self.config().clip, draw.viewport, draw.state.depth_clip());
+        let (ca, cb) = clip_segment(end(pa, barycentrics[0]), end(pb, barycentrics[1]), &planes)
+            .ok_or(Discard::ClippedAway)?;
+        // Screen-space barycentrics along the input segment exist when its corners project.
+        let input_w = (pa[3] > 0.0 && pb[3] > 0.0 && corner_w.min_element() > 0.0).then_some(corner_w);
+        let transform = self.transform(draw);
+        let (Some(va), Some(vb)) = (transform.project(&ca, input_w), transform.project(&cb, input_w)) else {
+            return Err(Discard::Degenerate);
+        };
+        Ok(self.cover_segment(draw, owner, [va, vb], offsets, emit))
     }
 
     /// The samples of one snapped segment under the line rule; the number covered.
     fn cover_segment(
         &self,
         draw: &Draw,
-        primitive: u32,
+        owner: &Owner,
         [va, vb]: [RasterVertex; 2],
         offsets: &Offsets,
         emit: &mut impl FnMut(Fragment),
@@ -228,7 +274,6 @@ impl Reference {
             i64::from(draw.viewport.width()),
             i64::from(draw.viewport.height()),
         );
-        let flat = draw.provoking(primitive as usize);
         let mut covered = 0;
         let mut fragment_at = |x: i64, y: i64, s: FixedPoint, sample: usize| {
             // The sample's projection on the segment, the Vulkan line `t`.
@@ -239,15 +284,14 @@ impl Reference {
                 x: x as u32,
                 y: y as u32,
                 sample: sample as u8,
-                primitive,
-                depth: draw
-                    .state
-                    .viewport_depth
-                    .fragment_depth(va.varyings.depth + (vb.varyings.depth - va.varyings.depth) * t),
+                primitive: owner.primitive,
+                depth: owner
+                    .depth
+                    .of(va.varyings.depth + (vb.varyings.depth - va.varyings.depth) * t),
                 barycentric: b.perspective.as_vec3().to_array(),
-                flat,
+                flat: owner.flat,
                 screen_barycentric: b.screen.map(|s| s.as_vec3().to_array()),
-                front_facing: true,
+                front_facing: owner.front_facing,
             });
         };
         segment::candidates(a, b, one, |x, y| {
@@ -282,68 +326,87 @@ impl Reference {
 
     /// Point lists: keep the points inside the view volume, cover the square around each.
     fn draw_points(&self, draw: &Draw, offsets: &Offsets, mut emit: impl FnMut(Fragment)) -> DrawStats {
-        let transform = self.transform(draw);
-        let config = self.config();
-        let mut planes = clip_planes(ClipMode::Full, draw.viewport, draw.state.depth_clip());
-        // Kept pop-free, a point is clipped by the near and far planes alone.
-        if config.point_clipping == PointClipping::UserClipPlanesOnly {
-            planes.retain(|p| matches!(p, ClipPlane::Near(_) | ClipPlane::Far));
-        }
-        let one = config.subpixel_bits.one();
-        let half = one / 2;
         let mut stats = DrawStats {
             triangles: draw.primitive_count(),
             ..DrawStats::default()
         };
         for (i, &index) in draw.indices.iter().enumerate() {
             let p = draw.positions[index as usize];
-            if p.iter().any(|c| !c.is_finite()) {
-                stats.non_finite += 1;
-                continue;
-            }
-            let clip = DVec4::from(p.map(f64::from));
-            if outcode(&planes, clip) != 0 {
-                stats.clipped_away += 1;
-                continue;
-            }
-            let Some(point) = transform.project_point(clip) else {
-                stats.degenerate += 1;
-                continue;
-            };
-            stats.traversed += 1;
-            let c = point.position;
-            let pixels = |lo: i64, hi: i64, side: u32| {
-                lo.div_euclid(one).max(0)..=hi.div_euclid(one).min(i64::from(side) - 1)
-            };
-            for y in pixels(c.y - half, c.y + half, draw.viewport.height()) {
-                for x in pixels(c.x - half, c.x + half, draw.viewport.width()) {
-                    if !draw.state.passes_scissor(x as u32, y as u32) {
-                        continue;
-                    }
-                    for (k, &(ox, oy)) in offsets.iter().enumerate() {
-                        let s = FixedPoint {
-                            x: x * one + ox,
-                            y: y * one + oy,
-                        };
-                        if !segment::in_point_square(c, s, half, config.fill) {
-                            continue;
-                        }
-                        stats.fragments += 1;
-                        emit(Fragment {
-                            x: x as u32,
-                            y: y as u32,
-                            sample: k as u8,
-                            primitive: i as u32,
-                            depth: draw.state.viewport_depth.fragment_depth(point.depth),
-                            barycentric: [1.0, 0.0, 0.0],
-                            flat: draw.provoking(i),
-                            screen_barycentric: Some([1.0, 0.0, 0.0]),
-                            front_facing: true,
-                        });
-                    }
+            match self.point(draw, p, DVec3::X, &Owner::of(draw, i), offsets, &mut emit) {
+                Ok(covered) => {
+                    stats.traversed += 1;
+                    stats.fragments += covered;
                 }
+                Err(discard) => stats.count(discard),
             }
         }
         stats
+    }
+
+    /// One point at `p`, its barycentrics `barycentric`: kept inside the view volume (or only
+    /// the near and far planes, pop-free), then the square around it covered; the number of
+    /// samples covered, or why it drew nothing.
+    pub(crate) fn point(
+        &self,
+        draw: &Draw,
+        p: [f32; 4],
+        barycentric: DVec3,
+        owner: &Owner,
+        offsets: &Offsets,
+        emit: &mut impl FnMut(Fragment),
+    ) -> Result<usize, Discard> {
+        let config = self.config();
+        if p.iter().any(|c| !c.is_finite()) {
+            return Err(Discard::NonFinite);
+        }
+        let mut planes = clip_planes(ClipMode::Full, draw.viewport, draw.state.depth_clip());
+        // Kept pop-free, a point is clipped by the near and far planes alone.
+        if config.point_clipping == PointClipping::UserClipPlanesOnly {
+            planes.retain(|p| matches!(p, ClipPlane::Near(_) | ClipPlane::Far));
+        }
+        let clip = DVec4::from(p.map(f64::from));
+        if outcode(&planes, clip) != 0 {
+            return Err(Discard::ClippedAway);
+        }
+        let point = self
+            .transform(draw)
+            .project_point(clip)
+            .ok_or(Discard::Degenerate)?;
+        let (one, half) = (config.subpixel_bits.one(), config.subpixel_bits.one() / 2);
+        let c = point.position;
+        let pixels = |lo: i64, hi: i64, side: u32| {
+            lo.div_euclid(one).max(0)..=hi.div_euclid(one).min(i64::from(side) - 1)
+        };
+        let barycentric = barycentric.as_vec3().to_array();
+        let mut covered = 0;
+        for y in pixels(c.y - half, c.y + half, draw.viewport.height()) {
+            for x in pixels(c.x - half, c.x + half, draw.viewport.width()) {
+                if !draw.state.passes_scissor(x as u32, y as u32) {
+                    continue;
+                }
+                for (k, &(ox, oy)) in offsets.iter().enumerate() {
+                    let s = FixedPoint {
+                        x: x * one + ox,
+                        y: y * one + oy,
+                    };
+                    if !segment::in_point_square(c, s, half, config.fill) {
+                        continue;
+                    }
+                    covered += 1;
+                    emit(Fragment {
+                        x: x as u32,
+                        y: y as u32,
+                        sample: k as u8,
+                        primitive: owner.primitive,
+                        depth: owner.depth.of(point.depth),
+                        barycentric,
+                        flat: owner.flat,
+                        screen_barycentric: Some(barycentric),
+                        front_facing: owner.front_facing,
+                    });
+                }
+            }
+        }
+        Ok(covered)
     }
 }

@@ -4,6 +4,7 @@
 
 use crate::bias::DepthBias;
 use crate::depth::{DepthClip, DepthRange, DepthState, ViewportDepth};
+use crate::polygon::PolygonMode;
 use crate::setup::{CullMode, FrontFace};
 
 /// Everything about a draw besides its geometry.
@@ -40,6 +41,11 @@ pub struct DrawState {
     /// Sent other than first only to a rasterizer that declares it
     /// ([`StateSupport::flat`](crate::StateSupport::flat)).
     pub provoking_vertex: ProvokingVertex,
+    /// How triangles are rasterized: filled, as their edges or as their vertices. Sent other
+    /// than fill only to a rasterizer that declares the mode
+    /// ([`StateSupport::polygon_modes`](crate::StateSupport::polygon_modes)); lines and points
+    /// ignore it.
+    pub polygon_mode: PolygonMode,
 }
 
 /// Which vertex of a primitive gives its flat (not interpolated) values: Vulkan's
@@ -58,7 +64,7 @@ pub enum ProvokingVertex {
 impl Default for DrawState {
     /// No culling, counter-clockwise front faces, a LESS test, the `[0, 1]` clip volume with
     /// near clipping on and far clipping off, the whole depth range, no depth bias, no scissor,
-    /// the first provoking vertex.
+    /// the first provoking vertex, triangles filled.
     fn default() -> Self {
         Self {
             cull: CullMode::default(),
@@ -71,6 +77,7 @@ impl Default for DrawState {
             depth_bias: None,
             scissor: None,
             provoking_vertex: ProvokingVertex::default(),
+            polygon_mode: PolygonMode::Fill,
         }
     }
 }

@@ -348,6 +348,8 @@ impl Rasterizer for Gpu {
                     slope: m.bias_slope,
                     clamp: self.context.bias_clamp,
                 }),
+                // Not yet drawn through wgpu's `PolygonMode` (docs/certified.md says why).
+                polygon_modes: Supported::NONE,
             },
         }
     }

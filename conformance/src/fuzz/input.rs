@@ -7,8 +7,8 @@ use std::fmt;
 
 use arbitrary::Arbitrary;
 use refrast::{
-    CompareOp, CullMode, DepthBias, DepthRange, DepthState, DrawState, FrontFace, ProvokingVertex, Scissor,
-    ViewportDepth,
+    CompareOp, CullMode, DepthBias, DepthRange, DepthState, DrawState, FrontFace, PolygonMode,
+    ProvokingVertex, Scissor, ViewportDepth,
 };
 
 use crate::scene::{Scene, clip_of, rust_f32};
@@ -138,6 +138,8 @@ pub fn draw_state(bits: u16) -> DrawState {
         } else {
             ProvokingVertex::First
         },
+        // The robustness target draws each scene in the other modes too.
+        polygon_mode: PolygonMode::Fill,
     }
 }
 

@@ -4,8 +4,8 @@
 use std::fmt;
 
 use refrast::{
-    CompareOp, CullMode, DepthBias, DepthRange, DepthState, DrawState, FrontFace, ProvokingVertex, Scissor,
-    Topology, Viewport, ViewportDepth,
+    CompareOp, CullMode, DepthBias, DepthRange, DepthState, DrawState, FrontFace, PolygonMode,
+    ProvokingVertex, Scissor, Topology, Viewport, ViewportDepth,
 };
 use serde::de::{self, Visitor};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -137,6 +137,9 @@ pub struct DrawData {
     /// The triangles' depth bias `[constant, slope, clamp]`; absent for none.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub depth_bias: Option<[Coordinate; 3]>,
+    /// `line` or `point`: how triangles are drawn; absent for `fill`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub polygon_mode: Option<String>,
 }
 
 impl DrawData {
@@ -168,6 +171,7 @@ impl DrawData {
             depth_bias: s
                 .depth_bias
                 .map(|b| [Coordinate(b.constant), Coordinate(b.slope), Coordinate(b.clamp)]),
+            polygon_mode: (s.polygon_mode != PolygonMode::Fill).then(|| s.polygon_mode.name().to_owned()),
         }
     }
 
@@ -211,6 +215,11 @@ impl DrawData {
                 slope: slope.0,
                 clamp: clamp.0,
             }),
+            polygon_mode: match &self.polygon_mode {
+                None => PolygonMode::Fill,
+                Some(text) => PolygonMode::from_name(text)
+                    .ok_or_else(|| format!("polygon-mode '{text}' is none of fill, line, point"))?,
+            },
         };
         // A draw needs a viewport and a depth range in range; the rules build none other.
         Viewport::new(self.width, self.height)

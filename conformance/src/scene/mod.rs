@@ -7,7 +7,8 @@ mod primitive;
 use std::fmt;
 
 use refrast::{
-    CullMode, DepthRange, Draw, DrawState, FrontFace, Profile, ProvokingVertex, Viewport, ViewportDepth,
+    CullMode, DepthRange, Draw, DrawState, FrontFace, PolygonMode, Profile, ProvokingVertex, Viewport,
+    ViewportDepth,
 };
 
 use crate::oracle::facing::{Turn, turn};
@@ -375,12 +376,16 @@ impl fmt::Debug for Scene {
                 rust_f32(b.clamp)
             )?;
         }
+        if s.polygon_mode != PolygonMode::Fill {
+            writeln!(f, "        polygon_mode: PolygonMode::{:?},", s.polygon_mode)?;
+        }
         // The rest, where a field was left out (a struct update with none left is a lint).
         if s.scissor.is_none()
             || s.provoking_vertex == ProvokingVertex::First
             || s.clip_near
             || s.viewport_depth == ViewportDepth::FULL
             || s.depth_bias.is_none()
+            || s.polygon_mode == PolygonMode::Fill
         {
             writeln!(f, "        ..DrawState::default()")?;
         }

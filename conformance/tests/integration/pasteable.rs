@@ -40,12 +40,13 @@ fn a_printed_scene_compiles_and_round_trips() {
                 slope: 1.5,
                 clamp: 0.0,
             }),
+            polygon_mode: PolygonMode::Line,
         },
     };
     let printed = format!("{pasted:?}");
     assert!(
         printed.contains(
-            "scissor: Some(Scissor { x: 2, y: 0, width: 9, height: 16 }),\n        provoking_vertex: ProvokingVertex::Last,\n        clip_near: false,\n        viewport_depth: ViewportDepth { min: 0.75, max: 0.25 },\n        depth_bias: Some(DepthBias { constant: -4096.0, slope: 1.5, clamp: 0.0 }),\n    },"
+            "scissor: Some(Scissor { x: 2, y: 0, width: 9, height: 16 }),\n        provoking_vertex: ProvokingVertex::Last,\n        clip_near: false,\n        viewport_depth: ViewportDepth { min: 0.75, max: 0.25 },\n        depth_bias: Some(DepthBias { constant: -4096.0, slope: 1.5, clamp: 0.0 }),\n        polygon_mode: PolygonMode::Line,\n    },"
         ) && !printed.contains(".."),
         "{printed}"
     );
@@ -58,6 +59,7 @@ fn a_printed_scene_compiles_and_round_trips() {
             clip_near: true,
             viewport_depth: ViewportDepth::FULL,
             depth_bias: None,
+            polygon_mode: PolygonMode::Fill,
             ..pasted.state
         },
         ..pasted.clone()

@@ -3,7 +3,8 @@
 
 use refrast::{
     CompareOp, CullMode, DepthConvention, DepthRange, Draw, FillConvention, Fragment, FrontFace, LineRule,
-    PointClipping, Profile, ProvokingVertex, SamplePattern, Setting, SnapAccuracy, Snapping, Spec, Supported,
+    PointClipping, PolygonMode, Profile, ProvokingVertex, SamplePattern, Setting, SnapAccuracy, Snapping,
+    Spec, Supported,
 };
 
 /// The newest protocol version this refrast speaks, the one its messages suggest.
@@ -156,6 +157,15 @@ impl Word for ProvokingVertex {
     }
 }
 
+/// How triangles are drawn: a profile line `polygon-mode line point` listing the modes besides
+/// fill the child draws, and a request key on triangle draws in one of them (fill is never sent).
+impl Word for PolygonMode {
+    const KEY: &'static str = "polygon-mode";
+    fn word(self) -> &'static str {
+        self.name()
+    }
+}
+
 /// Depth writes; far clipping has the same words under its own key ([`FAR_CLIPPING`]).
 impl Word for bool {
     const KEY: &'static str = "depth-write";
@@ -237,7 +247,8 @@ pub const GUARD_BAND_LIMIT: u32 = refrast::COORD_LIMIT as u32;
 /// caller sends only a mode the child declared). A draw with a scissor ends it with
 /// `scissor=X,Y,W,H`, one with depth clipping off with `near-clipping=off`, one with a depth
 /// range other than `[0, 1]` with `viewport-depth=MIN,MAX`, a triangle draw with depth bias
-/// with `depth-bias=CONSTANT,SLOPE,CLAMP`, in any version.
+/// with `depth-bias=CONSTANT,SLOPE,CLAMP`, a triangle draw in line or point mode with
+/// `polygon-mode=line` or `polygon-mode=point`, in any version.
 #[must_use]
 pub fn request(op: Op, draw: &Draw, version: u32) -> Vec<u8> {
     request_in(op, draw, version, draw.state.provoking_vertex)
@@ -272,6 +283,9 @@ pub fn request_in(op: Op, draw: &Draw, version: u32, provoking: ProvokingVertex)
     // Lines and points are drawn unbiased: the key goes with triangles only.
     if let Some(b) = s.depth_bias.filter(|_| draw.topology.is_triangles()) {
         extra += &format!(" {DEPTH_BIAS}={:?},{:?},{:?}", b.constant, b.slope, b.clamp);
+    }
+    if s.polygon_mode != PolygonMode::Fill && draw.topology.is_triangles() {
+        extra += &format!(" {}={}", PolygonMode::KEY, s.polygon_mode.word());
     }
     let header = format!(
         "{} width={} height={} vertices={} triangles={count} cull={} front-face={} depth-compare={} \

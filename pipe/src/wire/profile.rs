@@ -359,6 +359,7 @@ impl Reading {
                 CompareOp::KEY => f.compare_ops = supported(&words, bad)?,
                 DepthRange::KEY => f.depth_ranges = supported(&words, bad)?,
                 ProvokingVertex::KEY => self.profile.state.flat = supported(&words, bad)?,
+                PolygonMode::KEY => self.profile.state.polygon_modes = supported(&words, bad)?,
                 bool::KEY => f.depth_writes = supported(&words, bad)?,
                 _ => f.far_clipping = supported(&words, bad)?,
             }
@@ -376,6 +377,7 @@ impl Reading {
             bool::KEY,
             FAR_CLIPPING,
             DEPTH_BIAS,
+            PolygonMode::KEY,
         ];
         (known.contains(&key) || flat == Some(key)).then(read)
     }

@@ -10,9 +10,9 @@
 use std::borrow::Cow;
 
 use crate::error::DrawError;
-use crate::polygon::PolygonMode;
 use crate::primitive::{SAMPLE_COUNTS, Topology};
 use crate::state::DrawState;
+use crate::state::PolygonMode;
 use crate::viewport::Viewport;
 
 /// One draw call: clip-space vertices, indices making primitives of one topology, the samples

@@ -6,9 +6,8 @@ use std::marker::PhantomData;
 
 use crate::bias::{BiasSupport, DepthBias};
 use crate::depth::{CompareOp, DepthRange, ViewportDepth};
-use crate::polygon::PolygonMode;
 use crate::setup::{CullMode, FrontFace};
-use crate::state::ProvokingVertex;
+use crate::state::{PolygonMode, ProvokingVertex};
 use crate::viewport::GUARD_BAND_REACH;
 
 /// A draw-state setting with a few values, each of which an implementation may support.

@@ -25,7 +25,7 @@
 //! | lines, points, samples | `primitive.rs` | [`Topology`], [`LineRule`], [`PointClipping`], [`SamplePattern`], [`SAMPLE_COUNTS`] |
 //! | what an implementation declares | `profile.rs`, `features.rs` | [`Profile`], [`Snapping`], [`Spec`], [`Features`], [`StateSupport`], [`Supported`], [`SnapAccuracy`] |
 //! | state | `state.rs`, `setup.rs`, `depth.rs` | [`DrawState`], [`Scissor`], [`ProvokingVertex`], [`CullMode`], [`FrontFace`], [`DepthState`], [`CompareOp`], [`DepthRange`], [`ViewportDepth`] |
-//! | polygon modes | `polygon.rs` | [`PolygonMode`] |
+//! | polygon modes | `state.rs`, `polygon.rs` | [`PolygonMode`] |
 //! | depth bias | `bias.rs` | [`DepthBias`], [`DepthFormat`], [`DepthSlope`], [`BiasSupport`], [`bias::polygon_offset`] |
 //! | the reference | `reference.rs` | [`Reference`], [`ReferenceConfig`], [`Traversal`], [`ClipMode`], [`DrawStats`], [`Sample`] |
 //! | fixed point | `fixed.rs` | [`SubpixelBits`], [`FixedPoint`], [`snap`], [`SnapRounding`], [`COORD_LIMIT`] |
@@ -150,11 +150,10 @@ pub use edge::{FillConvention, is_top_left, orient2d};
 pub use error::{ConfigError, DrawError, Unavailable};
 pub use features::{Features, Setting, SnapAccuracy, StateSupport, Supported};
 pub use fixed::{COORD_LIMIT, FixedPoint, SnapRounding, SubpixelBits, snap};
-pub use polygon::PolygonMode;
 pub use primitive::{LineRule, PointClipping, SAMPLE_COUNTS, SamplePattern, Topology};
 pub use profile::{DepthConvention, Profile, Snapping, Spec};
 pub use rasterizer::Rasterizer;
 pub use reference::{DrawStats, Reference, Sample};
 pub use setup::{CullMode, FrontFace, Winding};
-pub use state::{DrawState, ProvokingVertex, Scissor};
+pub use state::{DrawState, PolygonMode, ProvokingVertex, Scissor};
 pub use viewport::{GUARD_BAND_REACH, MAX_VIEWPORT, Viewport};

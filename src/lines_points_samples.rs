@@ -25,11 +25,11 @@ use crate::error::DrawError;
 use crate::fixed::FixedPoint;
 use crate::front::{Discard, FrontSetup, front_end};
 use crate::interp::interpolate;
-use crate::polygon::PolygonMode;
 use crate::primitive::{PointClipping, SamplePattern, Topology};
 use crate::project::{RasterVertex, ViewportTransform};
 use crate::reference::{DrawStats, Reference, Sample, Scratch};
 use crate::segment;
+use crate::state::PolygonMode;
 use crate::traverse::{PixelRect, build_fan, traverse};
 
 /// A pattern's sample offsets in grid units from the pixel's top-left corner.

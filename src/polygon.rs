@@ -1,6 +1,6 @@
-//! Polygon modes: a triangle drawn as its edges or its vertices, after the front end has
-//! clipped, faced and culled it as it would a filled one (Vulkan, `VkPolygonMode`: "the polygon
-//! is clipped and possibly culled before these modes are applied").
+//! Polygon modes ([`PolygonMode`]): a triangle drawn as its edges or its vertices, after the
+//! front end has clipped, faced and culled it as it would a filled one (Vulkan,
+//! `VkPolygonMode`: "the polygon is clipped and possibly culled before these modes are applied").
 
 use glam::DVec3;
 
@@ -10,41 +10,7 @@ use crate::draw::{Draw, Fragment};
 use crate::front::{FrontScratch, FrontSetup, front_end};
 use crate::lines_points_samples::{Offsets, Owner};
 use crate::reference::{DrawStats, Reference};
-
-/// How a triangle is rasterized: Vulkan's `VkPolygonMode`, OpenGL's `PolygonMode` (both faces
-/// alike), D3D11's `FillMode` (which has no point mode).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
-pub enum PolygonMode {
-    /// Its inside is covered by the fill rule.
-    #[default]
-    Fill,
-    /// Its edges, first to second, second to third and third to first, are drawn as the
-    /// draw's line segments would be.
-    Line,
-    /// Its vertices are drawn as the draw's points would be.
-    Point,
-}
-
-impl PolygonMode {
-    /// Every mode, fill first.
-    pub const ALL: [PolygonMode; 3] = [Self::Fill, Self::Line, Self::Point];
-
-    /// The word the pipe protocol, the case files and reports use: `fill`, `line`, `point`.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Fill => "fill",
-            Self::Line => "line",
-            Self::Point => "point",
-        }
-    }
-
-    /// The mode called `name` ([`PolygonMode::name`]).
-    #[must_use]
-    pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|m| m.name() == name)
-    }
-}
+use crate::state::PolygonMode;
 
 impl Reference {
     /// Triangles in line or point mode, at the samples `offsets` gives.
@@ -211,13 +177,5 @@ mod tests {
             let d = draw(mode, Topology::TriangleList, flat.clone(), vec![0, 1, 2]);
             assert!(r.rasterize(&d).unwrap().is_empty(), "{mode:?}");
         }
-    }
-
-    #[test]
-    fn modes_are_named_as_the_protocol_names_them() {
-        for mode in PolygonMode::ALL {
-            assert_eq!(PolygonMode::from_name(mode.name()), Some(mode));
-        }
-        assert_eq!(PolygonMode::from_name("wire"), None);
     }
 }

@@ -4,7 +4,6 @@
 
 use crate::bias::DepthBias;
 use crate::depth::{DepthClip, DepthRange, DepthState, ViewportDepth};
-use crate::polygon::PolygonMode;
 use crate::setup::{CullMode, FrontFace};
 
 /// Everything about a draw besides its geometry.
@@ -59,6 +58,41 @@ pub enum ProvokingVertex {
     /// Its last vertex (OpenGL's default, OpenGL ES's only one): a list's `3i + 2`, a strip's or
     /// fan's `i + 2`, a line's `2i + 1` or `i + 1`, a point's.
     Last,
+}
+
+/// How a triangle is rasterized: Vulkan's `VkPolygonMode`, OpenGL's `PolygonMode` (both faces
+/// alike), D3D11's `FillMode` (which has no point mode).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum PolygonMode {
+    /// Its inside is covered by the fill rule.
+    #[default]
+    Fill,
+    /// Its edges, first to second, second to third and third to first, are drawn as the
+    /// draw's line segments would be.
+    Line,
+    /// Its vertices are drawn as the draw's points would be.
+    Point,
+}
+
+impl PolygonMode {
+    /// Every mode, fill first.
+    pub const ALL: [PolygonMode; 3] = [Self::Fill, Self::Line, Self::Point];
+
+    /// The word the pipe protocol, the case files and reports use: `fill`, `line`, `point`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Fill => "fill",
+            Self::Line => "line",
+            Self::Point => "point",
+        }
+    }
+
+    /// The mode called `name` ([`PolygonMode::name`]).
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name() == name)
+    }
 }
 
 impl Default for DrawState {
@@ -160,5 +194,13 @@ mod tests {
         };
         assert!(state.passes_scissor(3, 3) && !state.passes_scissor(0, 0));
         assert!(DrawState::default().passes_scissor(u32::MAX, u32::MAX));
+    }
+
+    #[test]
+    fn modes_are_named_as_the_protocol_names_them() {
+        for mode in PolygonMode::ALL {
+            assert_eq!(PolygonMode::from_name(mode.name()), Some(mode));
+        }
+        assert_eq!(PolygonMode::from_name("wire"), None);
     }
 }

@@ -5,7 +5,8 @@ use std::path::Path;
 
 use glam::Vec3;
 use refrast::{
-    CullMode, DepthBias, DrawState, FrontFace, MAX_VIEWPORT, Rasterizer, Reference, ReferenceConfig, Scissor,
+    CullMode, DepthBias, DrawState, FrontFace, MAX_VIEWPORT, PolygonMode, Rasterizer, Reference,
+    ReferenceConfig, Scissor,
 };
 use refrast_render::scene::{self, Framed, Setup};
 use refrast_render::{Job, Light, Mode, Overrides, Sampling, Shading, Texture, load};
@@ -65,6 +66,12 @@ pub struct SceneArgs {
     /// biased.
     #[arg(long, value_name = "CONSTANT,SLOPE[,CLAMP]", value_parser = parse_depth_bias, allow_hyphen_values = true)]
     pub depth_bias: Option<DepthBias>,
+    /// How the rasterizer draws triangles: fill, line (each triangle's edges, culled and faced
+    /// as the triangle) or point (its vertices); the rasterizer must declare line or point
+    /// mode (the reference does). Unlike `--mode wire`, which draws the mesh's edges with
+    /// refrast's own line rasterizer, this asks the rasterizer itself.
+    #[arg(long, value_name = "MODE", default_value = "fill", value_parser = parse_polygon_mode)]
+    pub polygon_mode: PolygonMode,
     /// Light position, X,Y,Z [default: the scene's light, or a headlight above the eye].
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
     pub light: Option<Vec3>,
@@ -180,6 +187,7 @@ pub fn prepare(args: &SceneArgs) -> Result<Prepared, Failure> {
     state.front_face = args.front_face;
     state.scissor = args.scissor;
     state.depth_bias = args.depth_bias;
+    state.polygon_mode = args.polygon_mode;
     Ok(Prepared {
         headlight: setup.light.is_none() && args.light.is_none(),
         shading: args.shading.unwrap_or(setup.shading),
@@ -351,6 +359,10 @@ fn parse_cull(s: &str) -> Result<CullMode, String> {
             "no culling named '{s}'; give none, back, front or front-and-back"
         )),
     }
+}
+
+fn parse_polygon_mode(s: &str) -> Result<PolygonMode, String> {
+    PolygonMode::from_name(s).ok_or_else(|| format!("no polygon mode named '{s}'; give fill, line or point"))
 }
 
 fn parse_front_face(s: &str) -> Result<FrontFace, String> {

@@ -19,8 +19,8 @@ Draw = namedtuple(
     "Draw",
     "width height positions triangles cull front_face depth_compare depth_write depth_clear "
     "depth_range far_clipping topology samples scissor indices provoking_vertex near_clipping "
-    "viewport_depth depth_bias",
-    defaults=(None, None, "first", True, (0.0, 1.0), None),
+    "viewport_depth depth_bias polygon_mode",
+    defaults=(None, None, "first", True, (0.0, 1.0), None, "fill"),
 )
 Draw.__doc__ = """One draw: clip-space positions (x, y, z, w), triangles (i, j, k) and state.
 
@@ -44,6 +44,9 @@ inverted-depth); depth clamps to [min(n, f), max(n, f)]. depth_bias is None, or 
 clamp) for a triangle draw to a profile with a depth-bias line: each triangle's depth is offset
 by o = m * slope + r * constant (min(o, clamp) when clamp > 0, max(o, clamp) when clamp < 0),
 m its depth slope and r its format's resolvable difference, before the clamp to the range.
+polygon_mode is fill, or line or point for a triangle draw to a profile whose polygon-mode line
+lists it: each triangle, clipped, faced and culled as a filled one, draws its edges (first to
+second, second to third, third to first) by the profile's line rule, or its vertices as points.
 Indices are not checked: raise Refused for one that names no vertex."""
 
 Fragment = namedtuple(
@@ -139,6 +142,7 @@ def _read_draw(words, stream):
         if "viewport-depth" in fields
         else (0.0, 1.0),
         depth_bias=tuple(float(v) for v in fields["depth-bias"].split(",")) if "depth-bias" in fields else None,
+        polygon_mode=fields.get("polygon-mode", "fill"),
     )
 
 

@@ -4,8 +4,8 @@
 use std::path::{Path, PathBuf};
 
 use refrast::{
-    CompareOp, CullMode, DepthRange, FillConvention, FrontFace, Profile, ProvokingVertex, Rasterizer,
-    SnapAccuracy, Supported,
+    CompareOp, CullMode, DepthRange, FillConvention, FrontFace, PolygonMode, Profile, ProvokingVertex,
+    Rasterizer, SnapAccuracy, Supported,
 };
 use serde::{Deserialize, Serialize};
 
@@ -374,6 +374,9 @@ pub fn feature_list(p: &Profile) -> Vec<String> {
     list.push(setting(DepthRange::KEY, f.depth_ranges));
     if !p.state.flat.is_empty() {
         list.push(setting(ProvokingVertex::KEY, p.state.flat));
+    }
+    if !p.state.polygon_modes.is_empty() {
+        list.push(setting(PolygonMode::KEY, p.state.polygon_modes));
     }
     if let Some(b) = p.state.depth_bias {
         // As the pipe protocol's `depth-bias` line says it.

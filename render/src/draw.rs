@@ -181,7 +181,7 @@ pub(crate) fn triangle_draw(
 }
 
 /// `Err(Unsupported)` when `job` asks for state `profile` does not declare ([`Profile::state`]:
-/// a scissor, depth bias, culling of both faces): such a draw is refused with what to do, never drawn as if
+/// a scissor, depth bias, a polygon mode, culling of both faces): such a draw is refused with what to do, never drawn as if
 /// it had not been asked.
 pub(crate) fn undeclared_state(profile: &Profile, job: &Job<'_>) -> Result<(), DrawError> {
     if job.state.scissor.is_some() && !profile.state.scissor {
@@ -204,6 +204,13 @@ pub(crate) fn undeclared_state(profile: &Profile, job: &Job<'_>) -> Result<(), D
             }
             Some(_) => {}
         }
+    }
+    let mode = job.state.polygon_mode;
+    if mode != refrast::PolygonMode::Fill && !profile.state.polygon_modes.contains(mode) {
+        return Err(DrawError::Unsupported(format!(
+            "polygon mode {}, which this rasterizer does not declare (the reference does)",
+            mode.name()
+        )));
     }
     if job.state.cull == refrast::CullMode::FrontAndBack && !profile.state.cull_both {
         return Err(DrawError::Unsupported(

@@ -141,9 +141,10 @@ fn python_topleft_passes_every_rule() {
     assert_eq!(code, 0, "{rules:#?}");
     assert_eq!(rules.len(), refrast_conformance::catalogue().len());
     assert_eq!(with_status(&rules, "fail"), "");
+    // It draws no lines or points, so no polygon mode either.
     assert_eq!(
         with_status(&rules, "n/a"),
-        "",
+        "meta.polygon-mode.facing",
         "n/a beyond the families it does not declare"
     );
 }
@@ -215,7 +216,7 @@ fn python_topleft_with_one_cull_mode_passes_every_rule() {
         assert_eq!(with_status(&rules, "fail"), "", "--cull {mode}");
         assert_eq!(
             with_status(&rules, "n/a"),
-            "meta.cull.both-faces",
+            "meta.cull.both-faces meta.polygon-mode.facing",
             "--cull {mode}"
         );
     }

@@ -276,6 +276,54 @@ fn a_depth_bias_moves_depth_and_nothing_else() {
     refused(&["room", "--depth-bias", "1,NaN"], "is not a depth bias");
 }
 
+/// `--polygon-mode line` has the rasterizer draw each triangle's edges: fewer pixels than
+/// filled; point mode its vertices, fewer still. A rasterizer without
+/// polygon modes refuses the draw (exit 1), and an unknown mode is a usage error (exit 2).
+#[test]
+fn a_polygon_mode_draws_edges_or_vertices() {
+    let dir = scratch("polygon-mode");
+    let draw = |name: &str, extra: &[&str]| {
+        let path = dir.join(name);
+        let mut args = vec![
+            "room",
+            "--size",
+            "160x120",
+            "--mode",
+            "fill",
+            "-o",
+            path.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let out = render(&args);
+        assert!(
+            out.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        png(&path)
+    };
+    let drawn = |image: &image::RgbaImage| image.pixels().filter(|p| p.0 != [0, 0, 0, 255]).count();
+    let filled = draw("fill.png", &[]);
+    let lines = draw("line.png", &["--polygon-mode", "line"]);
+    let points = draw("point.png", &["--polygon-mode", "point"]);
+    let (f, l, p) = (drawn(&filled), drawn(&lines), drawn(&points));
+    assert!(0 < p && p < l && l < f, "points {p}, lines {l}, filled {f}");
+    let path = dir.join("refused.png");
+    let out = render(&[
+        "room",
+        "--impl",
+        "restricted:polygon-mode=fill",
+        "--polygon-mode",
+        "line",
+        "-o",
+        path.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("does not declare") && !path.exists(), "{stderr}");
+    refused(&["room", "--polygon-mode", "wire"], "no polygon mode named");
+}
+
 #[test]
 fn an_interrupted_or_failed_render_leaves_no_file() {
     let dir = scratch("atomic");

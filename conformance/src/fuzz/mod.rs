@@ -12,7 +12,7 @@ use std::fmt;
 use arbitrary::{Arbitrary, Unstructured};
 use glam::{Mat4, Vec3};
 use refrast::pipeline::{Framebuffer, Mesh, Renderer, Vertex};
-use refrast::{Profile, Rasterizer, Spec, Topology};
+use refrast::{PolygonMode, Profile, Rasterizer, Spec, Topology};
 
 pub use input::{Clipping, GridTriangles, Overlapping, Perspective, Points, RawDraw, RawPipeline};
 
@@ -20,6 +20,7 @@ use crate::rules::bary::{check_equal_w, check_matches_raycast, check_reconstruct
 use crate::rules::depth::{check_depth_matches_raycast, check_order_independent, extreme_depth};
 use crate::rules::fill::{check_exactly_once, check_guard_band};
 use crate::rules::meta::{check_same_as_list, check_same_as_list_away_from_edges};
+use crate::rules::polygon::{check_edges, check_edges_inside, check_vertices, check_vertices_inside};
 use crate::rules::robust::check_well_formed;
 use crate::rules::{
     EXACT_COVERAGE, EXTREME_WINS, GUARD_BAND, Need, PERSPECTIVE_BARYCENTRICS, SCREEN_BARYCENTRICS,
@@ -60,8 +61,9 @@ fn judged(input: &impl fmt::Debug, check: impl FnOnce() -> Result<(), Violation>
 }
 
 /// Any bit patterns: no panic, only well-formed fragments, none outside a scissor, `resolve`
-/// works, and the indices drawn as a strip and as a fan (where the profile declares them) draw
-/// what the list of their triangles draws.
+/// works, the indices drawn as a strip and as a fan (where the profile declares them) draw
+/// what the list of their triangles draws, and the triangles in line and point mode (where
+/// declared) draw what their edges and vertices draw as lines and points.
 pub fn robustness(r: &mut dyn Rasterizer, input: &RawDraw) -> Result<(), Failure> {
     let Some(scene) = input.scene() else { return Ok(()) };
     let scene = scene.fitted(&r.profile());
@@ -71,8 +73,42 @@ pub fn robustness(r: &mut dyn Rasterizer, input: &RawDraw) -> Result<(), Failure
         r.resolve(&scene.draw())
             .map(drop)
             .map_err(|e| Violation::new(format!("resolve returned an error on in-range indices: {e}")))?;
-        check_strips_and_fans(r, &scene)
+        check_strips_and_fans(r, &scene)?;
+        check_polygon_modes(r, &scene)
     })
+}
+
+/// The scene's triangles in each polygon mode the profile declares: well-formed fragments, and
+/// what its edges drawn as lines (`line.polygon-mode.edges`) and its vertices drawn as points
+/// (`point.polygon-mode.vertices`) draw, exactly under refrast's conventions, under another
+/// specification what it requires.
+fn check_polygon_modes(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let profile = r.profile();
+    let exact = profile.spec == Spec::Refrast;
+    for mode in profile.state.polygon_modes.values() {
+        let mut moded = scene.clone();
+        moded.state.polygon_mode = mode;
+        check_well_formed(r, &moded)?;
+        let case = PrimitiveScene::triangles(moded, 1);
+        match mode {
+            PolygonMode::Line if profile.lines.is_some() => {
+                if exact {
+                    check_edges(r, &case)
+                } else {
+                    check_edges_inside(r, &case)
+                }?;
+            }
+            PolygonMode::Point if profile.points && profile.spec != Spec::D3d11 => {
+                if exact {
+                    check_vertices(r, &case)
+                } else {
+                    check_vertices_inside(r, &case)
+                }?;
+            }
+            _ => {}
+        }
+    }
+    Ok(())
 }
 
 /// The scene's indices, one after another, drawn as a strip and as a fan where the profile

@@ -5,7 +5,7 @@
 
 use proptest::prelude::*;
 use proptest::strategy::Union;
-use refrast::{Profile, ProvokingVertex, Rasterizer, Topology};
+use refrast::{PolygonMode, Profile, ProvokingVertex, Rasterizer, Topology};
 
 use super::samples::sample_fragments;
 use super::{Family, Need, Rule, needs};
@@ -24,7 +24,7 @@ const FLAT: Need = needs(|p| !p.state.flat.is_empty(), "no flat values");
 pub(super) fn rules() -> Vec<Rule> {
     vec![
         Rule::invariant(Family::Bary, "bary.flat.provoking-vertex")
-            .sentence("Every fragment carries the flat values of its primitive's provoking vertex under the draw's mode, for every topology and sample count it draws: first, a triangle list's 3i, a strip's i, a fan's i + 1, a line list's 2i, a line strip's i; last, 3i + 2, i + 2, i + 2, 2i + 1, i + 1; a point its own; also where clipping cuts that vertex away.")
+            .sentence("Every fragment carries the flat values of its primitive's provoking vertex under the draw's mode, for every topology and sample count it draws: first, a triangle list's 3i, a strip's i, a fan's i + 1, a line list's 2i, a line strip's i; last, 3i + 2, i + 2, i + 2, 2i + 1, i + 1; a point its own; also where clipping cuts that vertex away, and in line and point mode (where declared) the triangle's.")
             .source(SOURCE)
             .cases(500)
             .needs(FLAT)
@@ -63,9 +63,18 @@ fn flat_draws(p: &Profile) -> BoxedStrategy<PrimitiveScene> {
         );
     }
     let modes = prop::sample::select(vec![ProvokingVertex::First, ProvokingVertex::Last]);
-    (Union::new(kinds), modes)
-        .prop_map(|(mut case, mode)| {
+    // Triangles at one sample in each polygon mode declared too: a triangle's edges and vertices
+    // carry its provoking vertex, not a line's or a point's.
+    let polygon_modes: Vec<PolygonMode> = [PolygonMode::Fill]
+        .into_iter()
+        .chain(p.state.polygon_modes.values())
+        .collect();
+    (Union::new(kinds), modes, prop::sample::select(polygon_modes))
+        .prop_map(|(mut case, mode, polygon_mode)| {
             case.scene.state.provoking_vertex = mode;
+            if case.topology.is_triangles() && case.samples == 1 {
+                case.scene.state.polygon_mode = polygon_mode;
+            }
             case
         })
         .boxed()

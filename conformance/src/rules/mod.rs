@@ -16,6 +16,7 @@ pub mod meta;
 pub mod msaa;
 mod needs;
 pub mod point;
+pub mod polygon;
 mod reading;
 pub mod robust;
 pub mod sample_depth;
@@ -299,6 +300,7 @@ pub fn catalogue() -> Vec<Rule> {
     rules.extend(flat::rules());
     rules.extend(viewport_depth::rules());
     rules.extend(bias::rules());
+    rules.extend(polygon::rules());
     rules
 }
 

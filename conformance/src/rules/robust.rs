@@ -398,6 +398,17 @@ struct Judged {
     depth: bool,
 }
 
+/// Counts one more fragment at `key`: whether that makes more than `most`.
+fn overcovered(
+    seen: &mut std::collections::HashMap<(u32, u32, u32), u32>,
+    key: (u32, u32, u32),
+    most: u32,
+) -> bool {
+    let times = seen.entry(key).or_insert(0);
+    *times += 1;
+    *times > most
+}
+
 /// Fragments well formed; their depth in range and barycentrics finite as `judged` says.
 fn well_formed(r: &mut dyn Rasterizer, scene: &Scene, judged: Judged) -> Result<(), Violation> {
     // Window depth is claimed within the precision of its exact value, which lies in the
@@ -408,7 +419,14 @@ fn well_formed(r: &mut dyn Rasterizer, scene: &Scene, judged: Judged) -> Result<
     // Barycentrics the profile does not declare are whatever the fragment carries.
     let declared = judged.barycentrics && profile.features.perspective_barycentrics;
     let frags = fragments(r, scene)?;
-    let mut seen = std::collections::HashSet::new();
+    // A filled triangle draws a pixel once; in line or point mode each of its three edges or
+    // vertices may draw it.
+    let most = if scene.state.polygon_mode == refrast::PolygonMode::Fill {
+        1
+    } else {
+        3
+    };
+    let mut seen = std::collections::HashMap::new();
     let mut found = Findings::new();
     // What to change for the first fragment found wrong.
     let mut fix = None;
@@ -425,9 +443,13 @@ fn well_formed(r: &mut dyn Rasterizer, scene: &Scene, judged: Judged) -> Result<
                 "has a non-finite barycentric",
                 "a division by zero: a zero area, or a w of 0 that clipping should have removed",
             )
-        } else if !seen.insert((f.primitive, f.x, f.y)) {
+        } else if overcovered(&mut seen, (f.primitive, f.x, f.y), most) {
             (
-                "covers its pixel a second time",
+                if most == 1 {
+                    "covers its pixel a second time"
+                } else {
+                    "covers its pixel a fourth time (three edges or vertices at most)"
+                },
                 "one triangle draws each pixel once: the triangles a clipped polygon is cut \
                  into must not overlap",
             )

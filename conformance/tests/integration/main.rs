@@ -12,6 +12,7 @@ mod layers;
 mod levels;
 mod outside;
 mod pasteable;
+mod polygon_modes;
 mod readme;
 mod restricted;
 mod segment_oracle;

@@ -139,11 +139,20 @@ pub enum Bug {
     /// `r` taken as `2^-24` on an f32 depth buffer, whatever the triangle's depths (the
     /// exponent of the largest depth ignored).
     FixedBiasExponent,
+    /// Line and point modes declared but never honoured: triangles filled.
+    FilledPolygonModes,
+    /// Culling applied after a triangle became lines or points, which nothing culls: culled
+    /// triangles drawn in line and point mode.
+    UnculledPolygonModes,
+    /// Fragments of triangles in line or point mode reporting front-facing, as a line's do.
+    FrontFacingPolygonModes,
+    /// The loop of edges left open in line mode: the third edge, third corner to first, missing.
+    OpenPolygonLoop,
 }
 
 impl Bug {
     /// Every bug.
-    pub const ALL: [Bug; 54] = [
+    pub const ALL: [Bug; 58] = [
         Self::InclusiveEdges,
         Self::ExclusiveEdges,
         Self::BottomRightAsTopLeft,
@@ -198,6 +207,10 @@ impl Bug {
         Self::FragmentOnlyBias,
         Self::MaxSlopeDeclaredExact,
         Self::FixedBiasExponent,
+        Self::FilledPolygonModes,
+        Self::UnculledPolygonModes,
+        Self::FrontFacingPolygonModes,
+        Self::OpenPolygonLoop,
     ];
 
     /// The name after `mutant:` in `--impl`.
@@ -258,6 +271,10 @@ impl Bug {
             Self::FragmentOnlyBias => "fragment-only-bias",
             Self::MaxSlopeDeclaredExact => "max-slope-declared-exact",
             Self::FixedBiasExponent => "fixed-bias-exponent",
+            Self::FilledPolygonModes => "filled-polygon-modes",
+            Self::UnculledPolygonModes => "unculled-polygon-modes",
+            Self::FrontFacingPolygonModes => "front-facing-polygon-modes",
+            Self::OpenPolygonLoop => "open-polygon-loop",
         }
     }
 
@@ -311,6 +328,8 @@ impl Bug {
             | Self::FragmentOnlyBias
             | Self::MaxSlopeDeclaredExact
             | Self::FixedBiasExponent => "depth",
+            Self::FilledPolygonModes | Self::UnculledPolygonModes | Self::OpenPolygonLoop => "line",
+            Self::FrontFacingPolygonModes => "meta",
         }
     }
 
@@ -348,6 +367,10 @@ impl Bug {
                 | Self::FragmentOnlyBias
                 | Self::MaxSlopeDeclaredExact
                 | Self::FixedBiasExponent
+                | Self::FilledPolygonModes
+                | Self::UnculledPolygonModes
+                | Self::FrontFacingPolygonModes
+                | Self::OpenPolygonLoop
         )
     }
 }

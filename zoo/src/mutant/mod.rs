@@ -13,6 +13,7 @@ use refrast::{
 
 mod bias;
 mod bug;
+mod polygon;
 mod primitive;
 mod state;
 

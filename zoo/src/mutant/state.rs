@@ -14,6 +14,9 @@ pub fn rasterize(bug: Bug, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
     if let Some(biased) = super::bias::rasterize(bug, draw) {
         return biased;
     }
+    if let Some(moded) = super::polygon::rasterize(bug, draw) {
+        return moded;
+    }
     let mut reference = Reference::default();
     if let Some(assembled) = misassembled(bug, draw) {
         // The list's flat values are its own; the strip's are what its bug leaves alone.

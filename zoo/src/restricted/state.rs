@@ -1,7 +1,9 @@
 //! Restrictions of the draw state beyond [`Features`]: each leaves one part of
 //! [`StateSupport`] out of the default reference's declaration, or restricts its values.
 
-use refrast::{BiasSupport, Features, ProvokingVertex, ReferenceConfig, Spec, StateSupport, Supported};
+use refrast::{
+    BiasSupport, Features, PolygonMode, ProvokingVertex, ReferenceConfig, Spec, StateSupport, Supported,
+};
 
 use super::{Restriction, restriction};
 
@@ -18,7 +20,7 @@ fn stateful(name: &str, description: &str, state: StateSupport) -> Restriction {
 }
 
 /// Every restriction of [`StateSupport`]: each part left out, each provoking-vertex mode
-/// alone, and depth ranges in order only.
+/// alone, depth ranges in order only, and line mode without point mode.
 pub(super) fn restrictions() -> Vec<Restriction> {
     let all = StateSupport::ALL;
     let flat = |flat| StateSupport { flat, ..all };
@@ -105,6 +107,22 @@ pub(super) fn restrictions() -> Vec<Restriction> {
             "depth bias without its clamp, as wgpu's OpenGL ES backend",
             StateSupport {
                 depth_bias: all.depth_bias.map(|b| BiasSupport { clamp: false, ..b }),
+                ..all
+            },
+        ),
+        stateful(
+            "polygon-mode=fill",
+            "triangles filled only: no line or point mode",
+            StateSupport {
+                polygon_modes: Supported::NONE,
+                ..all
+            },
+        ),
+        stateful(
+            "polygon-mode=line",
+            "line mode but no point mode, as D3D11's wireframe",
+            StateSupport {
+                polygon_modes: Supported::only(&[PolygonMode::Line]),
                 ..all
             },
         ),

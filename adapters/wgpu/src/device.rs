@@ -4,7 +4,7 @@ use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
 use refrast::Spec;
-use refrast::Unavailable;
+use refrast::{PolygonMode, Supported, Unavailable};
 
 /// The driver a built-in asks for; never quietly another.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -158,6 +158,10 @@ pub struct Context {
     /// Whether it clamps depth bias: the adapter reports `DownlevelFlags::DEPTH_BIAS_CLAMP`
     /// (Vulkan's `depthBiasClamp`; wgpu's OpenGL ES backend has none).
     pub bias_clamp: bool,
+    /// The polygon modes besides fill it draws: `Features::POLYGON_MODE_LINE` and
+    /// `POLYGON_MODE_POINT` (Vulkan's `fillModeNonSolid`; desktop OpenGL only on wgpu's GL
+    /// backend, so none through OpenGL ES).
+    pub polygon_modes: Supported<PolygonMode>,
 }
 
 /// What opening a driver gave: its device, or why there is none.
@@ -234,8 +238,12 @@ fn open(driver: Driver) -> Result<Context, Unavailable> {
         // WebGPU's core formats hold no 32-bit integer at several samples; the id targets of a
         // multisampled resolve need the adapter's own format features.
         // Depth clipping off where the adapter has it.
+        // Depth clipping off and polygon modes where the adapter has them.
         required_features: adapter.features()
-            & (wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES | wgpu::Features::DEPTH_CLIP_CONTROL),
+            & (wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES
+                | wgpu::Features::DEPTH_CLIP_CONTROL
+                | wgpu::Features::POLYGON_MODE_LINE
+                | wgpu::Features::POLYGON_MODE_POINT),
         ..wgpu::DeviceDescriptor::default()
     }))
     .map_err(|e| Unavailable(format!("{} refused a device: {e}", describe(info))))?;
@@ -255,6 +263,16 @@ fn open(driver: Driver) -> Result<Context, Unavailable> {
             .get_downlevel_capabilities()
             .flags
             .contains(wgpu::DownlevelFlags::DEPTH_BIAS_CLAMP),
+        polygon_modes: Supported::only(
+            &[
+                (wgpu::Features::POLYGON_MODE_LINE, PolygonMode::Line),
+                (wgpu::Features::POLYGON_MODE_POINT, PolygonMode::Point),
+            ]
+            .into_iter()
+            .filter(|(feature, _)| adapter.features().contains(*feature))
+            .map(|(_, mode)| mode)
+            .collect::<Vec<_>>(),
+        ),
     })
 }
 

@@ -91,7 +91,7 @@ use std::sync::{Arc, Mutex};
 
 use refrast::{
     BiasSupport, CompareOp, DepthConvention, DepthFormat, DepthRange, Draw, DrawError, Features, Fragment,
-    Profile, ProvokingVertex, Rasterizer, Resolved, StateSupport, Supported, Unavailable,
+    PolygonMode, Profile, ProvokingVertex, Rasterizer, Resolved, StateSupport, Supported, Unavailable,
 };
 
 pub use device::Driver;
@@ -348,8 +348,19 @@ impl Rasterizer for Gpu {
                     slope: m.bias_slope,
                     clamp: self.context.bias_clamp,
                 }),
-                // Not yet drawn through wgpu's `PolygonMode` (docs/certified.md says why).
-                polygon_modes: Supported::NONE,
+                // wgpu's `PolygonMode` where the device has it: line mode by the measured line
+                // rule, point mode with the measured points.
+                polygon_modes: Supported::only(
+                    &self
+                        .context
+                        .polygon_modes
+                        .values()
+                        .filter(|&mode| match mode {
+                            PolygonMode::Line => m.lines.is_some(),
+                            _ => m.points,
+                        })
+                        .collect::<Vec<_>>(),
+                ),
             },
         }
     }

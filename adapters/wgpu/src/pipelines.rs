@@ -4,7 +4,7 @@
 
 use std::collections::HashMap;
 
-use refrast::{CompareOp, CullMode, DrawError, DrawState, FrontFace, Topology};
+use refrast::{CompareOp, CullMode, DrawError, DrawState, FrontFace, PolygonMode, Topology};
 
 /// Which pass a pipeline is for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -43,6 +43,8 @@ pub struct Key {
     /// The depth bias as wgpu takes it: the constant (an `i32`), the slope factor's and the
     /// clamp's bits; `None` unbiased.
     bias: Option<(i32, u32, u32)>,
+    /// How triangles are drawn: filled, or as their edges or vertices (`PolygonMode`).
+    polygon: PolygonMode,
 }
 
 impl Key {
@@ -67,6 +69,7 @@ impl Key {
             bias: state
                 .depth_bias
                 .map(|b| (b.constant as i32, b.slope.to_bits(), b.clamp.to_bits())),
+            polygon: state.polygon_mode,
         }
     }
 
@@ -79,6 +82,12 @@ impl Key {
             // WebGPU biases triangles only, and refuses a bias on other topologies; refrast
             // biases none but triangles either.
             bias: self.bias.filter(|_| topology.is_triangles()),
+            // Only a polygon has a polygon mode.
+            polygon: if topology.is_triangles() {
+                self.polygon
+            } else {
+                PolygonMode::Fill
+            },
             ..self
         }
     }
@@ -315,6 +324,12 @@ impl Pipelines {
                 front_face: front_face(key.front_face),
                 cull_mode: cull,
                 unclipped_depth: key.unclipped,
+                // The device has the feature where the profile declares the mode.
+                polygon_mode: match key.polygon {
+                    PolygonMode::Fill => wgpu::PolygonMode::Fill,
+                    PolygonMode::Line => wgpu::PolygonMode::Line,
+                    PolygonMode::Point => wgpu::PolygonMode::Point,
+                },
                 ..wgpu::PrimitiveState::default()
             },
             depth_stencil: Some(wgpu::DepthStencilState {

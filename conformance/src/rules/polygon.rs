@@ -9,10 +9,14 @@
 
 use proptest::prelude::*;
 use proptest::strategy::Union;
-use refrast::{COORD_LIMIT, CullMode, FrontFace, PolygonMode, Profile, Rasterizer, Setting, Topology};
+use refrast::{
+    COORD_LIMIT, CullMode, Fragment, FrontFace, PolygonMode, Profile, Rasterizer, Setting, Topology,
+};
 
 use super::level::Level;
-use super::samples::{cells, counts, difference_counts, difference_picture, sample_fragments};
+use super::samples::{
+    cells, counts, difference_counts, difference_picture, sample_fragments, unattributed_fragments,
+};
 use super::{Family, Need, Rule, needs};
 use crate::oracle::facing::Turn;
 use crate::oracle::raster::{project, unclipped};
@@ -26,14 +30,17 @@ const SOURCE: &str = "Vulkan 1.4, VkPolygonMode (\"the polygon is clipped and po
 
 /// What the specifications leave open, so that only triangles no plane cuts are compared there,
 /// each edge against both of its directions.
-const EDGES_OPEN: &str = "Vulkan and OpenGL 4.6 core say nothing of edges made by clipping (OpenGL's compatibility profile draws them, D3D11.3 §15.13 and Mesa's frustum planes do not), nor which way round an edge is drawn (the diamond-exit rule's ends depend on it), nor whether a sample two edges cover gets two fragments or one: refrast draws the original edges' visible parts, 0 → 1, 1 → 2, 2 → 0, each fragment of each; the specifications are held to triangles inside the viewport and the depth planes, to each edge drawn either way round, and to at least one fragment where two edges meet";
+const EDGES_OPEN: &str = "Vulkan and OpenGL 4.6 core say nothing of edges made by clipping (OpenGL's compatibility profile draws them, D3D11.3 §15.13 and Mesa's frustum planes do not), nor which way round an edge is drawn (the diamond-exit rule's ends depend on it), nor whether a sample two edges cover gets two fragments or one: refrast draws the original edges' visible parts, 0 → 1, 1 → 2, 2 → 0, each fragment of each; the specifications are held to triangles inside the viewport and the depth planes, to each edge drawn either way round, and to at least one fragment where two edges meet, a strip's or fan's samples compared as a whole (a GPU's fragment names its triangle only through its flat values, which bary.flat.provoking-vertex judges)";
 
 /// D3D11.3 pins which edges are drawn, but not where a cut falls.
-const EDGES_D3D: &str = "D3D11.3 §15.13 draws only the original edges' visible parts, as refrast does, but where a cut falls is the implementation's arithmetic, and it says neither which way round an edge is drawn (the aliased line rule's ends depend on it) nor whether a sample two edges cover gets two fragments or one: it is held to triangles inside the viewport and the depth planes, to each edge drawn either way round, and to at least one fragment where two edges meet";
+const EDGES_D3D: &str = "D3D11.3 §15.13 draws only the original edges' visible parts, as refrast does, but where a cut falls is the implementation's arithmetic, and it says neither which way round an edge is drawn (the aliased line rule's ends depend on it) nor whether a sample two edges cover gets two fragments or one: it is held to triangles inside the viewport and the depth planes, to each edge drawn either way round, and to at least one fragment where two edges meet, a strip's or fan's samples compared as a whole (a GPU's fragment names its triangle only through its flat values, which bary.flat.provoking-vertex judges)";
 
 /// The same for vertices: points made by clipping, and one fragment where two vertices' points
 /// overlap.
-const VERTICES_OPEN: &str = "Vulkan and OpenGL 4.6 core say nothing of vertices made by clipping (OpenGL's compatibility profile draws those that start a boundary edge), nor whether a sample two vertices' points cover gets two fragments or one: refrast draws the original vertices inside the view volume, each fragment of each; the specifications are held to triangles inside the viewport and the depth planes, and to at least one fragment where two points overlap";
+const VERTICES_OPEN: &str = "Vulkan and OpenGL 4.6 core say nothing of vertices made by clipping (OpenGL's compatibility profile draws those that start a boundary edge), nor whether a sample two vertices' points cover gets two fragments or one: refrast draws the original vertices inside the view volume, each fragment of each; the specifications are held to triangles inside the viewport and the depth planes, and to at least one fragment where two points overlap, a strip's or fan's samples compared as a whole (a GPU's fragment names its triangle only through its flat values, which bary.flat.provoking-vertex judges)";
+
+/// Where the specifications' facing and refrast's part: the visible polygon of zero area.
+const FACING_OPEN: &str = "Vulkan and OpenGL take a clipped polygon's facing from its visible area, and call a polygon of zero area back-facing: where the near plane leaves only an edge of a triangle (two corners on it, the third behind), that edge is drawn in line mode and back-facing, whatever sign det[x y w] gives the triangle (refrast's convention, Olano–Greer's); so the specifications are held to triangles no plane cuts, of lists (a GPU's fragment of a strip or fan names its triangle only through its flat values, which bary.flat.provoking-vertex judges)";
 
 /// D3D11.3 has no point fill mode.
 const NO_D3D_POINTS: &str =
@@ -97,6 +104,10 @@ pub(super) fn rules() -> Vec<Rule> {
             .cases(600)
             .needs(ANY_MODE)
             .keeps_winding()
+            .every_spec(Level::Partly {
+                part: |r, cfg| property_for(r, cfg, any_mode_cases, check_facing_inside),
+                note: FACING_OPEN,
+            })
             .opengles(Level::NotCovered(NO_ES_MODES))
             .run(|r, cfg| property_for(r, cfg, any_mode_cases, check_facing)),
     ]
@@ -241,9 +252,23 @@ fn has_raster_position(case: &PrimitiveScene, p: [f32; 4]) -> bool {
     p[3] > 0.0 && x.abs() < COORD_LIMIT && y.abs() < COORD_LIMIT
 }
 
-/// Triangle `i` drawn in `case`'s mode against its parts: per sample, the count the parts give
-/// (under `freedom`, between one where any part surely covers it and the sum of each part's
-/// larger count either way round, on triangles no plane cuts).
+/// What one triangle of a case must draw: nothing (`shown` false), or per sample between
+/// `least` and `most` fragments.
+struct Expected {
+    shown: bool,
+    turn: Turn,
+    least: Vec<u32>,
+    most: Vec<u32>,
+    /// Whether it may draw nothing at all instead.
+    may_vanish: bool,
+}
+
+/// Each triangle drawn in `case`'s mode against its parts: per sample, the count the parts
+/// give (under `freedom`, between one where any part surely covers it and the sum of each
+/// part's larger count either way round, on triangles no plane cuts). Under `freedom` a strip's
+/// or fan's samples are compared as a whole: which of its triangles a fragment names is
+/// `bary.flat.provoking-vertex`'s question (a GPU's fragment names its triangle only through
+/// its flat values, which SwiftShader takes from each edge's own first vertex).
 fn compare_with_parts(
     r: &mut dyn Rasterizer,
     case: &PrimitiveScene,
@@ -253,8 +278,12 @@ fn compare_with_parts(
     if case.scene.state.polygon_mode != mode {
         return Ok(());
     }
-    let profile = r.profile();
-    let drawn = sample_fragments(r, case)?;
+    let whole = freedom && case.topology != Topology::TriangleList;
+    let drawn = if whole {
+        unattributed_fragments(r, case)?
+    } else {
+        sample_fragments(r, case)?
+    };
     let forward_case = as_parts(case, mode, false);
     let forward = sample_fragments(r, &forward_case)?;
     let backward = if freedom && mode == PolygonMode::Line {
@@ -263,99 +292,198 @@ fn compare_with_parts(
         forward.clone()
     };
     let list = case.as_list();
-    let turns = list.scene.turns(&profile);
-    let state = &case.scene.state;
+    let turns = list.scene.turns(&r.profile());
     let what = if mode == PolygonMode::Point {
         "point list of its vertices"
     } else {
         "line list of its edges"
     };
-    for (i, turn) in turns.into_iter().enumerate() {
-        let corners = list.scene.corners(i);
-        if freedom && !inside_viewport(case, corners) {
+    let mut all = Expected {
+        shown: false,
+        turn: Turn::Unsure,
+        least: vec![0; cells(case)],
+        most: vec![0; cells(case)],
+        may_vanish: false,
+    };
+    for (i, &turn) in turns.iter().enumerate() {
+        let Some(expected) = expected(
+            case,
+            &list,
+            i,
+            turn,
+            freedom,
+            &forward_case,
+            [&forward, &backward],
+        ) else {
+            if whole {
+                // A triangle not judged draws what it draws: the whole is unknown.
+                return Ok(());
+            }
+            continue;
+        };
+        if whole {
+            for c in 0..all.least.len() {
+                all.least[c] += expected.least[c];
+                all.most[c] += expected.most[c];
+            }
             continue;
         }
-        let all_project = corners.iter().all(|p| p[3] > 0.0);
-        // Where a corner has no raster position (w ≤ 0, or beyond ±COORD_LIMIT px), refrast
-        // may find none for a vertex of the clipped polygon either, and then draws nothing of
-        // the triangle in any mode (`DrawStats::degenerate`), as it fills nothing of it.
-        let may_vanish = !freedom && !corners.iter().all(|&p| has_raster_position(case, p));
-        let shown = match turn {
-            Turn::Degenerate if freedom || !all_project => continue,
-            Turn::Degenerate => false,
-            other => match other.drawn(state) {
-                Some(shown) => shown,
-                None => continue,
-            },
-        };
         let got = counts(case, &drawn, Some(i as u32));
-        let mut want = vec![0; cells(case)];
-        if shown {
-            let (mut least, mut most) = (vec![0; cells(case)], vec![0; cells(case)]);
-            for part in 0..3 {
-                let primitive = Some(3 * i as u32 + part);
-                let (f, b) = (
-                    counts(&forward_case, &forward, primitive),
-                    counts(&forward_case, &backward, primitive),
-                );
-                for c in 0..least.len() {
-                    least[c] += f[c].min(b[c]);
-                    most[c] += f[c].max(b[c]);
-                }
-            }
-            for c in 0..want.len() {
-                want[c] = if freedom {
-                    got[c].clamp(least[c].min(1), most[c])
-                } else {
-                    least[c]
-                };
-            }
-        }
-        if got == want || (may_vanish && got.iter().all(|&n| n == 0)) {
-            continue;
-        }
-        let tally = difference_counts(&got, &want);
-        let why = if shown {
+        judge(case, &got, &expected, freedom, || format!("triangle {i}"), what)?;
+    }
+    if whole {
+        all.shown = true;
+        let got = counts(case, &drawn, None);
+        let name = || {
             format!(
-                "triangle {i} in {} mode draws other samples than the {what} draws",
-                mode.name()
-            )
-        } else {
-            let reason = match turn {
-                Turn::Degenerate => "has zero area".to_owned(),
-                t => format!(
-                    "faces {} and {:?} culling discards it",
-                    if t.front_facing(state) == Some(true) {
-                        "front"
-                    } else {
-                        "back"
-                    },
-                    state.cull
-                ),
-            };
-            format!(
-                "triangle {i} {reason}, but in {} mode it draws {}",
-                mode.name(),
-                plural(got.iter().sum::<u32>() as usize, "fragment")
+                "the {}'s triangles",
+                case.topology.name().replace("triangle-", "")
             )
         };
-        let mut violation = Violation::new(why);
-        violation.counts = Some(Box::new(tally));
-        violation.picture = Some(Box::new(difference_picture(case, &got, &want, Vec::new())));
-        return Err(violation);
+        judge(case, &got, &all, freedom, name, &what.replace("its", "their"))?;
     }
     Ok(())
 }
 
+/// What triangle `i` of `list` must draw, from the parts' fragments drawn forward and backward;
+/// `None` when it is not judged (cut by a plane under `freedom`, a turn correct
+/// implementations may see either way, zero area where that is not refrast's to decide).
+fn expected(
+    case: &PrimitiveScene,
+    list: &PrimitiveScene,
+    i: usize,
+    turn: Turn,
+    freedom: bool,
+    parts: &PrimitiveScene,
+    [forward, backward]: [&[Fragment]; 2],
+) -> Option<Expected> {
+    let corners = list.scene.corners(i);
+    if freedom && !inside_viewport(case, corners) {
+        return None;
+    }
+    let all_project = corners.iter().all(|p| p[3] > 0.0);
+    let shown = match turn {
+        Turn::Degenerate if freedom || !all_project => return None,
+        Turn::Degenerate => false,
+        other => other.drawn(&case.scene.state)?,
+    };
+    let (mut least, mut most) = (vec![0; cells(case)], vec![0; cells(case)]);
+    if shown {
+        for part in 0..3 {
+            let primitive = Some(3 * i as u32 + part);
+            let (f, b) = (
+                counts(parts, forward, primitive),
+                counts(parts, backward, primitive),
+            );
+            for c in 0..least.len() {
+                least[c] += f[c].min(b[c]);
+                most[c] += f[c].max(b[c]);
+            }
+        }
+    }
+    Some(Expected {
+        shown,
+        turn,
+        least,
+        most,
+        // Where a corner has no raster position (w ≤ 0, or beyond ±COORD_LIMIT px), refrast
+        // may find none for a vertex of the clipped polygon either, and then draws nothing of
+        // the triangle in any mode (`DrawStats::degenerate`), as it fills nothing of it.
+        may_vanish: !freedom && !corners.iter().all(|&p| has_raster_position(case, p)),
+    })
+}
+
+/// `got` against `expected`: exactly its least counts, or under `freedom` between one where
+/// the least is any and the most.
+fn judge(
+    case: &PrimitiveScene,
+    got: &[u32],
+    expected: &Expected,
+    freedom: bool,
+    name: impl Fn() -> String,
+    what: &str,
+) -> Result<(), Violation> {
+    let want: Vec<u32> = (0..got.len())
+        .map(|c| {
+            if freedom {
+                got[c].clamp(expected.least[c].min(1), expected.most[c])
+            } else {
+                expected.least[c]
+            }
+        })
+        .collect();
+    if got == want || (expected.may_vanish && got.iter().all(|&n| n == 0)) {
+        return Ok(());
+    }
+    let state = &case.scene.state;
+    let mode = state.polygon_mode.name();
+    let why = if expected.shown {
+        let subject = name();
+        let verb = if subject.starts_with("triangle ") {
+            "draws"
+        } else {
+            "draw"
+        };
+        format!("{subject} in {mode} mode {verb} other samples than the {what} draws")
+    } else {
+        let reason = match expected.turn {
+            Turn::Degenerate => "has zero area".to_owned(),
+            t => format!(
+                "faces {} and {:?} culling discards it",
+                if t.front_facing(state) == Some(true) {
+                    "front"
+                } else {
+                    "back"
+                },
+                state.cull
+            ),
+        };
+        format!(
+            "{} {reason}, but in {mode} mode it draws {}",
+            name(),
+            plural(got.iter().sum::<u32>() as usize, "fragment")
+        )
+    };
+    let mut violation = Violation::new(why);
+    violation.counts = Some(Box::new(difference_counts(got, &want)));
+    violation.picture = Some(Box::new(difference_picture(case, got, &want, Vec::new())));
+    Err(violation)
+}
+
 /// Every fragment of a triangle whose turn is sure reports the facing that turn gives.
 pub fn check_facing(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    facing_of(r, case, false)
+}
+
+/// [`check_facing`] on the triangles of lists that no plane cuts: a clipped triangle's facing is
+/// its visible polygon's, of zero area (so back-facing, Vulkan says) where two corners lie on
+/// the near plane and the third behind it, whatever `det[x y w]` says; and a strip's or fan's
+/// fragment names its triangle only through its flat values on a GPU.
+pub fn check_facing_inside(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    facing_of(r, case, true)
+}
+
+fn facing_of(r: &mut dyn Rasterizer, case: &PrimitiveScene, freedom: bool) -> Result<(), Violation> {
     let mode = case.scene.state.polygon_mode;
-    if mode == PolygonMode::Fill {
+    if mode == PolygonMode::Fill || (freedom && case.topology != Topology::TriangleList) {
         return Ok(());
     }
     let profile = r.profile();
     let drawn = sample_fragments(r, case)?;
-    let turns = case.as_list().scene.turns(&profile);
+    let list = case.as_list();
+    let turns: Vec<Turn> = list
+        .scene
+        .turns(&profile)
+        .into_iter()
+        .enumerate()
+        .map(|(i, t)| {
+            if freedom && !inside_viewport(case, list.scene.corners(i)) {
+                Turn::Unsure
+            } else {
+                t
+            }
+        })
+        .collect();
     let mut found = Findings::new();
     for f in &drawn {
         let Some(front) = turns.get(f.primitive as usize).and_then(|t| {

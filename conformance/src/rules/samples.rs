@@ -64,6 +64,23 @@ fn snapping_bits(snapping: Snapping) -> Option<u8> {
 /// The rasterizer's fragments for `case`; an error, a fragment outside the viewport, a sample
 /// index past the draw's count or a primitive the draw does not have becomes a violation.
 pub fn sample_fragments(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<Vec<Fragment>, Violation> {
+    checked_fragments(r, case, true)
+}
+
+/// [`sample_fragments`] but any primitive a fragment names: for a rule that does not judge
+/// which primitive of the draw made a fragment.
+pub fn unattributed_fragments(
+    r: &mut dyn Rasterizer,
+    case: &PrimitiveScene,
+) -> Result<Vec<Fragment>, Violation> {
+    checked_fragments(r, case, false)
+}
+
+fn checked_fragments(
+    r: &mut dyn Rasterizer,
+    case: &PrimitiveScene,
+    named: bool,
+) -> Result<Vec<Fragment>, Violation> {
     let draw = case.draw();
     let frags = r
         .rasterize(&draw)
@@ -78,7 +95,7 @@ pub fn sample_fragments(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result
                 "with sample index {sample} of a draw at {} samples",
                 case.samples
             ))
-        } else if g.primitive as usize >= n {
+        } else if named && g.primitive as usize >= n {
             Some(format!("naming primitive {} of a draw of {n}", g.primitive))
         } else {
             None

@@ -9,7 +9,8 @@ use refrast::{
     Draw, DrawError, Fragment, FrontFace, LineRule, PolygonMode, Profile, Rasterizer, Reference,
     ReferenceConfig, Spec, Topology,
 };
-use refrast_conformance::{Options, RuleReport, Status, certify};
+use refrast_conformance::rules::polygon;
+use refrast_conformance::{Options, PrimitiveScene, RuleReport, Status, certify};
 
 /// How the wrapper draws triangles in line or point mode.
 #[derive(Clone, Copy, PartialEq, Debug)]
@@ -164,4 +165,103 @@ fn the_reference_passes_under_every_line_rule() {
             assert_eq!(report.status, Status::Pass, "{rule:?}: {report:#?}");
         }
     }
+}
+
+/// The reference under `spec`, its fragments in polygon modes changed by `change`: a driver's
+/// answer on one case, replayed.
+struct Answered {
+    spec: Spec,
+    change: fn(&mut Fragment),
+    inner: Reference,
+}
+
+impl Rasterizer for Answered {
+    fn profile(&self) -> Profile {
+        Profile {
+            name: "answered".into(),
+            spec: self.spec,
+            ..self.inner.profile()
+        }
+    }
+
+    fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+        let mut fragments = self.inner.rasterize(draw)?;
+        if draw.state.polygon_mode != PolygonMode::Fill && draw.topology.is_triangles() {
+            fragments.iter_mut().for_each(self.change);
+        }
+        Ok(fragments)
+    }
+}
+
+/// A triangle in line mode on a `width` × `height` target, far clipping on.
+fn line_mode_case(
+    (width, height): (u32, u32),
+    positions: Vec<[f32; 4]>,
+    topology: Topology,
+    indices: Vec<u32>,
+) -> PrimitiveScene {
+    let mut case = PrimitiveScene::of(width, height, positions, topology, indices);
+    case.scene.state.polygon_mode = PolygonMode::Line;
+    case.scene.state.clip_far = true;
+    case
+}
+
+/// Regression (lavapipe, `meta.polygon-mode.facing` at case 79): two corners on the near plane
+/// (one at w = 0), the third behind it, so the visible polygon is one edge, of zero area, which
+/// lavapipe draws and calls back-facing, as Vulkan's zero-area rule says; `det[x y w]` gives the
+/// triangle front. The specifications' part judges only triangles no plane cuts; refrast's
+/// conventions (the sign of `det[x y w]`) still fail the back-facing answer.
+#[test]
+fn the_edge_the_near_plane_leaves_may_face_back() {
+    let mut case = line_mode_case(
+        (16, 16),
+        vec![
+            [-30000.0, 0.0, 0.0, 0.0],
+            [0.0, -0.175_359_44, -0.198_987_7, 0.2],
+            [0.0, 0.0, 0.0, 0.2],
+        ],
+        Topology::TriangleList,
+        Vec::new(),
+    );
+    case.scene.triangles = vec![[0, 1, 2]];
+    let mut lavapipe = Answered {
+        spec: Spec::Vulkan,
+        change: |f| f.front_facing = false,
+        inner: Reference::default(),
+    };
+    assert!(
+        !lavapipe.rasterize(&case.draw()).unwrap().is_empty(),
+        "the edge is drawn"
+    );
+    assert!(polygon::check_facing_inside(&mut lavapipe, &case).is_ok());
+    assert!(polygon::check_facing(&mut lavapipe, &case).is_err());
+}
+
+/// Regression (SwiftShader, `line.polygon-mode.edges` at case 1): its edges carry their own
+/// first vertex's flat values, from which a GPU adapter names a strip's triangle, so a
+/// one-triangle strip's edge named triangle 1. Under the specifications a strip's samples are
+/// compared as a whole (the flat rule judges the naming); refrast's conventions still fail it.
+#[test]
+fn a_strip_triangle_named_by_another_vertex_is_judged_as_a_whole() {
+    let case = line_mode_case(
+        (32, 64),
+        vec![
+            [-0.246_093_75, 0.25, 0.0, 0.25],
+            [-0.246_093_75, 0.243_408_2, 0.0, 0.25],
+            [-0.238_281_25, 0.25, 0.0, 0.25],
+        ],
+        Topology::TriangleStrip,
+        vec![0, 1, 2],
+    );
+    let mut swiftshader = Answered {
+        spec: Spec::Vulkan,
+        change: |f| f.primitive = 1,
+        inner: Reference::default(),
+    };
+    assert!(
+        !swiftshader.rasterize(&case.draw()).unwrap().is_empty(),
+        "the edges are drawn"
+    );
+    assert!(polygon::check_edges_inside(&mut swiftshader, &case).is_ok());
+    assert!(polygon::check_edges(&mut swiftshader, &case).is_err());
 }

@@ -4,7 +4,7 @@
 //! one was also reproduced bit for bit by an f32 trace of SwiftShader's source (`VertexRoutine`,
 //! `Clipper`, `SetupRoutine`, `QuadRasterizer`, `PixelRoutine`).
 
-use refrast::{ClipMode, CompareOp, DepthBias, Draw, Fragment, Rasterizer, Resolved};
+use refrast::{ClipMode, CompareOp, DepthBias, Draw, Fragment, PolygonMode, Rasterizer, Resolved};
 use refrast_wgpu::Gpu;
 
 use super::{apart, at, draw, exact_barycentrics, reference};
@@ -21,7 +21,7 @@ type Run<'a> = dyn FnMut(&Draw) -> Vec<Fragment> + 'a;
 type Finding = (&'static str, fn(&mut Run<'_>));
 
 /// Each finding, in docs/certified.md's order.
-const FINDINGS: [Finding; 10] = [
+const FINDINGS: [Finding; 13] = [
     (
         "a vertex at w = 0 whose winding comes out backwards draws nothing",
         w_zero_winding_backwards,
@@ -40,6 +40,15 @@ const FINDINGS: [Finding; 10] = [
     (
         "a vertex behind the eye: screen weights",
         behind_the_eye_screen_weights,
+    ),
+    (
+        "polygon modes: every fragment front-facing",
+        polygon_modes_front_facing,
+    ),
+    ("point mode: culled triangles' points drawn", point_mode_unculled),
+    (
+        "line mode: flat values from each edge's first vertex",
+        line_mode_flat_per_edge,
     ),
 ];
 
@@ -419,4 +428,92 @@ fn bias_exponent_not_the_largest(resolve: &mut Resolve<'_>) {
         (last - required).abs() < 1e-6,
         "swiftshader: the largest depth last offsets by {last} (Vulkan's {required} was seen)"
     );
+}
+
+/// A back-facing triangle (clockwise on screen, counter-clockwise front faces): the pixel-space
+/// corners (2, 14), (2, 2), (14, 14) of a 16 × 16 target, drawn in `mode`.
+fn back_facing(mode: PolygonMode) -> Draw {
+    let mut d = draw(
+        16,
+        16,
+        vec![
+            [-0.75, -0.75, 0.5, 1.0],
+            [-0.75, 0.75, 0.5, 1.0],
+            [0.75, -0.75, 0.5, 1.0],
+        ],
+    );
+    d.state.polygon_mode = mode;
+    d
+}
+
+/// Finding 11 (docs/certified.md): in line and point mode every fragment reports front-facing.
+fn polygon_modes_front_facing(run: &mut Run<'_>) {
+    // 11. Filled, the triangle's fragments report back-facing, as its clockwise turn says; as
+    // its edges or its vertices, every one reports front-facing, as a line's or a point's
+    // would, where Vulkan's FrontFacing is zero for "a back-facing polygon primitive" and
+    // VkPolygonMode changes only "the final rasterization of polygons".
+    assert!(
+        run(&back_facing(PolygonMode::Fill))
+            .iter()
+            .all(|f| !f.front_facing),
+        "swiftshader: filled, the triangle faces back"
+    );
+    for mode in [PolygonMode::Line, PolygonMode::Point] {
+        let got = run(&back_facing(mode));
+        assert!(
+            !got.is_empty() && got.iter().all(|f| f.front_facing),
+            "swiftshader: in {} mode every fragment front-facing: {got:?}",
+            mode.name()
+        );
+        assert!(
+            reference(4, ClipMode::Full, &back_facing(mode))
+                .iter()
+                .all(|f| !f.front_facing)
+        );
+    }
+    println!("swiftshader: a back-facing triangle's edges and vertices report front-facing");
+}
+
+/// Finding 12 (docs/certified.md): in point mode a culled triangle's points are drawn.
+fn point_mode_unculled(run: &mut Run<'_>) {
+    // 12. Back faces culled: filled and in line mode the triangle draws nothing; in point mode
+    // its three points are drawn, each covering the one pixel centre at its square's top-left
+    // corner (the reference's points with culling off), where VkPolygonMode's polygon is
+    // "clipped and possibly culled before these modes are applied".
+    let culled = |mode| {
+        let mut d = back_facing(mode);
+        d.state.cull = refrast::CullMode::Back;
+        d
+    };
+    assert!(run(&culled(PolygonMode::Fill)).is_empty() && run(&culled(PolygonMode::Line)).is_empty());
+    let got = run(&culled(PolygonMode::Point));
+    let points = expected(&back_facing(PolygonMode::Point));
+    assert!(
+        pixels(&got) == [(1, 1), (1, 13), (13, 13)]
+            && pixels(&points) == pixels(&got)
+            && expected(&culled(PolygonMode::Point)).is_empty(),
+        "swiftshader: a culled triangle's points drawn: {got:?}"
+    );
+    println!("swiftshader: a back-facing triangle culled filled and as lines draws its 3 points");
+}
+
+/// Finding 13 (docs/certified.md): in line mode flat values come from each edge's first vertex.
+fn line_mode_flat_per_edge(run: &mut Run<'_>) {
+    // 13. One triangle of a list, the first vertex provoking (wgpu's Vulkan default): every
+    // fragment must carry vertex 0's flat values, the triangle's provoking vertex; the edge
+    // from vertex 1 carries vertex 1's and the edge from vertex 2 vertex 2's, as if each edge
+    // were a line of its own.
+    let got = run(&back_facing(PolygonMode::Line));
+    let flats: std::collections::BTreeSet<Option<u32>> = got.iter().map(|f| f.flat).collect();
+    assert_eq!(
+        flats.into_iter().collect::<Vec<_>>(),
+        [Some(0), Some(1), Some(2)],
+        "swiftshader: line mode's flat vertices"
+    );
+    assert!(
+        run(&back_facing(PolygonMode::Fill))
+            .iter()
+            .all(|f| f.flat == Some(0))
+    );
+    println!("swiftshader: a triangle's edges carry the flat values of vertices 0, 1 and 2");
 }

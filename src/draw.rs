@@ -222,7 +222,12 @@ impl Draw {
         } else {
             format!("{} samples", self.samples)
         };
-        format!("{} at {samples} per pixel", self.topology)
+        let mode = if self.topology.is_triangles() && self.state.polygon_mode != PolygonMode::Fill {
+            format!(" in {} mode", self.state.polygon_mode.name())
+        } else {
+            String::new()
+        };
+        format!("{}{mode} at {samples} per pixel", self.topology)
     }
 }
 
@@ -230,7 +235,8 @@ impl Draw {
 ///
 /// A line's fragment has barycentrics `[1 − t, t, 0]` along its segment (perspective-correct
 /// and in screen space), a point's `[1, 0, 0]`; both face front (Vulkan: lines and points are
-/// always front-facing).
+/// always front-facing). A triangle's in line or point mode carries the triangle's facing and
+/// its weights over the triangle's three corners (the two ends of its edge, or its vertex).
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct Fragment {
     /// Pixel column.

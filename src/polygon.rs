@@ -135,7 +135,7 @@ mod tests {
             w
         });
         assert!(got.iter().all(|f| f.primitive == 0 && !f.front_facing));
-        // On edge 1 → 2 the first corner weighs nothing.
+        // Each point carries its vertex's unit weights.
         let points = draw(PolygonMode::Point, Topology::TriangleList, corners, vec![0, 1, 2]);
         let got = r.rasterize(&points).unwrap();
         assert_eq!(pixels(&got), [(0, 2, 2), (0, 6, 11), (0, 12, 3)]);

@@ -91,8 +91,9 @@ impl Reference {
     /// Rasterizes `draw`, handing each covered [`Sample`] to `visit` in primitive order.
     ///
     /// A sample carries its depth; its barycentrics are computed only when asked for, so a
-    /// depth test can reject it first. `Err` unless `draw` is triangles (a list, strip or fan)
-    /// at one sample.
+    /// depth test can reject it first. `Err` unless `draw` is filled triangles (a list, strip or
+    /// fan) at one sample: in line or point mode a triangle's samples are fragments of its
+    /// edges or vertices ([`Reference::draw`]).
     pub fn draw_samples(
         &self,
         draw: &Draw,

@@ -43,7 +43,7 @@ pub struct DrawState {
     /// How triangles are rasterized: filled, as their edges or as their vertices. Sent other
     /// than fill only to a rasterizer that declares the mode
     /// ([`StateSupport::polygon_modes`](crate::StateSupport::polygon_modes)); lines and points
-    /// ignore it.
+    /// are drawn alike whatever it says, though a profile fits it as any other setting.
     pub polygon_mode: PolygonMode,
 }
 

@@ -85,7 +85,17 @@ fn in_its_environment(args: &ReplayArgs) -> Option<ExitCode> {
         .envs(builtin.env.iter().map(|(k, v)| (k, v)))
         .status();
     Some(match status {
-        Ok(status) => ExitCode::from(status.code().and_then(|c| u8::try_from(c).ok()).unwrap_or(1)),
+        Ok(status) => match status.code() {
+            Some(code) => ExitCode::from(u8::try_from(code).unwrap_or(1)),
+            // A signal: the rasterizer took the process down with it, before any verdict.
+            None => {
+                eprintln!(
+                    "error: the replay on {name} ended without a verdict ({}): the rasterizer crashed it",
+                    refrast_pipe::status_words(status)
+                );
+                ExitCode::FAILURE
+            }
+        },
         Err(e) => {
             eprintln!(
                 "error: could not start a child to replay on {name} with {:?} set: {e}",

@@ -159,8 +159,8 @@ pub struct Context {
     /// (Vulkan's `depthBiasClamp`; wgpu's OpenGL ES backend has none).
     pub bias_clamp: bool,
     /// The polygon modes besides fill it draws: `Features::POLYGON_MODE_LINE` and
-    /// `POLYGON_MODE_POINT` (Vulkan's `fillModeNonSolid`; desktop OpenGL only on wgpu's GL
-    /// backend, so none through OpenGL ES).
+    /// `POLYGON_MODE_POINT` (Vulkan's `fillModeNonSolid`; `glPolygonMode` on wgpu's GL backend,
+    /// which Mesa's EGL drivers report though OpenGL ES 3.2 has no polygon modes).
     pub polygon_modes: Supported<PolygonMode>,
 }
 
@@ -237,7 +237,6 @@ fn open(driver: Driver) -> Result<Context, Unavailable> {
         required_limits: limits.clone(),
         // WebGPU's core formats hold no 32-bit integer at several samples; the id targets of a
         // multisampled resolve need the adapter's own format features.
-        // Depth clipping off where the adapter has it.
         // Depth clipping off and polygon modes where the adapter has them.
         required_features: adapter.features()
             & (wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES

@@ -450,8 +450,12 @@ fn well_formed(r: &mut dyn Rasterizer, scene: &Scene, judged: Judged) -> Result<
                 } else {
                     "covers its pixel a fourth time (three edges or vertices at most)"
                 },
-                "one triangle draws each pixel once: the triangles a clipped polygon is cut \
-                 into must not overlap",
+                if most == 1 {
+                    "one triangle draws each pixel once: the triangles a clipped polygon is cut \
+                     into must not overlap"
+                } else {
+                    "each edge or vertex of a triangle in line or point mode draws each pixel once"
+                },
             )
         } else {
             continue;

@@ -76,6 +76,8 @@ pub fn unattributed_fragments(
     checked_fragments(r, case, false)
 }
 
+/// The rasterizer's fragments for `case`, checked as [`sample_fragments`] says, the primitive
+/// each names only where `named`.
 fn checked_fragments(
     r: &mut dyn Rasterizer,
     case: &PrimitiveScene,

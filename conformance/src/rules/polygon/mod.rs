@@ -9,21 +9,20 @@
 
 use proptest::prelude::*;
 use proptest::strategy::Union;
-use refrast::{
-    COORD_LIMIT, CullMode, Fragment, FrontFace, PolygonMode, Profile, Rasterizer, Setting, Topology,
-};
+use refrast::{CullMode, FrontFace, PolygonMode, Profile, Rasterizer, Setting, Topology};
 
 use super::level::Level;
-use super::samples::{
-    cells, counts, difference_counts, difference_picture, sample_fragments, unattributed_fragments,
-};
+use super::samples::sample_fragments;
 use super::{Family, Need, Rule, needs};
 use crate::oracle::facing::Turn;
-use crate::oracle::raster::{project, unclipped};
 use crate::runner::property_for;
 use crate::scene::PrimitiveScene;
 use crate::strategy::{self, primitive};
 use crate::violation::{Findings, Violation, plural};
+
+mod parts;
+pub use parts::as_parts;
+use parts::{compare_with_parts, inside_viewport};
 
 /// What every specification says of the modes.
 const SOURCE: &str = "Vulkan 1.4, VkPolygonMode (\"the polygon is clipped and possibly culled before these modes are applied\"; LINE: \"polygon edges are drawn as line segments\", POINT: \"polygon vertices are drawn as points\"); OpenGL 4.6 §14.6.4 (PolygonMode); D3D11.3 D3D11_FILL_WIREFRAME; dEQP-VK.rasterization.culling.*_line and *_point, dEQP-VK.rasterization.line_continuity.polygon-mode-lines";
@@ -158,10 +157,12 @@ fn polygon_cases(p: &Profile, mode: PolygonMode) -> BoxedStrategy<PrimitiveScene
         .boxed()
 }
 
+/// [`polygon_cases`] in line mode.
 fn line_cases(p: &Profile) -> BoxedStrategy<PrimitiveScene> {
     polygon_cases(p, PolygonMode::Line)
 }
 
+/// [`polygon_cases`] in point mode.
 fn point_cases(p: &Profile) -> BoxedStrategy<PrimitiveScene> {
     polygon_cases(p, PolygonMode::Point)
 }
@@ -178,38 +179,6 @@ fn any_mode_cases(p: &Profile) -> BoxedStrategy<PrimitiveScene> {
     prop::sample::select(modes)
         .prop_flat_map(move |mode| polygon_cases(&p, mode))
         .boxed()
-}
-
-/// The triangles of `case` (in [`refrast::Draw::triangle`]'s order) as a line list of their
-/// edges, `3i + e` the edge from corner `e` to corner `e + 1` (reversed: from `e + 1` to
-/// `e`), or as a point list of their corners, `3i + k` corner `k`; culling off, filled.
-#[must_use]
-pub fn as_parts(case: &PrimitiveScene, mode: PolygonMode, reversed: bool) -> PrimitiveScene {
-    let list = case.as_list();
-    let indices = list
-        .scene
-        .triangles
-        .iter()
-        .flat_map(|&[a, b, c]| match mode {
-            PolygonMode::Point => vec![a, b, c],
-            _ if reversed => vec![b, a, c, b, a, c],
-            _ => vec![a, b, b, c, c, a],
-        })
-        .collect();
-    let topology = if mode == PolygonMode::Point {
-        Topology::PointList
-    } else {
-        Topology::LineList
-    };
-    let mut parts = PrimitiveScene {
-        topology,
-        indices,
-        ..list
-    };
-    parts.scene.triangles.clear();
-    parts.scene.state.polygon_mode = PolygonMode::Fill;
-    parts.scene.state.cull = CullMode::None;
-    parts
 }
 
 /// Line mode against the line list of the edges, exactly, every triangle.
@@ -234,222 +203,6 @@ pub fn check_vertices_inside(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> R
     compare_with_parts(r, case, PolygonMode::Point, true)
 }
 
-/// Whether no implementation clips triangle `t` of `case`'s list: every corner inside the
-/// depth planes and the viewport itself (a point outside it is clipped away).
-fn inside_viewport(case: &PrimitiveScene, t: [[f32; 4]; 3]) -> bool {
-    let (w, h) = (f64::from(case.scene.width), f64::from(case.scene.height));
-    unclipped(&t, &case.scene.state)
-        && t.iter().all(|&p| {
-            let [x, y] = project(case.scene.width, case.scene.height, p.map(f64::from));
-            (0.0..=w).contains(&x) && (0.0..=h).contains(&y)
-        })
-}
-
-/// Whether clip-space `p` projects onto a raster position refrast can snap: `w > 0`, and
-/// within ±[`COORD_LIMIT`] pixels.
-fn has_raster_position(case: &PrimitiveScene, p: [f32; 4]) -> bool {
-    let [x, y] = project(case.scene.width, case.scene.height, p.map(f64::from));
-    p[3] > 0.0 && x.abs() < COORD_LIMIT && y.abs() < COORD_LIMIT
-}
-
-/// What one triangle of a case must draw: nothing (`shown` false), or per sample between
-/// `least` and `most` fragments.
-struct Expected {
-    shown: bool,
-    turn: Turn,
-    least: Vec<u32>,
-    most: Vec<u32>,
-    /// Whether it may draw nothing at all instead.
-    may_vanish: bool,
-}
-
-/// Each triangle drawn in `case`'s mode against its parts: per sample, the count the parts
-/// give (under `freedom`, between one where any part surely covers it and the sum of each
-/// part's larger count either way round, on triangles no plane cuts). Under `freedom` a strip's
-/// or fan's samples are compared as a whole: which of its triangles a fragment names is
-/// `bary.flat.provoking-vertex`'s question (a GPU's fragment names its triangle only through
-/// its flat values, which SwiftShader takes from each edge's own first vertex).
-fn compare_with_parts(
-    r: &mut dyn Rasterizer,
-    case: &PrimitiveScene,
-    mode: PolygonMode,
-    freedom: bool,
-) -> Result<(), Violation> {
-    if case.scene.state.polygon_mode != mode {
-        return Ok(());
-    }
-    let whole = freedom && case.topology != Topology::TriangleList;
-    let drawn = if whole {
-        unattributed_fragments(r, case)?
-    } else {
-        sample_fragments(r, case)?
-    };
-    let forward_case = as_parts(case, mode, false);
-    let forward = sample_fragments(r, &forward_case)?;
-    let backward = if freedom && mode == PolygonMode::Line {
-        sample_fragments(r, &as_parts(case, mode, true))?
-    } else {
-        forward.clone()
-    };
-    let list = case.as_list();
-    let turns = list.scene.turns(&r.profile());
-    let what = if mode == PolygonMode::Point {
-        "point list of its vertices"
-    } else {
-        "line list of its edges"
-    };
-    let mut all = Expected {
-        shown: false,
-        turn: Turn::Unsure,
-        least: vec![0; cells(case)],
-        most: vec![0; cells(case)],
-        may_vanish: false,
-    };
-    for (i, &turn) in turns.iter().enumerate() {
-        let Some(expected) = expected(
-            case,
-            &list,
-            i,
-            turn,
-            freedom,
-            &forward_case,
-            [&forward, &backward],
-        ) else {
-            if whole {
-                // A triangle not judged draws what it draws: the whole is unknown.
-                return Ok(());
-            }
-            continue;
-        };
-        if whole {
-            for c in 0..all.least.len() {
-                all.least[c] += expected.least[c];
-                all.most[c] += expected.most[c];
-            }
-            continue;
-        }
-        let got = counts(case, &drawn, Some(i as u32));
-        judge(case, &got, &expected, freedom, || format!("triangle {i}"), what)?;
-    }
-    if whole {
-        all.shown = true;
-        let got = counts(case, &drawn, None);
-        let name = || {
-            format!(
-                "the {}'s triangles",
-                case.topology.name().replace("triangle-", "")
-            )
-        };
-        judge(case, &got, &all, freedom, name, &what.replace("its", "their"))?;
-    }
-    Ok(())
-}
-
-/// What triangle `i` of `list` must draw, from the parts' fragments drawn forward and backward;
-/// `None` when it is not judged (cut by a plane under `freedom`, a turn correct
-/// implementations may see either way, zero area where that is not refrast's to decide).
-fn expected(
-    case: &PrimitiveScene,
-    list: &PrimitiveScene,
-    i: usize,
-    turn: Turn,
-    freedom: bool,
-    parts: &PrimitiveScene,
-    [forward, backward]: [&[Fragment]; 2],
-) -> Option<Expected> {
-    let corners = list.scene.corners(i);
-    if freedom && !inside_viewport(case, corners) {
-        return None;
-    }
-    let all_project = corners.iter().all(|p| p[3] > 0.0);
-    let shown = match turn {
-        Turn::Degenerate if freedom || !all_project => return None,
-        Turn::Degenerate => false,
-        other => other.drawn(&case.scene.state)?,
-    };
-    let (mut least, mut most) = (vec![0; cells(case)], vec![0; cells(case)]);
-    if shown {
-        for part in 0..3 {
-            let primitive = Some(3 * i as u32 + part);
-            let (f, b) = (
-                counts(parts, forward, primitive),
-                counts(parts, backward, primitive),
-            );
-            for c in 0..least.len() {
-                least[c] += f[c].min(b[c]);
-                most[c] += f[c].max(b[c]);
-            }
-        }
-    }
-    Some(Expected {
-        shown,
-        turn,
-        least,
-        most,
-        // Where a corner has no raster position (w ≤ 0, or beyond ±COORD_LIMIT px), refrast
-        // may find none for a vertex of the clipped polygon either, and then draws nothing of
-        // the triangle in any mode (`DrawStats::degenerate`), as it fills nothing of it.
-        may_vanish: !freedom && !corners.iter().all(|&p| has_raster_position(case, p)),
-    })
-}
-
-/// `got` against `expected`: exactly its least counts, or under `freedom` between one where
-/// the least is any and the most.
-fn judge(
-    case: &PrimitiveScene,
-    got: &[u32],
-    expected: &Expected,
-    freedom: bool,
-    name: impl Fn() -> String,
-    what: &str,
-) -> Result<(), Violation> {
-    let want: Vec<u32> = (0..got.len())
-        .map(|c| {
-            if freedom {
-                got[c].clamp(expected.least[c].min(1), expected.most[c])
-            } else {
-                expected.least[c]
-            }
-        })
-        .collect();
-    if got == want || (expected.may_vanish && got.iter().all(|&n| n == 0)) {
-        return Ok(());
-    }
-    let state = &case.scene.state;
-    let mode = state.polygon_mode.name();
-    let why = if expected.shown {
-        let subject = name();
-        let verb = if subject.starts_with("triangle ") {
-            "draws"
-        } else {
-            "draw"
-        };
-        format!("{subject} in {mode} mode {verb} other samples than the {what} draws")
-    } else {
-        let reason = match expected.turn {
-            Turn::Degenerate => "has zero area".to_owned(),
-            t => format!(
-                "faces {} and {:?} culling discards it",
-                if t.front_facing(state) == Some(true) {
-                    "front"
-                } else {
-                    "back"
-                },
-                state.cull
-            ),
-        };
-        format!(
-            "{} {reason}, but in {mode} mode it draws {}",
-            name(),
-            plural(got.iter().sum::<u32>() as usize, "fragment")
-        )
-    };
-    let mut violation = Violation::new(why);
-    violation.counts = Some(Box::new(difference_counts(got, &want)));
-    violation.picture = Some(Box::new(difference_picture(case, got, &want, Vec::new())));
-    Err(violation)
-}
-
 /// Every fragment of a triangle whose turn is sure reports the facing that turn gives.
 pub fn check_facing(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
     facing_of(r, case, false)
@@ -463,6 +216,8 @@ pub fn check_facing_inside(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Res
     facing_of(r, case, true)
 }
 
+/// Each fragment's facing against its triangle's sure turn; under `freedom` only list triangles
+/// no plane cuts.
 fn facing_of(r: &mut dyn Rasterizer, case: &PrimitiveScene, freedom: bool) -> Result<(), Violation> {
     let mode = case.scene.state.polygon_mode;
     if mode == PolygonMode::Fill || (freedom && case.topology != Topology::TriangleList) {

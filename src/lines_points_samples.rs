@@ -294,7 +294,7 @@ impl Reference {
                 front_facing: owner.front_facing,
             });
         };
-        segment::candidates(a, b, one, |x, y| {
+        segment::candidates(a, b, one, [width, height], |x, y| {
             if !(0..width).contains(&x)
                 || !(0..height).contains(&y)
                 || !draw.state.passes_scissor(x as u32, y as u32)

@@ -226,25 +226,28 @@ pub fn covers(
 }
 
 /// The pixels a segment `a → b` may cover under any line rule, along its major axis: each
-/// column (or row) within one pixel of its span, and in it the five pixels nearest the line.
+/// column (or row) within one pixel of its span and inside `window` (`[width, height]` pixels
+/// from the origin), and in it the five pixels nearest the line.
 ///
 /// Every rule covers only samples within `half·√2` of the segment across its major axis, so
-/// no covered pixel lies further than two rows (columns) from the line's pixel there.
-pub fn candidates(a: FixedPoint, b: FixedPoint, one: i64, mut visit: impl FnMut(i64, i64)) {
+/// no covered pixel lies further than two rows (columns) from the line's pixel there. The
+/// window keeps a segment clipped at the guard band, thousands of pixels long, to the columns
+/// that can hold a fragment.
+pub fn candidates(a: FixedPoint, b: FixedPoint, one: i64, window: [i64; 2], mut visit: impl FnMut(i64, i64)) {
     let (dx, dy) = (b.x - a.x, b.y - a.y);
     if dx == 0 && dy == 0 {
         return;
     }
     let x_major = dx.abs() >= dy.abs();
     // Along the major axis u, across it v: swap x and y for a y-major segment.
-    let (au, av, du, dv) = if x_major {
-        (a.x, a.y, dx, dy)
+    let (au, av, du, dv, extent) = if x_major {
+        (a.x, a.y, dx, dy, window[0])
     } else {
-        (a.y, a.x, dy, dx)
+        (a.y, a.x, dy, dx, window[1])
     };
     let (lo, hi) = (au.min(au + du), au.max(au + du));
     let half = one / 2;
-    for pu in lo.div_euclid(one) - 1..=hi.div_euclid(one) + 1 {
+    for pu in (lo.div_euclid(one) - 1).max(0)..=(hi.div_euclid(one) + 1).min(extent - 1) {
         let cu = pu * one + half;
         // The line at the column's centre: av + (cu − au)·dv/du, floored exactly.
         let v = i128::from(av) + (i128::from(cu - au) * i128::from(dv)).div_euclid(i128::from(du));
@@ -278,7 +281,7 @@ mod tests {
 
     fn diamond_pixels(a: FixedPoint, b: FixedPoint) -> Vec<(i64, i64)> {
         let mut out = Vec::new();
-        candidates(a, b, ONE, |x, y| {
+        candidates(a, b, ONE, [64, 64], |x, y| {
             if diamond_exit(a, b, centre(x, y), HALF) {
                 out.push((x, y));
             }

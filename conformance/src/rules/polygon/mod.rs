@@ -21,7 +21,6 @@ use crate::strategy::{self, primitive};
 use crate::violation::{Findings, Violation, plural};
 
 mod parts;
-pub use parts::as_parts;
 use parts::{compare_with_parts, inside_viewport};
 
 /// What every specification says of the modes.

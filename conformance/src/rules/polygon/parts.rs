@@ -1,9 +1,10 @@
 //! A triangle in line or point mode against the same implementation's line list of its edges
 //! or point list of its vertices: what each triangle must draw, and the judgement.
 
-use refrast::{COORD_LIMIT, CullMode, Fragment, PolygonMode, Rasterizer, Topology};
+use refrast::{COORD_LIMIT, CullMode, Fragment, PolygonMode, Profile, Rasterizer, Topology};
 
-use crate::oracle::facing::Turn;
+use crate::oracle::brute_force::orient2d;
+use crate::oracle::facing::{Turn, snapped_variants};
 use crate::oracle::raster::{project, unclipped};
 use crate::rules::samples::{
     cells, counts, difference_counts, difference_picture, sample_fragments, unattributed_fragments,
@@ -15,7 +16,7 @@ use crate::violation::{Violation, plural};
 /// edges, `3i + e` the edge from corner `e` to corner `e + 1` (reversed: from `e + 1` to
 /// `e`), or as a point list of their corners, `3i + k` corner `k`; filled.
 #[must_use]
-pub fn as_parts(case: &PrimitiveScene, mode: PolygonMode, reversed: bool) -> PrimitiveScene {
+fn as_parts(case: &PrimitiveScene, mode: PolygonMode, reversed: bool) -> PrimitiveScene {
     let list = case.as_list();
     let indices = list
         .scene
@@ -106,7 +107,8 @@ pub(super) fn compare_with_parts(
         forward.clone()
     };
     let list = case.as_list();
-    let turns = list.scene.turns(&r.profile());
+    let profile = r.profile();
+    let turns = list.scene.turns(&profile);
     let what = if mode == PolygonMode::Point {
         "point list of its vertices"
     } else {
@@ -121,13 +123,11 @@ pub(super) fn compare_with_parts(
     };
     for (i, &turn) in turns.iter().enumerate() {
         let Some(expected) = expected(
+            &profile,
             case,
-            &list,
-            i,
-            turn,
+            (&list, i, turn),
             freedom,
-            &forward_case,
-            [&forward, &backward],
+            (&forward_case, [&forward, &backward]),
         ) else {
             if whole {
                 // A triangle not judged draws what it draws: the whole is unknown.
@@ -159,26 +159,44 @@ pub(super) fn compare_with_parts(
     Ok(())
 }
 
-/// What triangle `i` of `list` must draw, from the parts' fragments drawn forward and backward;
+/// What triangle `i` of `list`, turning `turn`, must draw, from the parts' fragments drawn
+/// forward and backward;
 /// `None` when it is not judged (cut by a plane under `freedom`, a turn correct
 /// implementations may see either way, zero area where that is not refrast's to decide).
 fn expected(
+    profile: &Profile,
     case: &PrimitiveScene,
-    list: &PrimitiveScene,
-    i: usize,
-    turn: Turn,
+    (list, i, turn): (&PrimitiveScene, usize, Turn),
     freedom: bool,
-    parts: &PrimitiveScene,
-    [forward, backward]: [&[Fragment]; 2],
+    (parts, [forward, backward]): (&PrimitiveScene, [&[Fragment]; 2]),
 ) -> Option<Expected> {
     let corners = list.scene.corners(i);
     if freedom && !inside_viewport(case, corners) {
         return None;
     }
     let all_project = corners.iter().all(|p| p[3] > 0.0);
+    let positioned = corners.iter().all(|&p| has_raster_position(case, p));
+    // Zero area decided on the snapped input before clipping (refrast's convention, where the
+    // profile claims it): a flat triangle the near plane cuts draws nothing either.
+    let turn = match (
+        freedom || !positioned || !profile.features.zero_area_before_clipping,
+        turn,
+    ) {
+        (false, Turn::Clockwise | Turn::CounterClockwise | Turn::Unsure) => {
+            match flat_before_clipping(case, &corners, profile) {
+                Some(true) => Turn::Degenerate,
+                Some(false) => turn,
+                None => return None,
+            }
+        }
+        _ => turn,
+    };
     let shown = match turn {
         Turn::Degenerate if freedom || !all_project => return None,
-        Turn::Degenerate => false,
+        // refrast decides zero area before clipping only where every corner has a raster
+        // position; else it clips the triangle and keeps it, flat, by the sign of `det[x y w]`:
+        // its edges drawn, or nothing where that sign is culled (`may_vanish`).
+        Turn::Degenerate => !positioned,
         other => other.drawn(&case.scene.state)?,
     };
     let (mut least, mut most) = (vec![0; cells(case)], vec![0; cells(case)]);
@@ -203,8 +221,25 @@ fn expected(
         // Where a corner has no raster position (w ≤ 0, or beyond ±COORD_LIMIT px), refrast
         // may find none for a vertex of the clipped polygon either, and then draws nothing of
         // the triangle in any mode (`DrawStats::degenerate`), as it fills nothing of it.
-        may_vanish: !freedom && !corners.iter().all(|&p| has_raster_position(case, p)),
+        may_vanish: !freedom && !positioned,
     })
+}
+
+/// Whether every way `profile` may snap `corners` leaves no area (`Some(true)`), none does
+/// (`Some(false)`), or the ways disagree (`None`); `Some(false)` without a grid.
+fn flat_before_clipping(case: &PrimitiveScene, corners: &[[f32; 4]; 3], profile: &Profile) -> Option<bool> {
+    let Some(variants) = snapped_variants(corners, case.scene.width, case.scene.height, profile) else {
+        return Some(false);
+    };
+    let flat = variants
+        .iter()
+        .filter(|v| orient2d(v[0], v[1], v[2]) == 0)
+        .count();
+    match flat {
+        0 => Some(false),
+        n if n == variants.len() => Some(true),
+        _ => None,
+    }
 }
 
 /// `got` against `expected`: exactly its least counts, or under `freedom` between one where

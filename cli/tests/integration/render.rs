@@ -40,6 +40,18 @@ fn refused(args: &[&str], names: &str) {
 }
 
 /// The PNG at `path`, decoded.
+/// The room drawn by `implementation` with `state`, which it does not declare: refused with
+/// exit code 1 and a message saying so, and no file written at `path`.
+fn refused_undeclared(path: &Path, implementation: &str, state: &[&str]) {
+    let mut args = vec!["room", "--impl", implementation];
+    args.extend_from_slice(state);
+    args.extend(["-o", path.to_str().unwrap()]);
+    let out = render(&args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("does not declare") && !path.exists(), "{stderr}");
+}
+
 fn png(path: &Path) -> image::RgbaImage {
     image::open(path)
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
@@ -199,19 +211,7 @@ fn a_scissor_keeps_every_mode_inside_it() {
             "{mode}: nothing drawn inside the scissor"
         );
     }
-    let path = dir.join("fast.png");
-    let out = render(&[
-        "room",
-        "--impl",
-        "fast",
-        "--scissor",
-        "20,30,80,40",
-        "-o",
-        path.to_str().unwrap(),
-    ]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(1), "{stderr}");
-    assert!(stderr.contains("does not declare") && !path.exists(), "{stderr}");
+    refused_undeclared(&dir.join("fast.png"), "fast", &["--scissor", "20,30,80,40"]);
     refused(&["room", "--scissor", "1,2,3"], "is not a scissor");
 }
 
@@ -259,19 +259,11 @@ fn a_depth_bias_moves_depth_and_nothing_else() {
         })
         .count();
     assert!(moved > 0, "a slope factor of −64 moved no pixel's depth");
-    let path = dir.join("refused.png");
-    let out = render(&[
-        "room",
-        "--impl",
+    refused_undeclared(
+        &dir.join("refused.png"),
         "restricted:depth-bias=none",
-        "--depth-bias",
-        "0,64",
-        "-o",
-        path.to_str().unwrap(),
-    ]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(1), "{stderr}");
-    assert!(stderr.contains("does not declare") && !path.exists(), "{stderr}");
+        &["--depth-bias", "0,64"],
+    );
     refused(&["room", "--depth-bias", "1"], "is not a depth bias");
     refused(&["room", "--depth-bias", "1,NaN"], "is not a depth bias");
 }
@@ -308,19 +300,11 @@ fn a_polygon_mode_draws_edges_or_vertices() {
     let points = draw("point.png", &["--polygon-mode", "point"]);
     let (f, l, p) = (drawn(&filled), drawn(&lines), drawn(&points));
     assert!(0 < p && p < l && l < f, "points {p}, lines {l}, filled {f}");
-    let path = dir.join("refused.png");
-    let out = render(&[
-        "room",
-        "--impl",
+    refused_undeclared(
+        &dir.join("refused.png"),
         "restricted:polygon-mode=fill",
-        "--polygon-mode",
-        "line",
-        "-o",
-        path.to_str().unwrap(),
-    ]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(1), "{stderr}");
-    assert!(stderr.contains("does not declare") && !path.exists(), "{stderr}");
+        &["--polygon-mode", "line"],
+    );
     refused(&["room", "--polygon-mode", "wire"], "no polygon mode named");
 }
 

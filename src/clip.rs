@@ -4,6 +4,7 @@
 use glam::{DVec3, DVec4};
 
 use crate::depth::{DepthClip, DepthRange};
+use crate::distance::user_outcode;
 use crate::viewport::Viewport;
 
 /// A polygon vertex in clip space with its barycentric coordinates in the original triangle.
@@ -125,7 +126,9 @@ pub fn clip_planes(mode: ClipMode, viewport: Viewport, depth: DepthClip) -> Vec<
 /// Where edge `inside → outside` crosses the plane, computed from the inside end.
 ///
 /// Always starting from the inside vertex makes the result independent of the direction the
-/// edge is walked, so two triangles sharing an edge get the same point and stay watertight.
+/// edge is walked, so two triangles sharing an edge get the same point and stay watertight;
+/// and the inside end is the one whose coordinates the clip volume bounds, so a far vertex's
+/// huge ones never enter the sum but through `t`.
 #[must_use]
 pub fn intersect(inside: &ClipVertex, outside: &ClipVertex, d_inside: f64, d_outside: f64) -> ClipVertex {
     let t = d_inside / (d_inside - d_outside);
@@ -135,18 +138,107 @@ pub fn intersect(inside: &ClipVertex, outside: &ClipVertex, d_inside: f64, d_out
     }
 }
 
+/// Where edge `a → b` crosses a user clip distance whose values at its ends are `da` and `db`,
+/// computed from the end nearer the cut (the smaller `|d|`; on a tie, the first in
+/// [`canonical_order`]).
+///
+/// Neither the direction the edge is walked nor the sign of the distance decides that end, so
+/// two triangles sharing the edge get the same point (a mesh stays watertight) and so do a
+/// distance and its negation (`−a / (−a + b)` is `a / (a − b)` exactly in floating point): a
+/// primitive cut by `d` and by `−d` shares the cut (complementarity).
+#[must_use]
+pub fn intersect_nearer(a: &ClipVertex, b: &ClipVertex, da: f64, db: f64) -> ClipVertex {
+    let a_first = match da.abs().total_cmp(&db.abs()) {
+        std::cmp::Ordering::Equal => canonical_order(a, b).is_le(),
+        order => order.is_lt(),
+    };
+    if a_first {
+        intersect(a, b, da, db)
+    } else {
+        intersect(b, a, db, da)
+    }
+}
+
+/// A total order of clip vertices by position, then barycentrics: which end of an edge a user
+/// clip distance's cut is computed from where both are as near it ([`intersect_nearer`]).
+#[must_use]
+pub fn canonical_order(a: &ClipVertex, b: &ClipVertex) -> std::cmp::Ordering {
+    let key = |v: &ClipVertex| {
+        let (p, b) = (v.position, v.barycentric);
+        [p.x, p.y, p.z, p.w, b.x, b.y, b.z]
+    };
+    let (ka, kb) = (key(a), key(b));
+    ka.iter()
+        .zip(&kb)
+        .map(|(x, y)| x.total_cmp(y))
+        .find(|o| o.is_ne())
+        .unwrap_or(std::cmp::Ordering::Equal)
+}
+
+/// One cut of clipping: a plane of the clip volume, or a user clip distance (its values at the
+/// input primitive's corners, [`user_distance`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Cut {
+    /// A plane of the clip volume, cut from the inside end ([`intersect`]).
+    Plane(ClipPlane),
+    /// A user clip distance, cut from the end nearer it ([`intersect_nearer`]).
+    User(DVec3),
+}
+
+impl Cut {
+    /// The signed distance of `v`, `≥ 0` kept.
+    #[must_use]
+    #[inline]
+    pub fn distance(self, v: &ClipVertex) -> f64 {
+        match self {
+            Self::Plane(plane) => plane.distance(v.position),
+            Self::User(d) => user_distance(v, d),
+        }
+    }
+
+    /// Where edge `inside → outside`, whose distances are `d_inside` and `d_outside`, is cut.
+    #[must_use]
+    #[inline]
+    pub fn crossing(
+        self,
+        inside: &ClipVertex,
+        outside: &ClipVertex,
+        d_inside: f64,
+        d_outside: f64,
+    ) -> ClipVertex {
+        match self {
+            Self::Plane(_) => intersect(inside, outside, d_inside, d_outside),
+            Self::User(_) => intersect_nearer(inside, outside, d_inside, d_outside),
+        }
+    }
+
+    /// The cuts of `planes`, then of the user clip distances `user`, in the order clipping
+    /// makes them.
+    pub fn all<'a>(planes: &'a [ClipPlane], user: &'a [DVec3]) -> impl Iterator<Item = Cut> + 'a {
+        planes
+            .iter()
+            .map(|&plane| Self::Plane(plane))
+            .chain(user.iter().map(|&d| Self::User(d)))
+    }
+}
+
 /// Clips a convex polygon against one plane, writing the kept part into `out`.
 pub fn clip_polygon(polygon: &[ClipVertex], plane: ClipPlane, out: &mut Vec<ClipVertex>) {
+    clip_polygon_at(polygon, Cut::Plane(plane), out);
+}
+
+/// Clips a convex polygon to where `cut`'s distance is `≥ 0`, writing the kept part into `out`.
+pub fn clip_polygon_at(polygon: &[ClipVertex], cut: Cut, out: &mut Vec<ClipVertex>) {
     out.clear();
     for (i, current) in polygon.iter().enumerate() {
         let next = &polygon[(i + 1) % polygon.len()];
-        let (dc, dn) = (plane.distance(current.position), plane.distance(next.position));
+        let (dc, dn) = (cut.distance(current), cut.distance(next));
         if dc >= 0.0 {
             out.push(*current);
         }
         match (dc >= 0.0, dn >= 0.0) {
-            (true, false) => out.push(intersect(current, next, dc, dn)),
-            (false, true) => out.push(intersect(next, current, dn, dc)),
+            (true, false) => out.push(cut.crossing(current, next, dc, dn)),
+            (false, true) => out.push(cut.crossing(next, current, dn, dc)),
             _ => {}
         }
     }
@@ -192,21 +284,32 @@ pub fn classify(codes: [u32; 3]) -> ClipOutcome {
     }
 }
 
-/// Clips triangle `tri` against `planes`, leaving the polygon in `polygon` when it was cut.
+/// A user clip distance at clip vertex `v`: its barycentrics' dot product with the distance
+/// at the input primitive's corners ([`CornerDistances`](crate::distance::CornerDistances)),
+/// so linear in clip space, as Vulkan, OpenGL and D3D11 interpolate clip distances.
+#[must_use]
+#[inline]
+pub fn user_distance(v: &ClipVertex, corners: DVec3) -> f64 {
+    v.barycentric.dot(corners)
+}
+
+/// Clips triangle `tri` against `planes`, then to where each user clip distance of `user` is
+/// `≥ 0`, leaving the polygon in `polygon` when it was cut.
 pub fn clip_triangle(
     tri: &[ClipVertex; 3],
     planes: &[ClipPlane],
+    user: &[DVec3],
     polygon: &mut Vec<ClipVertex>,
     scratch: &mut Vec<ClipVertex>,
 ) -> ClipOutcome {
-    match classify(tri.map(|v| outcode(planes, v.position))) {
+    match classify([0, 1, 2].map(|k| outcode(planes, tri[k].position) | user_outcode(user, k))) {
         ClipOutcome::Clipped => {}
         outcome => return outcome,
     }
     polygon.clear();
     polygon.extend_from_slice(tri);
-    for &plane in planes {
-        clip_polygon(polygon, plane, scratch);
+    for cut in Cut::all(planes, user) {
+        clip_polygon_at(polygon, cut, scratch);
         std::mem::swap(polygon, scratch);
         if polygon.len() < 3 {
             return ClipOutcome::Outside;
@@ -215,22 +318,24 @@ pub fn clip_triangle(
     ClipOutcome::Clipped
 }
 
-/// Clips segment `a → b` against `planes`, keeping `w > 0`; `None` when nothing is left.
+/// Clips segment `a → b` against `planes`, then to where each user clip distance of `user` is
+/// `≥ 0`, keeping `w > 0`; `None` when nothing is left.
 ///
-/// Each cut is made from the end inside the plane ([`intersect`]), as for triangles.
+/// Each cut is made from the end [`Cut::crossing`] chooses, as for triangles.
 #[must_use]
 pub fn clip_segment(
     mut a: ClipVertex,
     mut b: ClipVertex,
     planes: &[ClipPlane],
+    user: &[DVec3],
 ) -> Option<(ClipVertex, ClipVertex)> {
-    for &plane in planes {
-        let (da, db) = (plane.distance(a.position), plane.distance(b.position));
+    for cut in Cut::all(planes, user) {
+        let (da, db) = (cut.distance(&a), cut.distance(&b));
         match (da >= 0.0, db >= 0.0) {
             (true, true) => {}
             (false, false) => return None,
-            (true, false) => b = intersect(&a, &b, da, db),
-            (false, true) => a = intersect(&b, &a, db, da),
+            (true, false) => b = cut.crossing(&a, &b, da, db),
+            (false, true) => a = cut.crossing(&b, &a, db, da),
         }
     }
     (a.position.w > 0.0 && b.position.w > 0.0 && a.position.is_finite() && b.position.is_finite())
@@ -276,7 +381,7 @@ mod tests {
         });
         let (mut polygon, mut scratch) = (Vec::new(), Vec::new());
         assert_eq!(
-            clip_triangle(&tri, &planes, &mut polygon, &mut scratch),
+            clip_triangle(&tri, &planes, &[], &mut polygon, &mut scratch),
             ClipOutcome::Clipped
         );
         assert!(polygon.len() >= 3);

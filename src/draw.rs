@@ -9,6 +9,7 @@
 
 use std::borrow::Cow;
 
+use crate::distance::Distances;
 use crate::error::DrawError;
 use crate::primitive::{SAMPLE_COUNTS, Topology};
 use crate::state::DrawState;
@@ -36,6 +37,10 @@ pub struct Draw {
     pub samples: u8,
     /// Culling (triangles only), depth and clipping state.
     pub state: DrawState,
+    /// Each vertex's user clip and cull distances; none by default. Sent only to a rasterizer
+    /// that declares them ([`StateSupport::clip_distances`](crate::StateSupport::clip_distances),
+    /// [`StateSupport::cull_distances`](crate::StateSupport::cull_distances)).
+    pub distances: Distances,
 }
 
 impl Draw {
@@ -61,6 +66,7 @@ impl Draw {
             indices,
             samples: 1,
             state: DrawState::default(),
+            distances: Distances::default(),
         }
     }
 
@@ -197,6 +203,9 @@ impl Draw {
             bias.validate().map_err(DrawError::Unsupported)?;
         }
         let vertices = self.positions.len();
+        self.distances
+            .validate(vertices)
+            .map_err(DrawError::Unsupported)?;
         for i in 0..self.primitive_count() {
             let out_of_range = |p: &[u32]| p.iter().copied().find(|&v| v as usize >= vertices);
             let found = match self.triangle(i) {
@@ -227,7 +236,13 @@ impl Draw {
         } else {
             String::new()
         };
-        format!("{}{mode} at {samples} per pixel", self.topology)
+        let distances = match (self.distances.clip, self.distances.cull) {
+            (0, 0) => String::new(),
+            (clip, 0) => format!(" with {clip} clip distances"),
+            (0, cull) => format!(" with {cull} cull distances"),
+            (clip, cull) => format!(" with {clip} clip and {cull} cull distances"),
+        };
+        format!("{}{mode}{distances} at {samples} per pixel", self.topology)
     }
 }
 

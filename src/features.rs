@@ -6,6 +6,7 @@ use std::marker::PhantomData;
 
 use crate::bias::{BiasSupport, DepthBias};
 use crate::depth::{CompareOp, DepthRange, ViewportDepth};
+use crate::distance::{Distances, MAX_DISTANCES};
 use crate::setup::{CullMode, FrontFace};
 use crate::state::{PolygonMode, ProvokingVertex};
 use crate::viewport::GUARD_BAND_REACH;
@@ -319,6 +320,13 @@ pub struct StateSupport {
     /// points, with [`Profile::points`](crate::Profile::points)), at every sample count at
     /// which it draws both triangles and those.
     pub polygon_modes: Supported<PolygonMode>,
+    /// How many user clip distances per vertex it honours ([`Draw::distances`](crate::Draw::distances)):
+    /// a primitive drawn only where each, interpolated linearly in clip space, is `≥ 0`; 0 when
+    /// it has none. At most [`MAX_DISTANCES`](crate::MAX_DISTANCES) with the cull distances.
+    pub clip_distances: usize,
+    /// How many cull distances per vertex it honours: a primitive with every vertex negative in
+    /// one of them is not drawn; 0 when it has none.
+    pub cull_distances: usize,
 }
 
 impl StateSupport {
@@ -366,6 +374,12 @@ impl StateSupport {
         }
     }
 
+    /// `distances` with only as many clip and cull distances as are declared.
+    #[must_use]
+    pub fn fit_distances(&self, distances: &Distances) -> Distances {
+        distances.truncated(self.clip_distances, self.cull_distances)
+    }
+
     /// None of it: what a rasterizer written before it existed declares.
     pub const NONE: StateSupport = StateSupport {
         scissor: false,
@@ -378,6 +392,8 @@ impl StateSupport {
         unclipped_depth: false,
         depth_bias: None,
         polygon_modes: Supported::NONE,
+        clip_distances: 0,
+        cull_distances: 0,
     };
     /// All of it, as the reference honours it.
     pub const ALL: StateSupport = StateSupport {
@@ -391,6 +407,8 @@ impl StateSupport {
         unclipped_depth: true,
         depth_bias: Some(BiasSupport::REFERENCE),
         polygon_modes: Supported::ALL,
+        clip_distances: MAX_DISTANCES,
+        cull_distances: MAX_DISTANCES,
     };
 }
 

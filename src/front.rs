@@ -13,6 +13,7 @@ use crate::clip::{
     ClipOutcome, ClipPlane, ClipVertex, assemble, classify, clip_planes, clip_triangle, outcode,
 };
 use crate::config::{ReferenceConfig, Traversal};
+use crate::distance::{CornerDistances, Unkept};
 use crate::draw::Draw;
 use crate::edge::FillConvention;
 use crate::fixed::FixedPoint;
@@ -110,7 +111,8 @@ pub struct FrontScratch {
 pub enum Discard {
     /// A NaN or infinite coordinate.
     NonFinite,
-    /// Wholly outside the clip volume, behind the eye included.
+    /// Wholly outside the clip volume (behind the eye included) or a user clip distance, or
+    /// culled by a cull distance.
     ClippedAway,
     /// Zero area after snapping, or no raster position (drawn never).
     Degenerate,
@@ -118,6 +120,16 @@ pub enum Discard {
     Culled,
     /// Inside the clip volume, with a bounding box that holds no sample of the viewport.
     OffScreen,
+}
+
+/// A primitive its distances leave out is counted as one the clip volume does.
+impl From<Unkept> for Discard {
+    fn from(unkept: Unkept) -> Self {
+        match unkept {
+            Unkept::NonFinite => Self::NonFinite,
+            Unkept::Culled => Self::ClippedAway,
+        }
+    }
 }
 
 /// A triangle the front end keeps, ready for traversal.
@@ -140,10 +152,11 @@ pub struct Kept {
 /// Takes triangle `primitive`, whose corners are `corners` (as [`FrontSetup::corners`] gives
 /// them), through the front end: kept, or why it draws nothing.
 ///
-/// 1. a non-finite corner discards it;
+/// 1. a non-finite corner or user distance discards it, and so does every corner negative in
+///    one cull distance;
 /// 2. **snap before clipping**: when every corner projects, the snapped input is set up, and
 ///    zero area draws nothing (clipping it would leave slivers off its line);
-/// 3. **clip**: wholly outside draws nothing; wholly inside is drawn as snapped; otherwise it
+/// 3. **clip** (the clip volume, then each user clip distance): wholly outside draws nothing; wholly inside is drawn as snapped; otherwise it
 ///    is clipped, its polygon projected, snapped and fanned;
 /// 4. **face** by the winding it is drawn with ([`drawn_winding`]), then **cull**;
 /// 5. **bound**: its box of samples in the viewport, or the whole viewport.
@@ -156,13 +169,15 @@ pub fn front_end(
     if !corners.iter().all(|c| c.finite) {
         return Err(Discard::NonFinite);
     }
+    // User distances: non-finite ones discard, a cull distance may cull, clip distances cut.
+    let user = CornerDistances::of(&setup.draw.distances, &setup.triangles[primitive])?;
     let snapped = match corners.map(|c| c.point) {
         [Some(a), Some(b), Some(c)] => {
             Some(SnappedTriangle::new([a, b, c], setup.fill).ok_or(Discard::Degenerate)?)
         }
         _ => None,
     };
-    match classify(corners.map(|c| c.outcode)) {
+    match classify([0, 1, 2].map(|k| corners[k].outcode | user.outcode(k))) {
         ClipOutcome::Outside => Err(Discard::ClippedAway),
         ClipOutcome::Inside => {
             let triangle = snapped.ok_or(Discard::Degenerate)?;
@@ -179,8 +194,13 @@ pub fn front_end(
             let input =
                 assemble(&setup.draw.positions, setup.triangles[primitive]).ok_or(Discard::NonFinite)?;
             // The outcodes said cut; what is cut can still leave less than a triangle.
-            if clip_triangle(&input, &setup.planes, &mut scratch.polygon, &mut scratch.clip)
-                != ClipOutcome::Clipped
+            if clip_triangle(
+                &input,
+                &setup.planes,
+                user.planes(),
+                &mut scratch.polygon,
+                &mut scratch.clip,
+            ) != ClipOutcome::Clipped
             {
                 return Err(Discard::ClippedAway);
             }

@@ -26,6 +26,7 @@
 //! | what an implementation declares | `profile.rs`, `features.rs` | [`Profile`], [`Snapping`], [`Spec`], [`Features`], [`StateSupport`], [`Supported`], [`SnapAccuracy`] |
 //! | state | `state.rs`, `setup.rs`, `depth.rs` | [`DrawState`], [`Scissor`], [`ProvokingVertex`], [`CullMode`], [`FrontFace`], [`DepthState`], [`CompareOp`], [`DepthRange`], [`ViewportDepth`] |
 //! | polygon modes | `state.rs`, `polygon.rs` | [`PolygonMode`] |
+//! | clip and cull distances | `distance.rs` | [`Distances`], [`MAX_DISTANCES`], [`stage::CornerDistances`] |
 //! | depth bias | `bias.rs` | [`DepthBias`], [`DepthFormat`], [`DepthSlope`], [`BiasSupport`], [`bias::polygon_offset`] |
 //! | the reference | `reference.rs` | [`Reference`], [`ReferenceConfig`], [`Traversal`], [`ClipMode`], [`DrawStats`], [`Sample`] |
 //! | fixed point | `fixed.rs` | [`SubpixelBits`], [`FixedPoint`], [`snap`], [`SnapRounding`], [`COORD_LIMIT`] |
@@ -79,8 +80,14 @@
 //! - **Clip volume**: `−w ≤ x, y ≤ w`, `0 ≤ z ≤ w` (or `−w ≤ z`, [`DepthRange`]). Near is
 //!   clipped unless depth clipping is off ([`DrawState::clip_near`]), far when enabled, x/y (which
 //!   also keep out what lies behind the eye) at the guard band ([`stage::GUARD_BAND`]) and clamped by
-//!   traversal, or at the viewport with [`ClipMode::Full`]. Intersections are canonical
-//!   ([`stage::intersect`]).
+//!   traversal, or at the viewport with [`ClipMode::Full`]. Intersections are canonical:
+//!   computed from the inside end ([`stage::intersect`]); a user clip distance's from the end
+//!   nearer the cut, whichever side it keeps ([`stage::intersect_nearer`]).
+//! - **Clip and cull distances**: a primitive whose every vertex is negative in one cull
+//!   distance is discarded; each clip distance, interpolated linearly in clip space, then cuts
+//!   it after the clip volume's planes, keeping where it is `≥ 0` (a point with a negative one is
+//!   discarded); a non-finite distance discards the primitive ([`Distances`],
+//!   [`stage::CornerDistances`]).
 //! - **Scissor**: a fragment is produced only where its pixel lies in the draw's scissor
 //!   rectangle, half-open in raster space, for every primitive and sample
 //!   ([`DrawState::passes_scissor`]).
@@ -118,6 +125,7 @@ mod clip;
 mod config;
 mod dda;
 mod depth;
+mod distance;
 mod draw;
 mod edge;
 mod error;
@@ -145,6 +153,7 @@ pub use bias::{BiasSupport, DepthBias, DepthFormat, DepthSlope};
 pub use clip::ClipMode;
 pub use config::{ReferenceConfig, Traversal};
 pub use depth::{CompareOp, DepthClip, DepthRange, DepthState, ViewportDepth};
+pub use distance::{Distances, MAX_DISTANCES};
 pub use draw::{Draw, Fragment, Resolved};
 pub use edge::{FillConvention, is_top_left, orient2d};
 pub use error::{ConfigError, DrawError, Unavailable};

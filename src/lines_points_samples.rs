@@ -6,6 +6,9 @@
 //!   ([`segment::covers`]). Under the diamond-exit rule every sample of a drawn pixel is
 //!   covered (Vulkan: "sample locations may all be treated as being at the pixel center").
 //!   A fragment's `t` is the sample's projection on the snapped segment, clamped to `[0, 1]`.
+//! - **User clip distances** cut lines as they cut triangles (linearly in clip space, after the
+//!   clip volume's planes); a point with a negative one is discarded. A line or point whose
+//!   every vertex is negative in one cull distance is not drawn.
 //! - **Points** outside the view volume are discarded (Vulkan, Primitive Clipping: a point is
 //!   passed "unchanged if it lies within the clip volume"), or, configured pop-free
 //!   ([`PointClipping::UserClipPlanesOnly`]), only those outside the near or far plane; a kept
@@ -20,6 +23,7 @@ use glam::{DVec3, DVec4};
 use crate::bias::FragmentDepth;
 use crate::clip::{ClipMode, ClipPlane, ClipVertex, clip_planes, clip_segment, outcode};
 use crate::config::Traversal;
+use crate::distance::CornerDistances;
 use crate::draw::{Draw, Fragment};
 use crate::error::DrawError;
 use crate::fixed::FixedPoint;
@@ -46,16 +50,20 @@ pub(crate) struct Owner {
     pub(crate) flat: Option<u32>,
     /// Its depth bias and the viewport's depth range.
     pub(crate) depth: FragmentDepth,
+    /// Its user clip distances at its corners.
+    pub(crate) user: CornerDistances,
 }
 
 impl Owner {
-    /// Primitive `i` of `draw`, a line or a point: front-facing, unbiased.
-    fn of(draw: &Draw, i: usize) -> Self {
+    /// Primitive `i` of `draw`, a line or a point with clip distances `user`: front-facing,
+    /// unbiased.
+    fn of(draw: &Draw, i: usize, user: CornerDistances) -> Self {
         Self {
             primitive: i as u32,
             front_facing: true,
             flat: draw.provoking(i),
             depth: FragmentDepth::new(draw.state.viewport_depth, 0.0),
+            user,
         }
     }
 }
@@ -212,7 +220,10 @@ impl Reference {
             let (pa, pb) = (draw.positions[ia as usize], draw.positions[ib as usize]);
             let w = DVec3::new(f64::from(pa[3]), f64::from(pb[3]), 1.0);
             let ends = ([pa, pb], [DVec3::X, DVec3::Y]);
-            match self.segment(draw, ends, w, &Owner::of(draw, i), offsets, &mut emit) {
+            let drawn = CornerDistances::of(&draw.distances, &[ia, ib])
+                .map_err(Discard::from)
+                .and_then(|user| self.segment(draw, ends, w, &Owner::of(draw, i, user), offsets, &mut emit));
+            match drawn {
                 Ok(covered) => {
                     stats.traversed += 1;
                     stats.fragments += covered;
@@ -224,8 +235,9 @@ impl Reference {
     }
 
     /// One segment from `positions[0]` to `positions[1]`, whose ends have barycentrics
-    /// `barycentrics` over corners whose `w`s are `corner_w`: clipped, projected and snapped,
-    /// then covered by the line rule; the number of samples covered, or why it drew nothing.
+    /// `barycentrics` over corners whose `w`s are `corner_w` (and whose clip distances the
+    /// owner carries): clipped, projected and snapped, then covered by the line rule; the number of
+    /// samples covered, or why it drew nothing.
     pub(crate) fn segment(
         &self,
         draw: &Draw,
@@ -244,8 +256,13 @@ impl Reference {
             barycentric,
         };
         let planes = clip_planes(self.config().clip, draw.viewport, draw.state.depth_clip());
-        let (ca, cb) = clip_segment(end(pa, barycentrics[0]), end(pb, barycentrics[1]), &planes)
-            .ok_or(Discard::ClippedAway)?;
+        let (ca, cb) = clip_segment(
+            end(pa, barycentrics[0]),
+            end(pb, barycentrics[1]),
+            &planes,
+            owner.user.planes(),
+        )
+        .ok_or(Discard::ClippedAway)?;
         // Screen-space barycentrics along the input segment exist when its corners project.
         let input_w = (pa[3] > 0.0 && pb[3] > 0.0 && corner_w.min_element() > 0.0).then_some(corner_w);
         let transform = self.transform(draw);
@@ -332,7 +349,12 @@ impl Reference {
         };
         for (i, &index) in draw.indices.iter().enumerate() {
             let p = draw.positions[index as usize];
-            match self.point(draw, p, DVec3::X, &Owner::of(draw, i), offsets, &mut emit) {
+            let drawn = CornerDistances::of(&draw.distances, &[index])
+                .map_err(Discard::from)
+                .and_then(|user| {
+                    self.point(draw, p, DVec3::X, &Owner::of(draw, i, user), offsets, &mut emit)
+                });
+            match drawn {
                 Ok(covered) => {
                     stats.traversed += 1;
                     stats.fragments += covered;
@@ -343,8 +365,9 @@ impl Reference {
         stats
     }
 
-    /// One point at `p`, its barycentrics `barycentric`: kept inside the view volume (or only
-    /// the near and far planes, pop-free), then the square around it covered; the number of
+    /// One point at `p`, its barycentrics `barycentric` over corners whose clip distances the
+    /// owner carries: kept inside the view volume (or only the near and far planes, pop-free) and
+    /// where no clip distance is negative, then the square around it covered; the number of
     /// samples covered, or why it drew nothing.
     pub(crate) fn point(
         &self,
@@ -365,7 +388,7 @@ impl Reference {
             planes.retain(|p| matches!(p, ClipPlane::Near(_) | ClipPlane::Far));
         }
         let clip = DVec4::from(p.map(f64::from));
-        if outcode(&planes, clip) != 0 {
+        if outcode(&planes, clip) != 0 || !owner.user.keeps(barycentric) {
             return Err(Discard::ClippedAway);
         }
         let point = self

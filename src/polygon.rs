@@ -6,6 +6,7 @@ use glam::DVec3;
 
 use crate::bias::FragmentDepth;
 use crate::config::{ReferenceConfig, Traversal};
+use crate::distance::CornerDistances;
 use crate::draw::{Draw, Fragment};
 use crate::front::{FrontScratch, FrontSetup, front_end};
 use crate::lines_points_samples::{Offsets, Owner};
@@ -52,6 +53,8 @@ impl Reference {
                 front_facing: kept.front_facing,
                 flat: draw.provoking(primitive),
                 depth: FragmentDepth::new(draw.state.viewport_depth, kept.depth_offset),
+                // The front end kept it, so its distances are finite and cull nothing.
+                user: CornerDistances::of(&draw.distances, &setup.triangles[primitive]).unwrap_or_default(),
             };
             let corners = setup.triangles[primitive].map(|i| draw.positions[i as usize]);
             for k in 0..3 {
@@ -89,6 +92,7 @@ mod tests {
                 polygon_mode: mode,
                 ..DrawState::default()
             },
+            distances: crate::Distances::default(),
         }
     }
 

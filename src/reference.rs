@@ -21,7 +21,8 @@ pub struct DrawStats {
     pub triangles: usize,
     /// Discarded for a NaN or infinite coordinate.
     pub non_finite: usize,
-    /// Wholly outside the clip volume, behind the eye included.
+    /// Wholly outside the clip volume (behind the eye included) or a user clip distance, or
+    /// culled by a cull distance.
     pub clipped_away: usize,
     /// Zero area after snapping, or a vertex with no raster position (drawn never).
     pub degenerate: usize,

@@ -29,10 +29,11 @@
 
 pub use crate::bias::{FragmentDepth, polygon_offset};
 pub use crate::clip::{
-    ClipOutcome, ClipPlane, ClipVertex, assemble, classify, clip_planes, clip_polygon, clip_segment,
-    clip_triangle, intersect, outcode,
+    ClipOutcome, ClipPlane, ClipVertex, Cut, assemble, canonical_order, classify, clip_planes, clip_polygon,
+    clip_polygon_at, clip_segment, clip_triangle, intersect, intersect_nearer, outcode, user_distance,
 };
 pub use crate::dda::{LineFragment, LineVertex, rasterize_line, rasterize_point};
+pub use crate::distance::{CornerDistances, Unkept};
 pub use crate::edge::EdgeFunction;
 pub use crate::front::{Corner, Discard, FrontScratch, FrontSetup, Kept, front_end};
 pub use crate::interp::{Barycentrics, Varyings, interpolate, interpolate_depth, screen_weights};

@@ -19,8 +19,8 @@ Draw = namedtuple(
     "Draw",
     "width height positions triangles cull front_face depth_compare depth_write depth_clear "
     "depth_range far_clipping topology samples scissor indices provoking_vertex near_clipping "
-    "viewport_depth depth_bias polygon_mode",
-    defaults=(None, None, "first", True, (0.0, 1.0), None, "fill"),
+    "viewport_depth depth_bias polygon_mode clip_distances cull_distances",
+    defaults=(None, None, "first", True, (0.0, 1.0), None, "fill", None, None),
 )
 Draw.__doc__ = """One draw: clip-space positions (x, y, z, w), triangles (i, j, k) and state.
 
@@ -47,7 +47,10 @@ m its depth slope and r its format's resolvable difference, before the clamp to 
 polygon_mode is fill, or line or point for a triangle draw to a profile whose polygon-mode line
 lists it: each triangle, clipped, faced and culled as a filled one, draws its edges (first to
 second, second to third, third to first) by the profile's line rule, or its vertices as points.
-Indices are not checked: raise Refused for one that names no vertex."""
+clip_distances and cull_distances are None, or one list per vertex for a profile with a
+clip-distances or cull-distances line: a primitive is drawn only where each clip distance,
+interpolated perspective-correctly, is >= 0, and not at all when every vertex has a negative
+value of one cull distance. Indices are not checked: raise Refused for one that names no vertex."""
 
 Fragment = namedtuple(
     "Fragment", "x y primitive front_facing depth barycentric screen_barycentric sample flat"
@@ -120,6 +123,10 @@ def _read_draw(words, stream):
     n = index_count(topology, primitives)
     floats = struct.unpack(f"<{4 * vertices}f", _read_exactly(stream, 16 * vertices))
     indices = struct.unpack(f"<{n}I", _read_exactly(stream, 4 * n))
+    clip, cull = (int(v) for v in fields.get("distances", "0,0").split(","))
+    per = clip + cull
+    values = struct.unpack(f"<{per * vertices}f", _read_exactly(stream, 4 * per * vertices))
+    rows = [values[v * per : (v + 1) * per] for v in range(vertices)]
     return Draw(
         width=width,
         height=height,
@@ -143,6 +150,8 @@ def _read_draw(words, stream):
         else (0.0, 1.0),
         depth_bias=tuple(float(v) for v in fields["depth-bias"].split(",")) if "depth-bias" in fields else None,
         polygon_mode=fields.get("polygon-mode", "fill"),
+        clip_distances=[list(r[:clip]) for r in rows] if clip else None,
+        cull_distances=[list(r[clip:]) for r in rows] if cull else None,
     )
 
 

@@ -12,6 +12,9 @@ around. Barycentrics are perspective-correct, depth is z/w through the viewport'
 drops the fragments outside it, and its own depth buffer answers `resolve`. It draws triangle
 lists, strips and fans (refrast_pipe assembles a strip's or fan's triangles in Vulkan's order),
 and each fragment carries its triangle's provoking vertex (first or last) as its flat vertex.
+Clip distances are tested per sample, as D3D11.3 §15.4.1 words it (a sample is drawn where each
+distance, interpolated perspective-correctly, is >= 0), not by cutting the polygon as refrast
+does; a triangle every corner of which is negative in one cull distance is not drawn.
 
 Run it with refrast:  refrast certify --exec "python3 clients/python/topleft.py"
 
@@ -57,6 +60,9 @@ PROFILE = {
     "depth-range": "zero-to-one negative-one-to-one",
     # f32 depth, the slope as max(|dz/dx|, |dz/dy|) (the approximation Vulkan allows), the clamp.
     "depth-bias": "float32 max clamp",
+    # Tested per sample; at most 8 together.
+    "clip-distances": 4,
+    "cull-distances": 4,
 }
 
 
@@ -160,10 +166,26 @@ def clipped_clockwise(tri):
     return det < 0 if abs(det) > 1e-10 * scale else None
 
 
-def triangle_fragments(draw, t, tri):
-    """Every fragment of triangle t, whose clip-space vertices are tri."""
-    if any(c != c or c in (float("inf"), float("-inf")) for p in tri for c in p):
+def finite(values):
+    return all(c == c and c not in (float("inf"), float("-inf")) for c in values)
+
+
+def triangle_fragments(draw, t, tri, corners_of=None):
+    """Every fragment of triangle t, whose clip-space vertices are tri (the draw's vertices
+    corners_of, for their clip and cull distances)."""
+    if not all(finite(p) for p in tri):
         return []
+    clip_distances = None
+    if corners_of is not None and draw.cull_distances is not None:
+        culls = [draw.cull_distances[i] for i in corners_of]
+        if not all(finite(c) for c in culls):
+            return []
+        if any(all(c[j] < 0 for c in culls) for j in range(len(culls[0]))):
+            return []  # culled: every corner negative in one cull distance
+    if corners_of is not None and draw.clip_distances is not None:
+        clip_distances = [draw.clip_distances[i] for i in corners_of]
+        if not all(finite(c) for c in clip_distances):
+            return []
     corners = [(p, tuple(1.0 if j == k else 0.0 for j in range(3))) for k, p in enumerate(tri)]
     input_w = [p[3] for p in tri] if all(p[3] > 0 for p in tri) else None
     unclipped = [project(draw, v, input_w) for v in corners] if input_w else [None]
@@ -197,7 +219,7 @@ def triangle_fragments(draw, t, tri):
     front = clockwise == (draw.front_face == "cw")
     if draw.cull == "front-and-back" or (draw.cull == "back" and not front) or (draw.cull == "front" and front):
         return []
-    return fan_fragments(draw, t, raster, front)
+    return fan_fragments(draw, t, raster, front, clip_distances)
 
 
 def edge_function(p, q):
@@ -233,8 +255,9 @@ def depth_offset(draw, raster):
     return o
 
 
-def fan_fragments(draw, t, raster, front):
-    """Samples the snapped fan winds around, each with its interpolated values."""
+def fan_fragments(draw, t, raster, front, clip_distances=None):
+    """Samples the snapped fan winds around, each with its interpolated values, those where a
+    clip distance (given per corner of the input triangle) interpolates to < 0 left out."""
     # A lone triangle covers each of its samples once; a fan's windings are summed per sample.
     lone = len(raster) == 3
     hits, covered = [], {}
@@ -298,6 +321,10 @@ def fan_fragments(draw, t, raster, front):
             (ba[1] * q0 + bb[1] * q1 + bc[1] * q2) / total,
             (ba[2] * q0 + bb[2] * q1 + bc[2] * q2) / total,
         )
+        if clip_distances is not None and any(
+            sum(bary[k] * clip_distances[k][j] for k in range(3)) < 0 for j in range(len(clip_distances[0]))
+        ):
+            continue
         screen = (0.0, 0.0, 0.0)
         if ca[4] is not None:
             sa, sb, sc = ca[4], cb[4], cc[4]
@@ -322,7 +349,7 @@ def rasterize(draw):
         draw = draw._replace(cull=FIXED_CULL)
     out = []
     for t, tri in enumerate(draw.triangles):
-        out += triangle_fragments(draw, t, [draw.positions[i] for i in tri])
+        out += triangle_fragments(draw, t, [draw.positions[i] for i in tri], tri)
     return [f for f in out if in_scissor(draw, f.x, f.y)]
 
 

@@ -77,7 +77,7 @@ pub use rules::{Family, Kind, Level, Levels, Need, Rule, catalogue, levels_markd
 pub use runner::DEFAULT_SEED;
 // A counterexample printed as Rust names these (`use refrast_conformance::*;` pastes it).
 pub use rules::{meta::Translated, robust::Poisoned};
-pub use scene::{Case, CaseData, Coordinate, DrawData, Poison, PrimitiveScene, Scene};
+pub use scene::{Case, CaseData, Coordinate, DistanceData, DrawData, Poison, PrimitiveScene, Scene};
 pub use spec::{Coverage, SpecMap, Statement, spec_map};
 pub use violation::{Class, Counts, Picture};
 

@@ -378,6 +378,14 @@ pub fn feature_list(p: &Profile) -> Vec<String> {
     if !p.state.polygon_modes.is_empty() {
         list.push(setting(PolygonMode::KEY, p.state.polygon_modes));
     }
+    for (key, n) in [
+        ("clip-distances", p.state.clip_distances),
+        ("cull-distances", p.state.cull_distances),
+    ] {
+        if n > 0 {
+            list.push(format!("{key} {n}"));
+        }
+    }
     if let Some(b) = p.state.depth_bias {
         // As the pipe protocol's `depth-bias` line says it.
         let clamp = if b.clamp { " clamp" } else { "" };

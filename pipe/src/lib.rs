@@ -339,6 +339,13 @@ impl Process {
                 draw.describe()
             )));
         }
+        let d = &draw.distances;
+        if d.clip > profile.state.clip_distances || d.cull > profile.state.cull_distances {
+            return Err(DrawError::Unsupported(format!(
+                "{} clip and {} cull distances per vertex (the child declares {} and {})",
+                d.clip, d.cull, profile.state.clip_distances, profile.state.cull_distances
+            )));
+        }
         if !profile.supports(&draw.state) {
             return Err(DrawError::Unsupported(format!(
                 "{:?} (the child does not declare it; it does declare {:?})",

@@ -98,7 +98,7 @@ fn crossing_all_six_planes_leaves_the_slab_between_near_and_far() {
     let planes = clip_planes(ClipMode::Full, draw.viewport, draw.state.depth_clip());
     let (mut polygon, mut scratch) = (Vec::new(), Vec::new());
     assert_eq!(
-        clip_triangle(&tri, &planes, &mut polygon, &mut scratch),
+        clip_triangle(&tri, &planes, &[], &mut polygon, &mut scratch),
         ClipOutcome::Clipped
     );
     for v in &polygon {

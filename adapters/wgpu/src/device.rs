@@ -162,6 +162,10 @@ pub struct Context {
     /// `POLYGON_MODE_POINT` (Vulkan's `fillModeNonSolid`; `glPolygonMode` on wgpu's GL backend,
     /// which Mesa's EGL drivers report though OpenGL ES 3.2 has no polygon modes).
     pub polygon_modes: Supported<PolygonMode>,
+    /// Whether its vertex stages write clip distances: the adapter reports
+    /// `Features::CLIP_DISTANCES` (Vulkan's `shaderClipDistance`; OpenGL ES's
+    /// `EXT_clip_cull_distance`).
+    pub clip_distances: bool,
 }
 
 /// What opening a driver gave: its device, or why there is none.
@@ -237,12 +241,13 @@ fn open(driver: Driver) -> Result<Context, Unavailable> {
         required_limits: limits.clone(),
         // WebGPU's core formats hold no 32-bit integer at several samples; the id targets of a
         // multisampled resolve need the adapter's own format features.
-        // Depth clipping off and polygon modes where the adapter has them.
+        // Depth clipping off, polygon modes and clip distances where the adapter has them.
         required_features: adapter.features()
             & (wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES
                 | wgpu::Features::DEPTH_CLIP_CONTROL
                 | wgpu::Features::POLYGON_MODE_LINE
-                | wgpu::Features::POLYGON_MODE_POINT),
+                | wgpu::Features::POLYGON_MODE_POINT
+                | wgpu::Features::CLIP_DISTANCES),
         ..wgpu::DeviceDescriptor::default()
     }))
     .map_err(|e| Unavailable(format!("{} refused a device: {e}", describe(info))))?;
@@ -262,6 +267,7 @@ fn open(driver: Driver) -> Result<Context, Unavailable> {
             .get_downlevel_capabilities()
             .flags
             .contains(wgpu::DownlevelFlags::DEPTH_BIAS_CLAMP),
+        clip_distances: adapter.features().contains(wgpu::Features::CLIP_DISTANCES),
         polygon_modes: Supported::only(
             &[
                 (wgpu::Features::POLYGON_MODE_LINE, PolygonMode::Line),

@@ -11,7 +11,7 @@ use std::time::{Duration, Instant};
 use crate::Timings;
 use crate::device::Context;
 use crate::pipelines::{DEPTH, DEPTHS, IDS, Key, Method, Pass, Pipelines};
-use crate::resources::{Readback, along, depth_attachment, map, set_scissor, target, vertex_list};
+use crate::resources::{Readback, VertexBuffers, along, depth_attachment, map, set_scissor, target};
 
 /// One covered sample as the capture shader writes it (`Sample` in `capture.wgsl`); the
 /// position as the bits of its f32 coordinates.
@@ -45,7 +45,7 @@ pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
         return crate::targets::capture(ctx, pipelines, draw);
     }
     let offset = strip_offset(ctx, pipelines, draw.topology)?;
-    let vertices = vertex_list(draw);
+    let vertices = VertexBuffers::new(ctx, draw);
     // Room for every sample covered by four primitives; a draw covering more is drawn again with
     // room for exactly what the first pass counted.
     let mut capacity = (draw.viewport.pixel_count() * usize::from(draw.samples) * primitives.min(4)).max(1);
@@ -137,7 +137,7 @@ fn capture_pass(
     ctx: &Context,
     pipelines: &mut Pipelines,
     draw: &Draw,
-    vertices: &[[f32; 4]],
+    vertices: &VertexBuffers,
     capacity: usize,
 ) -> Result<(usize, Vec<RawSample>), DrawError> {
     let device = &ctx.device;
@@ -148,11 +148,6 @@ fn capture_pass(
             "{capacity} covered samples need {bytes} bytes, more than the device binds"
         )));
     }
-    let vertex_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("vertices"),
-        contents: bytemuck::cast_slice(vertices),
-        usage: wgpu::BufferUsages::VERTEX,
-    });
     let storage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC;
     let count_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("count"),
@@ -186,7 +181,9 @@ fn capture_pass(
     } else {
         Pass::CaptureSamples
     };
-    let key = Key::new(pass, &draw.state).drawing(draw.topology, draw.samples);
+    let key = Key::new(pass, &draw.state)
+        .drawing(draw.topology, draw.samples)
+        .clipping(draw.distances.clip > 0);
     let pipeline = pipelines.get(device, key)?;
     let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
         label: Some("capture"),
@@ -200,9 +197,9 @@ fn capture_pass(
         });
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &bind_group, &[]);
-        pass.set_vertex_buffer(0, vertex_buffer.slice(..));
+        vertices.bind(&mut pass);
         set_scissor(&mut pass, draw);
-        pass.draw(0..vertices.len() as u32, 0..1);
+        pass.draw(0..vertices.count, 0..1);
     }
     let count = read_buffer(ctx, encoder, &count_buffer, 4)?;
     let count = bytemuck::pod_read_unaligned::<u32>(&count) as usize;
@@ -262,12 +259,7 @@ fn resolve_with(
         });
     }
     let device = &ctx.device;
-    let vertices = vertex_list(draw);
-    let vertex_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("vertices"),
-        contents: bytemuck::cast_slice(&vertices),
-        usage: wgpu::BufferUsages::VERTEX,
-    });
+    let vertices = VertexBuffers::new(ctx, draw);
     let samples = draw.samples;
     let depth = target(ctx, draw.viewport, DEPTH, samples);
     let ids = target(ctx, draw.viewport, IDS, samples);
@@ -275,7 +267,9 @@ fn resolve_with(
     let depth_view = depth.create_view(&wgpu::TextureViewDescriptor::default());
     let ids_view = ids.create_view(&wgpu::TextureViewDescriptor::default());
     let depths_view = depths.create_view(&wgpu::TextureViewDescriptor::default());
-    let key = Key::new(Pass::Resolve, &draw.state).drawing(draw.topology, samples);
+    let key = Key::new(Pass::Resolve, &draw.state)
+        .drawing(draw.topology, samples)
+        .clipping(draw.distances.clip > 0);
     let pipeline = pipelines.get(device, key)?;
     let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
         label: Some("resolve"),
@@ -296,9 +290,9 @@ fn resolve_with(
             ..wgpu::RenderPassDescriptor::default()
         });
         pass.set_pipeline(pipeline);
-        pass.set_vertex_buffer(0, vertex_buffer.slice(..));
+        vertices.bind(&mut pass);
         set_scissor(&mut pass, draw);
-        pass.draw(0..vertices.len() as u32, 0..1);
+        pass.draw(0..vertices.count, 0..1);
     }
     // The draw, timed apart from reading it back.
     let started = Instant::now();

@@ -206,6 +206,16 @@ impl Gpu {
             )));
         }
         self.check_target(&profile, draw.viewport, &draw.state)?;
+        let d = &draw.distances;
+        if d.clip > profile.state.clip_distances || d.cull > profile.state.cull_distances {
+            return Err(DrawError::Unsupported(format!(
+                "{} clip and {} cull distances per vertex: {} takes {} clip distances (wgpu's CLIP_DISTANCES) and no cull distances (WGSL has none)",
+                d.clip,
+                d.cull,
+                self.driver.name(),
+                profile.state.clip_distances
+            )));
+        }
         if let Some(b) = draw.state.depth_bias.filter(|_| draw.topology.is_triangles()) {
             // `as` saturates: a constant that reads back unchanged is a whole i32.
             if f64::from(b.constant as i32) != f64::from(b.constant) {
@@ -361,6 +371,10 @@ impl Rasterizer for Gpu {
                         })
                         .collect::<Vec<_>>(),
                 ),
+                // WGSL's `clip_distances` (an array of at most 8) where the device has wgpu's
+                // CLIP_DISTANCES; WGSL has no cull distances.
+                clip_distances: if self.context.clip_distances { 8 } else { 0 },
+                cull_distances: 0,
             },
         }
     }

@@ -45,6 +45,8 @@ pub struct Key {
     bias: Option<(i32, u32, u32)>,
     /// How triangles are drawn: filled, or as their edges or vertices (`PolygonMode`).
     polygon: PolygonMode,
+    /// Whether the vertices carry clip distances (`clip_vertex.wgsl`).
+    clip: bool,
 }
 
 impl Key {
@@ -70,7 +72,14 @@ impl Key {
                 .depth_bias
                 .map(|b| (b.constant as i32, b.slope.to_bits(), b.clamp.to_bits())),
             polygon: state.polygon_mode,
+            clip: false,
         }
+    }
+
+    /// The same key with clip distances written by the vertex stage, or not.
+    #[must_use]
+    pub fn clipping(self, clip: bool) -> Self {
+        Self { clip, ..self }
     }
 
     /// The same key drawing `topology` at `samples` samples per pixel.
@@ -122,6 +131,9 @@ pub struct Pipelines {
     /// samples): the same vertex stage and interpolation as the per-sample capture, so that
     /// the two passes differ only in what their fragment shaders write.
     samples_resolve_module: Option<wgpu::ShaderModule>,
+    /// The vertex stages writing clip distances, at the pixel's centre and per sample, when
+    /// built (on the first draw with clip distances, which only a device with the feature gets).
+    clip_modules: [Option<wgpu::ShaderModule>; 2],
     /// The unpacking of a multisampled resolve: its pipeline and bind group layout, when built.
     unpacking: Option<(wgpu::RenderPipeline, wgpu::BindGroupLayout)>,
     /// How far a strip's flat values are from its primitive's index, per strip topology: 0
@@ -178,6 +190,7 @@ impl Pipelines {
             targets_module: module("capture targets", include_str!("targets.wgsl")),
             samples_module: None,
             samples_resolve_module: None,
+            clip_modules: [None, None],
             unpacking: None,
             strip_offsets: HashMap::new(),
             layout,
@@ -225,6 +238,25 @@ impl Pipelines {
                     "",
                 ));
             }
+            let per_sample = usize::from(Self::per_sample(key));
+            if key.clip && self.clip_modules[per_sample].is_none() {
+                let (perspective, linear) = if per_sample == 1 {
+                    ("perspective, sample", "linear, sample")
+                } else {
+                    ("perspective, center", "linear")
+                };
+                self.clip_modules[per_sample] = Some(
+                    device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                        label: Some("clip distances"),
+                        source: wgpu::ShaderSource::Wgsl(
+                            include_str!("clip_vertex.wgsl")
+                                .replace("PERSPECTIVE", perspective)
+                                .replace("LINEAR", linear)
+                                .into(),
+                        ),
+                    }),
+                );
+            }
             let pipeline = self.build(device, key);
             let failed = [
                 pollster::block_on(internal.pop()),
@@ -232,7 +264,7 @@ impl Pipelines {
             ];
             if let Some(e) = failed.into_iter().flatten().next() {
                 return Err(DrawError::Backend(format!(
-                    "the driver could not build the pipeline for {} at {} samples: {e}",
+                    "the driver could not build the pipeline for {} at {} samples: {e:?}",
                     key.topology, key.samples
                 )));
             }
@@ -245,6 +277,11 @@ impl Pipelines {
     /// the depths), built on first use.
     pub fn unpack(&mut self, device: &wgpu::Device) -> &(wgpu::RenderPipeline, wgpu::BindGroupLayout) {
         self.unpacking.get_or_insert_with(|| build_unpack(device))
+    }
+
+    /// Whether `key`'s fragment stage runs per sample (`varyings_sample.wgsl`).
+    fn per_sample(key: Key) -> bool {
+        key.pass == Pass::CaptureSamples || (key.pass == Pass::Resolve && key.samples > 1)
     }
 
     /// Builds the pipeline for `key`.
@@ -302,21 +339,35 @@ impl Pipelines {
         } else {
             None
         };
+        let positions = Some(wgpu::VertexBufferLayout {
+            array_stride: 16,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &wgpu::vertex_attr_array![0 => Float32x4],
+        });
+        let distances = Some(wgpu::VertexBufferLayout {
+            array_stride: 32,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &wgpu::vertex_attr_array![1 => Float32x4, 2 => Float32x4],
+        });
+        // `get` built the clip module before a key with clip distances gets here.
+        let clip_module = self.clip_modules[usize::from(Self::per_sample(key))]
+            .as_ref()
+            .filter(|_| key.clip);
+        let (vertex_module, buffers) = match clip_module {
+            Some(clip) => (clip, vec![positions, distances]),
+            None => (module, vec![positions]),
+        };
         device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some(entry),
             layout: Some(layout),
             vertex: wgpu::VertexState {
-                module,
+                module: vertex_module,
                 entry_point: Some("vertex"),
                 compilation_options: wgpu::PipelineCompilationOptions {
                     constants: &constants,
                     ..wgpu::PipelineCompilationOptions::default()
                 },
-                buffers: &[Some(wgpu::VertexBufferLayout {
-                    array_stride: 16,
-                    step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &wgpu::vertex_attr_array![0 => Float32x4],
-                })],
+                buffers: &buffers,
             },
             primitive: wgpu::PrimitiveState {
                 // `get` refuses a topology WebGPU lacks before building.

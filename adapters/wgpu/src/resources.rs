@@ -3,8 +3,59 @@
 
 use bytemuck::Pod;
 use refrast::{Draw, DrawError, Fragment, Topology, Viewport};
+use wgpu::util::DeviceExt;
 
 use crate::device::Context;
+
+/// The vertex buffers of a draw: its positions ([`vertex_list`]) and, where it has clip
+/// distances, eight per vertex beside them (those it lacks at 1, inside), as `clip_vertex.wgsl`
+/// reads them.
+pub struct VertexBuffers {
+    positions: wgpu::Buffer,
+    distances: Option<wgpu::Buffer>,
+    /// How many vertices are drawn.
+    pub count: u32,
+}
+
+impl VertexBuffers {
+    /// The buffers of `draw` on `ctx`'s device.
+    pub fn new(ctx: &Context, draw: &Draw) -> Self {
+        let buffer = |label, contents: &[u8]| {
+            ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage: wgpu::BufferUsages::VERTEX,
+            })
+        };
+        let vertices = vertex_list(draw);
+        let d = &draw.distances;
+        let distances = (d.clip > 0).then(|| {
+            let values: Vec<[f32; 8]> = draw
+                .indices
+                .iter()
+                .map(|&i| {
+                    let mut row = [1.0; 8];
+                    row[..d.clip.min(8)].copy_from_slice(&d.clip_of(i)[..d.clip.min(8)]);
+                    row
+                })
+                .collect();
+            buffer("clip distances", bytemuck::cast_slice(&values))
+        });
+        Self {
+            positions: buffer("vertices", bytemuck::cast_slice(&vertices)),
+            distances,
+            count: vertices.len() as u32,
+        }
+    }
+
+    /// Binds them to `pass`: the positions at slot 0, the distances at slot 1.
+    pub fn bind(&self, pass: &mut wgpu::RenderPass<'_>) {
+        pass.set_vertex_buffer(0, self.positions.slice(..));
+        if let Some(distances) = &self.distances {
+            pass.set_vertex_buffer(1, distances.slice(..));
+        }
+    }
+}
 
 /// The draw's indices as a plain vertex list, in order, for the draw's topology without an
 /// index buffer: vertex `i` of a list is corner `i % n` of primitive `i / n` (`n` the

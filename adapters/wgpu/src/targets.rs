@@ -3,11 +3,10 @@
 //! primitive covers a sample at most once, so one pass per primitive loses nothing.
 
 use refrast::{Draw, DrawError, Fragment, Topology};
-use wgpu::util::DeviceExt;
 
 use crate::device::Context;
 use crate::pipelines::{DEPTH, FLOATS, Key, Pass, Pipelines};
-use crate::resources::{Readback, along, depth_attachment, set_scissor, target, vertex_list};
+use crate::resources::{Readback, VertexBuffers, along, depth_attachment, set_scissor, target};
 
 /// Every covered sample of every primitive of `draw` (at one sample per pixel), one primitive
 /// per pass.
@@ -21,12 +20,7 @@ pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
         )));
     }
     let (w, h) = (draw.viewport.width(), draw.viewport.height());
-    let vertices = vertex_list(draw);
-    let vertex_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("vertices"),
-        contents: bytemuck::cast_slice(&vertices),
-        usage: wgpu::BufferUsages::VERTEX,
-    });
+    let vertices = VertexBuffers::new(ctx, draw);
     let (perspective, screen, depth) = (
         target(ctx, draw.viewport, FLOATS, 1),
         target(ctx, draw.viewport, FLOATS, 1),
@@ -35,7 +29,9 @@ pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
     let views =
         [&perspective, &screen, &depth].map(|t| t.create_view(&wgpu::TextureViewDescriptor::default()));
     // One pipeline and one pair of read-back buffers serve every primitive.
-    let key = Key::new(Pass::CaptureTargets, &draw.state).drawing(draw.topology, 1);
+    let key = Key::new(Pass::CaptureTargets, &draw.state)
+        .drawing(draw.topology, 1)
+        .clipping(draw.distances.clip > 0);
     let pipeline = pipelines.get(device, key)?;
     // The vertices of primitive `i`: a list's own, a strip's from vertex `i`.
     let (per, step) = match draw.topology {
@@ -71,7 +67,7 @@ pub fn capture(ctx: &Context, pipelines: &mut Pipelines, draw: &Draw) -> Result<
                 ..wgpu::RenderPassDescriptor::default()
             });
             pass.set_pipeline(pipeline);
-            pass.set_vertex_buffer(0, vertex_buffer.slice(..));
+            vertices.bind(&mut pass);
             set_scissor(&mut pass, draw);
             // The shader numbers corners by the global vertex index, as in one draw of all. An
             // odd triangle of a strip is drawn second in a strip of two, from the vertex before

@@ -10,6 +10,8 @@
 
 #[path = "common/verdicts.rs"]
 mod common;
+#[path = "swiftshader/distances.rs"]
+mod distances;
 #[path = "swiftshader/findings.rs"]
 mod findings;
 

@@ -141,10 +141,10 @@ fn python_topleft_passes_every_rule() {
     assert_eq!(code, 0, "{rules:#?}");
     assert_eq!(rules.len(), refrast_conformance::catalogue().len());
     assert_eq!(with_status(&rules, "fail"), "");
-    // It draws no lines or points, so no polygon mode either.
+    // It draws no lines or points, so no polygon mode either, nor their clip distances.
     assert_eq!(
         with_status(&rules, "n/a"),
-        "meta.polygon-mode.facing",
+        "meta.polygon-mode.facing clip.distance.lines-points",
         "n/a beyond the families it does not declare"
     );
 }
@@ -216,7 +216,7 @@ fn python_topleft_with_one_cull_mode_passes_every_rule() {
         assert_eq!(with_status(&rules, "fail"), "", "--cull {mode}");
         assert_eq!(
             with_status(&rules, "n/a"),
-            "meta.cull.both-faces meta.polygon-mode.facing",
+            "meta.cull.both-faces meta.polygon-mode.facing clip.distance.lines-points",
             "--cull {mode}"
         );
     }

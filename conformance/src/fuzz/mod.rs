@@ -12,12 +12,13 @@ use std::fmt;
 use arbitrary::{Arbitrary, Unstructured};
 use glam::{Mat4, Vec3};
 use refrast::pipeline::{Framebuffer, Mesh, Renderer, Vertex};
-use refrast::{PolygonMode, Profile, Rasterizer, Spec, Topology};
+use refrast::{Distances, PolygonMode, Profile, Rasterizer, Spec, Topology};
 
 pub use input::{Clipping, GridTriangles, Overlapping, Perspective, Points, RawDraw, RawPipeline};
 
 use crate::rules::bary::{check_equal_w, check_matches_raycast, check_reconstructs, check_sum_one};
 use crate::rules::depth::{check_depth_matches_raycast, check_order_independent, extreme_depth};
+use crate::rules::distance::check_culls;
 use crate::rules::fill::{check_exactly_once, check_guard_band};
 use crate::rules::meta::{check_same_as_list, check_same_as_list_away_from_edges};
 use crate::rules::polygon::{check_edges, check_edges_inside, check_vertices, check_vertices_inside};
@@ -62,8 +63,9 @@ fn judged(input: &impl fmt::Debug, check: impl FnOnce() -> Result<(), Violation>
 
 /// Any bit patterns: no panic, only well-formed fragments, none outside a scissor, `resolve`
 /// works, the indices drawn as a strip and as a fan (where the profile declares them) draw
-/// what the list of their triangles draws, and the triangles in line and point mode (where
-/// declared) draw what their edges and vertices draw as lines and points.
+/// what the list of their triangles draws, the triangles in line and point mode (where
+/// declared) draw what their edges and vertices draw as lines and points, and with clip and
+/// cull distances (where declared) well-formed fragments and exact culling.
 pub fn robustness(r: &mut dyn Rasterizer, input: &RawDraw) -> Result<(), Failure> {
     let Some(scene) = input.scene() else { return Ok(()) };
     let scene = scene.fitted(&r.profile());
@@ -74,8 +76,36 @@ pub fn robustness(r: &mut dyn Rasterizer, input: &RawDraw) -> Result<(), Failure
             .map(drop)
             .map_err(|e| Violation::new(format!("resolve returned an error on in-range indices: {e}")))?;
         check_strips_and_fans(r, &scene)?;
-        check_polygon_modes(r, &scene)
+        check_polygon_modes(r, &scene)?;
+        check_distances(r, &scene)
     })
+}
+
+/// The scene drawn again with distances where the profile declares them: each vertex's `x`
+/// as a clip distance, whatever its bits (NaN, infinities, huge), fragments well-formed; then
+/// cull distances of −1, −0, 0 or 1 picked by its bits, the primitives culled exactly as
+/// `clip.cull-distance.discards` says.
+fn check_distances(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let declared = r.profile().state;
+    let n = scene.positions.len();
+    if declared.clip_distances > 0 {
+        let mut clipped = scene.clone();
+        let values = scene.positions.iter().map(|p| vec![p[0]]).collect::<Vec<_>>();
+        clipped.distances = Distances::new(1, 0, &values);
+        check_well_formed(r, &clipped)?;
+    }
+    if declared.cull_distances > 0 && n > 0 {
+        const PICKS: [f32; 4] = [-1.0, -0.0, 0.0, 1.0];
+        let mut culled = scene.clone();
+        let values = scene
+            .positions
+            .iter()
+            .map(|p| vec![PICKS[(p[1].to_bits() % 4) as usize]])
+            .collect::<Vec<_>>();
+        culled.distances = Distances::new(0, 1, &values);
+        check_culls(r, &PrimitiveScene::triangles(culled, 1))?;
+    }
+    Ok(())
 }
 
 /// The scene's triangles in each polygon mode the profile declares: well-formed fragments, and

@@ -16,11 +16,14 @@
 //!   and where correct implementations may disagree; the grid points a vertex may snap to.
 //! - [`bias`]: the interval a triangle's depth bias may take under each specification, from
 //!   its exact plane, with bounds for snapping and f32.
+//! - [`distance`]: where user clip distances cut a triangle or a segment, as a line in raster
+//!   space (perspective-correct interpolation keeps the cut straight).
 //! - [`provoking`]: which vertex gives a primitive its flat values, from the specifications'
 //!   tables.
 
 pub mod bias;
 pub mod brute_force;
+pub mod distance;
 pub mod facing;
 pub mod outline;
 pub mod provoking;

@@ -6,6 +6,7 @@ pub mod cast;
 pub mod clip;
 pub mod common;
 pub mod depth;
+pub mod distance;
 pub mod fill;
 pub mod flat;
 pub mod hint;
@@ -301,6 +302,7 @@ pub fn catalogue() -> Vec<Rule> {
     rules.extend(viewport_depth::rules());
     rules.extend(bias::rules());
     rules.extend(polygon::rules());
+    rules.extend(distance::rules());
     rules
 }
 

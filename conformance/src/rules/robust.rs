@@ -380,7 +380,7 @@ pub fn within_float_range(scene: &Scene) -> bool {
             let Some(corners) = assemble(&scene.positions, t) else {
                 return true;
             };
-            let kept = match clip_triangle(&corners, &planes, &mut polygon, &mut scratch) {
+            let kept = match clip_triangle(&corners, &planes, &[], &mut polygon, &mut scratch) {
                 ClipOutcome::Outside => return true,
                 ClipOutcome::Inside => &corners[..],
                 ClipOutcome::Clipped => &polygon[..],

@@ -4,7 +4,7 @@
 use std::fmt;
 
 use refrast::{
-    CompareOp, CullMode, DepthBias, DepthRange, DepthState, DrawState, FrontFace, PolygonMode,
+    CompareOp, CullMode, DepthBias, DepthRange, DepthState, Distances, DrawState, FrontFace, PolygonMode,
     ProvokingVertex, Scissor, Topology, Viewport, ViewportDepth,
 };
 use serde::de::{self, Visitor};
@@ -140,6 +140,21 @@ pub struct DrawData {
     /// `line` or `point`: how triangles are drawn; absent for `fill`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub polygon_mode: Option<String>,
+    /// Each vertex's clip and cull distances; absent for none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub distances: Option<DistanceData>,
+}
+
+/// The clip and cull distances of a draw's vertices, as [`Distances`] holds them.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case", deny_unknown_fields)]
+pub struct DistanceData {
+    /// Clip distances per vertex.
+    pub clip: usize,
+    /// Cull distances per vertex.
+    pub cull: usize,
+    /// `clip + cull` values per vertex, clip distances first, vertex after vertex.
+    pub values: Vec<Coordinate>,
 }
 
 impl DrawData {
@@ -172,6 +187,11 @@ impl DrawData {
                 .depth_bias
                 .map(|b| [Coordinate(b.constant), Coordinate(b.slope), Coordinate(b.clamp)]),
             polygon_mode: (s.polygon_mode != PolygonMode::Fill).then(|| s.polygon_mode.name().to_owned()),
+            distances: (!scene.distances.is_empty()).then(|| DistanceData {
+                clip: scene.distances.clip,
+                cull: scene.distances.cull,
+                values: scene.distances.values.iter().copied().map(Coordinate).collect(),
+            }),
         }
     }
 
@@ -232,7 +252,16 @@ impl DrawData {
             positions: self.positions.iter().map(|p| p.map(|c| c.0)).collect(),
             triangles: Vec::new(),
             state,
+            distances: self
+                .distances
+                .as_ref()
+                .map_or_else(Distances::default, |d| Distances {
+                    clip: d.clip,
+                    cull: d.cull,
+                    values: d.values.iter().map(|c| c.0).collect(),
+                }),
         };
+        scene.distances.validate(scene.positions.len())?;
         let mut indices = self.indices.clone();
         if topology == Topology::TriangleList {
             if !indices.len().is_multiple_of(3) {

@@ -7,13 +7,13 @@ mod primitive;
 use std::fmt;
 
 use refrast::{
-    CullMode, DepthRange, Draw, DrawState, FrontFace, PolygonMode, Profile, ProvokingVertex, Viewport,
-    ViewportDepth,
+    CullMode, DepthRange, Distances, Draw, DrawState, FrontFace, PolygonMode, Profile, ProvokingVertex,
+    Viewport, ViewportDepth,
 };
 
 use crate::oracle::facing::{Turn, turn};
 use crate::oracle::raster::to_ndc;
-pub use data::{CaseData, Coordinate, DrawData, Poison};
+pub use data::{CaseData, Coordinate, DistanceData, DrawData, Poison};
 pub use primitive::PrimitiveScene;
 
 /// A rule's input: it shows as a scene and can be made smaller after proptest has shrunk it.
@@ -57,6 +57,8 @@ pub struct Scene {
     pub triangles: Vec<[u32; 3]>,
     /// Culling, depth and clipping state.
     pub state: DrawState,
+    /// Each vertex's clip and cull distances: none but in the rules that judge them.
+    pub distances: Distances,
 }
 
 impl Scene {
@@ -69,6 +71,7 @@ impl Scene {
             positions,
             triangles,
             state: DrawState::default(),
+            distances: Distances::default(),
         }
     }
 
@@ -194,6 +197,7 @@ impl Scene {
     pub fn draw(&self) -> Draw {
         Draw {
             state: self.state,
+            distances: self.distances.clone(),
             ..Draw::new(
                 self.viewport().expect("strategies build valid viewports"),
                 self.positions.clone(),
@@ -225,7 +229,8 @@ impl Scene {
         s.compact()
     }
 
-    /// Drops vertices no triangle uses, renumbering the rest (a bad index is kept as it is).
+    /// Drops vertices no triangle uses, renumbering the rest (a bad index is kept as it is) and
+    /// keeping the distances of those kept.
     #[must_use]
     pub fn compact(mut self) -> Self {
         let n = self.positions.len();
@@ -237,12 +242,16 @@ impl Scene {
         }
         let mut new_index = vec![0u32; n];
         let mut positions = Vec::new();
+        let mut distances = Vec::new();
         for (i, p) in self.positions.iter().enumerate() {
             if used[i] {
                 new_index[i] = positions.len() as u32;
                 positions.push(*p);
+                let v = i as u32;
+                distances.extend(self.distances.clip_of(v).iter().chain(self.distances.cull_of(v)));
             }
         }
+        self.distances.values = distances;
         for i in self.triangles.iter_mut().flatten() {
             if (*i as usize) < n {
                 *i = new_index[*i as usize];
@@ -390,6 +399,19 @@ impl fmt::Debug for Scene {
             writeln!(f, "        ..DrawState::default()")?;
         }
         writeln!(f, "    }},")?;
+        let d = &self.distances;
+        if d.is_empty() {
+            writeln!(f, "    distances: Distances::default(),")?;
+        } else {
+            let values: Vec<String> = d.values.iter().map(|&v| rust_f32(v)).collect();
+            writeln!(
+                f,
+                "    distances: Distances {{ clip: {}, cull: {}, values: vec![{}] }},",
+                d.clip,
+                d.cull,
+                values.join(", ")
+            )?;
+        }
         write!(f, "}}")
     }
 }

@@ -76,6 +76,7 @@ impl PrimitiveScene {
             indices: self.all_indices(),
             samples: self.samples,
             state: self.scene.state,
+            distances: self.scene.distances.clone(),
         }
     }
 

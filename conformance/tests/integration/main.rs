@@ -4,6 +4,7 @@
 
 mod broken;
 mod depth_bias;
+mod distances;
 mod driver_findings;
 mod expect;
 mod facing;

@@ -42,11 +42,18 @@ fn a_printed_scene_compiles_and_round_trips() {
             }),
             polygon_mode: PolygonMode::Line,
         },
+        distances: Distances {
+            clip: 1,
+            cull: 1,
+            values: vec![0.5, -1.0, -0.25, 2.0, 1.0, 0.0, -3.0, 1.5],
+        },
     };
     let printed = format!("{pasted:?}");
     assert!(
         printed.contains(
             "scissor: Some(Scissor { x: 2, y: 0, width: 9, height: 16 }),\n        provoking_vertex: ProvokingVertex::Last,\n        clip_near: false,\n        viewport_depth: ViewportDepth { min: 0.75, max: 0.25 },\n        depth_bias: Some(DepthBias { constant: -4096.0, slope: 1.5, clamp: 0.0 }),\n        polygon_mode: PolygonMode::Line,\n    },"
+        ) && printed.contains(
+            "    distances: Distances { clip: 1, cull: 1, values: vec![0.5, -1.0, -0.25, 2.0, 1.0, 0.0, -3.0, 1.5] },\n}"
         ) && !printed.contains(".."),
         "{printed}"
     );
@@ -62,12 +69,14 @@ fn a_printed_scene_compiles_and_round_trips() {
             polygon_mode: PolygonMode::Fill,
             ..pasted.state
         },
+        distances: Distances::default(),
         ..pasted.clone()
     };
     let printed_without = format!("{unscissored:?}");
     assert!(
         !printed_without.contains("scissor")
-            && printed_without.contains("        ..DrawState::default()\n    },"),
+            && printed_without
+                .contains("        ..DrawState::default()\n    },\n    distances: Distances::default(),\n}"),
         "{printed_without}"
     );
     assert!(

@@ -98,7 +98,7 @@ fn snapping_down() -> refrast_zoo::restricted::Restricted {
 /// for such a profile now (`Profile::band_px`).
 #[test]
 fn snapping_within_one_step_is_judged_outside_two_steps_of_an_edge() {
-    use refrast::{CompareOp, CullMode, DepthRange, DepthState, DrawState, FrontFace};
+    use refrast::{CompareOp, CullMode, DepthRange, DepthState, Distances, DrawState, FrontFace};
     use refrast_conformance::Scene;
     use refrast_conformance::rules::fill::check_exactly_once;
     let state = |range, clip_far| DrawState {
@@ -154,6 +154,7 @@ fn snapping_within_one_step_is_judged_outside_two_steps_of_an_edge() {
             positions: positions.to_vec(),
             triangles: vec![[0, 1, 2]],
             state,
+            distances: Distances::default(),
         };
         check_exactly_once(&mut floor, &scene).unwrap_or_else(|v| panic!("{v}\n{scene:?}"));
     }

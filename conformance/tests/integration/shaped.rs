@@ -48,7 +48,7 @@ fn every_shaped_rasterizer_passes_or_is_beyond_its_specification() {
 }
 
 /// The scan converter clips nothing, so the clip rules are n/a for it, with the reason; the
-/// scissor's, in the same family, for the scissor it does not declare either.
+/// scissor's and the distances', in the same family, for what it does not declare either.
 #[test]
 fn a_scan_converter_is_not_asked_about_clipping() {
     let options = Options {
@@ -63,6 +63,10 @@ fn a_scan_converter_is_not_asked_about_clipping() {
         let why = rule.message.as_deref().unwrap_or("");
         let reason = if rule.id.starts_with("clip.scissor.") {
             "no scissor"
+        } else if rule.id.starts_with("clip.distance.") {
+            "no clip distances"
+        } else if rule.id.starts_with("clip.cull-distance.") {
+            "no cull distances"
         } else {
             "clipping in 3D"
         };

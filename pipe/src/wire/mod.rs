@@ -228,6 +228,17 @@ pub fn depth_bias(words: &[&str]) -> Result<refrast::BiasSupport, String> {
     }
 }
 
+/// The profile lines a child declares how many clip and cull distances per vertex it honours
+/// with (`clip-distances N`, `cull-distances N`; at most 8 together), and the request key of a
+/// draw that has some: `distances=CLIP,CULL`, the values following the indices.
+pub const CLIP_DISTANCES: &str = "clip-distances";
+
+/// See [`CLIP_DISTANCES`].
+pub const CULL_DISTANCES: &str = "cull-distances";
+
+/// The request key of a draw's distances: `distances=CLIP,CULL`.
+pub const DISTANCES: &str = "distances";
+
 /// The key of the guard band's reach: pixels beyond each side of the viewport.
 pub const GUARD_BAND: &str = "guard-band";
 
@@ -248,7 +259,9 @@ pub const GUARD_BAND_LIMIT: u32 = refrast::COORD_LIMIT as u32;
 /// `scissor=X,Y,W,H`, one with depth clipping off with `near-clipping=off`, one with a depth
 /// range other than `[0, 1]` with `viewport-depth=MIN,MAX`, a triangle draw with depth bias
 /// with `depth-bias=CONSTANT,SLOPE,CLAMP`, a triangle draw in line or point mode with
-/// `polygon-mode=line` or `polygon-mode=point`, in any version.
+/// `polygon-mode=line` or `polygon-mode=point`, one with clip or cull distances with
+/// `distances=CLIP,CULL` (then `vertices × (CLIP + CULL)` f32 words follow the indices, each
+/// vertex's clip distances then its cull distances), in any version.
 #[must_use]
 pub fn request(op: Op, draw: &Draw, version: u32) -> Vec<u8> {
     request_in(op, draw, version, draw.state.provoking_vertex)
@@ -287,6 +300,11 @@ pub fn request_in(op: Op, draw: &Draw, version: u32, provoking: ProvokingVertex)
     if s.polygon_mode != PolygonMode::Fill && draw.topology.is_triangles() {
         extra += &format!(" {}={}", PolygonMode::KEY, s.polygon_mode.word());
     }
+    // Only to a child that declares them (Process::declares refuses the rest).
+    let d = &draw.distances;
+    if !d.is_empty() {
+        extra += &format!(" {DISTANCES}={},{}", d.clip, d.cull);
+    }
     let header = format!(
         "{} width={} height={} vertices={} triangles={count} cull={} front-face={} depth-compare={} \
          depth-write={} depth-clear={:?} depth-range={} far-clipping={}{extra}\n",
@@ -313,6 +331,9 @@ pub fn request_in(op: Op, draw: &Draw, version: u32, provoking: ProvokingVertex)
     }
     for i in indices {
         bytes.extend_from_slice(&i.to_le_bytes());
+    }
+    for v in &d.values {
+        bytes.extend_from_slice(&v.to_le_bytes());
     }
     bytes
 }

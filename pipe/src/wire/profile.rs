@@ -355,6 +355,22 @@ impl Reading {
                     f.cull_modes = supported(&modes, bad)?;
                 }
                 DEPTH_BIAS => self.profile.state.depth_bias = Some(depth_bias(&words).map_err(|w| bad(&w))?),
+                CLIP_DISTANCES | CULL_DISTANCES => {
+                    let n = match words.as_slice() {
+                        [n] => n.parse::<usize>().ok().filter(|&n| n <= refrast::MAX_DISTANCES),
+                        _ => None,
+                    }
+                    .ok_or_else(|| bad("give how many per vertex, 0 to 8"))?;
+                    let state = &mut self.profile.state;
+                    if key == CLIP_DISTANCES {
+                        state.clip_distances = n;
+                    } else {
+                        state.cull_distances = n;
+                    }
+                    if state.clip_distances + state.cull_distances > refrast::MAX_DISTANCES {
+                        return Err(bad("clip and cull distances are at most 8 together"));
+                    }
+                }
                 FrontFace::KEY => f.front_faces = supported(&words, bad)?,
                 CompareOp::KEY => f.compare_ops = supported(&words, bad)?,
                 DepthRange::KEY => f.depth_ranges = supported(&words, bad)?,
@@ -378,6 +394,8 @@ impl Reading {
             FAR_CLIPPING,
             DEPTH_BIAS,
             PolygonMode::KEY,
+            CLIP_DISTANCES,
+            CULL_DISTANCES,
         ];
         (known.contains(&key) || flat == Some(key)).then(read)
     }

@@ -308,3 +308,38 @@ fn version_3_carries_the_provoking_vertex_and_the_flat_vertex() {
     let why = version("refrast-protocol 9").unwrap_err();
     assert!(why.contains("speaks versions 1, 2 and 3"), "{why}");
 }
+
+/// Clip and cull distances are declared by count (at most 8 together) and sent with the key
+/// `distances=CLIP,CULL`, their values after the indices, vertex by vertex, clip first.
+#[test]
+fn distances_are_declared_by_count_and_sent_after_the_indices() {
+    let none = parsed(&["features depth-test"]).unwrap().state;
+    assert_eq!((none.clip_distances, none.cull_distances), (0, 0));
+    let both = parsed(&["clip-distances 6", "cull-distances 2"]).unwrap().state;
+    assert_eq!((both.clip_distances, both.cull_distances), (6, 2));
+    for bad in [
+        "clip-distances nine",
+        "clip-distances 9",
+        "cull-distances",
+        "clip-distances 1 2",
+    ] {
+        let why = parsed(&[bad]).unwrap_err();
+        assert!(why.contains("0 to 8"), "{bad}: {why}");
+    }
+    let why = parsed(&["clip-distances 5", "cull-distances 4"]).unwrap_err();
+    assert!(why.contains("at most 8 together"), "{why}");
+    let mut draw = Draw::new(
+        refrast::Viewport::new(4, 4).unwrap(),
+        vec![[0.0; 4]; 3],
+        vec![[0, 1, 2]],
+    );
+    let plain = request(Op::Rasterize, &draw, 2);
+    draw.distances = refrast::Distances::new(1, 1, &[vec![0.5, -1.0], vec![2.0, 0.0], vec![-0.25, 1.0]]);
+    let bytes = request(Op::Rasterize, &draw, 2);
+    let end = bytes.iter().position(|&b| b == b'\n').unwrap();
+    let header = String::from_utf8(bytes[..end].to_vec()).unwrap();
+    assert!(header.ends_with(" distances=1,1"), "{header}");
+    let tail: Vec<f32> = floats(&bytes[bytes.len() - 24..]);
+    assert_eq!(tail, [0.5, -1.0, 2.0, 0.0, -0.25, 1.0]);
+    assert_eq!(bytes.len(), plain.len() + " distances=1,1".len() + 24);
+}

@@ -84,7 +84,7 @@ impl Rasterizer for Dda {
                     if !(ca.position.is_finite() && cb.position.is_finite()) {
                         continue;
                     }
-                    let Some((ca, cb)) = clip_segment(ca, cb, &planes) else {
+                    let Some((ca, cb)) = clip_segment(ca, cb, &planes, &[]) else {
                         continue;
                     };
                     let (ua, ub) = (ca.barycentric.y, cb.barycentric.y);

@@ -134,7 +134,7 @@ pub fn polygons(draw: &Draw) -> Vec<ScreenPolygon> {
         let Some(triangle) = assemble(&draw.positions, indices) else {
             continue;
         };
-        let kept: &[ClipVertex] = match clip_triangle(&triangle, &planes, &mut polygon, &mut scratch) {
+        let kept: &[ClipVertex] = match clip_triangle(&triangle, &planes, &[], &mut polygon, &mut scratch) {
             ClipOutcome::Inside => &triangle,
             ClipOutcome::Outside => continue,
             ClipOutcome::Clipped => &polygon,

@@ -148,11 +148,23 @@ pub enum Bug {
     FrontFacingPolygonModes,
     /// The loop of edges left open in line mode: the third edge, third corner to first, missing.
     OpenPolygonLoop,
+    /// Clip distances declared but never honoured.
+    IgnoredClipDistances,
+    /// Clip distances interpolated linearly in screen space, not perspective-correctly: the
+    /// cut of a triangle in perspective lands in the wrong place.
+    ScreenLinearClipDistances,
+    /// A primitive kept only where each clip distance exceeds `2^-10`, not where it is `≥ 0`:
+    /// a draw by `d` and one by `−d` both lose a sliver along the cut.
+    EpsilonClipDistances,
+    /// Clip distances honoured on triangles, ignored on lines and points.
+    TrianglesOnlyClipDistances,
+    /// A primitive culled when any vertex, not every vertex, is negative in a cull distance.
+    AnyVertexCulls,
 }
 
 impl Bug {
     /// Every bug.
-    pub const ALL: [Bug; 58] = [
+    pub const ALL: [Bug; 63] = [
         Self::InclusiveEdges,
         Self::ExclusiveEdges,
         Self::BottomRightAsTopLeft,
@@ -211,6 +223,11 @@ impl Bug {
         Self::UnculledPolygonModes,
         Self::FrontFacingPolygonModes,
         Self::OpenPolygonLoop,
+        Self::IgnoredClipDistances,
+        Self::ScreenLinearClipDistances,
+        Self::EpsilonClipDistances,
+        Self::TrianglesOnlyClipDistances,
+        Self::AnyVertexCulls,
     ];
 
     /// The name after `mutant:` in `--impl`.
@@ -275,6 +292,11 @@ impl Bug {
             Self::UnculledPolygonModes => "unculled-polygon-modes",
             Self::FrontFacingPolygonModes => "front-facing-polygon-modes",
             Self::OpenPolygonLoop => "open-polygon-loop",
+            Self::IgnoredClipDistances => "ignored-clip-distances",
+            Self::ScreenLinearClipDistances => "screen-linear-clip-distances",
+            Self::EpsilonClipDistances => "epsilon-clip-distances",
+            Self::TrianglesOnlyClipDistances => "triangles-only-clip-distances",
+            Self::AnyVertexCulls => "any-vertex-culls",
         }
     }
 
@@ -330,6 +352,11 @@ impl Bug {
             | Self::FixedBiasExponent => "depth",
             Self::FilledPolygonModes | Self::UnculledPolygonModes | Self::OpenPolygonLoop => "line",
             Self::FrontFacingPolygonModes => "meta",
+            Self::IgnoredClipDistances
+            | Self::ScreenLinearClipDistances
+            | Self::EpsilonClipDistances
+            | Self::TrianglesOnlyClipDistances
+            | Self::AnyVertexCulls => "clip",
         }
     }
 
@@ -341,7 +368,7 @@ impl Bug {
     }
 
     /// Whether it is a bug of the draw state beyond the first contract (the scissor, culling of
-    /// both faces, strips and fans, flat values, the depth range and clamp, depth bias): the mutant then declares everything the
+    /// both faces, strips and fans, flat values, the depth range and clamp, depth bias, polygon modes, clip and cull distances): the mutant then declares everything the
     /// reference does, and draws with it.
     #[must_use]
     pub fn is_state(self) -> bool {
@@ -371,6 +398,11 @@ impl Bug {
                 | Self::UnculledPolygonModes
                 | Self::FrontFacingPolygonModes
                 | Self::OpenPolygonLoop
+                | Self::IgnoredClipDistances
+                | Self::ScreenLinearClipDistances
+                | Self::EpsilonClipDistances
+                | Self::TrianglesOnlyClipDistances
+                | Self::AnyVertexCulls
         )
     }
 }

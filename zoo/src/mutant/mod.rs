@@ -5,7 +5,7 @@
 //! conventions, so every failure the suite reports is that bug's doing.
 
 use glam::{DVec3, DVec4};
-use refrast::stage::{ClipOutcome, ClipPlane, ClipVertex, clip_planes, clip_triangle};
+use refrast::stage::{ClipOutcome, ClipPlane, ClipVertex, CornerDistances, clip_planes, clip_triangle};
 use refrast::{
     ClipMode, CompareOp, Draw, DrawError, FillConvention, FixedPoint, Fragment, FrontFace, Profile,
     Rasterizer, Reference, Resolved, Viewport, is_top_left,
@@ -13,6 +13,7 @@ use refrast::{
 
 mod bias;
 mod bug;
+mod distance;
 mod polygon;
 mod primitive;
 mod state;
@@ -78,6 +79,10 @@ impl Rasterizer for Mutant {
                 continue;
             }
             let input = [0, 1, 2].map(|k| ClipVertex::corner(p[k], k));
+            // Clip and cull distances as the reference honours them: no bug is in them.
+            let Ok(user) = CornerDistances::of(&draw.distances, t) else {
+                continue;
+            };
             // Zero area is decided on the snapped input before clipping, as the reference does
             // (its profile claims it), unless that is the bug.
             if !matches!(self.bug, Bug::ZeroAreaAfterClipping | Bug::DegenerateFragments)
@@ -92,7 +97,7 @@ impl Rasterizer for Mutant {
                 Bug::DirectionalClip => clip_walking(&input, &planes),
                 _ => {
                     let (mut poly, mut scratch) = (Vec::new(), Vec::new());
-                    match clip_triangle(&input, &planes, &mut poly, &mut scratch) {
+                    match clip_triangle(&input, &planes, user.planes(), &mut poly, &mut scratch) {
                         ClipOutcome::Outside => continue,
                         ClipOutcome::Inside => input.to_vec(),
                         ClipOutcome::Clipped => poly,

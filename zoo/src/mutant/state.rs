@@ -1,5 +1,5 @@
 //! The bugs of the draw state the contract gained after its first rasterizers (the scissor,
-//! culling of both faces, strips and fans, flat values, the depth range and clamp, depth bias, so far): the reference's own drawing with that state
+//! culling of both faces, strips and fans, flat values, the depth range and clamp, depth bias, polygon modes, clip and cull distances, so far): the reference's own drawing with that state
 //! applied wrong in one way, so that every failure is that bug's doing.
 
 use refrast::{
@@ -16,6 +16,9 @@ pub fn rasterize(bug: Bug, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
     }
     if let Some(moded) = super::polygon::rasterize(bug, draw) {
         return moded;
+    }
+    if let Some(distanced) = super::distance::rasterize(bug, draw) {
+        return distanced;
     }
     let mut reference = Reference::default();
     if let Some(assembled) = misassembled(bug, draw) {

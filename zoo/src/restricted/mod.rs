@@ -50,6 +50,7 @@ impl Restricted {
     fn forced(&self, draw: &Draw) -> Draw {
         Draw {
             state: self.profile().fit(draw.state),
+            distances: self.state.fit_distances(&draw.distances),
             ..draw.clone()
         }
     }

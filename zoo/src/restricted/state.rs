@@ -126,5 +126,21 @@ pub(super) fn restrictions() -> Vec<Restriction> {
                 ..all
             },
         ),
+        stateful(
+            "clip-distances=none",
+            "cull distances but no clip distances",
+            StateSupport {
+                clip_distances: 0,
+                ..all
+            },
+        ),
+        stateful(
+            "cull-distances=none",
+            "clip distances but no cull distances, as WebGPU's clip-distances feature",
+            StateSupport {
+                cull_distances: 0,
+                ..all
+            },
+        ),
     ]
 }

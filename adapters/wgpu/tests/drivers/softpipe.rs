@@ -127,6 +127,7 @@ pub(crate) fn softpipe_across_w_zero(_: Driver, run: &mut Run<'_>) {
         positions: within.positions.clone(),
         triangles: within.triangles().to_vec(),
         state: within.state,
+        distances: within.distances.clone(),
     };
     assert!(
         refrast_conformance::rules::robust::within_float_range(&scene),

@@ -15,13 +15,13 @@ fn expected(d: &refrast::Draw) -> Vec<refrast::Fragment> {
 }
 
 /// SwiftShader's fragments for a draw.
-type Run<'a> = dyn FnMut(&Draw) -> Vec<Fragment> + 'a;
+pub type Run<'a> = dyn FnMut(&Draw) -> Vec<Fragment> + 'a;
 
 /// A finding: what it is, and its check, which panics with what moved.
 type Finding = (&'static str, fn(&mut Run<'_>));
 
 /// Each finding, in docs/certified.md's order.
-const FINDINGS: [Finding; 13] = [
+const FINDINGS: [Finding; 14] = [
     (
         "a vertex at w = 0 whose winding comes out backwards draws nothing",
         w_zero_winding_backwards,
@@ -49,6 +49,10 @@ const FINDINGS: [Finding; 13] = [
     (
         "line mode: flat values from each edge's first vertex",
         line_mode_flat_per_edge,
+    ),
+    (
+        "clip distances tested once per pixel",
+        crate::distances::clip_distance_per_pixel,
     ),
 ];
 

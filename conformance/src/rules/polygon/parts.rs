@@ -6,10 +6,11 @@ use refrast::{COORD_LIMIT, CullMode, Fragment, PolygonMode, Profile, Rasterizer,
 use crate::oracle::brute_force::orient2d;
 use crate::oracle::facing::{Turn, snapped_variants};
 use crate::oracle::raster::{project, unclipped};
+use crate::rules::robust::within_float_range;
 use crate::rules::samples::{
     cells, counts, difference_counts, difference_picture, sample_fragments, unattributed_fragments,
 };
-use crate::scene::PrimitiveScene;
+use crate::scene::{PrimitiveScene, Scene};
 use crate::violation::{Violation, plural};
 
 /// The triangles of `case` (in [`refrast::Draw::triangle`]'s order) as a line list of their
@@ -220,9 +221,23 @@ fn expected(
         most,
         // Where a corner has no raster position (w ≤ 0, or beyond ±COORD_LIMIT px), refrast
         // may find none for a vertex of the clipped polygon either, and then draws nothing of
-        // the triangle in any mode (`DrawStats::degenerate`), as it fills nothing of it.
-        may_vanish: !freedom && !positioned,
+        // the triangle in any mode (`DrawStats::degenerate`), as it fills nothing of it; so
+        // where a coordinate is beyond the float range, since its f64 cut may then cancel a
+        // cut vertex's w to 0 (a corner at w = 4e21 cut against one at 3e-38).
+        may_vanish: !freedom && (!positioned || !within_float_range(&alone(case, corners))),
     })
+}
+
+/// The triangle of `corners` alone, under `case`'s viewport and state.
+fn alone(case: &PrimitiveScene, corners: [[f32; 4]; 3]) -> Scene {
+    let mut scene = Scene::new(
+        case.scene.width,
+        case.scene.height,
+        corners.to_vec(),
+        vec![[0, 1, 2]],
+    );
+    scene.state = case.scene.state;
+    scene
 }
 
 /// Whether every way `profile` may snap `corners` leaves no area (`Some(true)`), none does

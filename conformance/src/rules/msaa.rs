@@ -28,15 +28,14 @@ const FRAGCOORD_Z: &str = "Vulkan (FragCoord: \"the z component of FragCoord is 
 
 /// The implementation declares a sample count above one.
 const MULTISAMPLE: super::Need = needs(|p| !p.multisample.is_empty(), "no sample count above one");
-/// Lines as rectangles or parallelograms, or points, at a sample count above one.
+/// Lines or points at a sample count above one.
 const MULTISAMPLE_AREAS: super::Need = needs(
-    |p| {
-        !p.multisample.is_empty()
-            && endpoint_bits(p).is_some()
-            && (p.points || matches!(p.lines, Some(LineRule::Rectangle | LineRule::Parallelogram)))
-    },
-    "no points, rectangle or parallelogram lines at a sample count above one",
+    |p| !p.multisample.is_empty() && endpoint_bits(p).is_some() && (p.points || p.lines.is_some()),
+    "no lines or points at a sample count above one",
 );
+
+/// Why diamond-exit lines at several samples are judged under Vulkan (and refrast) only.
+const DIAMOND_SAMPLES: &str = "OpenGL 4.6 §14.5.4 draws every line under multisampling as the samples inside its rectangle, whatever rule it follows at one sample, and D3D11.3 §3.5.4.1 says aliased lines do not work per sample: a profile's diamond-exit lines are not judged at several samples there (its points and area lines are, in full); Vulkan's Bresenham lines cover the pixels they cover at one sample, all their samples";
 
 /// The counts above one a rasterizer declares.
 fn counts_of(d: &Profile) -> Vec<u8> {
@@ -106,10 +105,14 @@ pub(super) fn rules() -> Vec<Rule> {
                 property_for(r, cfg, |d| primitive::multisampled(strategy::overlapping_scene(), counts_of(d)), check_resolve)
             }),
         Rule::invariant(Family::Msaa, "msaa.lines-points.per-sample")
-            .sentence("At each declared sample count, points and rectangle or parallelogram lines cover the samples inside their shapes at the declared positions, the tolerance band aside.")
-            .source("Vulkan 1.4, Basic Point Rasterization and Basic Line Segment Rasterization (per-sample coverage)")
+            .sentence("At each declared sample count, points and rectangle or parallelogram lines cover the samples inside their shapes at the declared positions, the tolerance band aside; diamond-exit lines cover every sample of the pixels the rule gives, and no other.")
+            .source("Vulkan 1.4, Basic Point Rasterization and Basic Line Segment Rasterization (per-sample coverage), Bresenham Line Segment Rasterization (\"Bresenham lines cover the same pixels regardless of the number of rasterization samples, and cover all samples in those pixels\")")
             .cases(800)
             .needs(MULTISAMPLE_AREAS)
+            .every_spec(Level::Partly {
+                part: |r, cfg| property_for(r, cfg, areas, check_lines_points_beside_diamonds),
+                note: DIAMOND_SAMPLES,
+            })
             .vulkan(Level::Partly {
                 part: |r, cfg| property_for(r, cfg, areas, check_lines_points_as_cts),
                 note: super::point::POP_FREE,
@@ -118,14 +121,17 @@ pub(super) fn rules() -> Vec<Rule> {
     ]
 }
 
-/// Points when the profile declares them, else lines, at each sample count above one it declares.
+/// Points and lines, each where the profile declares them (lines on and off the grid), at each
+/// sample count above one it declares.
 fn areas(d: &Profile) -> impl Strategy<Value = PrimitiveScene> + use<> {
-    let scenes = if d.points {
-        primitive::points().boxed()
-    } else {
-        primitive::lines().boxed()
-    };
-    primitive::multisampled_primitives(scenes, counts_of(d))
+    let mut kinds = Vec::new();
+    if d.points {
+        kinds.push(primitive::points().boxed());
+    }
+    if d.lines.is_some() || kinds.is_empty() {
+        kinds.push(crate::strategy::reach::any_lines(d).boxed());
+    }
+    primitive::multisampled_primitives(proptest::strategy::Union::new(kinds), counts_of(d))
 }
 
 /// Triangles on the grid at `w = 1`, inside a 16-px corner or anywhere near the viewport.
@@ -355,27 +361,62 @@ pub fn check_positions(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<
     )
 }
 
-/// Points and area lines at several samples against their per-sample oracles.
+/// Points and lines at several samples against their per-sample oracles: diamond-exit lines
+/// bit for bit, every sample of each pixel the rule gives.
 pub fn check_lines_points(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
-    match case.topology {
-        refrast::Topology::PointList => super::point::check_pixel_holding(r, case),
-        _ => check_area_lines(r, case),
+    match (case.topology, r.profile().lines) {
+        (refrast::Topology::PointList, _) => super::point::check_pixel_holding(r, case),
+        (_, Some(LineRule::DiamondExit)) => super::line::check_diamond_exact(r, case),
+        _ => super::line::check_area(r, case),
     }
 }
 
-/// [`check_lines_points`] with points outside the viewport read as Vulkan's conformance tests
-/// read them ([`super::point::check_pixel_holding_as_cts`]).
+/// [`check_lines_points`] as Vulkan's conformance tests read point clipping
+/// ([`super::point::check_pixel_holding_as_cts`]), and diamond-exit lines by Vulkan's own
+/// sentence: the pixels its one-sample draw covers, every sample of them
+/// ([`check_same_pixels_every_sample`]).
 pub fn check_lines_points_as_cts(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
-    match case.topology {
-        refrast::Topology::PointList => super::point::check_pixel_holding_as_cts(r, case),
-        _ => check_area_lines(r, case),
+    match (case.topology, r.profile().lines) {
+        (refrast::Topology::PointList, _) => super::point::check_pixel_holding_as_cts(r, case),
+        (_, Some(LineRule::DiamondExit)) => check_same_pixels_every_sample(r, case),
+        _ => super::line::check_area(r, case),
     }
 }
 
-/// Rectangle and parallelogram lines against their area oracle; diamond-exit ones are not.
-fn check_area_lines(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
-    if matches!(r.profile().lines, Some(LineRule::DiamondExit) | None) {
-        return Ok(());
+/// [`check_lines_points`] but for diamond-exit lines, which OpenGL and D3D11.3 do not draw
+/// per sample.
+pub fn check_lines_points_beside_diamonds(
+    r: &mut dyn Rasterizer,
+    case: &PrimitiveScene,
+) -> Result<(), Violation> {
+    match (case.topology, r.profile().lines) {
+        (refrast::Topology::PointList, _) => super::point::check_pixel_holding(r, case),
+        (_, Some(LineRule::DiamondExit)) => Ok(()),
+        _ => super::line::check_area(r, case),
     }
-    super::line::check_area(r, case)
+}
+
+/// Each line covers, at several samples, every sample of the pixels it covers at one and no
+/// other: Vulkan decides Bresenham coverage per pixel.
+pub fn check_same_pixels_every_sample(
+    r: &mut dyn Rasterizer,
+    case: &PrimitiveScene,
+) -> Result<(), Violation> {
+    let frags = sample_fragments(r, case)?;
+    let one = PrimitiveScene {
+        samples: 1,
+        ..case.clone()
+    };
+    let single = sample_fragments(r, &one)?;
+    for i in 0..case.primitive_count() as u32 {
+        let mut expected = vec![Expect::Zero; cells(case)];
+        for f in single.iter().filter(|f| f.primitive == i) {
+            for k in 0..case.samples {
+                expected[cell(case, f.x, f.y, k)] = Expect::One;
+            }
+        }
+        let what = format!("every sample of the pixels segment {i} covers at one sample");
+        compare_samples(case, &counts(case, &frags, Some(i)), &expected, &what)?;
+    }
+    Ok(())
 }

@@ -124,6 +124,32 @@ fn in_view(case: &PrimitiveScene, i: usize, xy: bool) -> bool {
     w > 0.0 && (!xy || ((-w..=w).contains(&x) && (-w..=w).contains(&y))) && !outside_depth_planes(state, z, w)
 }
 
+/// Whether clipping must discard point `i` for being behind the eye or beyond a depth plane:
+/// `Some(true)` it must, `Some(false)` it lies within them (the viewport's sides are
+/// [`outside_xy`]'s), `None` either way.
+///
+/// Either way at `w = 0` exactly (no raster position; inside the view volume only at its apex),
+/// and under declared user-planes-only clipping, which discards a point only at a user clip
+/// plane (Vulkan, `VK_POINT_CLIPPING_BEHAVIOR_USER_CLIP_PLANES_ONLY`). Behind the eye (`w < 0`)
+/// no point lies inside the clip volume (`−w ≤ x ≤ w` has no solution), so every specification
+/// discards it, but where depth clipping is off and the specification may keep a point beyond
+/// the viewport's sides, which then holds it.
+fn depth_clipped(case: &PrimitiveScene, i: usize, profile: &Profile) -> Option<bool> {
+    let [_, _, z, w] = point(case, i).map(f64::from);
+    let state = &case.scene.state;
+    if w == 0.0 || profile.point_clipping == PointClipping::UserClipPlanesOnly {
+        return (w > 0.0 && !outside_depth_planes(state, z, w)).then_some(false);
+    }
+    if outside_depth_planes(state, z, w) {
+        return Some(true);
+    }
+    if w > 0.0 {
+        return Some(false);
+    }
+    let kept_beyond_sides = outside_xy(profile.spec, profile.point_clipping, true) != Outside::Nothing;
+    (state.clip_near || !kept_beyond_sides).then_some(true)
+}
+
 /// Each point's samples equal the square oracle's on its snapped position.
 pub fn check_square_exact(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
     let profile = r.profile();
@@ -139,11 +165,20 @@ pub fn check_square_exact(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Resu
         ..profile.clone()
     };
     for i in 0..case.indices.len() {
+        let got = counts(case, &frags, Some(i as u32));
+        match depth_clipped(case, i, &profile) {
+            None => continue,
+            Some(true) => {
+                let what = format!("nothing for point {i}, which clipping discards");
+                compare_samples(case, &got, &expect_covered(case, &[]), &what)?;
+                continue;
+            }
+            Some(false) => {}
+        }
         let Some(candidates) = snap_candidates(point(case, i), case.scene.width, case.scene.height, &on_ends)
         else {
             continue;
         };
-        let got = counts(case, &frags, Some(i as u32));
         let what = format!("the point square oracle for point {i}");
         let xy = outside_xy(profile.spec, profile.point_clipping, false) != Outside::Square;
         let judged = |p: Point| {
@@ -189,8 +224,15 @@ fn pixel_holding(r: &mut dyn Rasterizer, case: &PrimitiveScene, cts: bool) -> Re
     let (w, h) = (case.scene.width, case.scene.height);
     for i in 0..case.indices.len() {
         let p = point(case, i);
-        if p[3] <= 0.0 {
-            continue;
+        match depth_clipped(case, i, &profile) {
+            None => continue,
+            Some(true) => {
+                let what = format!("nothing for point {i}, which clipping discards");
+                let got = counts(case, &frags, Some(i as u32));
+                compare_samples(case, &got, &expect_covered(case, &[]), &what)?;
+                continue;
+            }
+            Some(false) => {}
         }
         let [px, py] = project(w, h, p.map(f64::from));
         let outside = px < -band || py < -band || px > f64::from(w) + band || py > f64::from(h) + band;

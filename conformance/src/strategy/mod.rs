@@ -11,6 +11,7 @@ use crate::scene::{Scene, clip_of};
 
 mod exact;
 pub mod primitive;
+pub mod reach;
 mod sliver;
 mod visibility;
 

@@ -1,4 +1,4 @@
-//! Strategies for lines, points and multisampled triangles, on the 8-bit grid of
+//! Strategies for lines, points and multisampled triangles, mostly on the 8-bit grid of
 //! power-of-two viewports, so that every implementation snaps their ends to the same points.
 
 use proptest::prelude::*;
@@ -20,7 +20,7 @@ fn coordinate() -> impl Strategy<Value = i64> {
 }
 
 /// A segment: two ends, the second often along an axis, on a diagonal, or within a pixel.
-fn segment() -> impl Strategy<Value = [(i64, i64); 2]> {
+pub(super) fn segment() -> impl Strategy<Value = [(i64, i64); 2]> {
     (
         (coordinate(), coordinate()),
         (coordinate(), coordinate()),
@@ -127,28 +127,58 @@ pub fn near_crossing_line() -> impl Strategy<Value = PrimitiveScene> {
     })
 }
 
-/// One to six points on the grid: on centres, corners, edges or anywhere, some beyond the
-/// viewport's sides; `w` of 1 or anywhere in `[0.25, 4]`.
+/// A point's vertex: on the grid ([`coordinate`]) at `w` 1 or in [0.25, 4) with `z/w` in
+/// [0, 1) most of the time; else behind the eye (`w` 0 or negative), before the near plane
+/// (`z` negative), on either depth plane exactly, or past the far one.
+pub fn point_vertex() -> impl Strategy<Value = (i64, i64, f32, f32)> {
+    let w = prop_oneof![Just(1.0f32), 0.25f32..4.0];
+    let depth = prop_oneof![
+        6 => (0.0f32..1.0, w.clone()),
+        1 => (prop_oneof![Just(0.0f32), Just(1.0), -1.0f32..-0.001, 1.001f32..2.0], w),
+        1 => (-1.0f32..1.0, prop_oneof![Just(0.0f32), -4.0f32..-0.05]),
+    ];
+    ((coordinate(), coordinate()), depth).prop_map(|((x, y), (z, w))| (x, y, z, w))
+}
+
+/// A point list of one to six points over their vertices and up to three unused ones, half the
+/// time in order (point `i` at vertex `i`), else through indices in any order, with repeats.
 pub fn points() -> impl Strategy<Value = PrimitiveScene> {
+    let picks = prop_oneof![
+        Just(None),
+        prop::collection::vec(any::<prop::sample::Index>(), 1..7).prop_map(Some)
+    ];
     (
-        prop::collection::vec(
-            (
-                (coordinate(), coordinate()),
-                0.0f32..1.0,
-                prop_oneof![Just(1.0f32), 0.25f32..4.0],
-            ),
-            1..7,
-        ),
+        prop::collection::vec(point_vertex(), 1..7),
+        0..4usize,
+        picks,
         side(),
         side(),
     )
-        .prop_map(|(points, w, h)| {
-            let positions = points
+        .prop_map(|(vertices, unused, picks, width, height)| {
+            let n = vertices.len();
+            let mut positions: Vec<[f32; 4]> = vertices
                 .iter()
-                .map(|&((x, y), z, pw)| clip_of(w, h, 8, x, y, z, pw))
+                .map(|&(x, y, z, w)| {
+                    if w > 0.0 {
+                        clip_of(width, height, 8, x, y, z, w)
+                    } else {
+                        // Behind the eye: the position at w = 1 turned through the eye (or
+                        // flattened onto it), z as drawn.
+                        let [px, py, _, _] = clip_of(width, height, 8, x, y, 0.0, 1.0);
+                        let s = if w == 0.0 { 1.0 } else { w };
+                        [px * s, py * s, z, w]
+                    }
+                })
                 .collect();
-            let indices = (0..points.len() as u32).collect();
-            PrimitiveScene::of(w, h, positions, Topology::PointList, indices)
+            let indices = match picks {
+                None => (0..n as u32).collect(),
+                Some(picks) => {
+                    positions.extend(std::iter::repeat_n([0.0, 0.0, 0.5, 1.0], unused));
+                    let all = positions.len();
+                    picks.iter().map(|i| i.index(all) as u32).collect()
+                }
+            };
+            PrimitiveScene::of(width, height, positions, Topology::PointList, indices)
         })
 }
 

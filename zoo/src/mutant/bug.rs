@@ -89,6 +89,20 @@ pub enum Bug {
     PixelDepth,
     /// Points drawn in the pixel `round(x)` names instead of the one that holds them.
     RoundedPoints,
+    /// Line ends floored to the grid, as `(v · 256) as i32` does, under a claim of rounding
+    /// to nearest: seen only where an end lies off the grid.
+    FlooredLineEnds,
+    /// Diamond-exit lines tested at each sample's position instead of the pixel's centre: seen
+    /// only on multisampled lines.
+    PerSampleDiamonds,
+    /// Points behind the eye or beyond a depth plane kept (turned to face the eye, their depth
+    /// put on the plane) instead of clipped away.
+    UnclippedPoints,
+    /// Point `i` drawn at vertex `i`, the index buffer ignored.
+    VertexOrderPoints,
+    /// A line's near cut placed between its projected ends, by the fraction found in clip
+    /// space: right only where both ends share one `w`.
+    ScreenSpaceLineCut,
     /// The scissor's right and bottom sides inclusive: `x ≤ column ≤ x + width`.
     InclusiveScissor,
     /// The scissor applied to triangles only (as a clamp of their traversal): lines and points
@@ -164,7 +178,7 @@ pub enum Bug {
 
 impl Bug {
     /// Every bug.
-    pub const ALL: [Bug; 63] = [
+    pub const ALL: [Bug; 68] = [
         Self::InclusiveEdges,
         Self::ExclusiveEdges,
         Self::BottomRightAsTopLeft,
@@ -199,6 +213,11 @@ impl Bug {
         Self::CentreOnlyCoverage,
         Self::PixelDepth,
         Self::RoundedPoints,
+        Self::FlooredLineEnds,
+        Self::PerSampleDiamonds,
+        Self::UnclippedPoints,
+        Self::VertexOrderPoints,
+        Self::ScreenSpaceLineCut,
         Self::InclusiveScissor,
         Self::TrianglesOnlyScissor,
         Self::BottomUpScissor,
@@ -268,6 +287,11 @@ impl Bug {
             Self::CentreOnlyCoverage => "centre-only-coverage",
             Self::PixelDepth => "pixel-depth",
             Self::RoundedPoints => "rounded-points",
+            Self::FlooredLineEnds => "floored-line-ends",
+            Self::PerSampleDiamonds => "per-sample-diamonds",
+            Self::UnclippedPoints => "unclipped-points",
+            Self::VertexOrderPoints => "vertex-order-points",
+            Self::ScreenSpaceLineCut => "screen-space-line-cut",
             Self::InclusiveScissor => "inclusive-scissor",
             Self::TrianglesOnlyScissor => "triangles-only-scissor",
             Self::BottomUpScissor => "bottom-up-scissor",
@@ -337,7 +361,9 @@ impl Bug {
             | Self::OrderedGridSamples
             | Self::CentreOnlyCoverage
             | Self::PixelDepth => "msaa",
-            Self::RoundedPoints => "point",
+            Self::RoundedPoints | Self::UnclippedPoints | Self::VertexOrderPoints => "point",
+            Self::FlooredLineEnds | Self::ScreenSpaceLineCut => "line",
+            Self::PerSampleDiamonds => "msaa",
             Self::InclusiveScissor | Self::TrianglesOnlyScissor | Self::BottomUpScissor => "clip",
             Self::DepthPastScissor => "depth",
             Self::FrontOnlyForBoth | Self::BothCullsLines => "meta",
@@ -358,6 +384,21 @@ impl Bug {
             | Self::TrianglesOnlyClipDistances
             | Self::AnyVertexCulls => "clip",
         }
+    }
+
+    /// Whether only lines and points beyond the 8-bit grid at `w = 1` show it: the mutant then
+    /// declares no polygon modes, whose rules compare a triangle's edges and corners with the
+    /// same implementation's lists and would see a bug in lists alone.
+    #[must_use]
+    pub fn is_reach(self) -> bool {
+        matches!(
+            self,
+            Self::FlooredLineEnds
+                | Self::PerSampleDiamonds
+                | Self::UnclippedPoints
+                | Self::VertexOrderPoints
+                | Self::ScreenSpaceLineCut
+        )
     }
 
     /// Whether it is a bug of lines, points or multisampling: the mutant then declares them

@@ -16,6 +16,7 @@ mod bug;
 mod distance;
 mod polygon;
 mod primitive;
+mod reach;
 mod state;
 
 pub use bug::Bug;
@@ -51,19 +52,26 @@ impl Rasterizer for Mutant {
     /// triangles at one sample for the others.
     fn profile(&self) -> Profile {
         let reference = Reference::default().profile();
-        Profile {
+        let mut profile = Profile {
             name: format!("mutant:{}", self.bug.name()),
             ..if self.bug.is_primitive() || self.bug.is_state() {
                 reference
             } else {
                 reference.triangles_only()
             }
+        };
+        if self.bug.is_reach() {
+            profile.state.polygon_modes = refrast::Supported::NONE;
         }
+        profile
     }
 
     fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
         if self.bug.is_state() {
             return state::rasterize(self.bug, draw);
+        }
+        if let Some(fragments) = reach::rasterize(self.bug, draw) {
+            return fragments;
         }
         if self.bug.is_primitive() {
             // Its bug is in lines, points or samples: triangles at one sample are the reference's.

@@ -86,31 +86,46 @@ fn clip_expectations(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<Op
     let range = case.scene.state.depth_range;
     let near = |p: [f32; 4]| near_distance(range, f64::from(p[2]), f64::from(p[3]));
     let (da, db) = (near(pa), near(pb));
-    if da < 0.0 || !within_guard_band(case, &d.profile) {
+    // The front end within the depth planes, so that only the near plane cuts the segment.
+    if da < 0.0 || (case.scene.state.clip_far && pa[2] > pa[3]) {
         return Ok(None);
     }
-    let frags = sample_fragments(r, case)?;
-    let one = f64::from(1u32 << d.bits);
-    let [a, b] = [pa, pb].map(|p| project(w, h, p.map(f64::from)));
+    // Where the segment meets the near plane, found in clip space (where clipping happens: an
+    // end behind the eye has no raster position to interpolate from), then projected.
     let s = if db < 0.0 { da / (da - db) } else { 1.0 };
-    let cut = [a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])];
-    let Some(start) = snap(pa, w, h, d.bits) else {
+    let [a4, b4] = [pa, pb].map(|p| p.map(f64::from));
+    let c4: [f64; 4] = std::array::from_fn(|k| a4[k] + s * (b4[k] - a4[k]));
+    let reach = f64::from(d.profile.features.guard_band);
+    let shown = |[x, y]: [f64; 2]| {
+        (-reach..=f64::from(w) + reach).contains(&x) && (-reach..=f64::from(h) + reach).contains(&y)
+    };
+    // The visible part must lie where no x/y plane cuts it (between two points that do, on a
+    // segment whose w stays positive): a cut beyond where w reaches 0 is the x/y planes' to make.
+    let cut = project(w, h, c4);
+    if c4[3] <= 0.0 || !shown(project(w, h, a4)) || !shown(cut) {
+        return Ok(None);
+    }
+    let Some(starts) = end_candidates(case, pa, &d) else {
         return Ok(None);
     };
+    let frags = sample_fragments(r, case)?;
+    let one = f64::from(1u32 << d.bits);
     let cut_grid = (cut[0] * one, cut[1] * one);
     let positions = positions(r, case);
     let g = grid(case, d.bits, &positions);
     let band = d.profile.band_px();
     // The cut rounded each way on each axis: where they disagree, rounding decides.
+    // So does the front end, where the profile may snap it either way.
     let variants: Vec<Vec<Expect>> = [(0.0, 0.0), (1.0, 1.0), (-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0)]
         .iter()
-        .map(|&(ox, oy)| {
+        .flat_map(|&(ox, oy)| {
             let end = (
                 (cut_grid.0 + ox).round() as i128,
                 (cut_grid.1 + oy).round() as i128,
             );
-            segment_expectations(case, &g, &d, [start, end], band)
+            starts.iter().map(move |&start| [start, end])
         })
+        .map(|ends| segment_expectations(case, &g, &d, ends, band))
         .collect();
     let mut expected = variants[0].clone();
     for (i, e) in expected.iter_mut().enumerate() {

@@ -175,6 +175,11 @@ fn load(file: &Path, key: &str) -> Option<Measured> {
             "float" => Some(Snapping::Float),
             bits => Some(Snapping::Grid(bits.parse().ok()?)),
         },
+        endpoint_snapping: match get("endpoint_snapping")? {
+            "triangles" => None,
+            "float" => Some(Snapping::Float),
+            bits => Some(Snapping::Grid(bits.parse().ok()?)),
+        },
         point_clipping: PointClipping::from_name(get("point_clipping")?)?,
         bias_slope: DepthSlope::from_name(get("bias_slope")?)?,
         multisample: match get("samples")? {
@@ -195,6 +200,15 @@ fn load(file: &Path, key: &str) -> Option<Measured> {
     })
 }
 
+/// A grid of its own as the file holds it: `triangles` for none, `float`, or its bits.
+fn grid_name(snapping: Option<Snapping>) -> String {
+    match snapping {
+        None => "triangles".to_owned(),
+        Some(Snapping::Float) => "float".to_owned(),
+        Some(Snapping::Grid(bits)) => bits.to_string(),
+    }
+}
+
 /// The sample pattern as the file holds it: `x,y` per sample, or `none`.
 fn samples(m: &Measured) -> String {
     match m.multisample.first() {
@@ -213,7 +227,8 @@ fn samples(m: &Measured) -> String {
 fn store(file: &Path, key: &str, m: &Measured) {
     let text = format!(
         "{key}\nsnapping = {}\nfill = {}\nties_to_even = {}\nsnap = {:?}\nguard_band = {}\n\
-         precision_bits = {}\ntolerance_subpixels = {}\nlines = {}\npoints = {}\npoint_snapping = {}\nsamples = {}\n\
+         precision_bits = {}\ntolerance_subpixels = {}\nlines = {}\npoints = {}\npoint_snapping = {}\nendpoint_snapping = {}\n\
+         samples = {}\n\
          point_clipping = {}\nbias_slope = {}\nreported = {}\nwhy = {}\n",
         match m.snapping {
             Snapping::Grid(bits) => bits.to_string(),
@@ -227,11 +242,8 @@ fn store(file: &Path, key: &str, m: &Measured) {
         m.tolerance_subpixels,
         m.lines.map_or("none", LineRule::name),
         m.points,
-        match m.point_snapping {
-            None => "triangles".to_owned(),
-            Some(Snapping::Float) => "float".to_owned(),
-            Some(Snapping::Grid(bits)) => bits.to_string(),
-        },
+        grid_name(m.point_snapping),
+        grid_name(m.endpoint_snapping),
         samples(m),
         m.point_clipping.name(),
         m.bias_slope.name(),
@@ -269,6 +281,7 @@ mod tests {
             lines: Some(LineRule::Parallelogram),
             points: true,
             point_snapping: None,
+            endpoint_snapping: Some(Snapping::Grid(4)),
             multisample: SamplePattern::standard(4).into_iter().collect(),
             point_clipping: PointClipping::AllClipPlanes,
             bias_slope: DepthSlope::Max,
@@ -284,6 +297,7 @@ mod tests {
             lines: None,
             points: false,
             point_snapping: Some(Snapping::Grid(4)),
+            endpoint_snapping: None,
             multisample: vec![SamplePattern::new(&[[1, 2], [3, 4], [5, 6], [7, 8]]).expect("4 samples")],
             point_clipping: PointClipping::UserClipPlanesOnly,
             bias_slope: DepthSlope::Either,

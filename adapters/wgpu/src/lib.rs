@@ -326,7 +326,7 @@ impl Rasterizer for Gpu {
             // What the probes measured: the line rule, points, and the 4 samples' positions.
             lines: m.lines,
             points: m.points,
-            endpoint_snapping: None,
+            endpoint_snapping: m.endpoint_snapping,
             point_snapping: m.point_snapping,
             multisample: m.multisample.clone(),
             point_clipping: m.point_clipping,

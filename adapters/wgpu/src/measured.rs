@@ -40,6 +40,8 @@ pub struct Measured {
     pub points: bool,
     /// The grid points are snapped to, when coarser than the triangles'.
     pub point_snapping: Option<Snapping>,
+    /// The grid line ends are snapped to, where coarser than the triangles'.
+    pub endpoint_snapping: Option<Snapping>,
     /// The sample positions the probe found (4 samples), if any.
     pub multisample: Vec<SamplePattern>,
     /// What clipping does to a point outside the viewport in x or y.
@@ -110,6 +112,7 @@ pub fn choose(spec: Spec, reported: Option<&Reported>, probes: &Probes) -> Measu
         lines: p.line_rule().or(p.nearest_rule()),
         points: p.points.is_ok(),
         point_snapping: point_grid(probes, snapping),
+        endpoint_snapping: end_grid(probes, snapping),
         multisample: p.pattern().into_iter().collect(),
         point_clipping,
         bias_slope: probes.slope.measure(),
@@ -142,14 +145,28 @@ fn point_clipping(spec: Spec, reported: Option<&Reported>) -> (PointClipping, St
 }
 
 /// The grid points are snapped to when it is coarser than the triangles' (`None`: theirs).
-///
-/// The point probe reads one bit coarse at worst (a half step is a tie), so only a grid coarser
-/// than that is a grid of its own. Line ends stay on the triangles' grid: no probe measures
-/// theirs apart.
 fn point_grid(probes: &Probes, triangles: Snapping) -> Option<Snapping> {
-    match (probes.primitives.point_bits(), triangles.grid_bits()) {
-        (Some(points), Some(bits)) if points + 1 >= bits => None,
-        (Some(points), _) => Some(Snapping::Grid(points.max(1))),
+    coarser_grid(probes.primitives.point_bits(), triangles)
+}
+
+/// The grid line ends are snapped to when it is coarser than the triangles' (`None`: theirs).
+///
+/// Read only where the driver's lines follow one rule exactly: the probe moves an end about
+/// where that rule's last pixel changes, which another algorithm's need not (llvmpipe's lines
+/// through OpenGL ES, off the diamond-exit rule at 10 probe pixels, read as 1 bit).
+fn end_grid(probes: &Probes, triangles: Snapping) -> Option<Snapping> {
+    probes.primitives.line_rule()?;
+    coarser_grid(probes.primitives.end_bits(), triangles)
+}
+
+/// A probed grid of `probed` bits when coarser than the triangles' (`None`: theirs).
+///
+/// The point and line-end probes read one bit coarse at worst (a half step is a tie), so only
+/// a grid coarser than that is a grid of its own.
+fn coarser_grid(probed: Option<u8>, triangles: Snapping) -> Option<Snapping> {
+    match (probed, triangles.grid_bits()) {
+        (Some(probed), Some(bits)) if probed + 1 >= bits => None,
+        (Some(probed), _) => Some(Snapping::Grid(probed.max(1))),
         (None, _) => None,
     }
 }

@@ -9,6 +9,8 @@
 mod common;
 #[path = "drivers/findings.rs"]
 mod findings;
+#[path = "drivers/lines.rs"]
+mod lines;
 #[path = "drivers/resolved.rs"]
 mod resolved;
 #[path = "drivers/softpipe.rs"]

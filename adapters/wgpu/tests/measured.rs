@@ -35,6 +35,7 @@ fn primitives(m: &Measured) -> Profile {
         lines: m.lines,
         points: m.points,
         point_snapping: m.point_snapping,
+        endpoint_snapping: m.endpoint_snapping,
         multisample: m.multisample.clone(),
         point_clipping: m.point_clipping,
         ..Profile::default()
@@ -80,6 +81,7 @@ fn pinned(d: Driver) -> Option<Pinned> {
             lines: primitives.lines,
             points: primitives.points,
             point_snapping: primitives.point_snapping,
+            endpoint_snapping: primitives.endpoint_snapping,
             multisample: primitives.multisample.clone(),
             point_clipping: primitives.point_clipping,
             // Each computes max(|∂z/∂x|, |∂z/∂y|) (Mesa's `lp_state_setup.c` and
@@ -253,8 +255,18 @@ fn child(d: Driver) {
     );
     let declared = gpu.profile();
     assert_eq!(
-        (declared.lines, declared.points, declared.point_snapping),
-        (fresh.lines, fresh.points, fresh.point_snapping),
+        (
+            declared.lines,
+            declared.points,
+            declared.point_snapping,
+            declared.endpoint_snapping
+        ),
+        (
+            fresh.lines,
+            fresh.points,
+            fresh.point_snapping,
+            fresh.endpoint_snapping
+        ),
         "{name}: the profile declares it"
     );
     assert_eq!(

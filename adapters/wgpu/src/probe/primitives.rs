@@ -39,6 +39,9 @@ pub struct PrimitiveProbes {
     /// covers, in x and in y: the grid points are snapped to; `None` when every step down to
     /// `2^-FINEST_POINT_STEP` does (no grid), `Some(0)` when none does.
     pub point_steps: Option<[u8; 2]>,
+    /// The same for a line's end moved off the place where its last pixel changes, in x and in
+    /// y: the grid line ends are snapped to (`None` also when no lines were drawn).
+    pub end_steps: Option<[u8; 2]>,
 }
 
 impl PrimitiveProbes {
@@ -55,6 +58,12 @@ impl PrimitiveProbes {
     #[must_use]
     pub fn point_bits(&self) -> Option<u8> {
         self.point_steps.map(|[x, y]| x.min(y).saturating_sub(1))
+    }
+
+    /// The grid line ends are snapped to, in bits, read as [`PrimitiveProbes::point_bits`] is.
+    #[must_use]
+    pub fn end_bits(&self) -> Option<u8> {
+        self.end_steps.map(|[x, y]| x.min(y).saturating_sub(1))
     }
 
     /// The line rule fewest probe pixels disagree with, if lines were drawn.
@@ -113,7 +122,20 @@ impl PrimitiveProbes {
             ),
             _ => format!("points not snapped (steps down to 2^-{FINEST_POINT_STEP} px move them)"),
         };
-        format!("{lines}, {points}, {snapped}, {samples}")
+        let ends = match (self.end_steps, self.end_bits()) {
+            (Some(_), Some(_)) if self.line_rule().is_none() => {
+                ", line ends' grid not read (the lines follow no rule exactly)".to_owned()
+            }
+            (Some(steps), Some(bits)) => format!(
+                ", line ends snapped to {bits} bits (the finest step moving one changes its last pixel: 2^-{} px in x, 2^-{} in y)",
+                steps[0], steps[1]
+            ),
+            _ if self.lines.is_ok() => {
+                format!(", line ends not snapped (steps down to 2^-{FINEST_POINT_STEP} px move them)")
+            }
+            _ => String::new(),
+        };
+        format!("{lines}{ends}, {points}, {snapped}, {samples}")
     }
 }
 
@@ -155,11 +177,17 @@ pub fn measure(
     });
     let samples = multisampling.and_then(|()| sample_positions(draw));
     let point_steps = point_steps(draw).unwrap_or(Some([0, 0]));
+    let end_steps = if lines.is_ok() {
+        end_steps(draw).unwrap_or(Some([0, 0]))
+    } else {
+        None
+    };
     PrimitiveProbes {
         lines,
         points,
         samples,
         point_steps,
+        end_steps,
     }
 }
 
@@ -244,6 +272,56 @@ fn point_steps(draw: &mut PrimitiveRaster<'_>) -> Result<Option<[u8; 2]>, DrawEr
         for (axis, slot) in finest.iter_mut().enumerate() {
             let pair = first + 2 * axis as u32;
             if of(pair) != of(pair + 1) {
+                *slot = k;
+            }
+        }
+    }
+    Ok(if finest == [FINEST_POINT_STEP; 2] {
+        None
+    } else {
+        Some(finest)
+    })
+}
+
+/// Segments from `(2.25, 7.25)` along x (from `(3.25, 2.25)` along y) ending `2^-k` px either
+/// side of a pixel edge (where a diamond-exit line's last pixel changes) and of a pixel centre
+/// (where a rectangle's or parallelogram's does), `k` from 1 to [`FINEST_POINT_STEP`]: the
+/// finest `k` telling a pair apart, per axis, as [`point_steps`] reads points.
+fn end_steps(draw: &mut PrimitiveRaster<'_>) -> Result<Option<[u8; 2]>, DrawError> {
+    let mut ends: Vec<[f64; 2]> = Vec::new();
+    for k in 1..=FINEST_POINT_STEP {
+        let step = (-f64::from(k)).exp2();
+        for at in [10.0, 10.5] {
+            ends.extend([
+                [2.25, 7.25],
+                [at + step, 7.25],
+                [2.25, 7.25],
+                [at - step, 7.25],
+                [3.25, 2.25],
+                [3.25, at + step],
+                [3.25, 2.25],
+                [3.25, at - step],
+            ]);
+        }
+    }
+    let positions: Vec<[f32; 4]> = ends.iter().map(|&p| clip(SIDE, SIDE, p, 0.5, 1.0)).collect();
+    let indices = (0..positions.len() as u32).collect();
+    let viewport = Viewport::new(SIDE, SIDE).expect("the probe's target");
+    let mut probe = Draw::of(viewport, positions, Topology::LineList, indices);
+    probe.state.clip_far = true;
+    let covered = pixels(&draw(&probe)?);
+    let of =
+        |p: u32| -> Vec<(u32, u32)> { covered.iter().filter(|t| t.0 == p).map(|t| (t.1, t.2)).collect() };
+    let mut finest = [0u8; 2];
+    for k in 1..=FINEST_POINT_STEP {
+        let first = 8 * u32::from(k - 1);
+        for (axis, slot) in finest.iter_mut().enumerate() {
+            // Segment pairs of this axis: at the edge, then at the centre.
+            let told = [0, 4].iter().any(|&base| {
+                let pair = first + base + 2 * axis as u32;
+                of(pair) != of(pair + 1)
+            });
+            if told {
                 *slot = k;
             }
         }

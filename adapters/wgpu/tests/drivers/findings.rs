@@ -79,10 +79,16 @@ const SOFTPIPE: [Finding; 4] = [
 ];
 
 /// lavapipe's own findings: at 4 samples, which only it draws through wgpu of Mesa's three.
-const LAVAPIPE: [Finding; 1] = [(
-    "the scissor tested half a pixel up and left at 4 samples",
-    lavapipe_multisample_scissor,
-)];
+const LAVAPIPE: [Finding; 2] = [
+    (
+        "the scissor tested half a pixel up and left at 4 samples",
+        lavapipe_multisample_scissor,
+    ),
+    (
+        "very short lines drawn as nothing at 4 samples",
+        crate::lines::lavapipe_short_lines,
+    ),
+];
 
 /// Each finding of docs/certified.md for driver `d`, as the driver does it today: every one is
 /// checked, and those that moved are named together.

@@ -21,7 +21,7 @@ pub type Run<'a> = dyn FnMut(&Draw) -> Vec<Fragment> + 'a;
 type Finding = (&'static str, fn(&mut Run<'_>));
 
 /// Each finding, in docs/certified.md's order.
-const FINDINGS: [Finding; 14] = [
+const FINDINGS: [Finding; 15] = [
     (
         "a vertex at w = 0 whose winding comes out backwards draws nothing",
         w_zero_winding_backwards,
@@ -53,6 +53,10 @@ const FINDINGS: [Finding; 14] = [
     (
         "clip distances tested once per pixel",
         crate::distances::clip_distance_per_pixel,
+    ),
+    (
+        "a line to an end behind the eye drawn as nothing",
+        crate::lines::line_behind_the_eye,
     ),
 ];
 

@@ -258,29 +258,7 @@ fn point_steps(draw: &mut PrimitiveRaster<'_>) -> Result<Option<[u8; 2]>, DrawEr
             [3.25, 10.0 - step],
         ]);
     }
-    let positions: Vec<[f32; 4]> = spots.iter().map(|&p| clip(SIDE, SIDE, p, 0.5, 1.0)).collect();
-    let indices = (0..positions.len() as u32).collect();
-    let viewport = Viewport::new(SIDE, SIDE).expect("the probe's target");
-    let mut probe = Draw::of(viewport, positions, Topology::PointList, indices);
-    probe.state.clip_far = true;
-    let covered = pixels(&draw(&probe)?);
-    let of =
-        |p: u32| -> Vec<(u32, u32)> { covered.iter().filter(|t| t.0 == p).map(|t| (t.1, t.2)).collect() };
-    let mut finest = [0u8; 2];
-    for k in 1..=FINEST_POINT_STEP {
-        let first = 4 * u32::from(k - 1);
-        for (axis, slot) in finest.iter_mut().enumerate() {
-            let pair = first + 2 * axis as u32;
-            if of(pair) != of(pair + 1) {
-                *slot = k;
-            }
-        }
-    }
-    Ok(if finest == [FINEST_POINT_STEP; 2] {
-        None
-    } else {
-        Some(finest)
-    })
+    finest_steps(draw, &spots, Topology::PointList, &[[0, 1], [2, 3]])
 }
 
 /// Segments from `(2.25, 7.25)` along x (from `(3.25, 2.25)` along y) ending `2^-k` px either
@@ -304,23 +282,36 @@ fn end_steps(draw: &mut PrimitiveRaster<'_>) -> Result<Option<[u8; 2]>, DrawErro
             ]);
         }
     }
-    let positions: Vec<[f32; 4]> = ends.iter().map(|&p| clip(SIDE, SIDE, p, 0.5, 1.0)).collect();
-    let indices = (0..positions.len() as u32).collect();
+    // Segment pairs per axis: at the edge, then at the centre.
+    finest_steps(draw, &ends, Topology::LineList, &[[0, 1], [4, 5], [2, 3], [6, 7]])
+}
+
+/// The finest `k` at which some pair of `positions` drawn as `topology` covers different
+/// pixels, per axis: each `k` in turn has `2 · pairs.len()` primitives, and `pairs` names each
+/// pair's two within them, the first half of x, the second of y; `None` when every `k` down to
+/// [`FINEST_POINT_STEP`] tells one apart.
+fn finest_steps(
+    draw: &mut PrimitiveRaster<'_>,
+    positions: &[[f64; 2]],
+    topology: Topology,
+    pairs: &[[u32; 2]],
+) -> Result<Option<[u8; 2]>, DrawError> {
+    let clip_positions: Vec<[f32; 4]> = positions.iter().map(|&p| clip(SIDE, SIDE, p, 0.5, 1.0)).collect();
+    let indices = (0..clip_positions.len() as u32).collect();
     let viewport = Viewport::new(SIDE, SIDE).expect("the probe's target");
-    let mut probe = Draw::of(viewport, positions, Topology::LineList, indices);
+    let mut probe = Draw::of(viewport, clip_positions, topology, indices);
     probe.state.clip_far = true;
     let covered = pixels(&draw(&probe)?);
     let of =
         |p: u32| -> Vec<(u32, u32)> { covered.iter().filter(|t| t.0 == p).map(|t| (t.1, t.2)).collect() };
+    let (per_k, per_axis) = (2 * pairs.len() as u32, pairs.len() / 2);
     let mut finest = [0u8; 2];
     for k in 1..=FINEST_POINT_STEP {
-        let first = 8 * u32::from(k - 1);
+        let first = per_k * u32::from(k - 1);
         for (axis, slot) in finest.iter_mut().enumerate() {
-            // Segment pairs of this axis: at the edge, then at the centre.
-            let told = [0, 4].iter().any(|&base| {
-                let pair = first + base + 2 * axis as u32;
-                of(pair) != of(pair + 1)
-            });
+            let told = pairs[axis * per_axis..(axis + 1) * per_axis]
+                .iter()
+                .any(|&[a, b]| of(first + a) != of(first + b));
             if told {
                 *slot = k;
             }

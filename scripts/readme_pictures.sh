@@ -33,6 +33,7 @@ r plane --size 320x240 --mode overdraw --impl lab002-scanline -o "$out/plane-ove
 # The star at one sample and at four (Vulkan's standard locations), resolved with a box filter.
 r star --size 160x120 -o "$out/star-1x.png"
 r star --size 160x120 --samples 4 -o "$out/star-4x.png"
+r star --size 160x120 --samples 4 --sample-mask 0b0011 -o "$out/star-4x-mask.png"
 # Seed 003's overlaps (a cycle of bars, two triangles through each other): a depth buffer draws
 # them, the painter's algorithm cannot (docs/zoo.md).
 r overlaps --size 480x240 -o "$out/overlaps-reference.png"

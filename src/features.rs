@@ -289,6 +289,11 @@ pub struct StateSupport {
     /// It honours [`DrawState::scissor`](crate::DrawState::scissor): no fragment outside the
     /// rectangle, for every topology and sample count it draws.
     pub scissor: bool,
+    /// It honours [`DrawState::sample_mask`](crate::DrawState::sample_mask): sample `i` of a
+    /// fragment kept only where bit `i` is set, for every topology and sample count it draws
+    /// (one sample included: bit 0, but under OpenGL and OpenGL ES, whose multisample
+    /// operations skip a single-sample target), and nothing written of a sample the mask drops.
+    pub sample_mask: bool,
     /// It culls both faces ([`CullMode::FrontAndBack`](crate::CullMode::FrontAndBack)): no
     /// triangle drawn, lines and points drawn as with culling off.
     pub cull_both: bool,
@@ -383,6 +388,7 @@ impl StateSupport {
     /// None of it: what a rasterizer written before it existed declares.
     pub const NONE: StateSupport = StateSupport {
         scissor: false,
+        sample_mask: false,
         cull_both: false,
         triangle_strips: false,
         triangle_fans: false,
@@ -398,6 +404,7 @@ impl StateSupport {
     /// All of it, as the reference honours it.
     pub const ALL: StateSupport = StateSupport {
         scissor: true,
+        sample_mask: true,
         cull_both: true,
         triangle_strips: true,
         triangle_fans: true,

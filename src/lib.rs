@@ -91,6 +91,9 @@
 //! - **Scissor**: a fragment is produced only where its pixel lies in the draw's scissor
 //!   rectangle, half-open in raster space, for every primitive and sample
 //!   ([`DrawState::passes_scissor`]).
+//! - **Sample mask**: sample `i` of a fragment is kept only where bit `i` of the draw's mask
+//!   is set, for every primitive and sample count, bit 0 at one sample
+//!   ([`DrawState::passes_sample_mask`]).
 //! - **Strips and fans**: triangle `i` of a strip is indices `i, i+1+i%2, i+2−i%2` (every other
 //!   one reversed, so the strip keeps one winding), of a fan `i+1, i+2, 0`, as Vulkan makes them
 //!   and orders their barycentrics; each draws as that triangle would in a list

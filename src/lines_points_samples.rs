@@ -183,6 +183,9 @@ impl Reference {
                     continue;
                 };
                 let flat = draw.provoking(primitive);
+                if !draw.state.passes_sample_mask(k as u8) {
+                    continue;
+                }
                 traverse(&fan, kept.winding, rect, bits, &mut scratch.row, |hit| {
                     if !draw.state.passes_scissor(hit.x, hit.y) {
                         return;
@@ -293,6 +296,9 @@ impl Reference {
         );
         let mut covered = 0;
         let mut fragment_at = |x: i64, y: i64, s: FixedPoint, sample: usize| {
+            if !draw.state.passes_sample_mask(sample as u8) {
+                return;
+            }
             // The sample's projection on the segment, the Vulkan line `t`.
             let t = (((s.x - a.x) as f64 * dx + (s.y - a.y) as f64 * dy) / length2).clamp(0.0, 1.0);
             let b = interpolate([&va.varyings, &vb.varyings], [1.0 - t, t]);
@@ -412,7 +418,9 @@ impl Reference {
                         x: x * one + ox,
                         y: y * one + oy,
                     };
-                    if !segment::in_point_square(c, s, half, config.fill) {
+                    if !segment::in_point_square(c, s, half, config.fill)
+                        || !draw.state.passes_sample_mask(k as u8)
+                    {
                         continue;
                     }
                     covered += 1;

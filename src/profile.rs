@@ -301,7 +301,7 @@ impl Profile {
     }
 
     /// `state` with each unsupported setting replaced by a supported one (an undeclared scissor
-    /// dropped, undeclared culling of both faces replaced like an unsupported cull mode, the
+    /// or sample mask dropped, undeclared culling of both faces replaced like an unsupported cull mode, the
     /// provoking vertex one the profile reports flat values under, an undeclared polygon mode
     /// filled): what the suite sends.
     #[must_use]
@@ -323,6 +323,9 @@ impl Profile {
         fitted.depth_bias = self.state.fit_depth_bias(state.depth_bias);
         fitted.depth_range = f.depth_ranges.fit(state.depth_range);
         fitted.scissor = state.scissor.filter(|_| self.state.scissor);
+        if !self.state.sample_mask {
+            fitted.sample_mask = DrawState::ALL_SAMPLES;
+        }
         fitted.polygon_mode = self.state.fit_polygon_mode(state.polygon_mode);
         // Without flat values the mode changes nothing: the default is what such a draw has.
         fitted.provoking_vertex = if self.state.flat.is_empty() {

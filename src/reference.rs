@@ -149,8 +149,9 @@ impl Reference {
             self.config.subpixel_bits,
             &mut scratch.row,
             |hit| {
-                // The scissor test, on each sample the triangle covers.
-                if !setup.draw.state.passes_scissor(hit.x, hit.y) {
+                // The scissor and sample mask tests, on each sample the triangle covers (the
+                // one sample is sample 0).
+                if !setup.draw.state.passes_scissor(hit.x, hit.y) || !setup.draw.state.passes_sample_mask(0) {
                     return;
                 }
                 covered += 1;

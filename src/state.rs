@@ -36,6 +36,13 @@ pub struct DrawState {
     /// The rectangle fragments must fall in; `None` tests nothing. Sent only to a rasterizer
     /// that declares it ([`StateSupport::scissor`](crate::StateSupport::scissor)).
     pub scissor: Option<Scissor>,
+    /// The static sample mask, ANDed with each fragment's coverage: sample `i` is kept only
+    /// where bit `i` is set, at every sample count (bit 0 alone at one sample); bits at and
+    /// above the draw's sample count mean nothing. All ones (`u32::MAX`) tests nothing. Sent
+    /// other than all ones only to a rasterizer that declares it
+    /// ([`StateSupport::sample_mask`](crate::StateSupport::sample_mask)): Vulkan's `pSampleMask`,
+    /// OpenGL's `SampleMaski`, D3D11's `SampleMask`, WebGPU's `multisample.mask`.
+    pub sample_mask: u32,
     /// Which vertex of a primitive gives its flat values ([`Fragment::flat`](crate::Fragment::flat)).
     /// Sent other than first only to a rasterizer that declares it
     /// ([`StateSupport::flat`](crate::StateSupport::flat)).
@@ -98,7 +105,7 @@ impl PolygonMode {
 impl Default for DrawState {
     /// No culling, counter-clockwise front faces, a LESS test, the `[0, 1]` clip volume with
     /// near clipping on and far clipping off, the whole depth range, no depth bias, no scissor,
-    /// the first provoking vertex, triangles filled.
+    /// no sample mask, the first provoking vertex, triangles filled.
     fn default() -> Self {
         Self {
             cull: CullMode::default(),
@@ -110,6 +117,7 @@ impl Default for DrawState {
             viewport_depth: ViewportDepth::FULL,
             depth_bias: None,
             scissor: None,
+            sample_mask: Self::ALL_SAMPLES,
             provoking_vertex: ProvokingVertex::default(),
             polygon_mode: PolygonMode::Fill,
         }
@@ -125,6 +133,17 @@ impl DrawState {
             far: self.clip_far,
             range: self.depth_range,
         }
+    }
+
+    /// The sample mask that masks nothing.
+    pub const ALL_SAMPLES: u32 = u32::MAX;
+
+    /// Whether sample `sample` of a fragment passes the sample mask test: the one place the
+    /// reference applies it, as Vulkan's Sample Mask Test does, bit `sample` of the mask.
+    #[must_use]
+    #[inline]
+    pub fn passes_sample_mask(&self, sample: u8) -> bool {
+        u32::from(sample) < u32::BITS && self.sample_mask >> sample & 1 == 1
     }
 
     /// Whether a fragment at pixel `(x, y)` passes the scissor test: the one place the
@@ -194,6 +213,19 @@ mod tests {
         };
         assert!(state.passes_scissor(3, 3) && !state.passes_scissor(0, 0));
         assert!(DrawState::default().passes_scissor(u32::MAX, u32::MAX));
+    }
+
+    /// Bit `i` of the mask keeps sample `i`; the default keeps every sample.
+    #[test]
+    fn the_sample_mask_keeps_the_samples_of_its_set_bits() {
+        let state = DrawState {
+            sample_mask: 0b1010,
+            ..DrawState::default()
+        };
+        assert!(!state.passes_sample_mask(0) && state.passes_sample_mask(1));
+        assert!(!state.passes_sample_mask(2) && state.passes_sample_mask(3));
+        assert!(!state.passes_sample_mask(15) && !state.passes_sample_mask(200));
+        assert!((0..32).all(|s| DrawState::default().passes_sample_mask(s)));
     }
 
     #[test]

@@ -60,6 +60,12 @@ pub struct SceneArgs {
     /// (the scissor test); the rasterizer must declare a scissor (the reference does).
     #[arg(long, value_name = "X,Y,W,H", value_parser = parse_scissor)]
     pub scissor: Option<Scissor>,
+    /// Keep only the samples whose bit is set in MASK (the sample mask test: bit i keeps sample
+    /// i of every pixel, bit 0 at one sample), in decimal, 0x hex or 0b binary: with --samples
+    /// 4, 0b0101 keeps samples 0 and 2, so edges and the whole picture draw at half coverage;
+    /// the rasterizer must declare a sample mask (the reference does).
+    #[arg(long, value_name = "MASK", value_parser = parse_sample_mask)]
+    pub sample_mask: Option<u32>,
     /// Offset each triangle's depth by CONSTANT units of its depth format's resolution plus
     /// SLOPE times its depth slope, at most CLAMP from where it was (0 or absent: no clamp);
     /// the rasterizer must declare depth bias (the reference does). Lines and points are not
@@ -186,6 +192,7 @@ pub fn prepare(args: &SceneArgs) -> Result<Prepared, Failure> {
     state.cull = args.cull.unwrap_or(state.cull);
     state.front_face = args.front_face;
     state.scissor = args.scissor;
+    state.sample_mask = args.sample_mask.unwrap_or(DrawState::ALL_SAMPLES);
     state.depth_bias = args.depth_bias;
     state.polygon_mode = args.polygon_mode;
     Ok(Prepared {
@@ -240,6 +247,23 @@ pub fn rasterizer(name: &str, setup: &Setup) -> Result<Box<dyn Rasterizer>, Fail
     let b = refrast_registry::find(name).map_err(|e| Failure(e, 2))?;
     b.build()
         .map_err(|why| Failure(format!("{name} is not available here: {why}"), 2))
+}
+
+/// A 32-bit mask in decimal, `0x` hexadecimal or `0b` binary.
+fn parse_sample_mask(s: &str) -> Result<u32, String> {
+    let t = s.trim();
+    let parsed = if let Some(hex) = t.strip_prefix("0x").or_else(|| t.strip_prefix("0X")) {
+        u32::from_str_radix(hex, 16)
+    } else if let Some(bits) = t.strip_prefix("0b").or_else(|| t.strip_prefix("0B")) {
+        u32::from_str_radix(bits, 2)
+    } else {
+        t.parse::<u32>()
+    };
+    parsed.map_err(|_| {
+        format!(
+            "'{s}' is not a sample mask; give 32 bits, bit i keeping sample i, in decimal, 0x hex or 0b binary, e.g. 0b0101"
+        )
+    })
 }
 
 /// `X,Y,WIDTH,HEIGHT`: four whole numbers of pixels.

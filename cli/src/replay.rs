@@ -263,6 +263,9 @@ fn describe(case: &CaseFile) -> String {
             u64::from(y) + u64::from(h)
         ));
     }
+    if let Some(mask) = d.sample_mask {
+        text.push_str(&format!("; sample mask {mask:#x}"));
+    }
     if let Some(mode) = &d.provoking_vertex {
         text.push_str(&format!("; provoking-vertex {mode}"));
     }

@@ -19,8 +19,8 @@ Draw = namedtuple(
     "Draw",
     "width height positions triangles cull front_face depth_compare depth_write depth_clear "
     "depth_range far_clipping topology samples scissor indices provoking_vertex near_clipping "
-    "viewport_depth depth_bias polygon_mode clip_distances cull_distances",
-    defaults=(None, None, "first", True, (0.0, 1.0), None, "fill", None, None),
+    "viewport_depth depth_bias polygon_mode clip_distances cull_distances sample_mask",
+    defaults=(None, None, "first", True, (0.0, 1.0), None, "fill", None, None, 0xFFFFFFFF),
 )
 Draw.__doc__ = """One draw: clip-space positions (x, y, z, w), triangles (i, j, k) and state.
 
@@ -38,6 +38,9 @@ provoking_vertex is first or last: which vertex of a primitive gives its flat va
 fragment's flat), last only for a profile whose provoking-vertex line lists it. near_clipping is
 False only for a profile whose features name unclipped-depth (and far_clipping is then False too):
 nothing is cut at the near or far plane and depth is clamped to the viewport's depth range.
+sample_mask is a 32-bit int whose bit i keeps sample i (all ones keeps every sample); other
+than all ones only for a profile whose features name sample-mask: then no fragment may be at a
+sample whose bit is clear (bit 0 at one sample).
 viewport_depth is (min, max), where the near and far planes land in window depth (n + (f - n) * u),
 other than (0.0, 1.0) only for a profile whose features name viewport-depth (min > max only for
 inverted-depth); depth clamps to [min(n, f), max(n, f)]. depth_bias is None, or (constant, slope,
@@ -152,6 +155,7 @@ def _read_draw(words, stream):
         polygon_mode=fields.get("polygon-mode", "fill"),
         clip_distances=[list(r[:clip]) for r in rows] if clip else None,
         cull_distances=[list(r[clip:]) for r in rows] if cull else None,
+        sample_mask=int(fields.get("sample-mask", "4294967295")),
     )
 
 

@@ -9,7 +9,7 @@ pixels from the viewport's centre,
 each cut computed from the inside end; a clipped polygon covers the samples its snapped fan winds
 around. Barycentrics are perspective-correct, depth is z/w through the viewport's depth range
 (reversed too), linear on screen and clamped to that range, a scissor rectangle
-drops the fragments outside it, and its own depth buffer answers `resolve`. It draws triangle
+drops the fragments outside it, the sample mask's bit 0 keeps its one sample or drops it, and its own depth buffer answers `resolve`. It draws triangle
 lists, strips and fans (refrast_pipe assembles a strip's or fan's triangles in Vulkan's order),
 and each fragment carries its triangle's provoking vertex (first or last) as its flat vertex.
 Clip distances are tested per sample, as D3D11.3 §15.4.1 words it (a sample is drawn where each
@@ -46,7 +46,7 @@ PROFILE = {
     "tolerance": 1,
     "precision": 18,
     "features": "perspective-barycentrics screen-barycentrics depth-test ties-to-even scissor "
-    "inverted-depth unclipped-depth",
+    "sample-mask inverted-depth unclipped-depth",
     # The guard band's half-side less half the largest viewport (16384 px): its reach beyond
     # every side of every viewport.
     "guard-band": int(GUARD_BAND) - 16384 // 2,
@@ -350,7 +350,7 @@ def rasterize(draw):
     out = []
     for t, tri in enumerate(draw.triangles):
         out += triangle_fragments(draw, t, [draw.positions[i] for i in tri], tri)
-    return [f for f in out if in_scissor(draw, f.x, f.y)]
+    return [f for f in out if in_scissor(draw, f.x, f.y) and in_sample_mask(draw, f.sample)]
 
 
 def provoking(draw, t):
@@ -362,6 +362,12 @@ def provoking(draw, t):
         "triangle-fan": (t + 1, t + 2),
     }[draw.topology]
     return draw.indices[last if draw.provoking_vertex == "last" else first]
+
+
+def in_sample_mask(draw, sample):
+    """The sample mask test: bit `sample` of the draw's mask is set (Vulkan's Sample Mask
+    Test; at one sample, bit 0)."""
+    return (draw.sample_mask >> sample) & 1 == 1
 
 
 def in_scissor(draw, x, y):

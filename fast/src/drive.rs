@@ -58,6 +58,10 @@ pub(crate) fn run<K: Sink>(
             draw.describe()
         )));
     }
+    // The sample mask test at one sample: bit 0 keeps every fragment or none.
+    if !draw.state.passes_sample_mask(0) {
+        return Ok(());
+    }
     // Both traversals give the same samples; the box is the one worth drawing.
     let front = FrontSetup::new(
         draw,

@@ -211,6 +211,8 @@ impl Rasterizer for Fast {
             // front end also gives it depth clipping off, the depth range and depth bias; its planes
             // offset and clamp.
             state: StateSupport {
+                // At one sample, the mask's bit 0 (drive::run).
+                sample_mask: true,
                 triangle_strips: true,
                 triangle_fans: true,
                 viewport_depth: true,

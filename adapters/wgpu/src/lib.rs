@@ -338,9 +338,15 @@ impl Rasterizer for Gpu {
             // other: Vulkan's default, the first vertex; OpenGL ES's only one, the last (§12.4,
             // Table 12.3); the rule checks each driver against it. The viewport's depth range is
             // `set_viewport`'s, which rejects `min_depth > max_depth`. Depth clipping off is
-            // `unclipped_depth` where the adapter reports DEPTH_CLIP_CONTROL.
+            // `unclipped_depth` where the adapter reports DEPTH_CLIP_CONTROL. The sample mask is
+            // WebGPU's `multisample.mask`.
             state: StateSupport {
                 scissor: true,
+                // `MultisampleState::mask`, core in WebGPU, which wgpu-hal 30 passes on to
+                // Vulkan as `pSampleMask` (both words, at every count) but never reads in its
+                // GLES backend (no `SampleMaski`): declared there, it would blame the driver
+                // for what wgpu drops.
+                sample_mask: self.driver.backends() == wgpu::Backends::VULKAN,
                 cull_both: false,
                 triangle_strips: true,
                 triangle_fans: false,

@@ -47,6 +47,11 @@ pub struct Key {
     polygon: PolygonMode,
     /// Whether the vertices carry clip distances (`clip_vertex.wgsl`).
     clip: bool,
+    /// The sample mask, bit `i` for sample `i` (`DrawState::sample_mask`), as the draw gives it:
+    /// its bits at and above the sample count mean nothing, but a driver that reads them is
+    /// what the mask rules are there to see (lavapipe does at one sample), so they are not
+    /// cleared here to share pipelines.
+    mask: u32,
 }
 
 impl Key {
@@ -73,6 +78,7 @@ impl Key {
                 .map(|b| (b.constant as i32, b.slope.to_bits(), b.clamp.to_bits())),
             polygon: state.polygon_mode,
             clip: false,
+            mask: state.sample_mask,
         }
     }
 
@@ -400,6 +406,13 @@ impl Pipelines {
             }),
             multisample: wgpu::MultisampleState {
                 count: u32::from(key.samples),
+                // Every pass masks, the captures too: a masked sample makes no fragment. No
+                // mask is wgpu's default, all 64 bits set.
+                mask: if key.mask == DrawState::ALL_SAMPLES {
+                    u64::MAX
+                } else {
+                    u64::from(key.mask)
+                },
                 ..wgpu::MultisampleState::default()
             },
             fragment: Some(wgpu::FragmentState {

@@ -11,6 +11,8 @@ mod common;
 mod findings;
 #[path = "drivers/lines.rs"]
 mod lines;
+#[path = "drivers/masks.rs"]
+mod masks;
 #[path = "drivers/resolved.rs"]
 mod resolved;
 #[path = "drivers/softpipe.rs"]

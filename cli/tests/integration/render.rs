@@ -215,6 +215,58 @@ fn a_scissor_keeps_every_mode_inside_it() {
     refused(&["room", "--scissor", "1,2,3"], "is not a scissor");
 }
 
+/// `--sample-mask` keeps the samples of its set bits: at 4 samples, 0b0011 keeps two of each
+/// pixel's four, so over the room's black clear every channel sums to about half the unmasked
+/// picture's, and 0 draws nothing; at one sample only bit 0 counts. A rasterizer without a
+/// sample mask refuses the draw (exit 1), and a malformed mask is a usage error (exit 2).
+#[test]
+fn a_sample_mask_keeps_the_samples_of_its_bits() {
+    let dir = scratch("sample-mask");
+    let light = |name: &str, extra: &[&str]| -> u64 {
+        let path = dir.join(name);
+        let mut args = vec!["room", "--size", "160x120"];
+        args.extend_from_slice(extra);
+        args.extend(["-o", path.to_str().unwrap()]);
+        let out = render(&args);
+        assert!(
+            out.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        png(&path)
+            .pixels()
+            .map(|p| u64::from(p.0[0]) + u64::from(p.0[1]) + u64::from(p.0[2]))
+            .sum()
+    };
+    let whole = light("whole.png", &["--samples", "4"]);
+    let half = light("half.png", &["--samples", "4", "--sample-mask", "0b0011"]);
+    assert!(whole > 0, "the unmasked room is black");
+    let ratio = half as f64 / whole as f64;
+    // Each kept sample is shaded as unmasked and each masked one is the black clear: the
+    // box filter halves every pixel, up to its rounding to 8 bits.
+    assert!(
+        (0.48..=0.52).contains(&ratio),
+        "masked to half the samples: {ratio}"
+    );
+    assert_eq!(light("none.png", &["--samples", "4", "--sample-mask", "0"]), 0);
+    assert_eq!(
+        light("one.png", &["--sample-mask", "0xfffffffe"]),
+        0,
+        "bit 0 clear at one sample"
+    );
+    assert_eq!(
+        light("kept.png", &["--sample-mask", "1"]),
+        light("plain.png", &[])
+    );
+    refused_undeclared(
+        &dir.join("refused.png"),
+        "restricted:sample-mask=none",
+        &["--sample-mask", "0b0101"],
+    );
+    refused(&["room", "--sample-mask", "0b012"], "is not a sample mask");
+    refused(&["room", "--sample-mask", "4294967296"], "is not a sample mask");
+}
+
 /// `--depth-bias` moves the depth picture and nothing else: the same pixels drawn, each at
 /// its depth plus the triangle's offset (a slope factor of −64 pulls the room's sloped walls
 /// toward the eye; pushed away, a surface could reach the far plane and fail the depth test

@@ -21,6 +21,7 @@ pub mod polygon;
 mod reading;
 pub mod robust;
 pub mod sample_depth;
+pub mod sample_mask;
 pub mod samples;
 pub mod scissor;
 pub mod ties;
@@ -298,6 +299,7 @@ pub fn catalogue() -> Vec<Rule> {
     rules.extend(point::rules());
     rules.extend(msaa::rules());
     rules.extend(scissor::rules());
+    rules.extend(sample_mask::rules());
     rules.extend(flat::rules());
     rules.extend(viewport_depth::rules());
     rules.extend(bias::rules());

@@ -125,6 +125,9 @@ pub struct DrawData {
     /// The scissor rectangle `[x, y, width, height]` in pixels, when the draw has one.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scissor: Option<[u32; 4]>,
+    /// The sample mask, bit `i` keeping sample `i`; absent for all ones (no mask).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sample_mask: Option<u32>,
     /// `first` or `last`: which vertex gives a primitive its flat values; absent for first.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub provoking_vertex: Option<String>,
@@ -178,6 +181,7 @@ impl DrawData {
             depth_range: s.depth_range.word().to_owned(),
             far_clipping: s.clip_far.word().to_owned(),
             scissor: s.scissor.map(|r| [r.x, r.y, r.width, r.height]),
+            sample_mask: (s.sample_mask != DrawState::ALL_SAMPLES).then_some(s.sample_mask),
             provoking_vertex: (s.provoking_vertex != ProvokingVertex::First)
                 .then(|| s.provoking_vertex.word().to_owned()),
             near_clipping: (!s.clip_near).then(|| s.clip_near.word().to_owned()),
@@ -216,6 +220,7 @@ impl DrawData {
             scissor: self
                 .scissor
                 .map(|[x, y, width, height]| Scissor { x, y, width, height }),
+            sample_mask: self.sample_mask.unwrap_or(DrawState::ALL_SAMPLES),
             provoking_vertex: match &self.provoking_vertex {
                 Some(text) => word(ProvokingVertex::KEY, text)?,
                 None => ProvokingVertex::First,

@@ -358,6 +358,9 @@ impl fmt::Debug for Scene {
                 r.x, r.y, r.width, r.height
             )?;
         }
+        if s.sample_mask != DrawState::ALL_SAMPLES {
+            writeln!(f, "        sample_mask: {:#x},", s.sample_mask)?;
+        }
         if s.provoking_vertex != ProvokingVertex::First {
             writeln!(
                 f,
@@ -390,6 +393,7 @@ impl fmt::Debug for Scene {
         }
         // The rest, where a field was left out (a struct update with none left is a lint).
         if s.scissor.is_none()
+            || s.sample_mask == DrawState::ALL_SAMPLES
             || s.provoking_vertex == ProvokingVertex::First
             || s.clip_near
             || s.viewport_depth == ViewportDepth::FULL

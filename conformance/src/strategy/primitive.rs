@@ -227,6 +227,26 @@ pub fn scissored(cases: impl Strategy<Value = PrimitiveScene>) -> impl Strategy<
     })
 }
 
+/// `cases` with a sample mask: no sample kept, one, all but one, or any 32 bits (those at and
+/// above the sample count among them, which mean nothing); it shrinks toward keeping sample 0
+/// alone. The compare op and depth writes vary too, so the mask is seen with each.
+pub fn sample_masked(cases: impl Strategy<Value = PrimitiveScene>) -> impl Strategy<Value = PrimitiveScene> {
+    let state = (prop::sample::select(CompareOp::VALUES), any::<bool>());
+    (cases, 0u8..4, 0u8..16, any::<u32>(), state).prop_map(|(mut case, kind, bit, bits, state)| {
+        let one = 1u32 << (bit % case.samples.max(1));
+        (case.scene.state.depth.compare, case.scene.state.depth.write) = state;
+        case.scene.state.sample_mask = match kind {
+            0 => one,
+            1 => !one,
+            2 => 0,
+            // All ones would mask nothing: clear a kept bit.
+            _ if bits == u32::MAX => !one,
+            _ => bits,
+        };
+        case
+    })
+}
+
 /// `scene` with every vertex (at `w = 1`) moved to the nearest point of a grid of `bits`
 /// subpixel bits, so that moving it by whole grid steps moves its snapped vertices alike
 /// (off the grid, rounding half to even is no translation: 0.5 rounds to 0 and 1.5 to 2).

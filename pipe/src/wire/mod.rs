@@ -190,6 +190,10 @@ pub const FAR_CLIPPING: &str = "far-clipping";
 /// it: `scissor=X,Y,WIDTH,HEIGHT` in pixels, origin top-left.
 pub const SCISSOR: &str = "scissor";
 
+/// The feature word a child declares to be sent a sample mask, and the request key that
+/// carries it: `sample-mask=MASK`, a decimal `u32` whose bit `i` keeps sample `i`.
+pub const SAMPLE_MASK: &str = "sample-mask";
+
 /// The feature word a child declares to be sent a viewport depth range other than `[0, 1]`
 /// with `minDepth ≤ maxDepth`, and the request key that carries it: `viewport-depth=MIN,MAX`.
 pub const VIEWPORT_DEPTH: &str = "viewport-depth";
@@ -261,7 +265,8 @@ pub const GUARD_BAND_LIMIT: u32 = refrast::COORD_LIMIT as u32;
 /// with `depth-bias=CONSTANT,SLOPE,CLAMP`, a triangle draw in line or point mode with
 /// `polygon-mode=line` or `polygon-mode=point`, one with clip or cull distances with
 /// `distances=CLIP,CULL` (then `vertices × (CLIP + CULL)` f32 words follow the indices, each
-/// vertex's clip distances then its cull distances), in any version.
+/// vertex's clip distances then its cull distances), one with a sample mask with
+/// `sample-mask=MASK` last, in any version.
 #[must_use]
 pub fn request(op: Op, draw: &Draw, version: u32) -> Vec<u8> {
     request_in(op, draw, version, draw.state.provoking_vertex)
@@ -304,6 +309,10 @@ pub fn request_in(op: Op, draw: &Draw, version: u32, provoking: ProvokingVertex)
     let d = &draw.distances;
     if !d.is_empty() {
         extra += &format!(" {DISTANCES}={},{}", d.clip, d.cull);
+    }
+    // Only to a child that declares it (Profile::fit keeps every sample for the rest).
+    if s.sample_mask != refrast::DrawState::ALL_SAMPLES {
+        extra += &format!(" {SAMPLE_MASK}={}", s.sample_mask);
     }
     let header = format!(
         "{} width={} height={} vertices={} triangles={count} cull={} front-face={} depth-compare={} \

@@ -290,10 +290,11 @@ impl Reading {
         let state = &mut self.profile.state;
         (
             state.scissor,
+            state.sample_mask,
             state.viewport_depth,
             state.inverted_depth,
             state.unclipped_depth,
-        ) = (false, false, false, false);
+        ) = (false, false, false, false, false);
         for word in rest.split_whitespace() {
             let flag = match word {
                 "perspective-barycentrics" => &mut f.perspective_barycentrics,
@@ -302,6 +303,7 @@ impl Reading {
                 "ties-to-even" => &mut f.ties_to_even,
                 "zero-area-before-clipping" => &mut f.zero_area_before_clipping,
                 SCISSOR => &mut state.scissor,
+                SAMPLE_MASK => &mut state.sample_mask,
                 VIEWPORT_DEPTH => &mut state.viewport_depth,
                 // Reversed ranges are ranges too.
                 INVERTED_DEPTH => {
@@ -315,7 +317,7 @@ impl Reading {
                 _ => {
                     return Err(bad(
                         "features are perspective-barycentrics, screen-barycentrics, depth-test, \
-                         ties-to-even, zero-area-before-clipping, scissor, viewport-depth, \
+                         ties-to-even, zero-area-before-clipping, scissor, sample-mask, viewport-depth, \
                          inverted-depth, unclipped-depth and guard-band",
                     ));
                 }

@@ -148,6 +148,35 @@ fn the_scissor_and_both_faces_are_declared_and_sent() {
     assert_eq!(CullMode::parse("front-and-back"), Some(CullMode::FrontAndBack));
 }
 
+/// The sample mask is a feature word, sent last in the header only when it is not all ones,
+/// and only to a child that declares it.
+#[test]
+fn the_sample_mask_is_declared_and_sent_last() {
+    assert!(!parsed(&["features scissor"]).unwrap().state.sample_mask);
+    let masking = parsed(&["features sample-mask depth-test"]).unwrap();
+    assert!(masking.state.sample_mask && masking.features.depth_test);
+    let mut draw = Draw::new(
+        refrast::Viewport::new(4, 4).unwrap(),
+        vec![[0.0; 4]; 3],
+        vec![[0, 1, 2]],
+    )
+    .at_samples(4);
+    let header = |draw: &Draw| {
+        let bytes = request(Op::Rasterize, draw, 3);
+        let end = bytes.iter().position(|&b| b == b'\n').unwrap();
+        String::from_utf8(bytes[..end].to_vec()).unwrap()
+    };
+    assert!(!header(&draw).contains("sample-mask"));
+    draw.state.sample_mask = 0b1010;
+    draw.state.scissor = Some(refrast::Scissor::default());
+    let text = header(&draw);
+    assert!(text.ends_with(" scissor=0,0,0,0 sample-mask=10"), "{text}");
+    // A child that does not declare it is sent every sample: the fit drops the mask.
+    let plain = parsed(&["features scissor"]).unwrap();
+    assert_eq!(plain.fit(draw.state).sample_mask, refrast::DrawState::ALL_SAMPLES);
+    assert_eq!(masking.fit(draw.state).sample_mask, 0b1010);
+}
+
 /// The depth range and depth clipping off are feature words (reversed ranges implying ranges)
 /// and keys at the end of a request, sent only when the draw has them.
 #[test]

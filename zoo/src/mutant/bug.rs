@@ -114,6 +114,18 @@ pub enum Bug {
     /// The scissor keeps the colour (the primitive buffer) but not the depth writes: the depth
     /// test writes depth outside the rectangle.
     DepthPastScissor,
+    /// The sample mask ignored: every covered sample drawn.
+    IgnoredSampleMask,
+    /// The sample mask read from its top sample down: bit `i` taken for sample `n − 1 − i`.
+    ReversedSampleMask,
+    /// The sample mask applied to triangles only: lines and points drawn at every sample.
+    TrianglesOnlySampleMask,
+    /// The sample mask applied only above one sample, as OpenGL's multisample operations are,
+    /// under a specification that applies bit 0 at one sample too.
+    MultisampleOnlySampleMask,
+    /// The sample mask keeps the colour (the primitive buffer) but not the depth writes: the
+    /// depth test writes depth at masked samples.
+    DepthPastSampleMask,
     /// Culling of both faces taken as culling of front faces: back faces drawn.
     FrontOnlyForBoth,
     /// Culling of both faces applied to every primitive: lines and points culled too.
@@ -178,7 +190,7 @@ pub enum Bug {
 
 impl Bug {
     /// Every bug.
-    pub const ALL: [Bug; 68] = [
+    pub const ALL: [Bug; 73] = [
         Self::InclusiveEdges,
         Self::ExclusiveEdges,
         Self::BottomRightAsTopLeft,
@@ -222,6 +234,11 @@ impl Bug {
         Self::TrianglesOnlyScissor,
         Self::BottomUpScissor,
         Self::DepthPastScissor,
+        Self::IgnoredSampleMask,
+        Self::ReversedSampleMask,
+        Self::TrianglesOnlySampleMask,
+        Self::MultisampleOnlySampleMask,
+        Self::DepthPastSampleMask,
         Self::FrontOnlyForBoth,
         Self::BothCullsLines,
         Self::UnalternatedStrip,
@@ -296,6 +313,11 @@ impl Bug {
             Self::TrianglesOnlyScissor => "triangles-only-scissor",
             Self::BottomUpScissor => "bottom-up-scissor",
             Self::DepthPastScissor => "depth-past-scissor",
+            Self::IgnoredSampleMask => "ignored-sample-mask",
+            Self::ReversedSampleMask => "reversed-sample-mask",
+            Self::TrianglesOnlySampleMask => "triangles-only-sample-mask",
+            Self::MultisampleOnlySampleMask => "multisample-only-sample-mask",
+            Self::DepthPastSampleMask => "depth-past-sample-mask",
             Self::FrontOnlyForBoth => "front-only-for-both",
             Self::BothCullsLines => "both-culls-lines",
             Self::UnalternatedStrip => "unalternated-strip",
@@ -366,6 +388,11 @@ impl Bug {
             Self::PerSampleDiamonds => "msaa",
             Self::InclusiveScissor | Self::TrianglesOnlyScissor | Self::BottomUpScissor => "clip",
             Self::DepthPastScissor => "depth",
+            Self::IgnoredSampleMask
+            | Self::ReversedSampleMask
+            | Self::TrianglesOnlySampleMask
+            | Self::MultisampleOnlySampleMask => "msaa",
+            Self::DepthPastSampleMask => "depth",
             Self::FrontOnlyForBoth | Self::BothCullsLines => "meta",
             Self::UnalternatedStrip | Self::ShortStrip | Self::FanAsStrip => "meta",
             Self::LastCornerFlat | Self::ClippedFlat | Self::FirstOnlyFlat => "bary",
@@ -402,13 +429,14 @@ impl Bug {
     }
 
     /// Whether it is a bug of lines, points or multisampling: the mutant then declares them
-    /// and draws them with it, and draws triangles at one sample right.
+    /// and draws them with it, and draws triangles at one sample right (but a sample mask's
+    /// bug, also [`is_state`](Self::is_state), which reads the mask wrong at every count).
     #[must_use]
     pub fn is_primitive(self) -> bool {
         matches!(self.caught_by(), "line" | "point" | "msaa")
     }
 
-    /// Whether it is a bug of the draw state beyond the first contract (the scissor, culling of
+    /// Whether it is a bug of the draw state beyond the first contract (the scissor, the sample mask, culling of
     /// both faces, strips and fans, flat values, the depth range and clamp, depth bias, polygon modes, clip and cull distances): the mutant then declares everything the
     /// reference does, and draws with it.
     #[must_use]
@@ -419,6 +447,11 @@ impl Bug {
                 | Self::TrianglesOnlyScissor
                 | Self::BottomUpScissor
                 | Self::DepthPastScissor
+                | Self::IgnoredSampleMask
+                | Self::ReversedSampleMask
+                | Self::TrianglesOnlySampleMask
+                | Self::MultisampleOnlySampleMask
+                | Self::DepthPastSampleMask
                 | Self::FrontOnlyForBoth
                 | Self::BothCullsLines
                 | Self::UnalternatedStrip

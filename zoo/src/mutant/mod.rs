@@ -17,6 +17,7 @@ mod distance;
 mod polygon;
 mod primitive;
 mod reach;
+mod sample_mask;
 mod state;
 
 pub use bug::Bug;

@@ -49,10 +49,16 @@ pub fn rasterize(bug: Bug, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
             drawn(&SamplePattern::new(&grid).map_err(DrawError::Unsupported)?)
         }
         Bug::CentreOnlyCoverage => {
-            let centre = draw.clone().at_samples(1);
+            // The centre's coverage, unmasked, copied to each sample the mask keeps.
+            let mut centre = draw.clone().at_samples(1);
+            centre.state.sample_mask = refrast::DrawState::ALL_SAMPLES;
             let mut out = Vec::new();
             reference.draw_with_pattern(&centre, &SamplePattern::standard(1).expect("one sample"), |f| {
-                out.extend((0..draw.samples).map(|sample| Fragment { sample, ..f }));
+                out.extend(
+                    (0..draw.samples)
+                        .filter(|&sample| draw.state.passes_sample_mask(sample))
+                        .map(|sample| Fragment { sample, ..f }),
+                );
             })?;
             Ok(out)
         }
@@ -131,17 +137,26 @@ fn with_last_pixels(draw: &Draw, mut out: Vec<Fragment>, also: impl Fn(usize) ->
         let depth = state
             .viewport_depth
             .fragment_depth(state.viewport_depth.window(u));
-        out.extend((0..draw.samples).map(|sample| Fragment {
-            x: px,
-            y: py,
-            sample,
-            primitive: i as u32,
-            depth,
-            barycentric: [0.0, 1.0, 0.0],
-            flat: draw.provoking(i),
-            screen_barycentric: Some([0.0, 1.0, 0.0]),
-            front_facing: true,
-        }));
+        // The end pixel as the line's own would be: inside the scissor, at the samples the mask
+        // keeps.
+        if !state.passes_scissor(px, py) {
+            continue;
+        }
+        out.extend(
+            (0..draw.samples)
+                .filter(|&s| state.passes_sample_mask(s))
+                .map(|sample| Fragment {
+                    x: px,
+                    y: py,
+                    sample,
+                    primitive: i as u32,
+                    depth,
+                    barycentric: [0.0, 1.0, 0.0],
+                    flat: draw.provoking(i),
+                    screen_barycentric: Some([0.0, 1.0, 0.0]),
+                    front_facing: true,
+                }),
+        );
     }
     out
 }

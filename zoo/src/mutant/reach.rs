@@ -84,7 +84,12 @@ fn per_sample(draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
             f64::from(8 - i16::from(u)) / 16.0,
             f64::from(8 - i16::from(v)) / 16.0,
         );
+        // Sample k kept or masked as its own bit says, not as bit 0 of the one-sample draw.
+        if !draw.state.passes_sample_mask(k as u8) {
+            continue;
+        }
         let mut shifted = draw.clone().at_samples(1);
+        shifted.state.sample_mask = refrast::DrawState::ALL_SAMPLES;
         for p in shifted.positions.iter_mut().filter(|p| p[3] > 0.0) {
             *p = moved(draw, *p, |x, y| (x + dx, y + dy));
         }

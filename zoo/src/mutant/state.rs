@@ -1,10 +1,10 @@
 //! The bugs of the draw state the contract gained after its first rasterizers (the scissor,
-//! culling of both faces, strips and fans, flat values, the depth range and clamp, depth bias, polygon modes, clip and cull distances, so far): the reference's own drawing with that state
+//! the sample mask, culling of both faces, strips and fans, flat values, the depth range and clamp, depth bias, polygon modes, clip and cull distances, so far): the reference's own drawing with that state
 //! applied wrong in one way, so that every failure is that bug's doing.
 
 use refrast::{
-    CullMode, Draw, DrawError, Fragment, ProvokingVertex, Rasterizer, Reference, Resolved, Scissor, Topology,
-    ViewportDepth,
+    CullMode, Draw, DrawError, DrawState, Fragment, ProvokingVertex, Rasterizer, Reference, Resolved,
+    Scissor, Topology, ViewportDepth,
 };
 
 use super::Bug;
@@ -19,6 +19,9 @@ pub fn rasterize(bug: Bug, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
     }
     if let Some(distanced) = super::distance::rasterize(bug, draw) {
         return distanced;
+    }
+    if let Some(masked) = super::sample_mask::rasterize(bug, draw) {
+        return masked;
     }
     let mut reference = Reference::default();
     if let Some(assembled) = misassembled(bug, draw) {
@@ -92,13 +95,16 @@ pub fn resolve(bug: Bug, draw: &Draw) -> Result<Resolved, DrawError> {
         return biased;
     }
     let cut = Resolved::from_fragments(draw, rasterize(bug, draw)?);
-    if bug != Bug::DepthPastScissor || draw.state.scissor.is_none() {
-        return Ok(cut);
-    }
-    // The scissor keeps colour (here, the primitive buffer) but the depth test writes depth
-    // everywhere the draw without it covers.
     let mut whole = draw.clone();
-    whole.state.scissor = None;
+    match bug {
+        Bug::DepthPastScissor if draw.state.scissor.is_some() => whole.state.scissor = None,
+        Bug::DepthPastSampleMask if draw.state.sample_mask != DrawState::ALL_SAMPLES => {
+            whole.state.sample_mask = DrawState::ALL_SAMPLES;
+        }
+        _ => return Ok(cut),
+    }
+    // The scissor or mask keeps colour (here, the primitive buffer) but the depth test writes
+    // depth everywhere the draw without it covers.
     let written = Resolved::from_fragments(&whole, rasterize(bug, &whole)?);
     Ok(Resolved {
         depth: written.depth,

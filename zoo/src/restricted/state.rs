@@ -34,6 +34,14 @@ pub(super) fn restrictions() -> Vec<Restriction> {
             },
         ),
         stateful(
+            "sample-mask=none",
+            "no sample mask",
+            StateSupport {
+                sample_mask: false,
+                ..all
+            },
+        ),
+        stateful(
             "cull=one-face",
             "culls one face or none, never both",
             StateSupport {

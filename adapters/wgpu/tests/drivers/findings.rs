@@ -78,8 +78,9 @@ const SOFTPIPE: [Finding; 4] = [
     ),
 ];
 
-/// lavapipe's own findings: at 4 samples, which only it draws through wgpu of Mesa's three.
-const LAVAPIPE: [Finding; 2] = [
+/// lavapipe's own findings: at 4 samples, which only it draws through wgpu of Mesa's three, and
+/// of the sample mask, which only it is sent of the three.
+const LAVAPIPE: [Finding; 3] = [
     (
         "the scissor tested half a pixel up and left at 4 samples",
         lavapipe_multisample_scissor,
@@ -87,6 +88,10 @@ const LAVAPIPE: [Finding; 2] = [
     (
         "very short lines drawn as nothing at 4 samples",
         crate::lines::lavapipe_short_lines,
+    ),
+    (
+        "the sample mask at one sample read as any of its low 16 bits",
+        crate::masks::lavapipe_single_sample_mask,
     ),
 ];
 

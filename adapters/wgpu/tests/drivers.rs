@@ -9,6 +9,8 @@
 mod common;
 #[path = "drivers/findings.rs"]
 mod findings;
+#[path = "common/interpolation.rs"]
+mod interpolation;
 #[path = "drivers/lines.rs"]
 mod lines;
 #[path = "drivers/masks.rs"]

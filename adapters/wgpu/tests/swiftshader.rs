@@ -14,6 +14,8 @@ mod common;
 mod distances;
 #[path = "swiftshader/findings.rs"]
 mod findings;
+#[path = "common/interpolation.rs"]
+mod interpolation;
 #[path = "swiftshader/lines.rs"]
 mod lines;
 

@@ -20,6 +20,7 @@ pub mod point;
 pub mod polygon;
 mod reading;
 pub mod robust;
+pub mod sample_bary;
 pub mod sample_depth;
 pub mod sample_mask;
 pub mod samples;

@@ -3,14 +3,14 @@
 
 use refrast::{FillConvention, Fragment, LineRule, Profile, Rasterizer};
 
-use super::level::{Level, NO_TIE_RULE, SHARED_EDGE_ONLY};
+use super::level::{Level, NO_BARYCENTRICS, NO_TIE_RULE, SHARED_EDGE_ONLY};
 pub use super::sample_depth::{check_depth, check_depth_resolved, check_resolve};
 use super::samples::{
     cell, cells, compare_samples, counts, endpoint_bits, expect_covered, grid, positions, sample_fragments,
     within_guard_band,
 };
 use super::vertices::vertices_of_three;
-use super::{DEPTH_TEST, EXACT_COVERAGE, Family, Rule, needs};
+use super::{DEPTH_TEST, EXACT_COVERAGE, Family, PERSPECTIVE_BARYCENTRICS, Rule, needs};
 use crate::oracle::facing::{Turn, snapped_variants};
 use crate::oracle::outline::segment_distance;
 use crate::oracle::raster::{Point, ndc_offset, project};
@@ -94,6 +94,21 @@ pub(super) fn rules() -> Vec<Rule> {
             })
             .run(|r, cfg| {
                 property_for(r, cfg, |d| primitive::multisampled(strategy::perspective_inside_scene(), counts_of(d)), check_depth)
+            }),
+        Rule::invariant(Family::Msaa, "msaa.bary.at-sample")
+            .sentence("At each declared sample count, a sample fragment of a triangle inside the view volume carries the perspective-correct barycentrics of the ray-cast hit through its sample's declared position (not the pixel centre's), within the claimed precision: a shader input interpolated at the sample, as under sample shading.")
+            .source("Vulkan 1.4, Interpolation Decorations (\"If the Sample decoration is used, the interpolation position used for the variable must be at the position of the sample being shaded\") and Sample Shading; OpenGL 4.6 §14.3.1.1 and OpenGL ES 3.2 §13.4.1 (\"each set of values is evaluated at the sample location\"); dEQP-VK.pipeline.*.multisample_interpolation.sample_qualifier*, dEQP-VK.pipeline.*.sample_locations_ext.verify_interpolation")
+            .cases(1000)
+            .needs(MULTISAMPLE)
+            .needs(PERSPECTIVE_BARYCENTRICS)
+            .d3d11(Level::NotCovered(NO_BARYCENTRICS))
+            .run(|r, cfg| {
+                property_for(
+                    r,
+                    cfg,
+                    |d| primitive::multisampled(strategy::perspective_inside_scene(), counts_of(d)),
+                    super::sample_bary::check_barycentrics_at_samples,
+                )
             }),
         Rule::invariant(Family::Msaa, "msaa.resolve.per-sample")
             .sentence("The depth and primitive buffers resolved at several samples equal the draw's sample fragments replayed through its depth test one sample at a time, each at the triangle's own depth at that sample (not the depth a fragment reports), samples within the band of an edge or where two compared depths are within precision aside.")

@@ -109,7 +109,10 @@ mod tests {
             let mut frags = self.0.rasterize(draw)?;
             let firsts: Vec<Fragment> = frags.iter().filter(|f| f.sample == 0).copied().collect();
             for f in &mut frags {
-                if let Some(first) = firsts.iter().find(|g| (g.x, g.y, g.primitive) == (f.x, f.y, f.primitive)) {
+                if let Some(first) = firsts
+                    .iter()
+                    .find(|g| (g.x, g.y, g.primitive) == (f.x, f.y, f.primitive))
+                {
                     f.barycentric = first.barycentric;
                 }
             }
@@ -122,7 +125,11 @@ mod tests {
         let scene = Scene::new(
             16,
             16,
-            vec![[-0.9, -0.8, 0.2, 1.0], [1.6, -1.2, 0.5, 2.0], [-0.2, 3.0, 0.9, 4.0]],
+            vec![
+                [-0.9, -0.8, 0.2, 1.0],
+                [1.6, -1.2, 0.5, 2.0],
+                [-0.2, 3.0, 0.9, 4.0],
+            ],
             vec![[0, 1, 2]],
         );
         PrimitiveScene::triangles(scene, 4)
@@ -134,6 +141,10 @@ mod tests {
         assert!(check_barycentrics_at_samples(&mut Reference::default(), &case()).is_ok());
         let err = check_barycentrics_at_samples(&mut FirstSampleBarycentrics(Reference::default()), &case())
             .expect_err("sample 0's barycentrics at every sample");
-        assert!(err.message.contains("at their sample's position"), "{}", err.message);
+        assert!(
+            err.message.contains("at their sample's position"),
+            "{}",
+            err.message
+        );
     }
 }

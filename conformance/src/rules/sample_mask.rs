@@ -21,7 +21,7 @@ use crate::violation::{Findings, Violation, plural};
 const SOURCE: &str = "Vulkan 1.4, Sample Mask Test (fragops-samplemask); OpenGL 4.6 §14.9.3 and OpenGL ES 3.2 §13.8.3 (SAMPLE_MASK_VALUE); D3D11.3 §17.17 (SampleMask); WebGPU's multisample.mask; dEQP-VK.pipeline.*.multisample.sample_mask.*";
 
 /// D3D11.3 maps the mask's bits to samples as the implementation chooses.
-const ANY_MAPPING: &str = "D3D11.3 §17.17: \"The mapping of bits in SampleMask to samples in a multisample RenderTarget is up to the individual implmentation to decide (as long as it is some 1:1 mapping)\": only that as many samples are kept as the sample count's low bits of the mask set, each with the fragments the draw without a mask makes there, is required";
+const ANY_MAPPING: &str = "D3D11.3 §17.17: \"The mapping of bits in SampleMask to samples in a multisample RenderTarget is up to the individual implmentation to decide (as long as it is some 1:1 mapping)\": only that as many samples are kept as the sample count's low bits of the mask set, each with the fragments the draw without a mask makes there, and that the complementary mask keeps the others, is required";
 
 /// D3D11.3 names render targets, not the depth buffer, as what the mask keeps from update.
 const DEPTH_NOT_NAMED: &str = "D3D11.3 §17.17 says the mask determines \"which samples get updated in all the active Rendertargets\", and no sentence names the depth-stencil buffer (nor which sample a bit is)";
@@ -175,7 +175,8 @@ pub fn check_drops(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), 
 }
 
 /// A draw with a mask keeps some samples, as many as the mask's bits below the sample count,
-/// each with the fragments it makes there without a mask: D3D11.3's "some 1:1 mapping".
+/// each with the fragments it makes there without a mask, and the complementary mask keeps
+/// the rest: D3D11.3's "some 1:1 mapping" (one draw's; the mapping may differ between draws).
 pub fn check_drops_any_mapping(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
     let mask = case.scene.state.sample_mask;
     if mask == DrawState::ALL_SAMPLES {
@@ -194,10 +195,10 @@ pub fn check_drops_any_mapping(r: &mut dyn Rasterizer, case: &PrimitiveScene) ->
         .count();
     let at_drawn: Vec<&Fragment> = whole.iter().filter(|f| drawn.contains(&f.sample)).collect();
     let fits = drawn.len() <= kept && kept - drawn.len() <= spare;
-    if fits && keys(&cut) == keys(at_drawn.iter().copied()) {
-        return Ok(());
-    }
     let named = describe(mask, case.samples);
+    if fits && keys(&cut) == keys(at_drawn.iter().copied()) {
+        return check_complement(r, case, &whole, &drawn, &named);
+    }
     let message = if drawn.len() > kept {
         format!(
             "with {named} the draw makes fragments at {} of {} samples, where the mask keeps {kept}",
@@ -218,6 +219,36 @@ pub fn check_drops_any_mapping(r: &mut dyn Rasterizer, case: &PrimitiveScene) ->
         cell_counts(case, at_drawn.iter().copied()),
     );
     let mut violation = Violation::new(message);
+    violation.counts = Some(Box::new(difference_counts(&got, &want)));
+    violation.picture = Some(Box::new(difference_picture(case, &got, &want, Vec::new())));
+    Err(violation)
+}
+
+/// A 1:1 mapping sends the bits a mask clears to the samples it does not keep: the draw under
+/// the complementary mask (its low bits) makes exactly the fragments of the draw without a mask
+/// at the samples `drawn` (those the mask kept) leaves out.
+fn check_complement(
+    r: &mut dyn Rasterizer,
+    case: &PrimitiveScene,
+    whole: &[Fragment],
+    drawn: &[u8],
+    named: &str,
+) -> Result<(), Violation> {
+    let complement = !case.scene.state.sample_mask & low_bits(case.samples);
+    let mut other = case.clone();
+    other.scene.state.sample_mask = complement;
+    let rest = sample_fragments(r, &other)?;
+    let elsewhere: Vec<&Fragment> = whole.iter().filter(|f| !drawn.contains(&f.sample)).collect();
+    if keys(&rest) == keys(elsewhere.iter().copied()) {
+        return Ok(());
+    }
+    let (got, want) = (
+        cell_counts(case, &rest),
+        cell_counts(case, elsewhere.iter().copied()),
+    );
+    let mut violation = Violation::new(format!(
+        "with {named} the draw keeps samples {drawn:?}, but with the complementary mask {complement:#x} it does not make the other samples' fragments of the draw without a mask (no 1:1 mapping of bits to samples gives both)"
+    ));
     violation.counts = Some(Box::new(difference_counts(&got, &want)));
     violation.picture = Some(Box::new(difference_picture(case, &got, &want, Vec::new())));
     Err(violation)
@@ -276,7 +307,70 @@ pub fn check_resolve_drops(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Res
 
 #[cfg(test)]
 mod tests {
+    use refrast::{DrawError, Reference};
+
     use super::*;
+    use crate::scene::Scene;
+
+    /// The reference reading the mask's low bits through another mapping: rotated by one
+    /// sample (bit i keeps sample i + 1, a 1:1 mapping D3D11.3 allows), or packed onto the
+    /// lowest samples (as many kept, but no mapping: two masks can keep the same sample).
+    struct Remapped {
+        packed: bool,
+    }
+
+    impl Rasterizer for Remapped {
+        fn profile(&self) -> Profile {
+            Profile {
+                spec: Spec::D3d11,
+                ..Reference::default().profile()
+            }
+        }
+
+        fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+            let (n, low) = (u32::from(draw.samples), low_bits(draw.samples));
+            let m = draw.state.sample_mask & low;
+            let mut read = draw.clone();
+            read.state.sample_mask = if self.packed {
+                low_bits(m.count_ones() as u8) & if m == 0 { 0 } else { u32::MAX }
+            } else {
+                ((m << 1) | (m >> (n - 1))) & low
+            };
+            Reference::default().rasterize(&read)
+        }
+    }
+
+    /// A square over a 4×4 target at 4 samples, masked to samples 0 and 2.
+    fn square() -> PrimitiveScene {
+        let scene = Scene::new(
+            4,
+            4,
+            vec![
+                [-1.0, -1.0, 0.5, 1.0],
+                [1.0, -1.0, 0.5, 1.0],
+                [1.0, 1.0, 0.5, 1.0],
+                [-1.0, 1.0, 0.5, 1.0],
+            ],
+            vec![[0, 1, 2], [0, 2, 3]],
+        );
+        let mut case = PrimitiveScene::triangles(scene, 4);
+        case.scene.state.sample_mask = 0b0101;
+        case
+    }
+
+    /// Under D3D11.3 a rotated mapping passes the part its specification requires and fails
+    /// the whole rule; a packing that is no mapping fails both.
+    #[test]
+    fn d3d11_accepts_any_one_to_one_mapping_and_no_other() {
+        let case = square();
+        let mut rotated = Remapped { packed: false };
+        assert!(check_drops_any_mapping(&mut rotated, &case).is_ok());
+        assert!(check_drops(&mut rotated, &case).is_err());
+        let mut packed = Remapped { packed: true };
+        let err = check_drops_any_mapping(&mut packed, &case).expect_err("samples 0 and 1 for either mask");
+        assert!(err.message.contains("complementary mask"), "{}", err.message);
+        assert!(check_drops_any_mapping(&mut Reference::default(), &case).is_ok());
+    }
 
     /// A mask is named by the bits its sample count reads, and the samples they keep.
     #[test]

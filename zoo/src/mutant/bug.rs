@@ -87,6 +87,9 @@ pub enum Bug {
     CentreOnlyCoverage,
     /// One depth per pixel (its first covered sample's) instead of one per sample.
     PixelDepth,
+    /// One set of barycentrics per pixel (its first covered sample's, as a shader run once per
+    /// pixel reads them) instead of each sample's own, declared as interpolated at the sample.
+    PixelBarycentrics,
     /// Points drawn in the pixel `round(x)` names instead of the one that holds them.
     RoundedPoints,
     /// Line ends floored to the grid, as `(v · 256) as i32` does, under a claim of rounding
@@ -190,7 +193,7 @@ pub enum Bug {
 
 impl Bug {
     /// Every bug.
-    pub const ALL: [Bug; 73] = [
+    pub const ALL: [Bug; 74] = [
         Self::InclusiveEdges,
         Self::ExclusiveEdges,
         Self::BottomRightAsTopLeft,
@@ -224,6 +227,7 @@ impl Bug {
         Self::OrderedGridSamples,
         Self::CentreOnlyCoverage,
         Self::PixelDepth,
+        Self::PixelBarycentrics,
         Self::RoundedPoints,
         Self::FlooredLineEnds,
         Self::PerSampleDiamonds,
@@ -303,6 +307,7 @@ impl Bug {
             Self::OrderedGridSamples => "ordered-grid-samples",
             Self::CentreOnlyCoverage => "centre-only-coverage",
             Self::PixelDepth => "pixel-depth",
+            Self::PixelBarycentrics => "pixel-barycentrics",
             Self::RoundedPoints => "rounded-points",
             Self::FlooredLineEnds => "floored-line-ends",
             Self::PerSampleDiamonds => "per-sample-diamonds",
@@ -382,7 +387,8 @@ impl Bug {
             Self::MirroredSamples
             | Self::OrderedGridSamples
             | Self::CentreOnlyCoverage
-            | Self::PixelDepth => "msaa",
+            | Self::PixelDepth
+            | Self::PixelBarycentrics => "msaa",
             Self::RoundedPoints | Self::UnclippedPoints | Self::VertexOrderPoints => "point",
             Self::FlooredLineEnds | Self::ScreenSpaceLineCut => "line",
             Self::PerSampleDiamonds => "msaa",

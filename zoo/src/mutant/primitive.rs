@@ -62,6 +62,23 @@ pub fn rasterize(bug: Bug, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
             })?;
             Ok(out)
         }
+        Bug::PixelBarycentrics => {
+            let mut out = drawn(&standard()?)?;
+            if !draw.topology.is_triangles() {
+                return Ok(out);
+            }
+            // One set of weights per pixel and triangle: its first covered sample's.
+            let mut first = std::collections::HashMap::new();
+            for f in &out {
+                first
+                    .entry((f.x, f.y, f.primitive))
+                    .or_insert((f.barycentric, f.screen_barycentric));
+            }
+            for f in &mut out {
+                (f.barycentric, f.screen_barycentric) = first[&(f.x, f.y, f.primitive)];
+            }
+            Ok(out)
+        }
         Bug::PixelDepth => {
             let mut out = drawn(&standard()?)?;
             // One depth per pixel and primitive: its first covered sample's, for every sample.

@@ -80,7 +80,7 @@ const SOFTPIPE: [Finding; 4] = [
 
 /// lavapipe's own findings: at 4 samples, which only it draws through wgpu of Mesa's three, and
 /// of the sample mask, which only it is sent of the three.
-const LAVAPIPE: [Finding; 3] = [
+const LAVAPIPE: [Finding; 4] = [
     (
         "the scissor tested half a pixel up and left at 4 samples",
         lavapipe_multisample_scissor,
@@ -92,6 +92,10 @@ const LAVAPIPE: [Finding; 3] = [
     (
         "the sample mask at one sample read as any of its low 16 bits",
         crate::masks::lavapipe_single_sample_mask,
+    ),
+    (
+        "a sample's perspective divide at the pixel centre",
+        crate::masks::lavapipe_sample_divide_at_centre,
     ),
 ];
 

@@ -1,5 +1,6 @@
-//! lavapipe's sample mask at one sample, hand-checked (docs/certified.md, "lavapipe reads the
-//! sample mask at one sample as any of its low 16 bits").
+//! lavapipe's sample mask at one sample and its per-sample perspective divide, hand-checked
+//! (docs/certified.md, "lavapipe reads the sample mask at one sample as any of its low 16 bits",
+//! "a sample's perspective divide at the pixel centre").
 
 use refrast::Draw;
 use refrast_wgpu::Driver;
@@ -64,4 +65,22 @@ pub fn lavapipe_single_sample_mask(d: Driver, run: &mut Run<'_>) {
 fn sorted<T: Ord>(mut v: Vec<T>) -> Vec<T> {
     v.sort_unstable();
     v
+}
+
+/// At 4 samples, a `sample`-qualified perspective input is divided by `1/w` interpolated at
+/// the pixel centre, not at the sample: on a triangle with `w` from 0.25 to 4 the barycentrics
+/// sum to 0.8–1.34, and fit numerators at the sample over the centre's denominator within
+/// 2·10⁻³ (the formula at the sample is off by 0.19).
+pub fn lavapipe_sample_divide_at_centre(d: Driver, run: &mut Run<'_>) {
+    let tri = crate::interpolation::perspective_triangle();
+    let frags = run(&tri);
+    assert_eq!(frags.len(), 406, "{}: the triangle's sample fragments", d.name());
+    let sum = crate::interpolation::largest_sum_error(&frags);
+    let at_sample = crate::interpolation::largest_misfit(&tri, &frags, 8, false);
+    let over_centre = crate::interpolation::largest_misfit(&tri, &frags, 8, true);
+    assert!(
+        sum > 0.3 && at_sample > 0.1 && over_centre < 2e-3,
+        "{}: sums off 1 by {sum:.3e}; off the formula at the sample by {at_sample:.3e}, over the centre's 1/w by {over_centre:.3e}",
+        d.name()
+    );
 }

@@ -21,7 +21,7 @@ pub type Run<'a> = dyn FnMut(&Draw) -> Vec<Fragment> + 'a;
 type Finding = (&'static str, fn(&mut Run<'_>));
 
 /// Each finding, in docs/certified.md's order.
-const FINDINGS: [Finding; 15] = [
+const FINDINGS: [Finding; 16] = [
     (
         "a vertex at w = 0 whose winding comes out backwards draws nothing",
         w_zero_winding_backwards,
@@ -57,6 +57,10 @@ const FINDINGS: [Finding; 15] = [
     (
         "a line to an end behind the eye drawn as nothing",
         crate::lines::line_behind_the_eye,
+    ),
+    (
+        "a sample's perspective divide at the pixel centre",
+        crate::lines::sample_divide_at_centre,
     ),
 ];
 

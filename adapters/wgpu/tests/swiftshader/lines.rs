@@ -1,5 +1,6 @@
-//! SwiftShader's lines to an end behind the eye, hand-checked (docs/certified.md, "SwiftShader
-//! drops a line whose end is behind the eye").
+//! SwiftShader's lines to an end behind the eye and its per-sample perspective divide,
+//! hand-checked (docs/certified.md, "SwiftShader drops a line whose end is behind the eye", "a
+//! sample's perspective divide at the pixel centre").
 
 use refrast::{Draw, Topology, Viewport};
 
@@ -41,4 +42,21 @@ pub fn line_behind_the_eye(run: &mut Run<'_>) {
         "swiftshader: the line to w = 0.01"
     );
     println!("swiftshader: a line to an end at w <= 0 draws nothing of its visible part");
+}
+
+/// At 4 samples, a `sample`-qualified perspective input is divided by `1/w` interpolated at
+/// the pixel centre, not at the sample: on a triangle with `w` from 0.25 to 4 the barycentrics
+/// sum to 0.8–1.34, and fit numerators at the sample over the centre's denominator within
+/// 10⁻⁶ on its 4-bit grid (the formula at the sample is off by 0.2).
+pub fn sample_divide_at_centre(run: &mut Run<'_>) {
+    let tri = crate::interpolation::perspective_triangle();
+    let frags = run(&tri);
+    let sum = crate::interpolation::largest_sum_error(&frags);
+    let at_sample = crate::interpolation::largest_misfit(&tri, &frags, 4, false);
+    let over_centre = crate::interpolation::largest_misfit(&tri, &frags, 4, true);
+    assert!(
+        !frags.is_empty() && sum > 0.3 && at_sample > 0.1 && over_centre < 1e-6,
+        "{} fragments: sums off 1 by {sum:.3e}; off the formula at the sample by {at_sample:.3e}, over the centre's 1/w by {over_centre:.3e}",
+        frags.len()
+    );
 }

@@ -61,7 +61,8 @@ fn judged(input: &impl fmt::Debug, check: impl FnOnce() -> Result<(), Violation>
     })
 }
 
-/// Any bit patterns: no panic, only well-formed fragments, none outside a scissor, `resolve`
+/// Any bit patterns: no panic, only well-formed fragments, none outside a scissor, none under
+/// a sample mask without bit 0 (where declared and applied at one sample), `resolve`
 /// works, the indices drawn as a strip and as a fan (where the profile declares them) draw
 /// what the list of their triangles draws, the triangles in line and point mode (where
 /// declared) draw what their edges and vertices draw as lines and points, and with clip and
@@ -72,6 +73,7 @@ pub fn robustness(r: &mut dyn Rasterizer, input: &RawDraw) -> Result<(), Failure
     judged(input, || {
         check_well_formed(r, &scene)?;
         check_inside_scissor(r, &scene)?;
+        check_masked_away(r, &scene)?;
         r.resolve(&scene.draw())
             .map(drop)
             .map_err(|e| Violation::new(format!("resolve returned an error on in-range indices: {e}")))?;
@@ -187,6 +189,41 @@ fn check_inside_scissor(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Vio
             (f.x, f.y),
             format!("a fragment at ({}, {}) outside the scissor {scissor:?}", f.x, f.y),
         )),
+        None => Ok(()),
+    }
+}
+
+/// Nothing drawn or resolved of `scene` under a sample mask whose bit 0 is clear (its other
+/// bits the first vertex's `x`), whatever its numbers, where the profile declares a mask its
+/// specification applies at one sample.
+fn check_masked_away(r: &mut dyn Rasterizer, scene: &Scene) -> Result<(), Violation> {
+    let profile = r.profile();
+    if !profile.state.sample_mask || !crate::rules::sample_mask::masks_at(profile.spec, 1) {
+        return Ok(());
+    }
+    let mut masked = scene.clone();
+    masked.state.sample_mask = scene.positions.first().map_or(0, |v| v[0].to_bits()) & !1;
+    let draw = masked.draw();
+    let fragments = r
+        .rasterize(&draw)
+        .map_err(|e| Violation::of_draw_error("rasterize", &e))?;
+    if let Some(f) = fragments.first() {
+        return Err(Violation::at(
+            (f.x, f.y),
+            format!(
+                "a fragment at ({}, {}) under the sample mask {:#x}, whose bit 0 (the one sample's) is clear",
+                f.x, f.y, masked.state.sample_mask
+            ),
+        ));
+    }
+    let resolved = r
+        .resolve(&draw)
+        .map_err(|e| Violation::of_draw_error("resolve", &e))?;
+    match resolved.primitive.iter().position(Option::is_some) {
+        Some(i) => Err(Violation::new(format!(
+            "resolve names a primitive at sample {i} under the sample mask {:#x}, whose bit 0 is clear",
+            masked.state.sample_mask
+        ))),
         None => Ok(()),
     }
 }

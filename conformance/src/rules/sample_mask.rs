@@ -7,15 +7,17 @@
 
 use proptest::prelude::*;
 use proptest::strategy::Union;
-use refrast::{Draw, DrawState, Fragment, Profile, Rasterizer, Spec, Topology};
+use refrast::{DrawState, Fragment, Profile, Rasterizer, Spec, Topology};
 
 use super::level::Level;
-use super::samples::{cell_counts, difference_counts, difference_picture, keys, resolved, sample_fragments};
+use super::samples::{
+    cell_counts, difference_counts, difference_picture, keys, resolved_split, sample_fragments,
+};
 use super::{DEPTH_TEST, Family, Need, Rule, needs};
 use crate::runner::property_for;
 use crate::scene::PrimitiveScene;
 use crate::strategy::{self, primitive};
-use crate::violation::{Findings, Violation, plural};
+use crate::violation::{Violation, plural};
 
 /// What every specification says of the sample mask.
 const SOURCE: &str = "Vulkan 1.4, Sample Mask Test (fragops-samplemask); OpenGL 4.6 §14.9.3 and OpenGL ES 3.2 §13.8.3 (SAMPLE_MASK_VALUE); D3D11.3 §17.17 (SampleMask); WebGPU's multisample.mask; dEQP-VK.pipeline.*.multisample.sample_mask.*";
@@ -261,41 +263,13 @@ pub fn check_resolve_drops(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Res
     if mask == DrawState::ALL_SAMPLES {
         return Ok(());
     }
-    let draw = case.draw();
-    let cut = resolved(r, &draw)?;
-    let whole = resolved(r, &unmasked(case).draw())?;
-    let nothing = resolved(
+    let findings = resolved_split(
         r,
-        &Draw {
-            indices: Vec::new(),
-            ..draw.clone()
-        },
+        case,
+        &unmasked(case),
+        |_, _, s| mask >> s & 1 == 1,
+        ["kept", "masked", "the draw without a mask"],
     )?;
-    let mut findings = Findings::new();
-    for y in 0..case.scene.height {
-        for x in 0..case.scene.width {
-            for s in 0..case.samples {
-                let kept = mask >> s & 1 == 1;
-                let want = if kept { &whole } else { &nothing };
-                let i = cut.index(x, y, s);
-                let same = cut.depth[i].to_bits() == want.depth[i].to_bits()
-                    && cut.primitive[i] == want.primitive[i];
-                if !same {
-                    findings.add((x, y), || {
-                        format!(
-                            "({x}, {y}) sample {s}, {}: depth {:?} and primitive {:?}, where {} leaves depth {:?} and primitive {:?}",
-                            if kept { "kept" } else { "masked" },
-                            cut.depth[i],
-                            cut.primitive[i],
-                            if kept { "the draw without a mask" } else { "a draw of nothing" },
-                            want.depth[i],
-                            want.primitive[i]
-                        )
-                    });
-                }
-            }
-        }
-    }
     findings.verdict(|n| {
         format!(
             "with {} the depth test leaves {} other than it should",
@@ -307,7 +281,7 @@ pub fn check_resolve_drops(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Res
 
 #[cfg(test)]
 mod tests {
-    use refrast::{DrawError, Reference};
+    use refrast::{Draw, DrawError, Reference};
 
     use super::*;
     use crate::scene::Scene;

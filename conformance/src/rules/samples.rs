@@ -10,7 +10,7 @@ use refrast::{Draw, Fragment, Profile, Rasterizer, Resolved, Snapping};
 use crate::oracle::segment::SampleGrid;
 
 use crate::scene::PrimitiveScene;
-use crate::violation::{Class, Counts, Expect, Picture, Violation, compare_coverage};
+use crate::violation::{Class, Counts, Expect, Findings, Picture, Violation, compare_coverage};
 
 /// The columns and rows a pixel's samples take in a picture.
 #[must_use]
@@ -286,4 +286,57 @@ pub fn resolved(r: &mut dyn Rasterizer, draw: &Draw) -> Result<Resolved, Violati
         )));
     }
     Ok(out)
+}
+
+/// How [`resolved_split`] names a sample the test keeps and one it drops, and the draw that
+/// keeps everything: `["inside the rectangle", "outside the rectangle", "the draw without a
+/// scissor"]`.
+pub type SplitWords<'a> = [&'a str; 3];
+
+/// The depth and primitive buffers `case` resolves to, compared sample by sample with those of
+/// `whole` (the same draw without a per-sample test) where `kept` holds and with those of a draw
+/// of nothing elsewhere: a finding per sample that differs, bit for bit.
+pub fn resolved_split(
+    r: &mut dyn Rasterizer,
+    case: &PrimitiveScene,
+    whole: &PrimitiveScene,
+    kept: impl Fn(u32, u32, u8) -> bool,
+    [inside, outside, without]: SplitWords<'_>,
+) -> Result<Findings, Violation> {
+    let draw = case.draw();
+    let cut = resolved(r, &draw)?;
+    let whole = resolved(r, &whole.draw())?;
+    let nothing = resolved(
+        r,
+        &Draw {
+            indices: Vec::new(),
+            ..draw.clone()
+        },
+    )?;
+    let mut findings = Findings::new();
+    for y in 0..case.scene.height {
+        for x in 0..case.scene.width {
+            for s in 0..case.samples {
+                let keeps = kept(x, y, s);
+                let want = if keeps { &whole } else { &nothing };
+                let i = cut.index(x, y, s);
+                let same = cut.depth[i].to_bits() == want.depth[i].to_bits()
+                    && cut.primitive[i] == want.primitive[i];
+                if !same {
+                    findings.add((x, y), || {
+                        format!(
+                            "({x}, {y}) sample {s}, {}: depth {:?} and primitive {:?}, where {} leaves depth {:?} and primitive {:?}",
+                            if keeps { inside } else { outside },
+                            cut.depth[i],
+                            cut.primitive[i],
+                            if keeps { without } else { "a draw of nothing" },
+                            want.depth[i],
+                            want.primitive[i]
+                        )
+                    });
+                }
+            }
+        }
+    }
+    Ok(findings)
 }

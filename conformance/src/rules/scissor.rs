@@ -7,14 +7,16 @@
 
 use proptest::prelude::*;
 use proptest::strategy::Union;
-use refrast::{Draw, Fragment, Profile, Rasterizer, Scissor};
+use refrast::{Fragment, Profile, Rasterizer, Scissor};
 
-use super::samples::{cell_counts, difference_counts, difference_picture, keys, resolved, sample_fragments};
+use super::samples::{
+    cell_counts, difference_counts, difference_picture, keys, resolved_split, sample_fragments,
+};
 use super::{DEPTH_TEST, Family, Need, Rule, needs};
 use crate::runner::property_for;
 use crate::scene::PrimitiveScene;
 use crate::strategy::{self, primitive};
-use crate::violation::{Findings, Violation, plural};
+use crate::violation::{Violation, plural};
 
 /// What every specification says of the scissor test.
 const SOURCE: &str = "Vulkan 1.4, Scissor Test (fragops-scissor); D3D11.3 §15.7; OpenGL 4.6 §14.9.2 and OpenGL ES 3.2 §13.8.2 (left ≤ x < left + width); dEQP-VK.fragment_operations.scissor.*";
@@ -162,41 +164,17 @@ pub fn check_resolve_crops(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Res
     let Some(scissor) = case.scene.state.scissor else {
         return Ok(());
     };
-    let draw = case.draw();
-    let cut = resolved(r, &draw)?;
-    let whole = resolved(r, &unscissored(case).draw())?;
-    let nothing = resolved(
+    let findings = resolved_split(
         r,
-        &Draw {
-            indices: Vec::new(),
-            ..draw.clone()
-        },
+        case,
+        &unscissored(case),
+        |x, y, _| scissor.contains(x, y),
+        [
+            "inside the rectangle",
+            "outside the rectangle",
+            "the draw without a scissor",
+        ],
     )?;
-    let mut findings = Findings::new();
-    for y in 0..case.scene.height {
-        for x in 0..case.scene.width {
-            let inside = scissor.contains(x, y);
-            let want = if inside { &whole } else { &nothing };
-            for s in 0..case.samples {
-                let i = cut.index(x, y, s);
-                let same = cut.depth[i].to_bits() == want.depth[i].to_bits()
-                    && cut.primitive[i] == want.primitive[i];
-                if !same {
-                    findings.add((x, y), || {
-                        format!(
-                            "({x}, {y}) sample {s}, {} the rectangle: depth {:?} and primitive {:?}, where {} leaves depth {:?} and primitive {:?}",
-                            if inside { "inside" } else { "outside" },
-                            cut.depth[i],
-                            cut.primitive[i],
-                            if inside { "the draw without a scissor" } else { "a draw of nothing" },
-                            want.depth[i],
-                            want.primitive[i]
-                        )
-                    });
-                }
-            }
-        }
-    }
     findings.verdict(|n| {
         format!(
             "with {} the depth test leaves {} other than it should",

@@ -23,6 +23,20 @@ pub fn expected(draw: &Draw) -> Vec<Fragment> {
     Reference::default().rasterize(draw).expect("the reference draws")
 }
 
+/// The lower-left half of a 16×16 target (y > x): 120 pixels at one sample.
+pub fn lower_left_half() -> Draw {
+    draw(
+        16,
+        16,
+        vec![
+            [-1.0, 1.0, 0.5, 1.0],
+            [1.0, -1.0, 0.5, 1.0],
+            [-1.0, -1.0, 0.5, 1.0],
+        ],
+        vec![[2, 0, 1]],
+    )
+}
+
 /// The fragments at pixel `(x, y)`.
 pub fn at(frags: &[Fragment], x: u32, y: u32) -> Vec<Fragment> {
     frags.iter().filter(|f| (f.x, f.y) == (x, y)).copied().collect()
@@ -463,18 +477,8 @@ fn snap_tie_to_even(d: Driver, run: &mut Run<'_>) {
 /// At 4 samples, the scissor keeps the samples of the column left of it and of the row above
 /// it that lie within half a pixel of the rectangle; at one sample it is exact.
 fn lavapipe_multisample_scissor(d: Driver, run: &mut Run<'_>) {
-    // The lower-left half of a 16×16 target (y > x), scissored to the 2×2 pixels at (3, 5).
-    let mut half = draw(
-        16,
-        16,
-        vec![
-            [-1.0, 1.0, 0.5, 1.0],
-            [1.0, -1.0, 0.5, 1.0],
-            [-1.0, -1.0, 0.5, 1.0],
-        ],
-        vec![[2, 0, 1]],
-    )
-    .at_samples(4);
+    // The lower-left half, scissored to the 2×2 pixels at (3, 5).
+    let mut half = lower_left_half().at_samples(4);
     let scissor = Scissor {
         x: 3,
         y: 5,

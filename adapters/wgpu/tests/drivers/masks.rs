@@ -5,22 +5,12 @@
 use refrast::Draw;
 use refrast_wgpu::Driver;
 
-use crate::findings::{Run, draw};
+use crate::findings::{Run, lower_left_half};
 
 /// At one sample, a sample mask with bit 0 clear draws every fragment where another of its low
 /// 16 bits is set (and none where none is); at 4 samples each bit keeps its own sample.
 pub fn lavapipe_single_sample_mask(d: Driver, run: &mut Run<'_>) {
-    // The lower-left half of a 16×16 target (y > x): 120 pixels.
-    let mut half = draw(
-        16,
-        16,
-        vec![
-            [-1.0, 1.0, 0.5, 1.0],
-            [1.0, -1.0, 0.5, 1.0],
-            [-1.0, -1.0, 0.5, 1.0],
-        ],
-        vec![[2, 0, 1]],
-    );
+    let mut half = lower_left_half();
     let mut drawn = |half: &mut Draw, mask: u32| {
         half.state.sample_mask = mask;
         run(half)

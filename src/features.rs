@@ -294,6 +294,12 @@ pub struct StateSupport {
     /// (one sample included: bit 0, but under OpenGL and OpenGL ES, whose multisample
     /// operations skip a single-sample target), and nothing written of a sample the mask drops.
     pub sample_mask: bool,
+    /// It honours [`DrawState::interpolation`](crate::DrawState::interpolation) at every sample
+    /// count above one it declares: [`Interpolation::Centroid`](crate::Interpolation::Centroid)
+    /// gives a triangle's fragments in a pixel one set of barycentrics, at a location inside
+    /// the pixel and the triangle (the pixel centre where it covers every sample, else its
+    /// first covered sample the mask keeps, under a refrast claim).
+    pub centroid: bool,
     /// It culls both faces ([`CullMode::FrontAndBack`](crate::CullMode::FrontAndBack)): no
     /// triangle drawn, lines and points drawn as with culling off.
     pub cull_both: bool,
@@ -389,6 +395,7 @@ impl StateSupport {
     pub const NONE: StateSupport = StateSupport {
         scissor: false,
         sample_mask: false,
+        centroid: false,
         cull_both: false,
         triangle_strips: false,
         triangle_fans: false,
@@ -405,6 +412,7 @@ impl StateSupport {
     pub const ALL: StateSupport = StateSupport {
         scissor: true,
         sample_mask: true,
+        centroid: true,
         cull_both: true,
         triangle_strips: true,
         triangle_fans: true,

@@ -24,7 +24,7 @@
 //! | the contract | `rasterizer.rs`, `draw.rs` | [`Rasterizer`], [`Draw`], [`Fragment`], [`Resolved`] |
 //! | lines, points, samples | `primitive.rs` | [`Topology`], [`LineRule`], [`PointClipping`], [`SamplePattern`], [`SAMPLE_COUNTS`] |
 //! | what an implementation declares | `profile.rs`, `features.rs` | [`Profile`], [`Snapping`], [`Spec`], [`Features`], [`StateSupport`], [`Supported`], [`SnapAccuracy`] |
-//! | state | `state.rs`, `setup.rs`, `depth.rs` | [`DrawState`], [`Scissor`], [`ProvokingVertex`], [`CullMode`], [`FrontFace`], [`DepthState`], [`CompareOp`], [`DepthRange`], [`ViewportDepth`] |
+//! | state | `state.rs`, `setup.rs`, `depth.rs` | [`DrawState`], [`Scissor`], [`Interpolation`], [`ProvokingVertex`], [`CullMode`], [`FrontFace`], [`DepthState`], [`CompareOp`], [`DepthRange`], [`ViewportDepth`] |
 //! | polygon modes | `state.rs`, `polygon.rs` | [`PolygonMode`] |
 //! | clip and cull distances | `distance.rs` | [`Distances`], [`MAX_DISTANCES`], [`stage::CornerDistances`] |
 //! | depth bias | `bias.rs` | [`DepthBias`], [`DepthFormat`], [`DepthSlope`], [`BiasSupport`], [`bias::polygon_offset`] |
@@ -94,6 +94,10 @@
 //! - **Sample mask**: sample `i` of a fragment is kept only where bit `i` of the draw's mask
 //!   is set, for every primitive and sample count, bit 0 at one sample
 //!   ([`DrawState::passes_sample_mask`]).
+//! - **Centroid**: at several samples, a triangle drawn with [`Interpolation::Centroid`] gives
+//!   all its fragments in a pixel the barycentrics of one location: the pixel centre where it
+//!   covers every sample (before the mask), else its first covered sample the mask keeps
+//!   ([`DrawState::centroid_sample`]); lines and points keep each sample's.
 //! - **Strips and fans**: triangle `i` of a strip is indices `i, i+1+i%2, i+2−i%2` (every other
 //!   one reversed, so the strip keeps one winding), of a fan `i+1, i+2, 0`, as Vulkan makes them
 //!   and orders their barycentrics; each draws as that triangle would in a list
@@ -124,6 +128,7 @@
 
 pub mod bias;
 pub mod camera;
+mod centroid;
 mod clip;
 mod config;
 mod dda;
@@ -167,5 +172,5 @@ pub use profile::{DepthConvention, Profile, Snapping, Spec};
 pub use rasterizer::Rasterizer;
 pub use reference::{DrawStats, Reference, Sample};
 pub use setup::{CullMode, FrontFace, Winding};
-pub use state::{DrawState, PolygonMode, ProvokingVertex, Scissor};
+pub use state::{DrawState, Interpolation, PolygonMode, ProvokingVertex, Scissor};
 pub use viewport::{GUARD_BAND_REACH, MAX_VIEWPORT, Viewport};

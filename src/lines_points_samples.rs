@@ -16,11 +16,13 @@
 //! - **Triangles at several samples**: sample `k` of pixel `p` lies at `p + oₖ`, so it is covered
 //!   exactly when the pixel's centre is covered by the snapped polygon moved by `½ − oₖ`. The
 //!   move is a whole number of grid steps (sixteenths of a pixel need at least 4 subpixel bits),
-//!   so coverage, ties and interpolation stay exact.
+//!   so coverage, ties and interpolation stay exact. Under centroid interpolation a
+//!   triangle's fragments are held until all its samples are known (`centroid.rs`).
 
 use glam::{DVec3, DVec4};
 
 use crate::bias::FragmentDepth;
+use crate::centroid::{CentroidPixels, Unmoved};
 use crate::clip::{ClipMode, ClipPlane, ClipVertex, clip_planes, clip_segment, outcode};
 use crate::config::Traversal;
 use crate::distance::CornerDistances;
@@ -33,7 +35,7 @@ use crate::primitive::{PointClipping, SamplePattern, Topology};
 use crate::project::{RasterVertex, ViewportTransform};
 use crate::reference::{DrawStats, Reference, Sample, Scratch};
 use crate::segment;
-use crate::state::PolygonMode;
+use crate::state::{Interpolation, PolygonMode};
 use crate::traverse::{PixelRect, build_fan, traverse};
 
 /// A pattern's sample offsets in grid units from the pixel's top-left corner.
@@ -150,6 +152,9 @@ impl Reference {
         let (bits, half) = (config.subpixel_bits, config.subpixel_bits.one() / 2);
         let mut scratch = Scratch::default();
         let (mut moved, mut fan) = (Vec::new(), Vec::new());
+        // Under centroid interpolation a triangle's fragments wait for its every sample.
+        let centroid = draw.state.interpolation == Interpolation::Centroid;
+        let mut pixels = CentroidPixels::default();
         let mut stats = DrawStats {
             triangles: setup.triangles.len(),
             ..DrawStats::default()
@@ -167,7 +172,14 @@ impl Reference {
                 Some(t) => t.vertices.to_vec(),
                 None => scratch.front.raster.clone(),
             };
+            let depth = FragmentDepth::new(draw.state.viewport_depth, kept.depth_offset);
+            pixels.clear();
             for (k, &(ox, oy)) in offsets.iter().enumerate() {
+                // A masked sample makes no fragment, but the centroid counts it covered.
+                let masked = !draw.state.passes_sample_mask(k as u8);
+                if masked && !centroid {
+                    continue;
+                }
                 let (dx, dy) = (half - ox, half - oy);
                 moved.clear();
                 moved.extend(polygon.iter().map(|v| RasterVertex {
@@ -183,18 +195,15 @@ impl Reference {
                     continue;
                 };
                 let flat = draw.provoking(primitive);
-                if !draw.state.passes_sample_mask(k as u8) {
-                    continue;
-                }
                 traverse(&fan, kept.winding, rect, bits, &mut scratch.row, |hit| {
                     if !draw.state.passes_scissor(hit.x, hit.y) {
                         return;
                     }
-                    stats.fragments += 1;
-                    emit(Fragment {
+                    let (x, y) = (hit.x, hit.y);
+                    let fragment = (!masked).then(|| Fragment {
                         sample: k as u8,
                         ..Sample::new(
-                            FragmentDepth::new(draw.state.viewport_depth, kept.depth_offset),
+                            depth,
                             primitive as u32,
                             kept.front_facing,
                             flat,
@@ -204,7 +213,25 @@ impl Reference {
                         )
                         .fragment()
                     });
+                    match fragment {
+                        _ if centroid => pixels.cover(x, y, k as u8, fragment),
+                        Some(f) => {
+                            stats.fragments += 1;
+                            emit(f);
+                        }
+                        None => {}
+                    }
                 });
+            }
+            if centroid {
+                let unmoved = Unmoved {
+                    polygon: &polygon,
+                    fill: config.fill,
+                    bits,
+                    winding: kept.winding,
+                    depth,
+                };
+                stats.fragments += pixels.emit(&draw.state, draw.samples, &unmoved, &mut emit);
             }
         }
         Ok(stats)

@@ -8,7 +8,7 @@ use crate::edge::FillConvention;
 use crate::features::{Features, StateSupport};
 use crate::primitive::{LineRule, PointClipping, SAMPLE_COUNTS, SamplePattern, Topology};
 use crate::setup::CullMode;
-use crate::state::{DrawState, ProvokingVertex};
+use crate::state::{DrawState, Interpolation, ProvokingVertex};
 
 /// How an implementation places vertices before it decides coverage.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -301,7 +301,7 @@ impl Profile {
     }
 
     /// `state` with each unsupported setting replaced by a supported one (an undeclared scissor
-    /// or sample mask dropped, undeclared culling of both faces replaced like an unsupported cull mode, the
+    /// or sample mask dropped, centroid interpolation at the sample where undeclared, undeclared culling of both faces replaced like an unsupported cull mode, the
     /// provoking vertex one the profile reports flat values under, an undeclared polygon mode
     /// filled): what the suite sends.
     #[must_use]
@@ -325,6 +325,9 @@ impl Profile {
         fitted.scissor = state.scissor.filter(|_| self.state.scissor);
         if !self.state.sample_mask {
             fitted.sample_mask = DrawState::ALL_SAMPLES;
+        }
+        if !self.state.centroid {
+            fitted.interpolation = Interpolation::Sample;
         }
         fitted.polygon_mode = self.state.fit_polygon_mode(state.polygon_mode);
         // Without flat values the mode changes nothing: the default is what such a draw has.

@@ -43,6 +43,11 @@ pub struct DrawState {
     /// ([`StateSupport::sample_mask`](crate::StateSupport::sample_mask)): Vulkan's `pSampleMask`,
     /// OpenGL's `SampleMaski`, D3D11's `SampleMask`, WebGPU's `multisample.mask`.
     pub sample_mask: u32,
+    /// Where a triangle's fragments at several samples take their barycentrics: at each
+    /// sample (the default), or at one centroid location per pixel
+    /// ([`Interpolation::Centroid`]). Sent other than at the sample only to a rasterizer that
+    /// declares it ([`StateSupport::centroid`](crate::StateSupport::centroid)).
+    pub interpolation: Interpolation,
     /// Which vertex of a primitive gives its flat values ([`Fragment::flat`](crate::Fragment::flat)).
     /// Sent other than first only to a rasterizer that declares it
     /// ([`StateSupport::flat`](crate::StateSupport::flat)).
@@ -65,6 +70,44 @@ pub enum ProvokingVertex {
     /// Its last vertex (OpenGL's default, OpenGL ES's only one): a list's `3i + 2`, a strip's or
     /// fan's `i + 2`, a line's `2i + 1` or `i + 1`, a point's.
     Last,
+}
+
+/// Where the barycentrics of a triangle's fragment are evaluated at several samples per
+/// pixel: a shader input's interpolation sampling (WGSL's `sample` and `centroid`, Vulkan's
+/// `Sample` and `Centroid` decorations, D3D11's `linear_sample` and `linear_centroid`). Lines
+/// and points are evaluated at each sample under both, a location inside them; at one sample
+/// both are the pixel's one sample.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum Interpolation {
+    /// At each covered sample's position, as under sample shading.
+    #[default]
+    Sample,
+    /// At one location per pixel and triangle, shared by all its fragments there, as D3D11.3
+    /// §3.5.5 defines it ([`DrawState::centroid_sample`]): the pixel centre where the triangle
+    /// covers every sample of the pixel (before the sample mask), else the first covered
+    /// sample the mask keeps. Vulkan and OpenGL require only a location inside both the pixel
+    /// and the triangle, which both choices are.
+    Centroid,
+}
+
+impl Interpolation {
+    /// Both, at the sample first.
+    pub const ALL: [Interpolation; 2] = [Self::Sample, Self::Centroid];
+
+    /// The word the pipe protocol, the case files and reports use: `sample`, `centroid`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Sample => "sample",
+            Self::Centroid => "centroid",
+        }
+    }
+
+    /// The sampling called `name` ([`Interpolation::name`]).
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name() == name)
+    }
 }
 
 /// How a triangle is rasterized: Vulkan's `VkPolygonMode`, OpenGL's `PolygonMode` (both faces
@@ -105,7 +148,7 @@ impl PolygonMode {
 impl Default for DrawState {
     /// No culling, counter-clockwise front faces, a LESS test, the `[0, 1]` clip volume with
     /// near clipping on and far clipping off, the whole depth range, no depth bias, no scissor,
-    /// no sample mask, the first provoking vertex, triangles filled.
+    /// no sample mask, interpolation at the sample, the first provoking vertex, triangles filled.
     fn default() -> Self {
         Self {
             cull: CullMode::default(),
@@ -118,6 +161,7 @@ impl Default for DrawState {
             depth_bias: None,
             scissor: None,
             sample_mask: Self::ALL_SAMPLES,
+            interpolation: Interpolation::Sample,
             provoking_vertex: ProvokingVertex::default(),
             polygon_mode: PolygonMode::Fill,
         }
@@ -144,6 +188,22 @@ impl DrawState {
     #[inline]
     pub fn passes_sample_mask(&self, sample: u8) -> bool {
         u32::from(sample) < u32::BITS && self.sample_mask >> sample & 1 == 1
+    }
+
+    /// Where a triangle's centroid lies in a pixel of `samples` samples of which it covers
+    /// those set in `covered` (bit `k` for sample `k`, before the sample mask): `None` for the
+    /// pixel centre, where it covers them all, else the first covered sample the mask keeps
+    /// (`None` too where the mask keeps none, and no fragment is made). The one place the
+    /// reference chooses it, as D3D11.3 §3.5.5 does; counting coverage before the mask for the
+    /// centre keeps the location inside the triangle, as Vulkan and OpenGL require, since every
+    /// standard pattern's samples surround the centre.
+    #[must_use]
+    pub fn centroid_sample(&self, samples: u8, covered: u32) -> Option<u8> {
+        let all = 1u32.checked_shl(u32::from(samples)).map_or(u32::MAX, |b| b - 1);
+        if covered & all == all {
+            return None;
+        }
+        (0..samples).find(|&k| covered >> k & 1 == 1 && self.passes_sample_mask(k))
     }
 
     /// Whether a fragment at pixel `(x, y)` passes the scissor test: the one place the
@@ -228,8 +288,27 @@ mod tests {
         assert!((0..32).all(|s| DrawState::default().passes_sample_mask(s)));
     }
 
+    /// The centroid is the centre where every sample is covered, whatever the mask; else the
+    /// first covered sample the mask keeps.
+    #[test]
+    fn the_centroid_is_the_centre_or_the_first_covered_kept_sample() {
+        let state = DrawState {
+            sample_mask: 0b1011,
+            ..DrawState::default()
+        };
+        assert_eq!(state.centroid_sample(4, 0b1111), None);
+        assert_eq!(DrawState::default().centroid_sample(16, 0xffff), None);
+        assert_eq!(DrawState::default().centroid_sample(4, 0b1100), Some(2));
+        assert_eq!(state.centroid_sample(4, 0b1100), Some(3));
+        assert_eq!(state.centroid_sample(4, 0b0100), None);
+        assert_eq!(state.centroid_sample(1, 0b1), None);
+    }
+
     #[test]
     fn modes_are_named_as_the_protocol_names_them() {
+        for sampling in Interpolation::ALL {
+            assert_eq!(Interpolation::from_name(sampling.name()), Some(sampling));
+        }
         for mode in PolygonMode::ALL {
             assert_eq!(PolygonMode::from_name(mode.name()), Some(mode));
         }

@@ -266,6 +266,9 @@ fn describe(case: &CaseFile) -> String {
     if let Some(mask) = d.sample_mask {
         text.push_str(&format!("; sample mask {mask:#x}"));
     }
+    if let Some(sampling) = &d.interpolation {
+        text.push_str(&format!("; {sampling} interpolation"));
+    }
     if let Some(mode) = &d.provoking_vertex {
         text.push_str(&format!("; provoking-vertex {mode}"));
     }

@@ -341,6 +341,7 @@ pub fn feature_list(p: &Profile) -> Vec<String> {
         (f.zero_area_before_clipping, "zero-area-before-clipping"),
         (p.state.scissor, "scissor"),
         (p.state.sample_mask, "sample-mask"),
+        (p.state.centroid, "centroid"),
         (p.state.cull_both, "cull front-and-back"),
         (p.state.triangle_strips, "triangle-strip"),
         (p.state.triangle_fans, "triangle-fan"),

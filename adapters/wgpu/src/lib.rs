@@ -347,6 +347,7 @@ impl Rasterizer for Gpu {
                 // GLES backend (no `SampleMaski`): declared there, it would blame the driver
                 // for what wgpu drops.
                 sample_mask: self.driver.backends() == wgpu::Backends::VULKAN,
+                centroid: false,
                 cull_both: false,
                 triangle_strips: true,
                 triangle_fans: false,

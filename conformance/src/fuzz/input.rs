@@ -135,6 +135,8 @@ pub fn draw_state(bits: u16) -> DrawState {
         // Every sample: the sample mask's rules compare a draw with itself unmasked, where the
         // fuzz targets' bytes would find nothing a generated mask does not.
         sample_mask: DrawState::ALL_SAMPLES,
+        // At the sample: the fuzz targets draw one sample, where centroid is the same.
+        interpolation: refrast::Interpolation::Sample,
         // The clear's fourth value is its first again (1), with the last provoking vertex.
         provoking_vertex: if field(7, 4) == 3 {
             ProvokingVertex::Last

@@ -3,6 +3,7 @@
 pub mod bary;
 pub mod bias;
 pub mod cast;
+pub mod centroid;
 pub mod clip;
 pub mod common;
 pub mod depth;
@@ -301,6 +302,7 @@ pub fn catalogue() -> Vec<Rule> {
     rules.extend(msaa::rules());
     rules.extend(scissor::rules());
     rules.extend(sample_mask::rules());
+    rules.extend(centroid::rules());
     rules.extend(flat::rules());
     rules.extend(viewport_depth::rules());
     rules.extend(bias::rules());

@@ -4,8 +4,8 @@
 use std::fmt;
 
 use refrast::{
-    CompareOp, CullMode, DepthBias, DepthRange, DepthState, Distances, DrawState, FrontFace, PolygonMode,
-    ProvokingVertex, Scissor, Topology, Viewport, ViewportDepth,
+    CompareOp, CullMode, DepthBias, DepthRange, DepthState, Distances, DrawState, FrontFace, Interpolation,
+    PolygonMode, ProvokingVertex, Scissor, Topology, Viewport, ViewportDepth,
 };
 use serde::de::{self, Visitor};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -128,6 +128,9 @@ pub struct DrawData {
     /// The sample mask, bit `i` keeping sample `i`; absent for all ones (no mask).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sample_mask: Option<u32>,
+    /// `centroid` under centroid interpolation; absent at the sample.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub interpolation: Option<String>,
     /// `first` or `last`: which vertex gives a primitive its flat values; absent for first.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub provoking_vertex: Option<String>,
@@ -182,6 +185,8 @@ impl DrawData {
             far_clipping: s.clip_far.word().to_owned(),
             scissor: s.scissor.map(|r| [r.x, r.y, r.width, r.height]),
             sample_mask: (s.sample_mask != DrawState::ALL_SAMPLES).then_some(s.sample_mask),
+            interpolation: (s.interpolation != Interpolation::Sample)
+                .then(|| s.interpolation.name().to_owned()),
             provoking_vertex: (s.provoking_vertex != ProvokingVertex::First)
                 .then(|| s.provoking_vertex.word().to_owned()),
             near_clipping: (!s.clip_near).then(|| s.clip_near.word().to_owned()),
@@ -221,6 +226,11 @@ impl DrawData {
                 .scissor
                 .map(|[x, y, width, height]| Scissor { x, y, width, height }),
             sample_mask: self.sample_mask.unwrap_or(DrawState::ALL_SAMPLES),
+            interpolation: match &self.interpolation {
+                None => Interpolation::Sample,
+                Some(text) => Interpolation::from_name(text)
+                    .ok_or_else(|| format!("interpolation '{text}' is none of sample, centroid"))?,
+            },
             provoking_vertex: match &self.provoking_vertex {
                 Some(text) => word(ProvokingVertex::KEY, text)?,
                 None => ProvokingVertex::First,

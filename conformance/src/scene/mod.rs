@@ -7,8 +7,8 @@ mod primitive;
 use std::fmt;
 
 use refrast::{
-    CullMode, DepthRange, Distances, Draw, DrawState, FrontFace, PolygonMode, Profile, ProvokingVertex,
-    Viewport, ViewportDepth,
+    CullMode, DepthRange, Distances, Draw, DrawState, FrontFace, Interpolation, PolygonMode, Profile,
+    ProvokingVertex, Viewport, ViewportDepth,
 };
 
 use crate::oracle::facing::{Turn, turn};
@@ -361,6 +361,9 @@ impl fmt::Debug for Scene {
         if s.sample_mask != DrawState::ALL_SAMPLES {
             writeln!(f, "        sample_mask: {:#x},", s.sample_mask)?;
         }
+        if s.interpolation != Interpolation::Sample {
+            writeln!(f, "        interpolation: Interpolation::{:?},", s.interpolation)?;
+        }
         if s.provoking_vertex != ProvokingVertex::First {
             writeln!(
                 f,
@@ -394,6 +397,7 @@ impl fmt::Debug for Scene {
         // The rest, where a field was left out (a struct update with none left is a lint).
         if s.scissor.is_none()
             || s.sample_mask == DrawState::ALL_SAMPLES
+            || s.interpolation == Interpolation::Sample
             || s.provoking_vertex == ProvokingVertex::First
             || s.clip_near
             || s.viewport_depth == ViewportDepth::FULL

@@ -2,7 +2,7 @@
 //! power-of-two viewports, so that every implementation snaps their ends to the same points.
 
 use proptest::prelude::*;
-use refrast::{CompareOp, CullMode, Scissor, Setting, Topology};
+use refrast::{CompareOp, CullMode, DrawState, Interpolation, Scissor, Setting, Topology};
 
 use super::{GRID, side};
 use crate::scene::PrimitiveScene;
@@ -242,6 +242,22 @@ pub fn sample_masked(cases: impl Strategy<Value = PrimitiveScene>) -> impl Strat
             // All ones would mask nothing: clear a kept bit.
             _ if bits == u32::MAX => !one,
             _ => bits,
+        };
+        case
+    })
+}
+
+/// `cases` drawn under centroid interpolation, half of them with a sample mask that keeps at
+/// least one of the count's samples (all but one, or any bits besides); it shrinks toward no
+/// mask. Masked, the first covered sample the mask keeps is not always the first covered.
+pub fn centroid(cases: impl Strategy<Value = PrimitiveScene>) -> impl Strategy<Value = PrimitiveScene> {
+    (cases, 0u8..4, 0u8..16, any::<u32>()).prop_map(|(mut case, kind, bit, bits)| {
+        let one = 1u32 << (bit % case.samples.max(1));
+        case.scene.state.interpolation = Interpolation::Centroid;
+        case.scene.state.sample_mask = match kind {
+            0 | 1 => DrawState::ALL_SAMPLES,
+            2 => !one,
+            _ => bits | one,
         };
         case
     })

@@ -194,6 +194,14 @@ pub const SCISSOR: &str = "scissor";
 /// carries it: `sample-mask=MASK`, a decimal `u32` whose bit `i` keeps sample `i`.
 pub const SAMPLE_MASK: &str = "sample-mask";
 
+/// The feature word a child declares to be sent centroid interpolation
+/// ([`refrast::StateSupport::centroid`]).
+pub const CENTROID: &str = "centroid";
+
+/// The request key of a triangle draw's interpolation other than at the sample:
+/// `interpolation=centroid`, sent after the sample mask.
+pub const INTERPOLATION: &str = "interpolation";
+
 /// The feature word a child declares to be sent a viewport depth range other than `[0, 1]`
 /// with `minDepth ≤ maxDepth`, and the request key that carries it: `viewport-depth=MIN,MAX`.
 pub const VIEWPORT_DEPTH: &str = "viewport-depth";
@@ -266,7 +274,8 @@ pub const GUARD_BAND_LIMIT: u32 = refrast::COORD_LIMIT as u32;
 /// `polygon-mode=line` or `polygon-mode=point`, one with clip or cull distances with
 /// `distances=CLIP,CULL` (then `vertices × (CLIP + CULL)` f32 words follow the indices, each
 /// vertex's clip distances then its cull distances), one with a sample mask with
-/// `sample-mask=MASK` last, in any version.
+/// `sample-mask=MASK`, and a triangle draw at several samples under centroid interpolation with
+/// `interpolation=centroid` last, in any version.
 #[must_use]
 pub fn request(op: Op, draw: &Draw, version: u32) -> Vec<u8> {
     request_in(op, draw, version, draw.state.provoking_vertex)
@@ -313,6 +322,10 @@ pub fn request_in(op: Op, draw: &Draw, version: u32, provoking: ProvokingVertex)
     // Only to a child that declares it (Profile::fit keeps every sample for the rest).
     if s.sample_mask != refrast::DrawState::ALL_SAMPLES {
         extra += &format!(" {SAMPLE_MASK}={}", s.sample_mask);
+    }
+    // The same; lines and points, and a draw at one sample, are alike under both samplings.
+    if s.interpolation != refrast::Interpolation::Sample && draw.topology.is_triangles() && draw.samples > 1 {
+        extra += &format!(" {INTERPOLATION}={}", s.interpolation.name());
     }
     let header = format!(
         "{} width={} height={} vertices={} triangles={count} cull={} front-face={} depth-compare={} \

@@ -291,10 +291,11 @@ impl Reading {
         (
             state.scissor,
             state.sample_mask,
+            state.centroid,
             state.viewport_depth,
             state.inverted_depth,
             state.unclipped_depth,
-        ) = (false, false, false, false, false);
+        ) = (false, false, false, false, false, false);
         for word in rest.split_whitespace() {
             let flag = match word {
                 "perspective-barycentrics" => &mut f.perspective_barycentrics,
@@ -304,6 +305,7 @@ impl Reading {
                 "zero-area-before-clipping" => &mut f.zero_area_before_clipping,
                 SCISSOR => &mut state.scissor,
                 SAMPLE_MASK => &mut state.sample_mask,
+                CENTROID => &mut state.centroid,
                 VIEWPORT_DEPTH => &mut state.viewport_depth,
                 // Reversed ranges are ranges too.
                 INVERTED_DEPTH => {
@@ -317,7 +319,7 @@ impl Reading {
                 _ => {
                     return Err(bad(
                         "features are perspective-barycentrics, screen-barycentrics, depth-test, \
-                         ties-to-even, zero-area-before-clipping, scissor, sample-mask, viewport-depth, \
+                         ties-to-even, zero-area-before-clipping, scissor, sample-mask, centroid, viewport-depth, \
                          inverted-depth, unclipped-depth and guard-band",
                     ));
                 }

@@ -177,6 +177,39 @@ fn the_sample_mask_is_declared_and_sent_last() {
     assert_eq!(masking.fit(draw.state).sample_mask, 0b1010);
 }
 
+/// Centroid interpolation is a feature word; `interpolation=centroid` ends a triangle draw's
+/// header at several samples, and is never sent at one sample or to a child without it.
+#[test]
+fn centroid_is_declared_and_sent_after_the_mask() {
+    let plain = parsed(&["features sample-mask"]).unwrap();
+    let centroid = parsed(&["features sample-mask centroid"]).unwrap();
+    assert!(!plain.state.centroid && centroid.state.centroid);
+    let mut draw = Draw::new(
+        refrast::Viewport::new(4, 4).unwrap(),
+        vec![[0.0; 4]; 3],
+        vec![[0, 1, 2]],
+    )
+    .at_samples(4);
+    let header = |draw: &Draw| {
+        let bytes = request(Op::Rasterize, draw, 3);
+        let end = bytes.iter().position(|&b| b == b'\n').unwrap();
+        String::from_utf8(bytes[..end].to_vec()).unwrap()
+    };
+    draw.state.sample_mask = 0b0110;
+    draw.state.interpolation = refrast::Interpolation::Centroid;
+    let text = header(&draw);
+    assert!(text.ends_with(" sample-mask=6 interpolation=centroid"), "{text}");
+    assert!(!header(&draw.clone().at_samples(1)).contains("interpolation"));
+    assert_eq!(
+        plain.fit(draw.state).interpolation,
+        refrast::Interpolation::Sample
+    );
+    assert_eq!(
+        centroid.fit(draw.state).interpolation,
+        refrast::Interpolation::Centroid
+    );
+}
+
 /// The depth range and depth clipping off are feature words (reversed ranges implying ranges)
 /// and keys at the end of a request, sent only when the draw has them.
 #[test]

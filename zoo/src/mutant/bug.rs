@@ -129,6 +129,19 @@ pub enum Bug {
     /// The sample mask keeps the colour (the primitive buffer) but not the depth writes: the
     /// depth test writes depth at masked samples.
     DepthPastSampleMask,
+    /// Centroid interpolation ignored for the pixel centre's, outside the triangle or not (a
+    /// shader input interpolated at the centre, WGSL's `center`).
+    CentreCentroid,
+    /// Centroid interpolation ignored for each sample's own barycentrics: inside the pixel and
+    /// the triangle, but not one location.
+    IgnoredCentroid,
+    /// The centroid always at the first covered sample the mask keeps, never at the centre.
+    FirstSampleCentroid,
+    /// The centroid at the first covered sample before the sample mask, though masked.
+    UnmaskedCentroid,
+    /// The centroid at the centre wherever every sample the mask keeps is covered (coverage
+    /// counted after the mask), inside the triangle or not.
+    PostMaskCentroid,
     /// Culling of both faces taken as culling of front faces: back faces drawn.
     FrontOnlyForBoth,
     /// Culling of both faces applied to every primitive: lines and points culled too.
@@ -193,7 +206,7 @@ pub enum Bug {
 
 impl Bug {
     /// Every bug.
-    pub const ALL: [Bug; 74] = [
+    pub const ALL: [Bug; 79] = [
         Self::InclusiveEdges,
         Self::ExclusiveEdges,
         Self::BottomRightAsTopLeft,
@@ -243,6 +256,11 @@ impl Bug {
         Self::TrianglesOnlySampleMask,
         Self::MultisampleOnlySampleMask,
         Self::DepthPastSampleMask,
+        Self::CentreCentroid,
+        Self::IgnoredCentroid,
+        Self::FirstSampleCentroid,
+        Self::UnmaskedCentroid,
+        Self::PostMaskCentroid,
         Self::FrontOnlyForBoth,
         Self::BothCullsLines,
         Self::UnalternatedStrip,
@@ -323,6 +341,11 @@ impl Bug {
             Self::TrianglesOnlySampleMask => "triangles-only-sample-mask",
             Self::MultisampleOnlySampleMask => "multisample-only-sample-mask",
             Self::DepthPastSampleMask => "depth-past-sample-mask",
+            Self::CentreCentroid => "centre-centroid",
+            Self::IgnoredCentroid => "ignored-centroid",
+            Self::FirstSampleCentroid => "first-sample-centroid",
+            Self::UnmaskedCentroid => "unmasked-centroid",
+            Self::PostMaskCentroid => "post-mask-centroid",
             Self::FrontOnlyForBoth => "front-only-for-both",
             Self::BothCullsLines => "both-culls-lines",
             Self::UnalternatedStrip => "unalternated-strip",
@@ -399,6 +422,11 @@ impl Bug {
             | Self::TrianglesOnlySampleMask
             | Self::MultisampleOnlySampleMask => "msaa",
             Self::DepthPastSampleMask => "depth",
+            Self::CentreCentroid
+            | Self::IgnoredCentroid
+            | Self::FirstSampleCentroid
+            | Self::UnmaskedCentroid
+            | Self::PostMaskCentroid => "msaa",
             Self::FrontOnlyForBoth | Self::BothCullsLines => "meta",
             Self::UnalternatedStrip | Self::ShortStrip | Self::FanAsStrip => "meta",
             Self::LastCornerFlat | Self::ClippedFlat | Self::FirstOnlyFlat => "bary",
@@ -458,6 +486,11 @@ impl Bug {
                 | Self::TrianglesOnlySampleMask
                 | Self::MultisampleOnlySampleMask
                 | Self::DepthPastSampleMask
+                | Self::CentreCentroid
+                | Self::IgnoredCentroid
+                | Self::FirstSampleCentroid
+                | Self::UnmaskedCentroid
+                | Self::PostMaskCentroid
                 | Self::FrontOnlyForBoth
                 | Self::BothCullsLines
                 | Self::UnalternatedStrip

@@ -13,6 +13,7 @@ use refrast::{
 
 mod bias;
 mod bug;
+mod centroid;
 mod distance;
 mod polygon;
 mod primitive;

@@ -9,8 +9,8 @@ mod state;
 
 use refrast::{
     ClipMode, CompareOp, CullMode, DepthRange, Draw, DrawError, DrawState, Features, Fragment, FrontFace,
-    PointClipping, Profile, Rasterizer, Reference, ReferenceConfig, Resolved, SnapAccuracy, SnapRounding,
-    Spec, StateSupport, Supported,
+    Interpolation, PointClipping, Profile, Rasterizer, Reference, ReferenceConfig, Resolved, SnapAccuracy,
+    SnapRounding, Spec, StateSupport, Supported,
 };
 
 /// The reference under a restricted profile.
@@ -48,11 +48,16 @@ impl Restricted {
 
     /// The draw with every setting replaced by the restricted one it would use; under OpenGL
     /// and OpenGL ES, no sample mask at one sample, as their multisample operations run on
-    /// multisampled targets only (what the suite must accept from a driver).
+    /// multisampled targets only; under Vulkan, OpenGL and OpenGL ES, a centroid at each
+    /// covered sample, inside the pixel and the triangle as they require, but not one location
+    /// per pixel (what the suite must accept from a driver).
     fn forced(&self, draw: &Draw) -> Draw {
         let mut state = self.profile().fit(draw.state);
         if draw.samples == 1 && matches!(self.spec, Spec::OpenGl | Spec::OpenGlEs) {
             state.sample_mask = DrawState::ALL_SAMPLES;
+        }
+        if matches!(self.spec, Spec::Vulkan | Spec::OpenGl | Spec::OpenGlEs) {
+            state.interpolation = Interpolation::Sample;
         }
         Draw {
             state,

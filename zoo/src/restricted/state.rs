@@ -42,6 +42,14 @@ pub(super) fn restrictions() -> Vec<Restriction> {
             },
         ),
         stateful(
+            "centroid=none",
+            "no centroid interpolation",
+            StateSupport {
+                centroid: false,
+                ..all
+            },
+        ),
+        stateful(
             "cull=one-face",
             "culls one face or none, never both",
             StateSupport {

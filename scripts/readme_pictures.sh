@@ -34,6 +34,12 @@ r plane --size 320x240 --mode overdraw --impl lab002-scanline -o "$out/plane-ove
 r star --size 160x120 -o "$out/star-1x.png"
 r star --size 160x120 --samples 4 -o "$out/star-4x.png"
 r star --size 160x120 --samples 4 --sample-mask 0b0011 -o "$out/star-4x-mask.png"
+# The checkered floor at four samples: uv at each sample (the checker's edges smoothed), then at
+# one centroid a pixel (one texel a pixel: its edges stepped).
+for at in sample centroid; do
+  r floor --size 320x240 --texture checker --sampling nearest --samples 4 --interpolation "$at" \
+    -o "$out/floor-4x-$at.png"
+done
 # Seed 003's overlaps (a cycle of bars, two triangles through each other): a depth buffer draws
 # them, the painter's algorithm cannot (docs/zoo.md).
 r overlaps --size 480x240 -o "$out/overlaps-reference.png"

@@ -5,8 +5,8 @@ use std::path::Path;
 
 use glam::Vec3;
 use refrast::{
-    CullMode, DepthBias, DrawState, FrontFace, MAX_VIEWPORT, PolygonMode, Rasterizer, Reference,
-    ReferenceConfig, Scissor,
+    CullMode, DepthBias, DrawState, FrontFace, Interpolation, MAX_VIEWPORT, PolygonMode, Rasterizer,
+    Reference, ReferenceConfig, Scissor,
 };
 use refrast_render::scene::{self, Framed, Setup};
 use refrast_render::{Job, Light, Mode, Overrides, Sampling, Shading, Texture, load};
@@ -66,6 +66,13 @@ pub struct SceneArgs {
     /// the rasterizer must declare a sample mask (the reference does).
     #[arg(long, value_name = "MASK", value_parser = parse_sample_mask)]
     pub sample_mask: Option<u32>,
+    /// Where a triangle's fragments take their barycentrics at several samples: sample (each
+    /// at its own sample) or centroid (one location a pixel: its centre where the triangle
+    /// covers every sample, else its first covered sample the mask keeps); `--mode barycentric`
+    /// shows the difference along edges. The rasterizer must declare centroid (the reference
+    /// does).
+    #[arg(long, value_name = "AT", default_value = "sample", value_parser = parse_interpolation)]
+    pub interpolation: Interpolation,
     /// Offset each triangle's depth by CONSTANT units of its depth format's resolution plus
     /// SLOPE times its depth slope, at most CLAMP from where it was (0 or absent: no clamp);
     /// the rasterizer must declare depth bias (the reference does). Lines and points are not
@@ -193,6 +200,7 @@ pub fn prepare(args: &SceneArgs) -> Result<Prepared, Failure> {
     state.front_face = args.front_face;
     state.scissor = args.scissor;
     state.sample_mask = args.sample_mask.unwrap_or(DrawState::ALL_SAMPLES);
+    state.interpolation = args.interpolation;
     state.depth_bias = args.depth_bias;
     state.polygon_mode = args.polygon_mode;
     Ok(Prepared {
@@ -387,6 +395,11 @@ fn parse_cull(s: &str) -> Result<CullMode, String> {
 
 fn parse_polygon_mode(s: &str) -> Result<PolygonMode, String> {
     PolygonMode::from_name(s).ok_or_else(|| format!("no polygon mode named '{s}'; give fill, line or point"))
+}
+
+fn parse_interpolation(s: &str) -> Result<Interpolation, String> {
+    Interpolation::from_name(s)
+        .ok_or_else(|| format!("no interpolation named '{s}'; give sample or centroid"))
 }
 
 fn parse_front_face(s: &str) -> Result<FrontFace, String> {

@@ -19,8 +19,8 @@ Draw = namedtuple(
     "Draw",
     "width height positions triangles cull front_face depth_compare depth_write depth_clear "
     "depth_range far_clipping topology samples scissor indices provoking_vertex near_clipping "
-    "viewport_depth depth_bias polygon_mode clip_distances cull_distances sample_mask",
-    defaults=(None, None, "first", True, (0.0, 1.0), None, "fill", None, None, 0xFFFFFFFF),
+    "viewport_depth depth_bias polygon_mode clip_distances cull_distances sample_mask interpolation",
+    defaults=(None, None, "first", True, (0.0, 1.0), None, "fill", None, None, 0xFFFFFFFF, "sample"),
 )
 Draw.__doc__ = """One draw: clip-space positions (x, y, z, w), triangles (i, j, k) and state.
 
@@ -41,6 +41,10 @@ nothing is cut at the near or far plane and depth is clamped to the viewport's d
 sample_mask is a 32-bit int whose bit i keeps sample i (all ones keeps every sample); other
 than all ones only for a profile whose features name sample-mask: then no fragment may be at a
 sample whose bit is clear (bit 0 at one sample).
+interpolation is sample, or centroid for a triangle draw at several samples to a profile whose
+features name centroid: then all of a triangle's fragments in a pixel carry the barycentrics of
+one location, the pixel centre where it covers every sample (before the mask), else its first
+covered sample the mask keeps.
 viewport_depth is (min, max), where the near and far planes land in window depth (n + (f - n) * u),
 other than (0.0, 1.0) only for a profile whose features name viewport-depth (min > max only for
 inverted-depth); depth clamps to [min(n, f), max(n, f)]. depth_bias is None, or (constant, slope,
@@ -156,6 +160,7 @@ def _read_draw(words, stream):
         clip_distances=[list(r[:clip]) for r in rows] if clip else None,
         cull_distances=[list(r[clip:]) for r in rows] if cull else None,
         sample_mask=int(fields.get("sample-mask", "4294967295")),
+        interpolation=fields.get("interpolation", "sample"),
     )
 
 

@@ -181,7 +181,7 @@ pub(crate) fn triangle_draw(
 }
 
 /// `Err(Unsupported)` when `job` asks for state `profile` does not declare ([`Profile::state`]:
-/// a scissor, a sample mask, depth bias, a polygon mode, culling of both faces): such a draw is refused with what to do, never drawn as if
+/// a scissor, a sample mask, centroid interpolation, depth bias, a polygon mode, culling of both faces): such a draw is refused with what to do, never drawn as if
 /// it had not been asked.
 pub(crate) fn undeclared_state(profile: &Profile, job: &Job<'_>) -> Result<(), DrawError> {
     if job.state.scissor.is_some() && !profile.state.scissor {
@@ -192,6 +192,11 @@ pub(crate) fn undeclared_state(profile: &Profile, job: &Job<'_>) -> Result<(), D
     if job.state.sample_mask != refrast::DrawState::ALL_SAMPLES && !profile.state.sample_mask {
         return Err(DrawError::Unsupported(
             "a sample mask, which this rasterizer does not declare (the reference does)".to_owned(),
+        ));
+    }
+    if job.state.interpolation != refrast::Interpolation::Sample && !profile.state.centroid {
+        return Err(DrawError::Unsupported(
+            "centroid interpolation, which this rasterizer does not declare (the reference does)".to_owned(),
         ));
     }
     if let Some(bias) = job.state.depth_bias {

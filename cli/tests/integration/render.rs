@@ -267,6 +267,62 @@ fn a_sample_mask_keeps_the_samples_of_its_bits() {
     refused(&["room", "--sample-mask", "4294967296"], "is not a sample mask");
 }
 
+/// `--interpolation centroid` reads the checkered floor's texture once a pixel: at 4 samples
+/// it draws the same pixels as at the sample but with fewer distinct colours (no pixel blends
+/// two texels inside a triangle), and at one sample exactly the same picture. A rasterizer
+/// without centroid refuses the draw (exit 1), and an unknown word is a usage error (exit 2).
+#[test]
+fn centroid_reads_the_texture_once_a_pixel() {
+    let dir = scratch("centroid");
+    let draw = |name: &str, extra: &[&str]| {
+        let path = dir.join(name);
+        let mut args = vec![
+            "floor",
+            "--size",
+            "160x120",
+            "--texture",
+            "checker",
+            "--sampling",
+            "nearest",
+        ];
+        args.extend_from_slice(extra);
+        args.extend(["-o", path.to_str().unwrap()]);
+        let out = render(&args);
+        assert!(
+            out.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        png(&path)
+    };
+    let colours = |image: &image::RgbaImage| {
+        image
+            .pixels()
+            .map(|p| p.0)
+            .collect::<std::collections::BTreeSet<_>>()
+            .len()
+    };
+    let sample = draw("sample.png", &["--samples", "4"]);
+    let centroid = draw("centroid.png", &["--samples", "4", "--interpolation", "centroid"]);
+    assert_ne!(sample, centroid);
+    assert!(
+        colours(&centroid) < colours(&sample),
+        "{} against {}",
+        colours(&centroid),
+        colours(&sample)
+    );
+    assert_eq!(
+        draw("one.png", &["--interpolation", "centroid"]),
+        draw("plain.png", &[])
+    );
+    refused_undeclared(
+        &dir.join("refused.png"),
+        "restricted:centroid=none",
+        &["--samples", "4", "--interpolation", "centroid"],
+    );
+    refused(&["floor", "--interpolation", "center"], "no interpolation named");
+}
+
 /// `--depth-bias` moves the depth picture and nothing else: the same pixels drawn, each at
 /// its depth plus the triangle's offset (a slope factor of −64 pulls the room's sloped walls
 /// toward the eye; pushed away, a surface could reach the far plane and fail the depth test

@@ -176,10 +176,14 @@ fn capture_pass(
     });
     let depth = target(ctx, draw.viewport, DEPTH, draw.samples);
     let depth_view = depth.create_view(&wgpu::TextureViewDescriptor::default());
-    let pass = if draw.samples == 1 {
-        Pass::Capture
-    } else {
-        Pass::CaptureSamples
+    // Centroid interpolation changes only a filled triangle's inputs, and only above one sample.
+    let centroid = draw.state.interpolation == refrast::Interpolation::Centroid
+        && draw.topology.is_triangles()
+        && draw.state.polygon_mode == refrast::PolygonMode::Fill;
+    let pass = match (draw.samples, centroid) {
+        (1, _) => Pass::Capture,
+        (_, true) => Pass::CaptureCentroid,
+        (_, false) => Pass::CaptureSamples,
     };
     let key = Key::new(pass, &draw.state)
         .drawing(draw.topology, draw.samples)

@@ -347,7 +347,11 @@ impl Rasterizer for Gpu {
                 // GLES backend (no `SampleMaski`): declared there, it would blame the driver
                 // for what wgpu drops.
                 sample_mask: self.driver.backends() == wgpu::Backends::VULKAN,
-                centroid: false,
+                // WGSL's `@interpolate(perspective, centroid)` at pixel rate, with the
+                // `sample_mask` input naming the covered samples (`centroid.wgsl`); declared
+                // with the mask, on Vulkan only, the one backend whose multisampled captures
+                // the drivers here run.
+                centroid: self.driver.backends() == wgpu::Backends::VULKAN,
                 cull_both: false,
                 triangle_strips: true,
                 triangle_fans: false,

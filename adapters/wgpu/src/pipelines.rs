@@ -13,6 +13,9 @@ pub enum Pass {
     Capture,
     /// The same at several samples per pixel, the fragment shader run once per sample.
     CaptureSamples,
+    /// The same under centroid interpolation: run once a pixel, its inputs at the centroid,
+    /// one fragment appended per covered sample.
+    CaptureCentroid,
     /// One primitive's covered samples written to two float targets.
     CaptureTargets,
     /// The driver's depth test, primitive ids into an id target.
@@ -60,7 +63,9 @@ impl Key {
     pub fn new(pass: Pass, state: &DrawState) -> Self {
         let (compare, write) = match pass {
             Pass::Resolve => (state.depth.compare, state.depth.write),
-            Pass::Capture | Pass::CaptureSamples | Pass::CaptureTargets => (CompareOp::Always, false),
+            Pass::Capture | Pass::CaptureSamples | Pass::CaptureCentroid | Pass::CaptureTargets => {
+                (CompareOp::Always, false)
+            }
         };
         Self {
             pass,
@@ -133,13 +138,16 @@ pub struct Pipelines {
     targets_module: wgpu::ShaderModule,
     /// The per-sample capture's shaders, when built (on the first draw at several samples).
     samples_module: Option<wgpu::ShaderModule>,
+    /// The centroid capture's shaders, when built (on the first centroid draw).
+    centroid_module: Option<wgpu::ShaderModule>,
     /// The resolve's shaders run per sample, when built (on the first resolve at several
     /// samples): the same vertex stage and interpolation as the per-sample capture, so that
     /// the two passes differ only in what their fragment shaders write.
     samples_resolve_module: Option<wgpu::ShaderModule>,
-    /// The vertex stages writing clip distances, at the pixel's centre and per sample, when
-    /// built (on the first draw with clip distances, which only a device with the feature gets).
-    clip_modules: [Option<wgpu::ShaderModule>; 2],
+    /// The vertex stages writing clip distances, interpolated at the pixel's centre, per
+    /// sample and at the centroid ([`Sampling`]), when built (on the first draw with clip
+    /// distances, which only a device with the feature gets).
+    clip_modules: [Option<wgpu::ShaderModule>; 3],
     /// The unpacking of a multisampled resolve: its pipeline and bind group layout, when built.
     unpacking: Option<(wgpu::RenderPipeline, wgpu::BindGroupLayout)>,
     /// How far a strip's flat values are from its primitive's index, per strip topology: 0
@@ -195,8 +203,9 @@ impl Pipelines {
             ),
             targets_module: module("capture targets", include_str!("targets.wgsl")),
             samples_module: None,
+            centroid_module: None,
             samples_resolve_module: None,
-            clip_modules: [None, None],
+            clip_modules: [None, None, None],
             unpacking: None,
             strip_offsets: HashMap::new(),
             layout,
@@ -236,6 +245,18 @@ impl Pipelines {
                     ),
                 ));
             }
+            if key.pass == Pass::CaptureCentroid && self.centroid_module.is_none() {
+                self.centroid_module = Some(shader(
+                    device,
+                    "capture centroid",
+                    include_str!("varyings_centroid.wgsl"),
+                    &format!(
+                        "{}\n{}",
+                        include_str!("record.wgsl"),
+                        include_str!("centroid.wgsl")
+                    ),
+                ));
+            }
             if key.pass == Pass::Resolve && key.samples > 1 && self.samples_resolve_module.is_none() {
                 self.samples_resolve_module = Some(shader(
                     device,
@@ -244,14 +265,14 @@ impl Pipelines {
                     "",
                 ));
             }
-            let per_sample = usize::from(Self::per_sample(key));
-            if key.clip && self.clip_modules[per_sample].is_none() {
-                let (perspective, linear) = if per_sample == 1 {
-                    ("perspective, sample", "linear, sample")
-                } else {
-                    ("perspective, center", "linear")
+            let sampling = Sampling::of(key);
+            if key.clip && self.clip_modules[sampling as usize].is_none() {
+                let (perspective, linear) = match sampling {
+                    Sampling::Centre => ("perspective, center", "linear"),
+                    Sampling::Sample => ("perspective, sample", "linear, sample"),
+                    Sampling::Centroid => ("perspective, centroid", "linear, centroid"),
                 };
-                self.clip_modules[per_sample] = Some(
+                self.clip_modules[sampling as usize] = Some(
                     device.create_shader_module(wgpu::ShaderModuleDescriptor {
                         label: Some("clip distances"),
                         source: wgpu::ShaderSource::Wgsl(
@@ -285,11 +306,6 @@ impl Pipelines {
         self.unpacking.get_or_insert_with(|| build_unpack(device))
     }
 
-    /// Whether `key`'s fragment stage runs per sample (`varyings_sample.wgsl`).
-    fn per_sample(key: Key) -> bool {
-        key.pass == Pass::CaptureSamples || (key.pass == Pass::Resolve && key.samples > 1)
-    }
-
     /// Builds the pipeline for `key`.
     fn build(&self, device: &wgpu::Device, key: Key) -> wgpu::RenderPipeline {
         let floats = Some(wgpu::ColorTargetState::from(FLOATS));
@@ -307,6 +323,13 @@ impl Pipelines {
                 self.samples_module.as_ref().unwrap_or(&self.capture_module),
                 &self.capture_layout,
                 "capture_samples",
+                vec![],
+                always,
+            ),
+            Pass::CaptureCentroid => (
+                self.centroid_module.as_ref().unwrap_or(&self.capture_module),
+                &self.capture_layout,
+                "capture_centroid",
                 vec![],
                 always,
             ),
@@ -356,7 +379,7 @@ impl Pipelines {
             attributes: &wgpu::vertex_attr_array![1 => Float32x4, 2 => Float32x4],
         });
         // `get` built the clip module before a key with clip distances gets here.
-        let clip_module = self.clip_modules[usize::from(Self::per_sample(key))]
+        let clip_module = self.clip_modules[Sampling::of(key) as usize]
             .as_ref()
             .filter(|_| key.clip);
         let (vertex_module, buffers) = match clip_module {
@@ -427,6 +450,30 @@ impl Pipelines {
             multiview_mask: None,
             cache: None,
         })
+    }
+}
+
+/// Where a pipeline's fragment stage reads its inputs, which picks its `varyings*.wgsl` and
+/// its clip-distance vertex stage.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Sampling {
+    /// At the pixel's centre, once a pixel (one sample per pixel).
+    Centre,
+    /// At each sample, once a sample (`varyings_sample.wgsl`).
+    Sample,
+    /// At the pixel's centroid, once a pixel (`varyings_centroid.wgsl`).
+    Centroid,
+}
+
+impl Sampling {
+    /// Where `key`'s fragment stage reads its inputs.
+    fn of(key: Key) -> Self {
+        match key.pass {
+            Pass::CaptureSamples => Self::Sample,
+            Pass::CaptureCentroid => Self::Centroid,
+            Pass::Resolve if key.samples > 1 => Self::Sample,
+            _ => Self::Centre,
+        }
     }
 }
 

@@ -31,6 +31,30 @@ const STANDARD_4: [[f64; 2]; 4] = [[0.375, 0.125], [0.875, 0.375], [0.125, 0.625
 /// and the denominator `Σ λⱼ/wⱼ` at the sample (`centre` false: the formula itself) or at the
 /// pixel centre (`centre` true), the vertices snapped to `bits` bits.
 pub fn largest_misfit(draw: &Draw, frags: &[Fragment], bits: u32, centre: bool) -> f64 {
+    largest_misfit_at(draw, frags, bits, centre, |f| Some(usize::from(f.sample) % 4))
+}
+
+/// [`largest_misfit`] with the numerators at a centroid: the pixel centre where the pixel has
+/// all 4 samples among `frags`, else its first sample among them (D3D11.3 §3.5.5).
+pub fn largest_centroid_misfit(draw: &Draw, frags: &[Fragment], bits: u32, centre: bool) -> f64 {
+    let mut covered = std::collections::HashMap::new();
+    for f in frags {
+        *covered.entry((f.x, f.y)).or_insert(0u32) |= 1 << f.sample;
+    }
+    largest_misfit_at(draw, frags, bits, centre, |f| {
+        let mask = covered[&(f.x, f.y)];
+        (mask != 0b1111).then(|| mask.trailing_zeros() as usize)
+    })
+}
+
+/// [`largest_misfit`] with the numerators at the sample `location` names (the centre for none).
+fn largest_misfit_at(
+    draw: &Draw,
+    frags: &[Fragment],
+    bits: u32,
+    centre: bool,
+    location: impl Fn(&Fragment) -> Option<usize>,
+) -> f64 {
     let (width, height) = (
         f64::from(draw.viewport.width()),
         f64::from(draw.viewport.height()),
@@ -58,9 +82,11 @@ pub fn largest_misfit(draw: &Draw, frags: &[Fragment], bits: u32, centre: bool) 
     frags
         .iter()
         .map(|f| {
-            let [u, v] = STANDARD_4[usize::from(f.sample) % 4];
             let (x, y) = (f64::from(f.x), f64::from(f.y));
-            let at = [x + u, y + v];
+            let at = match location(f) {
+                Some(sample) => [x + STANDARD_4[sample][0], y + STANDARD_4[sample][1]],
+                None => [x + 0.5, y + 0.5],
+            };
             let over = if centre { [x + 0.5, y + 0.5] } else { at };
             let (n, d) = (lambda(at), lambda(over));
             let denominator: f64 = (0..3).map(|i| d[i] / w[i]).sum();

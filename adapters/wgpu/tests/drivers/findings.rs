@@ -94,7 +94,7 @@ const SOFTPIPE: [Finding; 4] = [
 
 /// lavapipe's own findings: at 4 samples, which only it draws through wgpu of Mesa's three, and
 /// of the sample mask, which only it is sent of the three.
-const LAVAPIPE: [Finding; 4] = [
+const LAVAPIPE: [Finding; 5] = [
     (
         "the scissor tested half a pixel up and left at 4 samples",
         lavapipe_multisample_scissor,
@@ -110,6 +110,10 @@ const LAVAPIPE: [Finding; 4] = [
     (
         "a sample's perspective divide at the pixel centre",
         crate::masks::lavapipe_sample_divide_at_centre,
+    ),
+    (
+        "a centroid's perspective divide at the pixel centre",
+        crate::masks::lavapipe_centroid_divide_at_centre,
     ),
 ];
 

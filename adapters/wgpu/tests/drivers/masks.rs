@@ -74,3 +74,22 @@ pub fn lavapipe_sample_divide_at_centre(d: Driver, run: &mut Run<'_>) {
         d.name()
     );
 }
+
+/// Under centroid interpolation at 4 samples, the same: numerators at the centroid (the pixel
+/// centre where all 4 samples are covered, else the first covered sample, which is D3D11's
+/// location) over `1/w` at the pixel centre, so a partly covered pixel's barycentrics sum off 1
+/// and name no location at all.
+pub fn lavapipe_centroid_divide_at_centre(d: Driver, run: &mut Run<'_>) {
+    let mut tri = crate::interpolation::perspective_triangle();
+    tri.state.interpolation = refrast::Interpolation::Centroid;
+    let frags = run(&tri);
+    assert_eq!(frags.len(), 406, "{}: the triangle's sample fragments", d.name());
+    let sum = crate::interpolation::largest_sum_error(&frags);
+    let at_centroid = crate::interpolation::largest_centroid_misfit(&tri, &frags, 8, false);
+    let over_centre = crate::interpolation::largest_centroid_misfit(&tri, &frags, 8, true);
+    assert!(
+        sum > 0.05 && at_centroid > 0.05 && over_centre < 2e-3,
+        "{}: sums off 1 by {sum:.3e}; off the formula at the centroid by {at_centroid:.3e}, over the centre's 1/w by {over_centre:.3e}",
+        d.name()
+    );
+}

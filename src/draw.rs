@@ -132,11 +132,14 @@ impl Draw {
         }
     }
 
-    /// Whether it is filled triangles (a list, a strip or a fan) at one sample: what a
-    /// triangle rasterizer reading [`Draw::triangles`] draws.
+    /// Whether it is filled triangles (a list, a strip or a fan) at one sample, not
+    /// conservative: what a triangle rasterizer reading [`Draw::triangles`] draws.
     #[must_use]
     pub fn is_triangles_at_one_sample(&self) -> bool {
-        self.topology.is_triangles() && self.samples == 1 && self.state.polygon_mode == PolygonMode::Fill
+        self.topology.is_triangles()
+            && self.samples == 1
+            && self.state.polygon_mode == PolygonMode::Fill
+            && self.state.conservative.is_none()
     }
 
     /// The vertex indices of primitive `i` (one, two or three of them; a triangle's in

@@ -5,6 +5,7 @@ use std::fmt;
 use std::marker::PhantomData;
 
 use crate::bias::{BiasSupport, DepthBias};
+use crate::conservative::ConservativeSupport;
 use crate::depth::{CompareOp, DepthRange, ViewportDepth};
 use crate::distance::{Distances, MAX_DISTANCES};
 use crate::setup::{CullMode, FrontFace};
@@ -300,6 +301,10 @@ pub struct StateSupport {
     /// the pixel and the triangle (the pixel centre where it covers every sample, else its
     /// first covered sample the mask keeps, under a refrast claim).
     pub centroid: bool,
+    /// The conservative rasterization of filled triangles it offers
+    /// ([`DrawState::conservative`](crate::DrawState::conservative)), at every sample count it
+    /// declares; `None` when it has none.
+    pub conservative: Option<ConservativeSupport>,
     /// It culls both faces ([`CullMode::FrontAndBack`](crate::CullMode::FrontAndBack)): no
     /// triangle drawn, lines and points drawn as with culling off.
     pub cull_both: bool,
@@ -396,6 +401,7 @@ impl StateSupport {
         scissor: false,
         sample_mask: false,
         centroid: false,
+        conservative: None,
         cull_both: false,
         triangle_strips: false,
         triangle_fans: false,
@@ -413,6 +419,7 @@ impl StateSupport {
         scissor: true,
         sample_mask: true,
         centroid: true,
+        conservative: Some(ConservativeSupport::REFERENCE),
         cull_both: true,
         triangle_strips: true,
         triangle_fans: true,

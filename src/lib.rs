@@ -24,7 +24,7 @@
 //! | the contract | `rasterizer.rs`, `draw.rs` | [`Rasterizer`], [`Draw`], [`Fragment`], [`Resolved`] |
 //! | lines, points, samples | `primitive.rs` | [`Topology`], [`LineRule`], [`PointClipping`], [`SamplePattern`], [`SAMPLE_COUNTS`] |
 //! | what an implementation declares | `profile.rs`, `features.rs` | [`Profile`], [`Snapping`], [`Spec`], [`Features`], [`StateSupport`], [`Supported`], [`SnapAccuracy`] |
-//! | state | `state.rs`, `setup.rs`, `depth.rs` | [`DrawState`], [`Scissor`], [`Interpolation`], [`ProvokingVertex`], [`CullMode`], [`FrontFace`], [`DepthState`], [`CompareOp`], [`DepthRange`], [`ViewportDepth`] |
+//! | state | `state.rs`, `setup.rs`, `depth.rs` | [`DrawState`], [`Scissor`], [`Interpolation`], [`Conservative`], [`ProvokingVertex`], [`CullMode`], [`FrontFace`], [`DepthState`], [`CompareOp`], [`DepthRange`], [`ViewportDepth`] |
 //! | polygon modes | `state.rs`, `polygon.rs` | [`PolygonMode`] |
 //! | clip and cull distances | `distance.rs` | [`Distances`], [`MAX_DISTANCES`], [`stage::CornerDistances`] |
 //! | depth bias | `bias.rs` | [`DepthBias`], [`DepthFormat`], [`DepthSlope`], [`BiasSupport`], [`bias::polygon_offset`] |
@@ -98,6 +98,10 @@
 //!   all its fragments in a pixel the barycentrics of one location: the pixel centre where it
 //!   covers every sample (before the mask), else its first covered sample the mask keeps
 //!   ([`DrawState::centroid_sample`]); lines and points keep each sample's.
+//! - **Conservative rasterization**: a filled triangle drawn with a [`Conservative`] mode covers
+//!   every sample of each pixel whose closed square its snapped polygon touches (grown by a
+//!   disc of the extra size) or, underestimating, holds; a triangle of zero area once snapped
+//!   is culled ([`ConservativeSupport::REFERENCE`], `conservative.rs`).
 //! - **Strips and fans**: triangle `i` of a strip is indices `i, i+1+i%2, i+2−i%2` (every other
 //!   one reversed, so the strip keeps one winding), of a fan `i+1, i+2, 0`, as Vulkan makes them
 //!   and orders their barycentrics; each draws as that triangle would in a list
@@ -131,6 +135,7 @@ pub mod camera;
 mod centroid;
 mod clip;
 mod config;
+mod conservative;
 mod dda;
 mod depth;
 mod distance;
@@ -160,6 +165,7 @@ mod viewport;
 pub use bias::{BiasSupport, DepthBias, DepthFormat, DepthSlope};
 pub use clip::ClipMode;
 pub use config::{ReferenceConfig, Traversal};
+pub use conservative::{Conservative, ConservativeSupport};
 pub use depth::{CompareOp, DepthClip, DepthRange, DepthState, ViewportDepth};
 pub use distance::{Distances, MAX_DISTANCES};
 pub use draw::{Draw, Fragment, Resolved};

@@ -92,6 +92,12 @@ impl Reference {
             )));
         }
         let offsets = self.offsets(pattern)?;
+        if draw.topology.is_triangles()
+            && draw.state.polygon_mode == PolygonMode::Fill
+            && let Some(mode) = draw.state.conservative
+        {
+            return self.draw_conservative(draw, mode, &offsets, emit);
+        }
         match draw.topology {
             t if t.is_triangles() && draw.state.polygon_mode != PolygonMode::Fill => {
                 Ok(self.draw_polygon_mode(draw, &offsets, emit))

@@ -329,6 +329,9 @@ impl Profile {
         if !self.state.centroid {
             fitted.interpolation = Interpolation::Sample;
         }
+        fitted.conservative = state
+            .conservative
+            .and_then(|mode| self.state.conservative.and_then(|support| support.fit(mode)));
         fitted.polygon_mode = self.state.fit_polygon_mode(state.polygon_mode);
         // Without flat values the mode changes nothing: the default is what such a draw has.
         fitted.provoking_vertex = if self.state.flat.is_empty() {

@@ -3,6 +3,7 @@
 //! it) and a profile (which states it supports) need it.
 
 use crate::bias::DepthBias;
+use crate::conservative::Conservative;
 use crate::depth::{DepthClip, DepthRange, DepthState, ViewportDepth};
 use crate::setup::{CullMode, FrontFace};
 
@@ -48,6 +49,11 @@ pub struct DrawState {
     /// ([`Interpolation::Centroid`]). Sent other than at the sample only to a rasterizer that
     /// declares it ([`StateSupport::centroid`](crate::StateSupport::centroid)).
     pub interpolation: Interpolation,
+    /// Conservative rasterization of filled triangles: whole pixels touched or held, every
+    /// sample of each; `None` rasterizes as the fill rule says. Lines, points and the polygon
+    /// modes are drawn as without it. Sent only to a rasterizer that declares it
+    /// ([`StateSupport::conservative`](crate::StateSupport::conservative)).
+    pub conservative: Option<Conservative>,
     /// Which vertex of a primitive gives its flat values ([`Fragment::flat`](crate::Fragment::flat)).
     /// Sent other than first only to a rasterizer that declares it
     /// ([`StateSupport::flat`](crate::StateSupport::flat)).
@@ -148,7 +154,8 @@ impl PolygonMode {
 impl Default for DrawState {
     /// No culling, counter-clockwise front faces, a LESS test, the `[0, 1]` clip volume with
     /// near clipping on and far clipping off, the whole depth range, no depth bias, no scissor,
-    /// no sample mask, interpolation at the sample, the first provoking vertex, triangles filled.
+    /// no sample mask, interpolation at the sample, no conservative rasterization, the first
+    /// provoking vertex, triangles filled.
     fn default() -> Self {
         Self {
             cull: CullMode::default(),
@@ -162,6 +169,7 @@ impl Default for DrawState {
             scissor: None,
             sample_mask: Self::ALL_SAMPLES,
             interpolation: Interpolation::Sample,
+            conservative: None,
             provoking_vertex: ProvokingVertex::default(),
             polygon_mode: PolygonMode::Fill,
         }

@@ -269,6 +269,9 @@ fn describe(case: &CaseFile) -> String {
     if let Some(sampling) = &d.interpolation {
         text.push_str(&format!("; {sampling} interpolation"));
     }
+    if let Some(mode) = &d.conservative {
+        text.push_str(&format!("; conservative {mode}"));
+    }
     if let Some(mode) = &d.provoking_vertex {
         text.push_str(&format!("; provoking-vertex {mode}"));
     }

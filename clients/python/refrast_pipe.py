@@ -19,8 +19,9 @@ Draw = namedtuple(
     "Draw",
     "width height positions triangles cull front_face depth_compare depth_write depth_clear "
     "depth_range far_clipping topology samples scissor indices provoking_vertex near_clipping "
-    "viewport_depth depth_bias polygon_mode clip_distances cull_distances sample_mask interpolation",
-    defaults=(None, None, "first", True, (0.0, 1.0), None, "fill", None, None, 0xFFFFFFFF, "sample"),
+    "viewport_depth depth_bias polygon_mode clip_distances cull_distances sample_mask interpolation "
+    "conservative",
+    defaults=(None, None, "first", True, (0.0, 1.0), None, "fill", None, None, 0xFFFFFFFF, "sample", None),
 )
 Draw.__doc__ = """One draw: clip-space positions (x, y, z, w), triangles (i, j, k) and state.
 
@@ -45,6 +46,9 @@ interpolation is sample, or centroid for a triangle draw at several samples to a
 features name centroid: then all of a triangle's fragments in a pixel carry the barycentrics of
 one location, the pixel centre where it covers every sample (before the mask), else its first
 covered sample the mask keeps.
+conservative is None, or ("over", extra) or ("under",) for a filled triangle draw to a profile
+with a conservative line: each pixel whose closed square the snapped triangle touches (grown by
+extra pixels at each edge), or under underestimation lies wholly inside, is drawn at every sample.
 viewport_depth is (min, max), where the near and far planes land in window depth (n + (f - n) * u),
 other than (0.0, 1.0) only for a profile whose features name viewport-depth (min > max only for
 inverted-depth); depth clamps to [min(n, f), max(n, f)]. depth_bias is None, or (constant, slope,
@@ -161,7 +165,18 @@ def _read_draw(words, stream):
         cull_distances=[list(r[clip:]) for r in rows] if cull else None,
         sample_mask=int(fields.get("sample-mask", "4294967295")),
         interpolation=fields.get("interpolation", "sample"),
+        conservative=_conservative(fields.get("conservative")),
     )
+
+
+def _conservative(word):
+    """The conservative key's value as ("over", extra) or ("under",); None without one."""
+    if word is None:
+        return None
+    if word == "under":
+        return ("under",)
+    mode, _, extra = word.partition(",")
+    return (mode, float(extra))
 
 
 def _one_line(message):

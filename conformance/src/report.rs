@@ -342,6 +342,7 @@ pub fn feature_list(p: &Profile) -> Vec<String> {
         (p.state.scissor, "scissor"),
         (p.state.sample_mask, "sample-mask"),
         (p.state.centroid, "centroid"),
+        (p.state.conservative.is_some(), "conservative"),
         (p.state.cull_both, "cull front-and-back"),
         (p.state.triangle_strips, "triangle-strip"),
         (p.state.triangle_fans, "triangle-fan"),

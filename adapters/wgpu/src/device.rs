@@ -166,6 +166,10 @@ pub struct Context {
     /// `Features::CLIP_DISTANCES` (Vulkan's `shaderClipDistance`; OpenGL ES's
     /// `EXT_clip_cull_distance`).
     pub clip_distances: bool,
+    /// Whether it draws filled triangles conservatively: the adapter reports
+    /// `Features::CONSERVATIVE_RASTERIZATION` (Vulkan's `VK_EXT_conservative_rasterization`,
+    /// overestimation with no extra size through wgpu).
+    pub conservative: bool,
 }
 
 /// What opening a driver gave: its device, or why there is none.
@@ -247,7 +251,8 @@ fn open(driver: Driver) -> Result<Context, Unavailable> {
                 | wgpu::Features::DEPTH_CLIP_CONTROL
                 | wgpu::Features::POLYGON_MODE_LINE
                 | wgpu::Features::POLYGON_MODE_POINT
-                | wgpu::Features::CLIP_DISTANCES),
+                | wgpu::Features::CLIP_DISTANCES
+                | wgpu::Features::CONSERVATIVE_RASTERIZATION),
         ..wgpu::DeviceDescriptor::default()
     }))
     .map_err(|e| Unavailable(format!("{} refused a device: {e}", describe(info))))?;
@@ -268,6 +273,9 @@ fn open(driver: Driver) -> Result<Context, Unavailable> {
             .flags
             .contains(wgpu::DownlevelFlags::DEPTH_BIAS_CLAMP),
         clip_distances: adapter.features().contains(wgpu::Features::CLIP_DISTANCES),
+        conservative: adapter
+            .features()
+            .contains(wgpu::Features::CONSERVATIVE_RASTERIZATION),
         polygon_modes: Supported::only(
             &[
                 (wgpu::Features::POLYGON_MODE_LINE, PolygonMode::Line),

@@ -352,6 +352,17 @@ impl Rasterizer for Gpu {
                 // with the mask, on Vulkan only, the one backend whose multisampled captures
                 // the drivers here run.
                 centroid: self.driver.backends() == wgpu::Backends::VULKAN,
+                // `PrimitiveState::conservative`: overestimation of filled triangles, no extra
+                // size. wgpu reports neither `primitiveOverestimationSize` nor
+                // `degenerateTrianglesRasterized`: half a pixel is assumed (D3D12's Tier 1
+                // bound; NVIDIA reports 1/256), and either degenerate outcome accepted.
+                conservative: self.context.conservative.then_some(refrast::ConservativeSupport {
+                    overestimation_size: 0.5,
+                    max_extra: 0.0,
+                    extra_granularity: 0.0,
+                    underestimate: false,
+                    degenerate_triangles: None,
+                }),
                 cull_both: false,
                 triangle_strips: true,
                 triangle_fans: false,

@@ -55,6 +55,8 @@ pub struct Key {
     /// what the mask rules are there to see (lavapipe does at one sample), so they are not
     /// cleared here to share pipelines.
     mask: u32,
+    /// Whether filled triangles are drawn conservatively (overestimation, no extra size).
+    conservative: bool,
 }
 
 impl Key {
@@ -84,6 +86,7 @@ impl Key {
             polygon: state.polygon_mode,
             clip: false,
             mask: state.sample_mask,
+            conservative: state.conservative.is_some(),
         }
     }
 
@@ -108,6 +111,9 @@ impl Key {
             } else {
                 PolygonMode::Fill
             },
+            // Only filled triangles are drawn conservatively (Vulkan, without
+            // conservativePointAndLineRasterization).
+            conservative: self.conservative && topology.is_triangles() && self.polygon == PolygonMode::Fill,
             ..self
         }
     }
@@ -410,6 +416,7 @@ impl Pipelines {
                     PolygonMode::Line => wgpu::PolygonMode::Line,
                     PolygonMode::Point => wgpu::PolygonMode::Point,
                 },
+                conservative: key.conservative,
                 ..wgpu::PrimitiveState::default()
             },
             depth_stencil: Some(wgpu::DepthStencilState {

@@ -137,6 +137,8 @@ pub fn draw_state(bits: u16) -> DrawState {
         sample_mask: DrawState::ALL_SAMPLES,
         // At the sample: the fuzz targets draw one sample, where centroid is the same.
         interpolation: refrast::Interpolation::Sample,
+        // Point-sampled: the fuzz targets judge the fill rule's coverage.
+        conservative: None,
         // The clear's fourth value is its first again (1), with the last provoking vertex.
         provoking_vertex: if field(7, 4) == 3 {
             ProvokingVertex::Last

@@ -6,6 +6,7 @@ pub mod cast;
 pub mod centroid;
 pub mod clip;
 pub mod common;
+pub mod conservative;
 pub mod depth;
 pub mod distance;
 pub mod fill;
@@ -303,6 +304,7 @@ pub fn catalogue() -> Vec<Rule> {
     rules.extend(scissor::rules());
     rules.extend(sample_mask::rules());
     rules.extend(centroid::rules());
+    rules.extend(conservative::rules());
     rules.extend(flat::rules());
     rules.extend(viewport_depth::rules());
     rules.extend(bias::rules());

@@ -4,8 +4,8 @@
 use std::fmt;
 
 use refrast::{
-    CompareOp, CullMode, DepthBias, DepthRange, DepthState, Distances, DrawState, FrontFace, Interpolation,
-    PolygonMode, ProvokingVertex, Scissor, Topology, Viewport, ViewportDepth,
+    CompareOp, Conservative, CullMode, DepthBias, DepthRange, DepthState, Distances, DrawState, FrontFace,
+    Interpolation, PolygonMode, ProvokingVertex, Scissor, Topology, Viewport, ViewportDepth,
 };
 use serde::de::{self, Visitor};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -131,6 +131,9 @@ pub struct DrawData {
     /// `centroid` under centroid interpolation; absent at the sample.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub interpolation: Option<String>,
+    /// `over,EXTRA` or `under` under conservative rasterization; absent without it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub conservative: Option<String>,
     /// `first` or `last`: which vertex gives a primitive its flat values; absent for first.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub provoking_vertex: Option<String>,
@@ -187,6 +190,7 @@ impl DrawData {
             sample_mask: (s.sample_mask != DrawState::ALL_SAMPLES).then_some(s.sample_mask),
             interpolation: (s.interpolation != Interpolation::Sample)
                 .then(|| s.interpolation.name().to_owned()),
+            conservative: s.conservative.map(Conservative::words),
             provoking_vertex: (s.provoking_vertex != ProvokingVertex::First)
                 .then(|| s.provoking_vertex.word().to_owned()),
             near_clipping: (!s.clip_near).then(|| s.clip_near.word().to_owned()),
@@ -230,6 +234,12 @@ impl DrawData {
                 None => Interpolation::Sample,
                 Some(text) => Interpolation::from_name(text)
                     .ok_or_else(|| format!("interpolation '{text}' is none of sample, centroid"))?,
+            },
+            conservative: match &self.conservative {
+                None => None,
+                Some(text) => Some(Conservative::from_words(text).ok_or_else(|| {
+                    format!("conservative '{text}' is neither under nor over,EXTRA with EXTRA ≥ 0")
+                })?),
             },
             provoking_vertex: match &self.provoking_vertex {
                 Some(text) => word(ProvokingVertex::KEY, text)?,

@@ -7,8 +7,8 @@ mod primitive;
 use std::fmt;
 
 use refrast::{
-    CullMode, DepthRange, Distances, Draw, DrawState, FrontFace, Interpolation, PolygonMode, Profile,
-    ProvokingVertex, Viewport, ViewportDepth,
+    Conservative, CullMode, DepthRange, Distances, Draw, DrawState, FrontFace, Interpolation, PolygonMode,
+    Profile, ProvokingVertex, Viewport, ViewportDepth,
 };
 
 use crate::oracle::facing::{Turn, turn};
@@ -364,6 +364,17 @@ impl fmt::Debug for Scene {
         if s.interpolation != Interpolation::Sample {
             writeln!(f, "        interpolation: Interpolation::{:?},", s.interpolation)?;
         }
+        match s.conservative {
+            Some(Conservative::Overestimate { extra }) => writeln!(
+                f,
+                "        conservative: Some(Conservative::Overestimate {{ extra: {} }}),",
+                rust_f32(extra)
+            )?,
+            Some(Conservative::Underestimate) => {
+                writeln!(f, "        conservative: Some(Conservative::Underestimate),")?;
+            }
+            None => {}
+        }
         if s.provoking_vertex != ProvokingVertex::First {
             writeln!(
                 f,
@@ -398,6 +409,7 @@ impl fmt::Debug for Scene {
         if s.scissor.is_none()
             || s.sample_mask == DrawState::ALL_SAMPLES
             || s.interpolation == Interpolation::Sample
+            || s.conservative.is_none()
             || s.provoking_vertex == ProvokingVertex::First
             || s.clip_near
             || s.viewport_depth == ViewportDepth::FULL

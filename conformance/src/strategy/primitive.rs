@@ -263,6 +263,51 @@ pub fn centroid(cases: impl Strategy<Value = PrimitiveScene>) -> impl Strategy<V
     })
 }
 
+/// One triangle over 20×16 at a sample count `d` declares, drawn conservatively: under
+/// `under` by underestimation, else by overestimation with an extra size of 0, the most `d`
+/// honours, or between. A quarter of the triangles are collinear (zero area before snapping)
+/// and a quarter a sixteenth of a grid step off collinear (zero area once snapped to `d`'s
+/// grid); the rest anywhere, reaching a little past the viewport.
+pub fn conservative(d: &refrast::Profile, under: bool) -> impl Strategy<Value = PrimitiveScene> + use<> {
+    let bits = d.snapping.grid_bits().unwrap_or(8).min(8);
+    let max_extra = d.state.conservative.map_or(0.0, |c| c.max_extra);
+    let counts = d.sample_counts();
+    let one = 1i64 << bits;
+    let coord = move |side: i64| (-2 * one)..((side + 2) * one);
+    let vertex = (coord(20), coord(16));
+    (
+        [vertex.clone(), vertex.clone(), vertex],
+        0u8..4,
+        prop::sample::select(counts),
+        0u8..3,
+        0.0f32..=1.0,
+    )
+        .prop_map(move |(mut t, kind, samples, size, fraction)| {
+            // Collinear: the third vertex halfway between the first two, on the grid.
+            if kind >= 2 {
+                t[1] = (
+                    t[0].0 + 2 * ((t[1].0 - t[0].0) / 2),
+                    t[0].1 + 2 * ((t[1].1 - t[0].1) / 2),
+                );
+                t[2] = ((t[0].0 + t[1].0) / 2, (t[0].1 + t[1].1) / 2);
+            }
+            // Sixteenths of a grid step: the last kind moved off the line by one.
+            let mut fine = t.map(|(x, y)| (x * 16, y * 16));
+            if kind == 3 {
+                fine[2].1 += 1;
+            }
+            let mut scene = Scene::from_subpixels(20, 16, bits + 4, &[fine], 0.5);
+            scene.state.conservative = Some(if under {
+                refrast::Conservative::Underestimate
+            } else {
+                refrast::Conservative::Overestimate {
+                    extra: [0.0, max_extra, max_extra * fraction][usize::from(size)],
+                }
+            });
+            PrimitiveScene::triangles(scene, samples)
+        })
+}
+
 /// `scene` with every vertex (at `w = 1`) moved to the nearest point of a grid of `bits`
 /// subpixel bits, so that moving it by whole grid steps moves its snapped vertices alike
 /// (off the grid, rounding half to even is no translation: 0.5 rounds to 0 and 1.5 to 2).

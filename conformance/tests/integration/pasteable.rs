@@ -34,6 +34,7 @@ fn a_printed_scene_compiles_and_round_trips() {
             }),
             sample_mask: 0x5,
             interpolation: Interpolation::Centroid,
+            conservative: Some(Conservative::Overestimate { extra: 0.5 }),
             provoking_vertex: ProvokingVertex::Last,
             clip_near: false,
             viewport_depth: ViewportDepth { min: 0.75, max: 0.25 },
@@ -53,7 +54,7 @@ fn a_printed_scene_compiles_and_round_trips() {
     let printed = format!("{pasted:?}");
     assert!(
         printed.contains(
-            "scissor: Some(Scissor { x: 2, y: 0, width: 9, height: 16 }),\n        sample_mask: 0x5,\n        interpolation: Interpolation::Centroid,\n        provoking_vertex: ProvokingVertex::Last,\n        clip_near: false,\n        viewport_depth: ViewportDepth { min: 0.75, max: 0.25 },\n        depth_bias: Some(DepthBias { constant: -4096.0, slope: 1.5, clamp: 0.0 }),\n        polygon_mode: PolygonMode::Line,\n    },"
+            "scissor: Some(Scissor { x: 2, y: 0, width: 9, height: 16 }),\n        sample_mask: 0x5,\n        interpolation: Interpolation::Centroid,\n        conservative: Some(Conservative::Overestimate { extra: 0.5 }),\n        provoking_vertex: ProvokingVertex::Last,\n        clip_near: false,\n        viewport_depth: ViewportDepth { min: 0.75, max: 0.25 },\n        depth_bias: Some(DepthBias { constant: -4096.0, slope: 1.5, clamp: 0.0 }),\n        polygon_mode: PolygonMode::Line,\n    },"
         ) && printed.contains(
             "    distances: Distances { clip: 1, cull: 1, values: vec![0.5, -1.0, -0.25, 2.0, 1.0, 0.0, -3.0, 1.5] },\n}"
         ) && !printed.contains(".."),
@@ -66,6 +67,7 @@ fn a_printed_scene_compiles_and_round_trips() {
             scissor: None,
             sample_mask: DrawState::ALL_SAMPLES,
             interpolation: Interpolation::Sample,
+            conservative: None,
             provoking_vertex: ProvokingVertex::First,
             clip_near: true,
             viewport_depth: ViewportDepth::FULL,

@@ -202,6 +202,45 @@ pub const CENTROID: &str = "centroid";
 /// `interpolation=centroid`, sent after the sample mask.
 pub const INTERPOLATION: &str = "interpolation";
 
+/// The profile line a child declares conservative rasterization with
+/// (`conservative OVERESTIMATION MAX_EXTRA GRANULARITY [under] [degenerates-drawn |
+/// degenerates-culled]`, sizes in pixels), and the request key of a filled triangle draw under
+/// it: `conservative=over,EXTRA` or `conservative=under`, sent last.
+pub const CONSERVATIVE: &str = "conservative";
+
+/// The `conservative` line's words: three sizes in pixels (the overestimation it may add, the
+/// largest extra size it honours, the extra size's granularity), then `under` where it
+/// underestimates too, and `degenerates-drawn` or `degenerates-culled` where it says what a
+/// triangle of zero area once snapped does.
+pub fn conservative(words: &[&str]) -> Result<refrast::ConservativeSupport, String> {
+    let shape = "say `conservative OVERESTIMATION MAX_EXTRA GRANULARITY`, three sizes in pixels \
+                 (0 or more), then any of `under` and `degenerates-drawn` or `degenerates-culled`";
+    let size = |w: &str| w.parse::<f32>().ok().filter(|s| s.is_finite() && *s >= 0.0);
+    let [o, m, g, rest @ ..] = words else {
+        return Err(shape.to_owned());
+    };
+    let (Some(overestimation_size), Some(max_extra), Some(extra_granularity)) = (size(o), size(m), size(g))
+    else {
+        return Err(shape.to_owned());
+    };
+    let mut support = refrast::ConservativeSupport {
+        overestimation_size,
+        max_extra,
+        extra_granularity,
+        underestimate: false,
+        degenerate_triangles: None,
+    };
+    for word in rest {
+        match *word {
+            "under" => support.underestimate = true,
+            "degenerates-drawn" => support.degenerate_triangles = Some(true),
+            "degenerates-culled" => support.degenerate_triangles = Some(false),
+            _ => return Err(shape.to_owned()),
+        }
+    }
+    Ok(support)
+}
+
 /// The feature word a child declares to be sent a viewport depth range other than `[0, 1]`
 /// with `minDepth ≤ maxDepth`, and the request key that carries it: `viewport-depth=MIN,MAX`.
 pub const VIEWPORT_DEPTH: &str = "viewport-depth";
@@ -274,8 +313,9 @@ pub const GUARD_BAND_LIMIT: u32 = refrast::COORD_LIMIT as u32;
 /// `polygon-mode=line` or `polygon-mode=point`, one with clip or cull distances with
 /// `distances=CLIP,CULL` (then `vertices × (CLIP + CULL)` f32 words follow the indices, each
 /// vertex's clip distances then its cull distances), one with a sample mask with
-/// `sample-mask=MASK`, and a triangle draw at several samples under centroid interpolation with
-/// `interpolation=centroid` last, in any version.
+/// `sample-mask=MASK`, a triangle draw at several samples under centroid interpolation with
+/// `interpolation=centroid`, and a filled triangle draw under conservative rasterization with
+/// `conservative=over,EXTRA` or `conservative=under` last, in any version.
 #[must_use]
 pub fn request(op: Op, draw: &Draw, version: u32) -> Vec<u8> {
     request_in(op, draw, version, draw.state.provoking_vertex)
@@ -326,6 +366,13 @@ pub fn request_in(op: Op, draw: &Draw, version: u32, provoking: ProvokingVertex)
     // The same; lines and points, and a draw at one sample, are alike under both samplings.
     if s.interpolation != refrast::Interpolation::Sample && draw.topology.is_triangles() && draw.samples > 1 {
         extra += &format!(" {INTERPOLATION}={}", s.interpolation.name());
+    }
+    // The same; lines, points and the polygon modes are drawn as without it.
+    if let Some(mode) = s
+        .conservative
+        .filter(|_| draw.topology.is_triangles() && s.polygon_mode == PolygonMode::Fill)
+    {
+        extra += &format!(" {CONSERVATIVE}={}", mode.words());
     }
     let header = format!(
         "{} width={} height={} vertices={} triangles={count} cull={} front-face={} depth-compare={} \

@@ -359,6 +359,9 @@ impl Reading {
                     f.cull_modes = supported(&modes, bad)?;
                 }
                 DEPTH_BIAS => self.profile.state.depth_bias = Some(depth_bias(&words).map_err(|w| bad(&w))?),
+                CONSERVATIVE => {
+                    self.profile.state.conservative = Some(conservative(&words).map_err(|w| bad(&w))?)
+                }
                 CLIP_DISTANCES | CULL_DISTANCES => {
                     let n = match words.as_slice() {
                         [n] => n.parse::<usize>().ok().filter(|&n| n <= refrast::MAX_DISTANCES),
@@ -397,6 +400,7 @@ impl Reading {
             bool::KEY,
             FAR_CLIPPING,
             DEPTH_BIAS,
+            CONSERVATIVE,
             PolygonMode::KEY,
             CLIP_DISTANCES,
             CULL_DISTANCES,

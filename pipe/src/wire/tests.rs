@@ -405,3 +405,50 @@ fn distances_are_declared_by_count_and_sent_after_the_indices() {
     assert_eq!(tail, [0.5, -1.0, 2.0, 0.0, -0.25, 1.0]);
     assert_eq!(bytes.len(), plain.len() + " distances=1,1".len() + 24);
 }
+
+/// Conservative rasterization is a profile line of three sizes and words; its key ends a
+/// filled triangle draw's header, and a malformed line says what to write.
+#[test]
+fn conservative_is_declared_by_its_line_and_sent_last() {
+    let p = parsed(&["conservative 0.5 0.75 0.25 under degenerates-culled"]).unwrap();
+    let c = p.state.conservative.expect("declared");
+    assert_eq!(
+        (c.overestimation_size, c.max_extra, c.extra_granularity),
+        (0.5, 0.75, 0.25)
+    );
+    assert!(c.underestimate && c.degenerate_triangles == Some(false));
+    assert!(
+        parsed(&["features depth-test"])
+            .unwrap()
+            .state
+            .conservative
+            .is_none()
+    );
+    for bad in [
+        "conservative 0.5",
+        "conservative -1 0 0",
+        "conservative 0 0 0 sideways",
+    ] {
+        let err = parsed(&[bad]).expect_err(bad);
+        assert!(err.contains("OVERESTIMATION MAX_EXTRA GRANULARITY"), "{err}");
+    }
+    let mut draw = Draw::new(
+        refrast::Viewport::new(4, 4).unwrap(),
+        vec![[0.0; 4]; 3],
+        vec![[0, 1, 2]],
+    );
+    draw.state.conservative = Some(refrast::Conservative::Overestimate { extra: 1.5 });
+    let bytes = request(Op::Rasterize, &draw, 3);
+    let end = bytes.iter().position(|&b| b == b'\n').unwrap();
+    let text = String::from_utf8(bytes[..end].to_vec()).unwrap();
+    assert!(text.ends_with(" conservative=over,1.5"), "{text}");
+    // The fit clamps the extra size to the largest declared, and drops underestimation where
+    // it is not declared.
+    assert_eq!(
+        p.fit(draw.state).conservative,
+        Some(refrast::Conservative::Overestimate { extra: 0.75 })
+    );
+    draw.state.conservative = Some(refrast::Conservative::Underestimate);
+    let over_only = parsed(&["conservative 0 0 0"]).unwrap();
+    assert_eq!(over_only.fit(draw.state).conservative, None);
+}

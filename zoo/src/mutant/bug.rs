@@ -142,6 +142,18 @@ pub enum Bug {
     /// The centroid at the centre wherever every sample the mask keeps is covered (coverage
     /// counted after the mask), inside the triangle or not.
     PostMaskCentroid,
+    /// Conservative rasterization ignored: the fill rule's samples drawn.
+    SampledConservative,
+    /// Conservative overestimation as the box of pixels the triangle's pixels span.
+    BoxConservative,
+    /// The extra overestimation size ignored: only the pixels the triangle itself touches.
+    UnextendedConservative,
+    /// A conservative pixel drawn at its sample 0 alone, not at every sample.
+    OneSampleConservative,
+    /// Underestimation drawn as overestimation: the pixels touched, not those held.
+    OverForUnder,
+    /// Degenerate triangles drawn (their edges, as lines) where the profile declares them culled.
+    RasterizedDegenerates,
     /// Culling of both faces taken as culling of front faces: back faces drawn.
     FrontOnlyForBoth,
     /// Culling of both faces applied to every primitive: lines and points culled too.
@@ -206,7 +218,7 @@ pub enum Bug {
 
 impl Bug {
     /// Every bug.
-    pub const ALL: [Bug; 79] = [
+    pub const ALL: [Bug; 85] = [
         Self::InclusiveEdges,
         Self::ExclusiveEdges,
         Self::BottomRightAsTopLeft,
@@ -261,6 +273,12 @@ impl Bug {
         Self::FirstSampleCentroid,
         Self::UnmaskedCentroid,
         Self::PostMaskCentroid,
+        Self::SampledConservative,
+        Self::BoxConservative,
+        Self::UnextendedConservative,
+        Self::OneSampleConservative,
+        Self::OverForUnder,
+        Self::RasterizedDegenerates,
         Self::FrontOnlyForBoth,
         Self::BothCullsLines,
         Self::UnalternatedStrip,
@@ -346,6 +364,12 @@ impl Bug {
             Self::FirstSampleCentroid => "first-sample-centroid",
             Self::UnmaskedCentroid => "unmasked-centroid",
             Self::PostMaskCentroid => "post-mask-centroid",
+            Self::SampledConservative => "sampled-conservative",
+            Self::BoxConservative => "box-conservative",
+            Self::UnextendedConservative => "unextended-conservative",
+            Self::OneSampleConservative => "one-sample-conservative",
+            Self::OverForUnder => "over-for-under",
+            Self::RasterizedDegenerates => "rasterized-degenerates",
             Self::FrontOnlyForBoth => "front-only-for-both",
             Self::BothCullsLines => "both-culls-lines",
             Self::UnalternatedStrip => "unalternated-strip",
@@ -427,6 +451,12 @@ impl Bug {
             | Self::FirstSampleCentroid
             | Self::UnmaskedCentroid
             | Self::PostMaskCentroid => "msaa",
+            Self::SampledConservative
+            | Self::BoxConservative
+            | Self::UnextendedConservative
+            | Self::OneSampleConservative
+            | Self::OverForUnder
+            | Self::RasterizedDegenerates => "fill",
             Self::FrontOnlyForBoth | Self::BothCullsLines => "meta",
             Self::UnalternatedStrip | Self::ShortStrip | Self::FanAsStrip => "meta",
             Self::LastCornerFlat | Self::ClippedFlat | Self::FirstOnlyFlat => "bary",
@@ -491,6 +521,12 @@ impl Bug {
                 | Self::FirstSampleCentroid
                 | Self::UnmaskedCentroid
                 | Self::PostMaskCentroid
+                | Self::SampledConservative
+                | Self::BoxConservative
+                | Self::UnextendedConservative
+                | Self::OneSampleConservative
+                | Self::OverForUnder
+                | Self::RasterizedDegenerates
                 | Self::FrontOnlyForBoth
                 | Self::BothCullsLines
                 | Self::UnalternatedStrip

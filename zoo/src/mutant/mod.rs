@@ -14,6 +14,7 @@ use refrast::{
 mod bias;
 mod bug;
 mod centroid;
+mod conservative;
 mod distance;
 mod polygon;
 mod primitive;

@@ -26,6 +26,9 @@ pub fn rasterize(bug: Bug, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
     if let Some(misplaced) = super::centroid::rasterize(bug, draw) {
         return misplaced;
     }
+    if let Some(wrong) = super::conservative::rasterize(bug, draw) {
+        return wrong;
+    }
     let mut reference = Reference::default();
     if let Some(assembled) = misassembled(bug, draw) {
         // The list's flat values are its own; the strip's are what its bug leaves alone.

@@ -8,9 +8,9 @@
 mod state;
 
 use refrast::{
-    ClipMode, CompareOp, CullMode, DepthRange, Draw, DrawError, DrawState, Features, Fragment, FrontFace,
-    Interpolation, PointClipping, Profile, Rasterizer, Reference, ReferenceConfig, Resolved, SnapAccuracy,
-    SnapRounding, Spec, StateSupport, Supported,
+    ClipMode, CompareOp, Conservative, CullMode, DepthRange, Draw, DrawError, DrawState, Features, Fragment,
+    FrontFace, Interpolation, PointClipping, Profile, Rasterizer, Reference, ReferenceConfig, Resolved,
+    SnapAccuracy, SnapRounding, Spec, StateSupport, Supported,
 };
 
 /// The reference under a restricted profile.
@@ -50,7 +50,8 @@ impl Restricted {
     /// and OpenGL ES, no sample mask at one sample, as their multisample operations run on
     /// multisampled targets only; under Vulkan, OpenGL and OpenGL ES, a centroid at each
     /// covered sample, inside the pixel and the triangle as they require, but not one location
-    /// per pixel (what the suite must accept from a driver).
+    /// per pixel; overestimation grown by the overestimation size it declares (what the suite
+    /// must accept from a driver).
     fn forced(&self, draw: &Draw) -> Draw {
         let mut state = self.profile().fit(draw.state);
         if draw.samples == 1 && matches!(self.spec, Spec::OpenGl | Spec::OpenGlEs) {
@@ -58,6 +59,14 @@ impl Restricted {
         }
         if matches!(self.spec, Spec::Vulkan | Spec::OpenGl | Spec::OpenGlEs) {
             state.interpolation = Interpolation::Sample;
+        }
+        // Overestimation grown by all the overestimation it declares it may add.
+        if let (Some(Conservative::Overestimate { extra }), Some(support)) =
+            (state.conservative, self.state.conservative)
+        {
+            state.conservative = Some(Conservative::Overestimate {
+                extra: extra + support.overestimation_size,
+            });
         }
         Draw {
             state,

@@ -50,6 +50,37 @@ pub(super) fn restrictions() -> Vec<Restriction> {
             },
         ),
         stateful(
+            "conservative=none",
+            "no conservative rasterization",
+            StateSupport {
+                conservative: None,
+                ..all
+            },
+        ),
+        stateful(
+            "conservative=over-only",
+            "conservative overestimation alone, with no extra size",
+            StateSupport {
+                conservative: Some(refrast::ConservativeSupport {
+                    max_extra: 0.0,
+                    underestimate: false,
+                    ..refrast::ConservativeSupport::REFERENCE
+                }),
+                ..all
+            },
+        ),
+        stateful(
+            "conservative=coarse",
+            "conservative overestimation growing every triangle by its declared 1/2 px more",
+            StateSupport {
+                conservative: Some(refrast::ConservativeSupport {
+                    overestimation_size: 0.5,
+                    ..refrast::ConservativeSupport::REFERENCE
+                }),
+                ..all
+            },
+        ),
+        stateful(
             "cull=one-face",
             "culls one face or none, never both",
             StateSupport {

@@ -34,21 +34,8 @@ pub fn largest_misfit(draw: &Draw, frags: &[Fragment], bits: u32, centre: bool) 
     largest_misfit_at(draw, frags, bits, centre, |f| Some(usize::from(f.sample) % 4))
 }
 
-/// [`largest_misfit`] with the numerators at a centroid: the pixel centre where the pixel has
-/// all 4 samples among `frags`, else its first sample among them (D3D11.3 §3.5.5).
-pub fn largest_centroid_misfit(draw: &Draw, frags: &[Fragment], bits: u32, centre: bool) -> f64 {
-    let mut covered = std::collections::HashMap::new();
-    for f in frags {
-        *covered.entry((f.x, f.y)).or_insert(0u32) |= 1 << f.sample;
-    }
-    largest_misfit_at(draw, frags, bits, centre, |f| {
-        let mask = covered[&(f.x, f.y)];
-        (mask != 0b1111).then(|| mask.trailing_zeros() as usize)
-    })
-}
-
 /// [`largest_misfit`] with the numerators at the sample `location` names (the centre for none).
-fn largest_misfit_at(
+pub fn largest_misfit_at(
     draw: &Draw,
     frags: &[Fragment],
     bits: u32,

@@ -1,0 +1,404 @@
+//! Conservative rasterization: under overestimation a triangle covers every pixel its closed
+//! area touches (grown by the extra size), under underestimation only the pixels wholly inside
+//! it, every sample of each; degenerate triangles as the profile declares.
+//!
+//! The oracle works in f64 on each snapped form of the triangle the profile allows, projected
+//! to the screen: a pixel is required where every form touches its square shrunk by a hair
+//! (grown by the least the extra size may be: the disc reading of "increased at each of its
+//! edges", less the declared granularity), and allowed where some form, each edge pushed out
+//! by the extra size, the declared overestimation and the snapping band (corners mitered: the
+//! most it may mean), touches the square grown by a hair. Underestimation requires the pixels
+//! every form holds with a band to spare and allows those some form holds less a band. No code
+//! is shared with the reference, which decides in subpixel integers.
+
+use std::collections::BTreeMap;
+
+use refrast::{Conservative, ConservativeSupport, Fragment, Profile, Rasterizer};
+
+use super::cast::snapped_triangles;
+use super::level::Level;
+use super::samples::sample_fragments;
+use super::{Family, Need, Rule, needs};
+use crate::oracle::outline::segment_distance;
+use crate::oracle::raster::project;
+use crate::runner::property_for;
+use crate::scene::PrimitiveScene;
+use crate::strategy::primitive;
+use crate::violation::{Findings, Violation, plural};
+
+/// A triangle on the screen, in pixels.
+type Screen = [[f64; 2]; 3];
+
+/// How far a pixel's square is shrunk or grown so that f64 rounding never decides a verdict.
+const HAIR: f64 = 1e-6;
+
+/// Twice the area below which a triangle on the screen has none: snapped forms come back from
+/// clip space a few ulps off their grid, where a real area is at least a grid step squared
+/// (2^-32 px² on a 16-bit grid).
+const NO_AREA: f64 = 1e-12;
+
+/// Whether `t` has no area (within [`NO_AREA`]).
+fn flat(t: &Screen) -> bool {
+    area2(t).abs() < NO_AREA
+}
+
+/// Twice the signed area of `t`.
+fn area2(t: &Screen) -> f64 {
+    (t[1][0] - t[0][0]) * (t[2][1] - t[0][1]) - (t[1][1] - t[0][1]) * (t[2][0] - t[0][0])
+}
+
+/// The part of convex polygon `poly` inside the closed box `[x0, x1] × [y0, y1]`
+/// (Sutherland–Hodgman); empty where they do not meet. A zero-area polygon clips as its hull.
+fn clip_to_box(poly: &[[f64; 2]], [x0, y0, x1, y1]: [f64; 4]) -> Vec<[f64; 2]> {
+    let mut out = poly.to_vec();
+    let sides: [(usize, f64, f64); 4] = [(0, x0, 1.0), (0, x1, -1.0), (1, y0, 1.0), (1, y1, -1.0)];
+    for (axis, at, sign) in sides {
+        let inside = |p: &[f64; 2]| (p[axis] - at) * sign >= 0.0;
+        let input = std::mem::take(&mut out);
+        for (i, p) in input.iter().enumerate() {
+            let q = input[(i + 1) % input.len()];
+            if inside(p) {
+                out.push(*p);
+            }
+            if inside(p) != inside(&q) {
+                let t = (at - p[axis]) / (q[axis] - p[axis]);
+                out.push([p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])]);
+            }
+        }
+        if out.is_empty() {
+            break;
+        }
+    }
+    out
+}
+
+/// The distance between `t` and the box `[x0, x1] × [y0, y1]`; 0 where they meet.
+fn distance(t: &Screen, b: [f64; 4]) -> f64 {
+    if !clip_to_box(t, b).is_empty() {
+        return 0.0;
+    }
+    let [x0, y0, x1, y1] = b;
+    let to_box = |p: [f64; 2]| {
+        let dx = (x0 - p[0]).max(p[0] - x1).max(0.0);
+        let dy = (y0 - p[1]).max(p[1] - y1).max(0.0);
+        dx.hypot(dy)
+    };
+    let corners = [[x0, y0], [x1, y0], [x0, y1], [x1, y1]];
+    let vertices = t.iter().map(|&p| to_box(p));
+    let edges = corners
+        .iter()
+        .flat_map(|&c| (0..3).map(move |k| segment_distance(t[k], t[(k + 1) % 3], c)));
+    vertices.chain(edges).fold(f64::INFINITY, f64::min)
+}
+
+/// `t` with each edge pushed out by `d` pixels, its corners mitered; `None` for no area.
+fn mitered(t: &Screen, d: f64) -> Option<Screen> {
+    let turn = area2(t);
+    if flat(t) {
+        return None;
+    }
+    // Edge k from vertex k to k + 1, as a line n·p = c with n its outward unit normal.
+    let line = |k: usize| {
+        let (a, b) = (t[k], t[(k + 1) % 3]);
+        let (ex, ey) = (b[0] - a[0], b[1] - a[1]);
+        let len = ex.hypot(ey);
+        let n = if turn > 0.0 {
+            [ey / len, -ex / len]
+        } else {
+            [-ey / len, ex / len]
+        };
+        (n, n[0] * a[0] + n[1] * a[1] + d)
+    };
+    let lines = [line(0), line(1), line(2)];
+    let meet = |(n, c): ([f64; 2], f64), (m, e): ([f64; 2], f64)| {
+        let det = n[0] * m[1] - n[1] * m[0];
+        [(c * m[1] - n[1] * e) / det, (n[0] * e - c * m[0]) / det]
+    };
+    Some([
+        meet(lines[2], lines[0]),
+        meet(lines[0], lines[1]),
+        meet(lines[1], lines[2]),
+    ])
+}
+
+/// Whether `p` lies in `t` with `margin` pixels to spare from every edge (a negative margin
+/// lets it lie that far outside).
+fn holds(t: &Screen, p: [f64; 2], margin: f64) -> bool {
+    let turn = area2(t);
+    !flat(t)
+        && (0..3).all(|k| {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            let cross = (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+            cross * turn.signum() / (b[0] - a[0]).hypot(b[1] - a[1]) >= margin
+        })
+}
+
+/// The pixel `(x, y)`'s square grown by `g` pixels on every side (shrunk where negative).
+fn square(x: u32, y: u32, g: f64) -> [f64; 4] {
+    let (x, y) = (f64::from(x), f64::from(y));
+    [x - g, y - g, x + 1.0 + g, y + 1.0 + g]
+}
+
+/// What the rule expects of one pixel.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Pixel {
+    Required,
+    Allowed,
+    Forbidden,
+}
+
+/// The case's snapped forms of its first triangle on the screen, and what it expects of
+/// every pixel of the viewport; `None` where it judges nothing (forms of both zero and
+/// nonzero area).
+fn expectations(case: &PrimitiveScene, profile: &Profile) -> Option<Vec<Pixel>> {
+    let scene = &case.scene;
+    let support = profile.state.conservative?;
+    let mode = scene.state.conservative?;
+    let forms: Vec<Screen> = snapped_triangles(scene, 0, profile)
+        .iter()
+        .map(|t| t.map(|p| project(scene.width, scene.height, p)))
+        .collect();
+    let input = scene
+        .positions_of(0)
+        .map(|p| project(scene.width, scene.height, p.map(f64::from)));
+    let degenerate = forms.iter().filter(|t| flat(t)).count();
+    if forms.is_empty() || (degenerate > 0 && degenerate < forms.len()) {
+        return None;
+    }
+    let zero = degenerate > 0;
+    let bits = profile.snapping.grid_bits().unwrap_or(8);
+    let band = f64::from(profile.tolerance_subpixels) / f64::from(1u32 << bits.min(16));
+    let (w, h) = (scene.width, scene.height);
+    let mut out = Vec::with_capacity((w * h) as usize);
+    for y in 0..h {
+        for x in 0..w {
+            out.push(match mode {
+                Conservative::Underestimate => {
+                    let inside = |t: &Screen, g: f64| {
+                        let [x0, y0, x1, y1] = square(x, y, g);
+                        [[x0, y0], [x1, y0], [x0, y1], [x1, y1]]
+                            .iter()
+                            .all(|&c| holds(t, c, 0.0))
+                    };
+                    if forms.iter().all(|t| inside(t, band + HAIR)) {
+                        Pixel::Required
+                    } else if forms.iter().any(|t| inside(t, -band - HAIR)) {
+                        Pixel::Allowed
+                    } else {
+                        Pixel::Forbidden
+                    }
+                }
+                Conservative::Overestimate { extra } => {
+                    let extra = f64::from(extra);
+                    let least = (extra - 2.0 * f64::from(support.extra_granularity) - band).max(0.0);
+                    let most = extra
+                        + f64::from(support.overestimation_size)
+                        + f64::from(support.extra_granularity)
+                        + band;
+                    let touched = forms.iter().all(|t| distance(t, square(x, y, -HAIR)) <= least);
+                    let reached = forms.iter().any(|t| match mitered(t, most) {
+                        Some(m) => !clip_to_box(&m, square(x, y, HAIR)).is_empty(),
+                        None => distance(t, square(x, y, HAIR)) <= most * std::f64::consts::SQRT_2,
+                    });
+                    // Degenerate once snapped: culled, drawn as what its segment touches, or
+                    // either (unknown, or zero area before snapping already).
+                    let drawn = if !zero {
+                        Some(true)
+                    } else if flat(&input) {
+                        None
+                    } else {
+                        support.degenerate_triangles
+                    };
+                    match drawn {
+                        Some(true) if touched => Pixel::Required,
+                        Some(false) => Pixel::Forbidden,
+                        _ if reached => Pixel::Allowed,
+                        _ => Pixel::Forbidden,
+                    }
+                }
+            });
+        }
+    }
+    Some(out)
+}
+
+/// A conservative draw of one triangle covers every pixel it is required to and none it may
+/// not, every sample of each.
+pub fn check_conservative(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<(), Violation> {
+    let profile = r.profile();
+    let Some(expected) = expectations(case, &profile) else {
+        return Ok(());
+    };
+    let frags = sample_fragments(r, case)?;
+    let mut pixels: BTreeMap<(u32, u32), u64> = BTreeMap::new();
+    for f in frags.iter().filter(|f: &&Fragment| f.primitive == 0) {
+        *pixels.entry((f.x, f.y)).or_default() |= 1 << f.sample.min(63);
+    }
+    let all = (1u64 << case.samples.min(63)) - 1;
+    let width = case.scene.width;
+    let mode = case
+        .scene
+        .state
+        .conservative
+        .map(Conservative::words)
+        .unwrap_or_default();
+    let mut found = Findings::new();
+    for y in 0..case.scene.height {
+        for x in 0..width {
+            let want = expected[(y * width + x) as usize];
+            let got = pixels.get(&(x, y)).copied();
+            let problem = match (want, got) {
+                (Pixel::Required, None) => Some("not drawn, where the triangle requires it".to_owned()),
+                (Pixel::Forbidden, Some(_)) => Some("drawn, beyond what the triangle may reach".to_owned()),
+                (_, Some(bits)) if bits & all != all => Some(format!(
+                    "drawn at samples {bits:#b} of {}, where a conservative fragment covers them all",
+                    case.samples
+                )),
+                _ => None,
+            };
+            if let Some(what) = problem {
+                found.add((x, y), || format!("({x}, {y}) {what} ({mode})"));
+            }
+        }
+    }
+    found.verdict(|n| {
+        format!(
+            "{} of a conservative triangle ({mode}) drawn wrong",
+            plural(n, "pixel")
+        )
+    })
+}
+
+/// The implementation offers conservative rasterization.
+const CONSERVATIVE: Need = needs(
+    |p| p.state.conservative.is_some(),
+    "no conservative rasterization",
+);
+
+/// The implementation offers underestimation.
+const UNDERESTIMATE: Need = needs(
+    |p| {
+        p.state
+            .conservative
+            .is_some_and(|c: ConservativeSupport| c.underestimate)
+    },
+    "no conservative underestimation",
+);
+
+/// Why OpenGL and OpenGL ES do not judge it.
+const NOT_CORE: &str = "OpenGL 4.6 and OpenGL ES 3.2 have no conservative rasterization in core (NV_conservative_raster and INTEL_conservative_rasterization are extensions)";
+
+/// Why D3D11.3 does not judge it.
+const EMPTY_SECTION: &str =
+    "D3D11.3 §15.17 Conservative Rasterization is empty (\"TODO\"): the rules are D3D12's and Vulkan's";
+
+/// Where the rules come from.
+const SOURCE: &str = "Vulkan 1.4, Conservative Rasterization (VK_EXT_conservative_rasterization: overestimation, primitiveOverestimationSize, extraPrimitiveOverestimationSize, degenerateTrianglesRasterized, underestimation); dEQP-VK.rasterization.conservative.*";
+
+pub(super) fn rules() -> Vec<Rule> {
+    vec![
+        Rule::invariant(Family::Fill, "fill.conservative.over")
+            .sentence("Under overestimation a triangle covers every pixel whose closed square its closed snapped area touches, grown by the extra size (less its granularity), all samples of each, and no pixel beyond its edges pushed out by the extra size, the declared overestimation size and granularity; a triangle of zero area once snapped draws nothing where degenerate triangles are declared culled, and the pixels its segment touches where declared rasterized.")
+            .source(SOURCE)
+            .cases(600)
+            .needs(CONSERVATIVE)
+            .vulkan_and_opengl(Level::NotCovered(NOT_CORE))
+            .vulkan(Level::Required)
+            .d3d11(Level::NotCovered(EMPTY_SECTION))
+            .run(|r, cfg| property_for(r, cfg, |d| primitive::conservative(d, false), check_conservative)),
+        Rule::invariant(Family::Fill, "fill.conservative.under")
+            .sentence("Under underestimation a triangle covers exactly the pixels whose closed square lies inside its closed snapped area, all samples of each, outside the tolerance band.")
+            .source(SOURCE)
+            .cases(400)
+            .needs(UNDERESTIMATE)
+            .vulkan_and_opengl(Level::NotCovered(NOT_CORE))
+            .vulkan(Level::Required)
+            .d3d11(Level::NotCovered(EMPTY_SECTION))
+            .run(|r, cfg| property_for(r, cfg, |d| primitive::conservative(d, true), check_conservative)),
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use refrast::{Conservative, Draw, DrawError, Fragment, Profile, Rasterizer, Reference, Topology};
+
+    use super::check_conservative;
+    use crate::scene::{PrimitiveScene, Scene};
+
+    /// The reference drawing a triangle that draws nothing (degenerate, culled) as its edges,
+    /// declaring that degenerate triangles are rasterized (`Some(true)`) or not saying
+    /// (`None`).
+    struct DrawnDegenerates(Option<bool>);
+
+    impl Rasterizer for DrawnDegenerates {
+        fn profile(&self) -> Profile {
+            let mut p = Reference::default().profile();
+            if let Some(c) = &mut p.state.conservative {
+                c.degenerate_triangles = self.0;
+            }
+            p
+        }
+
+        fn rasterize(&mut self, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
+            let mut out = Reference::default().rasterize(draw)?;
+            if out.is_empty() {
+                let edges = Draw::of(
+                    draw.viewport,
+                    draw.positions.clone(),
+                    Topology::LineList,
+                    vec![0, 1, 1, 2, 2, 0],
+                );
+                out = Reference::default().rasterize(&Draw {
+                    samples: draw.samples,
+                    ..edges
+                })?;
+                for f in &mut out {
+                    f.primitive = 0;
+                }
+            }
+            Ok(out)
+        }
+    }
+
+    /// A triangle over 20×16 a sixteenth of a grid step off its line, so of zero area once
+    /// snapped (vertices in 1/4096 px).
+    fn degenerate() -> PrimitiveScene {
+        let t = [
+            (16 * 300, 16 * 200),
+            (16 * 900, 16 * 600),
+            (16 * 600, 16 * 400 + 1),
+        ];
+        let mut scene = Scene::from_subpixels(20, 16, 12, &[t], 0.5);
+        scene.state.conservative = Some(Conservative::Overestimate { extra: 0.0 });
+        PrimitiveScene::triangles(scene, 1)
+    }
+
+    /// Culled is right for the reference, which declares it; edges drawn where culling is
+    /// declared is wrong; where the profile does not say, either passes; where it declares
+    /// them rasterized, edges alone miss pixels the segment touches.
+    #[test]
+    fn degenerate_triangles_are_judged_as_declared() {
+        assert_eq!(
+            check_conservative(&mut Reference::default(), &degenerate()),
+            Ok(())
+        );
+        let err = check_conservative(&mut DrawnDegenerates(Some(false)), &degenerate())
+            .expect_err("declared culled");
+        assert!(
+            err.message.contains("beyond what the triangle may reach"),
+            "{}",
+            err.message
+        );
+        assert_eq!(
+            check_conservative(&mut DrawnDegenerates(None), &degenerate()),
+            Ok(())
+        );
+        let err = check_conservative(&mut DrawnDegenerates(Some(true)), &degenerate())
+            .expect_err("edges are not every touched pixel");
+        assert!(
+            err.message.contains("not drawn, where the triangle requires it"),
+            "{}",
+            err.message
+        );
+    }
+}

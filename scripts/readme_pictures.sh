@@ -40,6 +40,9 @@ for at in sample centroid; do
   r floor --size 320x240 --texture checker --sampling nearest --samples 4 --interpolation "$at" \
     -o "$out/floor-4x-$at.png"
 done
+# The star's overdraw, then drawn conservatively: every pixel a triangle touches, shared edges twice.
+r star --size 160x120 --mode overdraw -o "$out/star-overdraw.png"
+r star --size 160x120 --mode overdraw --conservative over -o "$out/star-overdraw-conservative.png"
 # Seed 003's overlaps (a cycle of bars, two triangles through each other): a depth buffer draws
 # them, the painter's algorithm cannot (docs/zoo.md).
 r overlaps --size 480x240 -o "$out/overlaps-reference.png"

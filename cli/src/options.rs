@@ -5,8 +5,8 @@ use std::path::Path;
 
 use glam::Vec3;
 use refrast::{
-    CullMode, DepthBias, DrawState, FrontFace, Interpolation, MAX_VIEWPORT, PolygonMode, Rasterizer,
-    Reference, ReferenceConfig, Scissor,
+    Conservative, CullMode, DepthBias, DrawState, FrontFace, Interpolation, MAX_VIEWPORT, PolygonMode,
+    Rasterizer, Reference, ReferenceConfig, Scissor,
 };
 use refrast_render::scene::{self, Framed, Setup};
 use refrast_render::{Job, Light, Mode, Overrides, Sampling, Shading, Texture, load};
@@ -73,6 +73,12 @@ pub struct SceneArgs {
     /// does).
     #[arg(long, value_name = "AT", default_value = "sample", value_parser = parse_interpolation)]
     pub interpolation: Interpolation,
+    /// Draw triangles conservatively: `over` (every pixel a triangle touches, all its
+    /// samples), `over,EXTRA` (the triangle grown by EXTRA pixels first) or `under` (only
+    /// pixels wholly inside); `--mode overdraw` shows shared edges drawn twice, as no tie rule
+    /// applies. The rasterizer must declare it (the reference does).
+    #[arg(long, value_name = "MODE", value_parser = parse_conservative)]
+    pub conservative: Option<Conservative>,
     /// Offset each triangle's depth by CONSTANT units of its depth format's resolution plus
     /// SLOPE times its depth slope, at most CLAMP from where it was (0 or absent: no clamp);
     /// the rasterizer must declare depth bias (the reference does). Lines and points are not
@@ -201,6 +207,7 @@ pub fn prepare(args: &SceneArgs) -> Result<Prepared, Failure> {
     state.scissor = args.scissor;
     state.sample_mask = args.sample_mask.unwrap_or(DrawState::ALL_SAMPLES);
     state.interpolation = args.interpolation;
+    state.conservative = args.conservative;
     state.depth_bias = args.depth_bias;
     state.polygon_mode = args.polygon_mode;
     Ok(Prepared {
@@ -395,6 +402,13 @@ fn parse_cull(s: &str) -> Result<CullMode, String> {
 
 fn parse_polygon_mode(s: &str) -> Result<PolygonMode, String> {
     PolygonMode::from_name(s).ok_or_else(|| format!("no polygon mode named '{s}'; give fill, line or point"))
+}
+
+fn parse_conservative(s: &str) -> Result<Conservative, String> {
+    let words = if s == "over" { "over,0" } else { s };
+    Conservative::from_words(words).ok_or_else(|| {
+        format!("'{s}' is no conservative mode; give over, over,EXTRA (pixels, 0 or more) or under")
+    })
 }
 
 fn parse_interpolation(s: &str) -> Result<Interpolation, String> {

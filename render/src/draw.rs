@@ -181,7 +181,7 @@ pub(crate) fn triangle_draw(
 }
 
 /// `Err(Unsupported)` when `job` asks for state `profile` does not declare ([`Profile::state`]:
-/// a scissor, a sample mask, centroid interpolation, depth bias, a polygon mode, culling of both faces): such a draw is refused with what to do, never drawn as if
+/// a scissor, a sample mask, centroid interpolation, conservative rasterization, depth bias, a polygon mode, culling of both faces): such a draw is refused with what to do, never drawn as if
 /// it had not been asked.
 pub(crate) fn undeclared_state(profile: &Profile, job: &Job<'_>) -> Result<(), DrawError> {
     if job.state.scissor.is_some() && !profile.state.scissor {
@@ -198,6 +198,27 @@ pub(crate) fn undeclared_state(profile: &Profile, job: &Job<'_>) -> Result<(), D
         return Err(DrawError::Unsupported(
             "centroid interpolation, which this rasterizer does not declare (the reference does)".to_owned(),
         ));
+    }
+    match (job.state.conservative, profile.state.conservative) {
+        (Some(_), None) => {
+            return Err(DrawError::Unsupported(
+                "conservative rasterization, which this rasterizer does not declare (the reference does)"
+                    .to_owned(),
+            ));
+        }
+        (Some(mode), Some(support)) if support.fit(mode) != Some(mode) => {
+            return Err(DrawError::Unsupported(format!(
+                "conservative {}, beyond what this rasterizer declares (extra sizes up to {} px{})",
+                mode.words(),
+                support.max_extra,
+                if support.underestimate {
+                    ", underestimation"
+                } else {
+                    ", no underestimation"
+                }
+            )));
+        }
+        _ => {}
     }
     if let Some(bias) = job.state.depth_bias {
         match profile.state.depth_bias {

@@ -323,6 +323,58 @@ fn centroid_reads_the_texture_once_a_pixel() {
     refused(&["floor", "--interpolation", "center"], "no interpolation named");
 }
 
+/// `--conservative over` draws every pixel a triangle touches, so the overdraw picture gains
+/// pixels (shared edges drawn twice, as no tie rule applies) and `under` loses them; a
+/// rasterizer without it refuses the draw (exit 1), an extra size beyond the declared one is
+/// refused too, and a malformed mode is a usage error (exit 2).
+#[test]
+fn conservative_draws_the_pixels_touched_or_held() {
+    let dir = scratch("conservative");
+    let drawn = |name: &str, extra: &[&str]| -> usize {
+        let path = dir.join(name);
+        let mut args = vec!["star", "--size", "160x120", "--mode", "overdraw"];
+        args.extend_from_slice(extra);
+        args.extend(["-o", path.to_str().unwrap()]);
+        let out = render(&args);
+        assert!(
+            out.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let clear = png(&path).get_pixel(0, 0).0;
+        png(&path).pixels().filter(|p| p.0 != clear).count()
+    };
+    let plain = drawn("plain.png", &[]);
+    let over = drawn("over.png", &["--conservative", "over"]);
+    let grown = drawn("grown.png", &["--conservative", "over,1.5"]);
+    let under = drawn("under.png", &["--conservative", "under"]);
+    assert!(
+        under < plain && plain < over && over < grown,
+        "{under} {plain} {over} {grown}"
+    );
+    refused_undeclared(
+        &dir.join("refused.png"),
+        "restricted:conservative=none",
+        &["--conservative", "over"],
+    );
+    let out = render(&[
+        "room",
+        "--impl",
+        "restricted:conservative=over-only",
+        "--conservative",
+        "under",
+        "-o",
+        dir.join("x.png").to_str().unwrap(),
+    ]);
+    assert_eq!(
+        out.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    refused(&["star", "--conservative", "over,-1"], "no conservative mode");
+}
+
 /// `--depth-bias` moves the depth picture and nothing else: the same pixels drawn, each at
 /// its depth plus the triangle's offset (a slope factor of −64 pulls the room's sloped walls
 /// toward the eye; pushed away, a surface could reach the far plane and fail the depth test

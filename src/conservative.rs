@@ -8,7 +8,8 @@
 //! `e` subpixels, when a corner of one lies within `e` of the other (squared distances in
 //! `i128`: the polygon grown by a disc of radius `e`, the least "increase at each edge" can
 //! mean); it lies inside when its four corners do. Degenerate triangles (zero area once
-//! snapped) are culled, as `degenerateTrianglesRasterized = VK_FALSE` allows.
+//! snapped) are culled, as `degenerateTrianglesRasterized = VK_FALSE` allows. The polygon grown
+//! is the one clipped to the guard band, so a part beyond the viewport grows into it too.
 
 use std::hash::{Hash, Hasher};
 

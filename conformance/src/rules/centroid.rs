@@ -112,9 +112,12 @@ fn extent(t: &Clip, case: &PrimitiveScene) -> f64 {
 }
 
 /// Whether `f`'s barycentrics are those of a point inside its pixel and the triangle, on some
-/// snapped form of it: the location they name, moved into the pixel, casts back to them
-/// within the precision (a location outside the triangle casts no hit, or other weights); a
-/// location a hair outside every form (on an edge, in f64) passes with no weight below `−eps`.
+/// snapped form of it: the location they name lies in the pixel, to within what the claimed
+/// precision moves it (`eps` of a weight moves it up to the longest side times the spread of
+/// `w`), and casts back to them within the precision (a location outside the triangle casts
+/// no hit, or other weights); one a hair outside every form (on an edge, in f64) passes with no
+/// weight below `−eps`. A sample on the pixel's border (the 16-sample pattern has some) is
+/// inside.
 fn inside_pixel_and_triangle(c: &Centroids, case: &PrimitiveScene, f: &Fragment) -> bool {
     let pixel = [f64::from(f.x), f64::from(f.y)];
     c.tris.iter().any(|t| {
@@ -122,12 +125,13 @@ fn inside_pixel_and_triangle(c: &Centroids, case: &PrimitiveScene, f: &Fragment)
             return false;
         };
         let moved = [0, 1].map(|k| p[k].clamp(pixel[k], pixel[k] + 1.0));
-        match cast(t, case, moved) {
+        let away = (p[0] - moved[0]).hypot(p[1] - moved[1]);
+        let spread =
+            t.iter().map(|v| v[3]).fold(0.0, f64::max) / t.iter().map(|v| v[3]).fold(f64::INFINITY, f64::min);
+        let near = away <= 2.0 * c.eps * extent(t, case) * spread;
+        near && match cast(t, case, p) {
             Some(want) => off(f, want) <= c.eps,
-            None => {
-                let away = (p[0] - moved[0]).hypot(p[1] - moved[1]);
-                f.barycentric.iter().all(|&b| f64::from(b) >= -c.eps) && away <= c.eps * extent(t, case)
-            }
+            None => f.barycentric.iter().all(|&b| f64::from(b) >= -c.eps),
         }
     })
 }

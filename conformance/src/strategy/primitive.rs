@@ -267,7 +267,8 @@ pub fn centroid(cases: impl Strategy<Value = PrimitiveScene>) -> impl Strategy<V
 /// `under` by underestimation, else by overestimation with an extra size of 0, the most `d`
 /// honours, or between. A quarter of the triangles are collinear (zero area before snapping)
 /// and a quarter a sixteenth of a grid step off collinear (zero area once snapped to `d`'s
-/// grid); the rest anywhere, reaching a little past the viewport.
+/// grid, where it has 8 bits or fewer; a real sliver on a finer one); the rest anywhere,
+/// reaching a little past the viewport.
 pub fn conservative(d: &refrast::Profile, under: bool) -> impl Strategy<Value = PrimitiveScene> + use<> {
     let bits = d.snapping.grid_bits().unwrap_or(8).min(8);
     let max_extra = d.state.conservative.map_or(0.0, |c| c.max_extra);

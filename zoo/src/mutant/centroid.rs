@@ -20,6 +20,8 @@ pub fn rasterize(bug: Bug, draw: &Draw) -> Option<Result<Vec<Fragment>, DrawErro
         Bug::UnmaskedCentroid,
         Bug::PostMaskCentroid,
     ];
+    // (The centre of a partly covered pixel is computed from the unsnapped corners: off the
+    // snapped one by far less than it is off the centroid, and only where the bug is.)
     let applies = draw.state.interpolation == Interpolation::Centroid
         && draw.topology.is_triangles()
         && draw.samples > 1
@@ -57,7 +59,8 @@ fn misplaced(bug: Bug, draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
         let (cover, first) = covered[&key];
         let centre = || centre_barycentrics(draw, key).unwrap_or(f.barycentric);
         f.barycentric = match bug {
-            Bug::CentreCentroid => centre(),
+            // Where every sample is covered the centroid is the centre already.
+            Bug::CentreCentroid if cover != all => centre(),
             Bug::FirstSampleCentroid => first_kept[&key],
             Bug::UnmaskedCentroid if cover != all => first,
             Bug::PostMaskCentroid if cover != all && cover & kept == kept => centre(),

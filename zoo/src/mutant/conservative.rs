@@ -3,7 +3,10 @@
 
 use std::collections::BTreeMap;
 
-use refrast::{Conservative, Draw, DrawError, Fragment, PolygonMode, Rasterizer, Reference, Topology};
+use refrast::{
+    Conservative, Draw, DrawError, FixedPoint, Fragment, PolygonMode, Rasterizer, Reference, SubpixelBits,
+    Topology, orient2d,
+};
 
 use super::Bug;
 
@@ -72,14 +75,13 @@ fn boxed(frags: &[Fragment], samples: u8) -> Vec<Fragment> {
     out
 }
 
-/// The edges of each triangle that drew nothing under overestimation (a degenerate one,
-/// culled, or one off the viewport, whose edges draw nothing either), drawn as the
+/// The edges of each triangle of zero area once snapped (culled), drawn as the
 /// reference's lines at every sample, as if degenerate triangles were rasterized while the
 /// profile says they are culled.
 fn degenerate_edges(draw: &Draw, drawn: &[Fragment]) -> Result<Vec<Fragment>, DrawError> {
     let mut out = Vec::new();
     for (i, t) in draw.triangles().iter().enumerate() {
-        if drawn.iter().any(|f| f.primitive == i as u32) {
+        if drawn.iter().any(|f| f.primitive == i as u32) || !zero_once_snapped(draw, *t) {
             continue;
         }
         let mut lines = Draw::of(
@@ -98,4 +100,28 @@ fn degenerate_edges(draw: &Draw, drawn: &[Fragment]) -> Result<Vec<Fragment>, Dr
         }
     }
     Ok(out)
+}
+
+/// Whether triangle `t` of `draw` has its corners in front of the eye and zero area once
+/// snapped to the reference's grid.
+fn zero_once_snapped(draw: &Draw, t: [u32; 3]) -> bool {
+    let (width, height) = (
+        f64::from(draw.viewport.width()),
+        f64::from(draw.viewport.height()),
+    );
+    let snapped: Option<Vec<FixedPoint>> = t
+        .iter()
+        .map(|&i| {
+            let p = draw.positions.get(i as usize)?.map(f64::from);
+            if p[3] <= 0.0 {
+                return None;
+            }
+            let (x, y) = (
+                (p[0] / p[3] + 1.0) * 0.5 * width,
+                (1.0 - p[1] / p[3]) * 0.5 * height,
+            );
+            FixedPoint::snap(x, y, SubpixelBits::DEFAULT)
+        })
+        .collect();
+    snapped.is_some_and(|v| orient2d(v[0], v[1], v[2]) == 0)
 }

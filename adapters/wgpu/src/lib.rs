@@ -86,6 +86,7 @@ pub mod probe;
 pub mod reported;
 mod resources;
 mod targets;
+mod unpack;
 
 use std::sync::{Arc, Mutex};
 

@@ -309,7 +309,7 @@ impl Pipelines {
     /// The pipeline unpacking a multisampled resolve, and its bind group layout (the ids, then
     /// the depths), built on first use.
     pub fn unpack(&mut self, device: &wgpu::Device) -> &(wgpu::RenderPipeline, wgpu::BindGroupLayout) {
-        self.unpacking.get_or_insert_with(|| build_unpack(device))
+        self.unpacking.get_or_insert_with(|| crate::unpack::build(device))
     }
 
     /// Builds the pipeline for `key`.
@@ -491,60 +491,6 @@ fn shader(device: &wgpu::Device, label: &str, varyings: &str, extra: &str) -> wg
         label: Some(label),
         source: wgpu::ShaderSource::Wgsl(source.into()),
     })
-}
-
-/// The pipeline of `unpack.wgsl`: a multisampled id and depth target in, two [`UNPACKED`]
-/// targets out.
-fn build_unpack(device: &wgpu::Device) -> (wgpu::RenderPipeline, wgpu::BindGroupLayout) {
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("unpack"),
-        source: wgpu::ShaderSource::Wgsl(include_str!("unpack.wgsl").into()),
-    });
-    let texture = |binding, sample_type| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Texture {
-            sample_type,
-            view_dimension: wgpu::TextureViewDimension::D2,
-            multisampled: true,
-        },
-        count: None,
-    };
-    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("unpack"),
-        entries: &[
-            texture(0, wgpu::TextureSampleType::Uint),
-            texture(1, wgpu::TextureSampleType::Depth),
-        ],
-    });
-    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some("unpack"),
-        bind_group_layouts: &[Some(&layout)],
-        immediate_size: 0,
-    });
-    let target = Some(wgpu::ColorTargetState::from(UNPACKED));
-    let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some("unpack"),
-        layout: Some(&pipeline_layout),
-        vertex: wgpu::VertexState {
-            module: &module,
-            entry_point: Some("cover"),
-            compilation_options: wgpu::PipelineCompilationOptions::default(),
-            buffers: &[],
-        },
-        primitive: wgpu::PrimitiveState::default(),
-        depth_stencil: None,
-        multisample: wgpu::MultisampleState::default(),
-        fragment: Some(wgpu::FragmentState {
-            module: &module,
-            entry_point: Some("unpack"),
-            compilation_options: wgpu::PipelineCompilationOptions::default(),
-            targets: &[target.clone(), target],
-        }),
-        multiview_mask: None,
-        cache: None,
-    });
-    (pipeline, layout)
 }
 
 /// The API's topology for refrast's; `None` for a triangle fan, which WebGPU does not have.

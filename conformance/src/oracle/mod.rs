@@ -30,3 +30,4 @@ pub mod provoking;
 pub mod raster;
 pub mod ray_cast;
 pub mod segment;
+pub mod squares;

@@ -141,10 +141,11 @@ fn python_topleft_passes_every_rule() {
     assert_eq!(code, 0, "{rules:#?}");
     assert_eq!(rules.len(), refrast_conformance::catalogue().len());
     assert_eq!(with_status(&rules, "fail"), "");
-    // It draws no lines or points, so no polygon mode either, nor their clip distances.
+    // It draws no lines or points, so no polygon mode either, nor their clip distances; and it
+    // has no conservative rasterization.
     assert_eq!(
         with_status(&rules, "n/a"),
-        "meta.polygon-mode.facing clip.distance.lines-points",
+        "fill.conservative.over fill.conservative.under meta.polygon-mode.facing clip.distance.lines-points",
         "n/a beyond the families it does not declare"
     );
 }
@@ -198,7 +199,8 @@ fn rules_print_in_catalogue_order_and_the_summary_names_budget_cuts() {
 
 /// The Python client as a fixed-function rasterizer: one cull mode declared and used whatever a
 /// draw asks. It must still pass every rule, none of them n/a but the one that needs culling of
-/// both faces, which one mode is not (it failed a dozen when the rules expected the coverage of
+/// both faces, which one mode is not (and those it never declared: conservative rasterization,
+/// lines and points) (it failed a dozen when the rules expected the coverage of
 /// no culling, before every rule asked its question under what the profile supports:
 /// docs/profiles.md).
 #[test]
@@ -216,7 +218,7 @@ fn python_topleft_with_one_cull_mode_passes_every_rule() {
         assert_eq!(with_status(&rules, "fail"), "", "--cull {mode}");
         assert_eq!(
             with_status(&rules, "n/a"),
-            "meta.cull.both-faces meta.polygon-mode.facing clip.distance.lines-points",
+            "meta.cull.both-faces fill.conservative.over fill.conservative.under meta.polygon-mode.facing clip.distance.lines-points",
             "--cull {mode}"
         );
     }

@@ -101,7 +101,7 @@
 //! - **Conservative rasterization**: a filled triangle drawn with a [`Conservative`] mode covers
 //!   every sample of each pixel whose closed square its snapped polygon touches (grown by a
 //!   disc of the extra size) or, underestimating, holds; a triangle of zero area once snapped
-//!   is culled ([`ConservativeSupport::REFERENCE`], `conservative.rs`).
+//!   is culled ([`ConservativeSupport::REFERENCE`], `conservative_cover.rs`).
 //! - **Strips and fans**: triangle `i` of a strip is indices `i, i+1+i%2, i+2−i%2` (every other
 //!   one reversed, so the strip keeps one winding), of a fan `i+1, i+2, 0`, as Vulkan makes them
 //!   and orders their barycentrics; each draws as that triangle would in a list
@@ -136,6 +136,7 @@ mod centroid;
 mod clip;
 mod config;
 mod conservative;
+mod conservative_cover;
 mod dda;
 mod depth;
 mod distance;

@@ -374,7 +374,7 @@ fn read_single(
 }
 
 /// The depths and ids (plus one) of a resolve at several samples (at most
-/// [`MOST_SAMPLES`](crate::pipelines::MOST_SAMPLES)), sample by sample: `unpack.wgsl` loads each
+/// [`MOST_SAMPLES`](crate::unpack::MOST_SAMPLES)), sample by sample: `unpack.wgsl` loads each
 /// pixel's samples into two one-sample targets, which are copied back.
 fn read_samples(
     ctx: &Context,
@@ -383,7 +383,7 @@ fn read_samples(
     ids: &wgpu::TextureView,
     depth: &wgpu::TextureView,
 ) -> Result<(Vec<f32>, Vec<u32>), DrawError> {
-    use crate::pipelines::{MOST_SAMPLES, UNPACKED};
+    use crate::unpack::{MOST_SAMPLES, UNPACKED};
     if draw.samples > MOST_SAMPLES {
         return Err(DrawError::Unsupported(format!(
             "a resolve at {} samples: the adapter reads back at most {MOST_SAMPLES}",

@@ -129,11 +129,6 @@ pub const IDS: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
 pub const DEPTHS: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
 /// The two targets of a per-primitive capture: barycentrics and depth, then facing.
 pub const FLOATS: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
-/// The two targets a multisampled resolve is unpacked into: four samples' ids, then their
-/// depths' bits.
-pub const UNPACKED: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
-/// The most samples per pixel [`UNPACKED`] holds.
-pub const MOST_SAMPLES: u8 = 4;
 
 /// The shaders, the capture bind group layout, and the pipelines built so far.
 pub struct Pipelines {

@@ -2,8 +2,14 @@
 //! targets written out as the channels of two single-sample targets (`unpack.wgsl`), since a
 //! multisampled texture cannot be copied to a buffer.
 
+/// The two targets a multisampled resolve is unpacked into: four samples' ids, then their
+/// depths' bits.
+pub const UNPACKED: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
+/// The most samples per pixel [`UNPACKED`] holds.
+pub const MOST_SAMPLES: u8 = 4;
+
 /// The pipeline of `unpack.wgsl`: a multisampled id and depth target in, two
-/// [`UNPACKED`](crate::pipelines::UNPACKED) targets out.
+/// [`UNPACKED`] targets out.
 pub fn build(device: &wgpu::Device) -> (wgpu::RenderPipeline, wgpu::BindGroupLayout) {
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some("unpack"),
@@ -31,7 +37,7 @@ pub fn build(device: &wgpu::Device) -> (wgpu::RenderPipeline, wgpu::BindGroupLay
         bind_group_layouts: &[Some(&layout)],
         immediate_size: 0,
     });
-    let target = Some(wgpu::ColorTargetState::from(crate::pipelines::UNPACKED));
+    let target = Some(wgpu::ColorTargetState::from(UNPACKED));
     let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some("unpack"),
         layout: Some(&pipeline_layout),

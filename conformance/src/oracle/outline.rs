@@ -113,6 +113,83 @@ pub fn distance_to_outline(
     best
 }
 
+/// The stretches of row `sy` (x intervals, ends included) holding every point within `r` of
+/// an outline segment `a → b` for which `keep(a, b)` holds, as [`distance_to_outline`]
+/// measures it: each segment's part inside the band `|y − sy| ≤ r`, widened by `r`, and both
+/// by a margin of `2^-30` of the largest coordinate (and of the stretch's ends) for the
+/// roundings of either computation.
+/// A point outside them all is farther than `r` from every kept segment.
+#[must_use]
+pub fn row_reach(
+    outline: &[OutlinePoint],
+    sy: f64,
+    r: f64,
+    keep: impl Fn(&OutlinePoint, &OutlinePoint) -> bool,
+) -> Vec<(f64, f64)> {
+    let n = outline.len();
+    let mut stretches = Vec::new();
+    for i in 0..n {
+        let (a, b) = (outline[i], outline[(i + 1) % n]);
+        if !keep(&a, &b) {
+            continue;
+        }
+        let (from, along, ray) = match (a.finite, b.finite) {
+            (true, true) => (
+                a.position,
+                [b.position[0] - a.position[0], b.position[1] - a.position[1]],
+                false,
+            ),
+            (true, false) => (a.position, b.position, true),
+            (false, true) => (b.position, a.position, true),
+            (false, false) => continue,
+        };
+        let size = [from[0], from[1], along[0], along[1], sy, r]
+            .iter()
+            .fold(1.0f64, |m, c| m.max(c.abs()));
+        let margin = size / 1_073_741_824.0;
+        let reach = r + margin;
+        // The segment's parameters inside the band: all of it when it runs along the row.
+        let last = if ray { f64::INFINITY } else { 1.0 };
+        let (t0, t1) = if along[1] == 0.0 {
+            if (from[1] - sy).abs() > reach {
+                continue;
+            }
+            (0.0, last)
+        } else {
+            let enter = (sy - reach - from[1]) / along[1];
+            let leave = (sy + reach - from[1]) / along[1];
+            (enter.min(leave).max(0.0), enter.max(leave).min(last))
+        };
+        match t0.partial_cmp(&t1) {
+            // Nothing of the segment reaches the row.
+            Some(std::cmp::Ordering::Greater) => continue,
+            // Bad numbers: the whole row, so nothing is skipped.
+            None => {
+                stretches.push((f64::NEG_INFINITY, f64::INFINITY));
+                continue;
+            }
+            _ => {}
+        }
+        let x = |t: f64| {
+            if t == 0.0 || along[0] == 0.0 {
+                from[0]
+            } else {
+                from[0] + t * along[0]
+            }
+        };
+        let (x0, x1) = (x(t0), x(t1));
+        // The ends' own roundings scale with them, far along a ray.
+        let wide = reach + margin + x0.abs().max(x1.abs()) / 1_073_741_824.0;
+        let (lo, hi) = (x0.min(x1) - wide, x0.max(x1) + wide);
+        stretches.push(if lo.is_nan() || hi.is_nan() {
+            (f64::NEG_INFINITY, f64::INFINITY)
+        } else {
+            (lo, hi)
+        });
+    }
+    stretches
+}
+
 /// Distance from `s` to the segment `a b`, in the points' units.
 #[must_use]
 pub fn segment_distance(a: [f64; 2], b: [f64; 2], s: [f64; 2]) -> f64 {
@@ -162,5 +239,51 @@ mod tests {
         assert_eq!(outline.iter().filter(|p| p.is_cut()).count(), 2);
         // The cut runs along y = 0 in NDC, raster row 4: a sample on it is 0 px away.
         assert!(distance_to_outline(&outline, [4.0, 4.0], |a, b| a.is_cut() && b.is_cut()) < 1e-12);
+    }
+
+    /// Coordinates on a grid, near it, off it, and huge: segments along rows, through sample
+    /// centres, and rays.
+    fn coordinate() -> impl proptest::strategy::Strategy<Value = f64> {
+        use proptest::prelude::*;
+        prop_oneof![
+            (-8i32..=24).prop_map(|k| f64::from(k) * 0.5),
+            (-8i32..=24).prop_map(|k| f64::from(k) * 0.5 + 1e-9),
+            -10.0f64..30.0,
+            prop_oneof![Just(1e7), Just(-3e9), Just(1e-12)],
+        ]
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(3000))]
+
+        /// Every sample of a row within `r` of a kept segment lies in a stretch of its reach.
+        #[test]
+        fn a_rows_reach_holds_every_sample_within_it(
+            points in proptest::collection::vec(
+                (coordinate(), coordinate(), proptest::prelude::any::<u8>()), 1..7),
+            row in 0u32..16,
+            r in proptest::prop_oneof![
+                proptest::strategy::Just(0.0),
+                proptest::strategy::Just(1.0 / 256.0),
+                0.0f64..3.0,
+            ],
+        ) {
+            let outline: Vec<OutlinePoint> = points
+                .iter()
+                .map(|&(x, y, f)| OutlinePoint { position: [x, y], finite: f % 4 != 0, edges: f & 7 })
+                .collect();
+            let keep = |a: &OutlinePoint, b: &OutlinePoint| a.edges & b.edges & 1 == 0;
+            let sy = f64::from(row) + 0.5;
+            let reach = row_reach(&outline, sy, r, keep);
+            for x in 0..16 {
+                let s = [f64::from(x) + 0.5, sy];
+                if distance_to_outline(&outline, s, keep) <= r {
+                    proptest::prop_assert!(
+                        reach.iter().any(|&(lo, hi)| lo <= s[0] && s[0] <= hi),
+                        "sample {s:?} is within {r} but outside {reach:?}"
+                    );
+                }
+            }
+        }
     }
 }

@@ -8,7 +8,7 @@ use refrast::{CullMode, Profile, Rasterizer};
 use super::common::fragments;
 use super::vertices::{samples_near_vertices_of_three, samples_on_vertices_of_three};
 use super::why;
-use crate::oracle::outline::{OutlinePoint, distance_to_outline, visible_outline};
+use crate::oracle::outline::{OutlinePoint, distance_to_outline, row_reach, visible_outline};
 use crate::oracle::raster::{sample_centre, sample_ndc};
 use crate::oracle::ray_cast::{CutRounding, ray_cast};
 use crate::picture::finite_outlines;
@@ -108,9 +108,20 @@ pub fn mesh_expectation(scene: &Scene, band: f64, relax: Relax) -> (Vec<Expect>,
         }
         let rounding = CutRounding::new(t, width, height, &scene.state);
         for y in 0..height {
+            // Where the rounding is bounded along the row, only samples within the band and
+            // that bound of a cut can be near one: the rest are skipped (issue 47).
+            let bound = rounding.bound_in_row(y);
+            let reach = bound
+                .is_finite()
+                .then(|| row_reach(o, sample_centre(0, y)[1], band + bound, cut));
             for x in 0..width {
                 let (i, s) = (at(x, y), sample_centre(x, y));
                 if near_boundary[i] {
+                    continue;
+                }
+                if let Some(reach) = &reach
+                    && !reach.iter().any(|&(lo, hi)| lo <= s[0] && s[0] <= hi)
+                {
                     continue;
                 }
                 let d = distance_to_outline(o, s, cut);

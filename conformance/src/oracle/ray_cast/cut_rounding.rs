@@ -26,6 +26,7 @@ pub const CLIP_ROUNDING: f64 = 1.0 / 524_288.0;
 
 #[cfg(test)]
 pub(crate) mod reference;
+mod row;
 
 /// How much wider [`CutRounding`]'s own cancellation checks take each magnitude than
 /// [`plane_at`] does: 2^-16, far above the 2^-28 by which their sums may differ (some 20

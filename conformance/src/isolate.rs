@@ -4,13 +4,14 @@
 //! The parent starts one child per rule (a command the caller builds: `refrast run-rule …`, or
 //! the test binary itself for [`crate::run_as_tests`]). The child builds the rasterizer, runs
 //! the rule with [`serve_rule`] and speaks one JSON object a line on its stdout, each after
-//! [`MARK`]: its profile (or why it cannot be built here), every case before it is checked,
-//! then the report. Lines without the mark are the rasterizer's own output and are kept for
+//! [`MARK`]: its profile (or why it cannot be built here), then the report. Every case is
+//! written to a [`case_log`] before it is checked (or, in a child started without one, sent
+//! as a line too). Lines without the mark are the rasterizer's own output and are kept for
 //! the failure message. Building in the child means an implementation that needs its own
 //! environment (a driver chosen by an environment variable) gets it there.
 //!
-//! The parent gives each case [`Options::case_timeout`]: a child silent for longer is killed and
-//! the rule fails as hung, on the last case it announced. A child that exits without a report
+//! The parent gives each case [`Options::case_timeout`]: a child that starts no case for longer
+//! is killed and the rule fails as hung, on the last case it announced. A child that exits without a report
 //! failed the same way, with its exit status or signal and the end of its stderr.
 
 use std::io::{Read, Write};
@@ -22,6 +23,10 @@ use std::time::{Duration, Instant};
 
 use refrast::{Rasterizer, Unavailable};
 use serde::{Deserialize, Serialize};
+
+mod case_log;
+
+use case_log::{CASE_LOG_ENV, CaseLog};
 
 use crate::certify::{refusal, run_selected_jobs};
 use crate::judge::{Options, cases_for, run_rule};
@@ -41,6 +46,10 @@ const MAX_LINE: usize = 16 << 20;
 /// is killed (with its process group).
 const EXIT_GRACE: Duration = Duration::from_secs(5);
 
+/// How often the parent reads a child's case log for progress: often enough for a progress
+/// display, rarely enough to cost nothing beside a case.
+const LOG_POLL: Duration = Duration::from_millis(100);
+
 /// One line from a child.
 #[derive(Debug, Serialize, Deserialize)]
 enum Message {
@@ -50,7 +59,7 @@ enum Message {
     Unavailable(String),
     /// Why the suite refuses to judge the rasterizer's profile ([`crate::refusal`]).
     Refused(String),
-    /// The input about to be checked, as Rust.
+    /// The input about to be checked, as Rust, from a child without a case log.
     Case(String),
     /// The rule's outcome, with its exhibit (which the report's JSON leaves out) beside it.
     Report(Box<RuleReport>, Option<Box<Exhibit>>),
@@ -64,9 +73,11 @@ fn send(message: &Message) {
     let _ = writeln!(out, "{MARK}{line}").and_then(|()| out.flush());
 }
 
-/// Announces an input to the parent.
+/// Announces an input to the parent: in the case log, or as a line where there is none.
 fn announce(input: &dyn std::fmt::Debug) {
-    send(&Message::Case(format!("{input:?}")));
+    if !case_log::write(input) {
+        send(&Message::Case(format!("{input:?}")));
+    }
 }
 
 /// Child side: builds the rasterizer and runs rule `id` against it, announcing its profile and
@@ -219,6 +230,11 @@ pub fn run_rule_watched(
         cases_seen: 0,
     };
     let program = format!("{:?}", command.get_program());
+    // Without a log (the temp directory unwritable) the child announces each case as a line.
+    let log = CaseLog::new().ok();
+    if let Some(log) = &log {
+        command.env(CASE_LOG_ENV, log.path());
+    }
     command
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
@@ -238,11 +254,20 @@ pub fn run_rule_watched(
     let mut last_word = Instant::now();
     loop {
         let left = options.case_timeout.saturating_sub(last_word.elapsed());
-        let line = rx.as_ref().map_or(Ok(Line::Closed), |rx| rx.recv_timeout(left));
+        let wait = if log.is_some() { left.min(LOG_POLL) } else { left };
+        let line = rx.as_ref().map_or(Ok(Line::Closed), |rx| rx.recv_timeout(wait));
+        if let Some(count) = log.as_ref().map(CaseLog::count)
+            && count != 0
+            && count != watch.cases_seen
+        {
+            watch.cases_seen = count;
+            on_case(usize::try_from(count).unwrap_or(usize::MAX));
+            last_word = Instant::now();
+        }
         match line {
             Ok(Line::Message(Message::Case(input))) => {
                 watch.cases_seen += 1;
-                on_case(watch.cases_seen);
+                on_case(usize::try_from(watch.cases_seen).unwrap_or(usize::MAX));
                 watch.last_case = Some(input);
                 last_word = Instant::now();
             }
@@ -266,6 +291,7 @@ pub fn run_rule_watched(
             Ok(Line::Other(line)) => own_output.push(&line),
             Ok(Line::Closed) | Err(RecvTimeoutError::Disconnected) => {
                 let status = finish(&mut child);
+                watch.read(log.as_ref());
                 let output = join_output(stderr, &own_output, options.memory_limit);
                 let message = format!(
                     "the rasterizer's process ended without a verdict ({}) during case {}{output}",
@@ -274,8 +300,10 @@ pub fn run_rule_watched(
                 );
                 return watch.failed(Status::Crash, message);
             }
+            Err(RecvTimeoutError::Timeout) if last_word.elapsed() < options.case_timeout => {}
             Err(RecvTimeoutError::Timeout) => {
                 child.end();
+                watch.read(log.as_ref());
                 let output = join_output(stderr, &own_output, options.memory_limit);
                 let message = format!(
                     "no answer within {} s on case {}: the rasterizer hangs on it (or is far too slow; \
@@ -299,10 +327,19 @@ struct Watch<'a> {
     /// The last input it announced.
     last_case: Option<String>,
     /// How many inputs it announced (shrinking's included).
-    cases_seen: usize,
+    cases_seen: u64,
 }
 
 impl Watch<'_> {
+    /// Takes the count and the last input from the log of a child that is gone, where it
+    /// wrote one (a child that could not open it announced its cases as lines).
+    fn read(&mut self, log: Option<&CaseLog>) {
+        if let Some(last) = log.and_then(CaseLog::last) {
+            self.cases_seen = log.map_or(0, CaseLog::count);
+            self.last_case = Some(last);
+        }
+    }
+
     /// The rule's report when the child gave none: `status`, `message`, the last case announced.
     fn failed(self, status: Status, message: String) -> ChildRun {
         let tolerance = self.profile.as_ref().map_or(1, |p| p.tolerance_subpixels.max(1));

@@ -80,12 +80,23 @@ pub fn mesh_expectation(scene: &Scene, band: f64, relax: Relax) -> (Vec<Expect>,
         };
         let (has_boundary, has_cut) = (has(&boundary), has(&at_cut));
         for y in ys {
+            // Only samples in a row's stretches within the band of such segments can be near
+            // one (issue 47): the distance is asked of those alone.
+            let sy = sample_centre(0, y)[1];
+            let boundary_reach = has_boundary.then(|| row_reach(o, sy, band, boundary));
+            let cut_reach = has_cut.then(|| row_reach(o, sy, band, at_cut));
             for x in xs.clone() {
                 let (i, s) = (at(x, y), sample_centre(x, y));
-                if has_boundary && !near_boundary[i] && distance_to_outline(o, s, boundary) < band {
+                if !near_boundary[i]
+                    && within(boundary_reach.as_deref(), s[0])
+                    && distance_to_outline(o, s, boundary) < band
+                {
                     near_boundary[i] = true;
                 }
-                if has_cut && !near_cut_vertex[i] && distance_to_outline(o, s, at_cut) < band {
+                if !near_cut_vertex[i]
+                    && within(cut_reach.as_deref(), s[0])
+                    && distance_to_outline(o, s, at_cut) < band
+                {
                     near_cut_vertex[i] = true;
                 }
                 if !inside[i] {
@@ -119,9 +130,7 @@ pub fn mesh_expectation(scene: &Scene, band: f64, relax: Relax) -> (Vec<Expect>,
                 if near_boundary[i] {
                     continue;
                 }
-                if let Some(reach) = &reach
-                    && !reach.iter().any(|&(lo, hi)| lo <= s[0] && s[0] <= hi)
-                {
+                if reach.is_some() && !within(reach.as_deref(), s[0]) {
                     continue;
                 }
                 let d = distance_to_outline(o, s, cut);
@@ -139,6 +148,12 @@ pub fn mesh_expectation(scene: &Scene, band: f64, relax: Relax) -> (Vec<Expect>,
         })
         .collect();
     (expected, finite_outlines(&outlines))
+}
+
+/// Whether `x` lies in one of a row's `stretches` (from [`row_reach`]); `false` without any,
+/// where no segment was kept.
+fn within(stretches: Option<&[(f64, f64)]>, x: f64) -> bool {
+    stretches.is_some_and(|s| s.iter().any(|&(lo, hi)| lo <= x && x <= hi))
 }
 
 /// Per triangle, bit k set when its edge k (from corner k to k+1) is shared with another

@@ -187,11 +187,12 @@ pub fn check_resolve(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<()
     }
     let depth = scene.state.depth;
     let mut found = Findings::new();
+    let edges = Edges::of(scene, band);
     for (i, primitives) in covering.iter_mut().enumerate() {
         let (pixel, k) = (i / n, (i % n) as u8);
         let (x, y) = (pixel as u32 % w, pixel as u32 / w);
         let s = sample_at(&positions, x, y, k);
-        if near_an_edge(scene, s, band) {
+        if edges.near(s) {
             continue;
         }
         primitives.sort_unstable();
@@ -220,16 +221,44 @@ pub fn check_resolve(r: &mut dyn Rasterizer, case: &PrimitiveScene) -> Result<()
     })
 }
 
-/// Whether `s` lies within `band` of an edge of a triangle of `scene` (every triangle whose
-/// vertices all project; one that does not is drawn nowhere near by these rules).
-fn near_an_edge(scene: &Scene, s: [f64; 2], band: f64) -> bool {
-    (0..scene.triangles.len()).any(|t| {
-        let p = scene.positions_of(t);
-        p.iter().all(|v| v[3] > 0.0) && {
-            let c = p.map(|v| project(scene.width, scene.height, v));
-            (0..3).any(|e| segment_distance(c[e], c[(e + 1) % 3], s) < band)
-        }
-    })
+/// The triangles of a scene whose vertices all project (one that does not is drawn nowhere
+/// near by these rules), projected once, each with its box grown by the band: a sample outside
+/// a box is farther than the band from that triangle's edges, so only triangles whose box
+/// holds it are measured (issue 47: every sample measured every edge).
+struct Edges {
+    band: f64,
+    triangles: Vec<([[f64; 2]; 3], [f64; 4])>,
+}
+
+impl Edges {
+    /// The projected triangles of `scene`, boxes grown by `band` and a margin of `2^-30` of the
+    /// largest coordinate: [`segment_distance`]'s nearest point lies within a few ulps of it.
+    fn of(scene: &Scene, band: f64) -> Self {
+        let triangles = (0..scene.triangles.len())
+            .map(|t| scene.positions_of(t))
+            .filter(|p| p.iter().all(|v| v[3] > 0.0))
+            .map(|p| {
+                let c = p.map(|v| project(scene.width, scene.height, v));
+                let size = c.iter().flatten().fold(1.0f64, |m, v| m.max(v.abs()));
+                let grow = band + size / 1_073_741_824.0;
+                let (xs, ys) = (c.map(|v| v[0]), c.map(|v| v[1]));
+                let low = |v: [f64; 3]| v.iter().fold(f64::INFINITY, |m, &x| m.min(x)) - grow;
+                let high = |v: [f64; 3]| v.iter().fold(f64::NEG_INFINITY, |m, &x| m.max(x)) + grow;
+                (c, [low(xs), high(xs), low(ys), high(ys)])
+            })
+            .collect();
+        Edges { band, triangles }
+    }
+
+    /// Whether `s` lies within the band of an edge of a projected triangle (a box with a NaN
+    /// holds nothing, as the distance to a NaN corner is never within the band).
+    fn near(&self, s: [f64; 2]) -> bool {
+        self.triangles.iter().any(|(c, [x0, x1, y0, y1])| {
+            (*x0..=*x1).contains(&s[0])
+                && (*y0..=*y1).contains(&s[1])
+                && (0..3).any(|e| segment_distance(c[e], c[(e + 1) % 3], s) < self.band)
+        })
+    }
 }
 
 /// What a replay leaves at a sample: the depth written with its tolerance (`None`: the clear
@@ -264,4 +293,60 @@ fn replay(
         }
     }
     Some((stored, id))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// Whether `s` is within `band` of an edge of a projecting triangle, every edge measured.
+    fn near_directly(scene: &Scene, s: [f64; 2], band: f64) -> bool {
+        (0..scene.triangles.len()).any(|t| {
+            let p = scene.positions_of(t);
+            p.iter().all(|v| v[3] > 0.0) && {
+                let c = p.map(|v| project(scene.width, scene.height, v));
+                (0..3).any(|e| segment_distance(c[e], c[(e + 1) % 3], s) < band)
+            }
+        })
+    }
+
+    fn coordinate() -> impl Strategy<Value = f32> {
+        prop_oneof![
+            12 => -2.0f32..2.0,
+            1 => -1e30f32..1e30,
+            1 => Just(f32::NAN),
+            1 => Just(f32::INFINITY)
+        ]
+    }
+
+    proptest! {
+        /// Boxes skip only samples no edge is within the band of, whatever the coordinates.
+        #[test]
+        fn boxes_skip_only_far_samples(
+            corners in prop::collection::vec(
+                (coordinate(), coordinate(), -1.0f32..1.0, prop_oneof![6 => 0.1f32..4.0, 1 => -1.0f32..0.0])
+                    .prop_map(|(x, y, z, w)| [x, y, z, w]),
+                3..7,
+            ),
+            band in prop_oneof![Just(0.0), Just(1.0 / 256.0), Just(0.5), Just(3.0)],
+            s in [0.0f64..16.0, 0.0f64..16.0],
+            along in (0usize..6, prop_oneof![Just(0.0), 0.0f64..1.0], -1.5f64..1.5),
+        ) {
+            let triangles = (0..corners.len() / 3).map(|t| {
+                let i = u32::try_from(3 * t).unwrap_or(0);
+                [i, i + 1, i + 2]
+            }).collect();
+            let scene = Scene::new(16, 16, corners, triangles);
+            // Half the samples lie across the first triangle's edge or beside a corner, across
+            // or along an axis, where a box too small shows.
+            let c = scene.positions_of(0).map(|v| project(16, 16, v));
+            let (e, t, off) = along;
+            let (a, b) = (c[e % 3], c[(e + 1) % 3]);
+            let step = if e < 3 { [off * band, 0.0] } else { [0.0, off * band] };
+            let across = [a[0] + t * (b[0] - a[0]) + step[0], a[1] + t * (b[1] - a[1]) + step[1]];
+            let s = if off > 0.0 && across.iter().all(|v| v.is_finite()) { across } else { s };
+            prop_assert_eq!(Edges::of(&scene, band).near(s), near_directly(&scene, s, band));
+        }
+    }
 }

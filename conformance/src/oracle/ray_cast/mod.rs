@@ -130,9 +130,21 @@ fn ray_cast_f64(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Fil
     if state.clip_far {
         signs.push(far);
     }
-    // A value exactly zero may be decisive (a sample on an edge): let the exact path say.
+    // A value exactly zero may be decisive (a sample on an edge): let the exact path say,
+    // unless a sure denominator and a sure sign already make it a miss (a sample on one edge
+    // of a triangle and outside another, in a mesh: most fallbacks, issue 47).
     if !signs.iter().all(|s| s.sure()) {
-        return Filtered::Unsure;
+        let s = d.v.signum();
+        let misses = |x: &Bounded| x.sure() && x.v * s < 0.0;
+        let missed = n.iter().any(misses)
+            || misses(&nw)
+            || (state.clip_near && misses(&near))
+            || (state.clip_far && misses(&far));
+        return if d.sure() && missed {
+            Filtered::Sure(None)
+        } else {
+            Filtered::Unsure
+        };
     }
     let s = d.v.signum();
     let hit = n.iter().all(|ni| ni.v * s > 0.0)
@@ -155,6 +167,57 @@ fn ray_cast_f64(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Fil
 mod tests {
     use super::*;
     use crate::oracle::raster::sample_ndc;
+    use proptest::prelude::*;
+
+    /// Coordinates where the filter's bounds matter: integers and halves (rays through edges
+    /// and vertices), small ranges, and extremes.
+    fn coordinate() -> impl Strategy<Value = f64> {
+        prop_oneof![
+            4 => (-4i32..=4).prop_map(|k| f64::from(k) * 0.5),
+            4 => -2.0f64..2.0,
+            1 => -30000.0f64..30000.0,
+            1 => prop_oneof![Just(1e-300), Just(-3e-310), Just(1e300), Just(0.0), Just(-0.0)],
+        ]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(3000))]
+
+        /// The f64 filter, its sure misses included, decides hit or miss and facing as the
+        /// exact solve does, at every clipping state: with samples on an edge and triangles
+        /// nearly edge-on (a corner on the line through the others), where signs are unsure.
+        #[test]
+        fn the_filter_decides_as_the_exact_solve(
+            tri in prop::array::uniform3(prop::array::uniform4(coordinate())),
+            nx in prop_oneof![(-4i32..=4).prop_map(|k| f64::from(k) * 0.5), -2.0f64..2.0],
+            ny in prop_oneof![(-4i32..=4).prop_map(|k| f64::from(k) * 0.5), -2.0f64..2.0],
+            clip in (any::<bool>(), any::<bool>(), any::<bool>()),
+            (on_edge, edge_on, t, u) in (any::<bool>(), any::<bool>(), 0.0f64..1.0, -0.5f64..1.5),
+        ) {
+            let mut tri = tri;
+            if edge_on {
+                tri[2] = std::array::from_fn(|k| tri[0][k] + u * (tri[1][k] - tri[0][k]));
+            }
+            let ndc = |p: [f64; 4]| [p[0] / p[3], p[1] / p[3]];
+            let (a, b) = (ndc(tri[0]), ndc(tri[1]));
+            let (nx, ny) = if on_edge {
+                (a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]))
+            } else {
+                (nx, ny)
+            };
+            let state = DrawState {
+                depth_range: if clip.0 { refrast::DepthRange::NegativeOneToOne } else { refrast::DepthRange::ZeroToOne },
+                clip_near: clip.1,
+                clip_far: clip.2,
+                ..DrawState::default()
+            };
+            let decision = |h: Option<Hit>| h.map(|h| h.clockwise);
+            prop_assert_eq!(
+                decision(ray_cast(&tri, nx, ny, &state)),
+                decision(exact::ray_cast_exact(&tri, nx, ny, &state))
+            );
+        }
+    }
 
     #[test]
     fn a_ray_through_the_centroid_has_equal_barycentrics_when_w_is_equal() {

@@ -9,7 +9,7 @@ use refrast::{
 
 use crate::oracle::outline::{distance_to_outline, visible_outline};
 use crate::oracle::raster::{sample_centre, sample_ndc};
-use crate::oracle::ray_cast::ray_cast;
+use crate::oracle::ray_cast::ray_hits;
 use crate::picture::scene_outlines;
 use crate::scene::Scene;
 use crate::violation::{Expect, Violation, compare_coverage, count_fragments, plural};
@@ -245,7 +245,7 @@ pub fn deep_sample(scene: &Scene, t: usize, margin: f64) -> Option<(u32, u32)> {
         .find(|&(x, y)| {
             let [nx, ny] = sample_ndc(scene.width, scene.height, x, y);
             distance_to_outline(&outline, sample_centre(x, y), |_, _| true) > margin
-                && ray_cast(&tri, nx, ny, &scene.state).is_some()
+                && ray_hits(&tri, nx, ny, &scene.state)
         })
 }
 

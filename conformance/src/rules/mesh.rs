@@ -10,7 +10,7 @@ use super::vertices::{samples_near_vertices_of_three, samples_on_vertices_of_thr
 use super::why;
 use crate::oracle::outline::{OutlinePoint, distance_to_outline, row_reach, visible_outline};
 use crate::oracle::raster::{sample_centre, sample_ndc};
-use crate::oracle::ray_cast::{CutRounding, ray_cast};
+use crate::oracle::ray_cast::{CutRounding, ray_hits};
 use crate::picture::finite_outlines;
 use crate::scene::Scene;
 use crate::violation::{Expect, Violation, compare_coverage, count_fragments};
@@ -102,7 +102,7 @@ pub fn mesh_expectation(scene: &Scene, band: f64, relax: Relax) -> (Vec<Expect>,
                 if !inside[i] {
                     inside[i] = interior.contains(s).unwrap_or_else(|| {
                         let [nx, ny] = sample_ndc(width, height, x, y);
-                        ray_cast(t, nx, ny, &scene.state).is_some()
+                        ray_hits(t, nx, ny, &scene.state)
                     });
                 }
             }
@@ -379,7 +379,7 @@ mod tests {
     use proptest::prelude::*;
 
     use super::*;
-    use crate::oracle::ray_cast::reference_cut_rounding_px;
+    use crate::oracle::ray_cast::{ray_cast, reference_cut_rounding_px};
     use crate::strategy::{clipped_mesh_scene, crossing_scene, fan_scene, mesh_scene, projected_mesh_scene};
 
     /// The expectation sample by sample over every triangle, without boxes, with the cut

@@ -46,8 +46,18 @@ fn ratio(n: &BigInt, d: &BigInt) -> Option<f64> {
     BigRational::new_raw(n.clone(), d.clone()).to_f64()
 }
 
-/// [`super::ray_cast`] decided exactly; `None` for non-finite input.
-pub(super) fn ray_cast_exact(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Option<Hit> {
+/// The exact solve of a visible hit: barycentric numerators, their sum, and the numerators
+/// of z and w (all times one positive factor).
+struct Solved {
+    n: [BigInt; 3],
+    d: BigInt,
+    z: BigInt,
+    w: BigInt,
+}
+
+/// The hit of [`super::ray_cast`] decided exactly, before any ratio; `None` for a miss and
+/// for non-finite input.
+fn solve(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Option<Solved> {
     let flat: Vec<f64> = tri.iter().flatten().copied().collect();
     let (p, _) = common_scale(&flat)?;
     let (q, shift) = common_scale(&[nx, ny])?;
@@ -68,20 +78,35 @@ pub(super) fn ray_cast_exact(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &Draw
     // x / d > 0 and x / d ≥ 0, without dividing.
     let positive = |x: &BigInt| x.sign() == sign;
     let non_negative = |x: &BigInt| x.is_zero() || positive(x);
+    if !n.iter().all(non_negative) {
+        return None;
+    }
     let weighted = |k: usize| &n[0] * c(0, k) + &n[1] * c(1, k) + &n[2] * c(2, k);
     let (z, w) = (weighted(2), weighted(3));
     let near = !state.clip_near || non_negative(&near_distance(state.depth_range, z.clone(), w.clone()));
     let beyond_far = state.clip_far && positive(&(&z - &w));
-    if !n.iter().all(non_negative) || !positive(&w) || !near || beyond_far {
+    if !positive(&w) || !near || beyond_far {
         return None;
     }
+    Some(Solved { n, d, z, w })
+}
+
+/// [`super::ray_cast`] decided exactly; `None` for non-finite input.
+pub(super) fn ray_cast_exact(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Option<Hit> {
+    let Solved { n, d, z, w } = solve(tri, nx, ny, state)?;
     let zw = ratio(&z, &w)?;
     let depth = window_depth(state, zw);
     Some(Hit {
         barycentric: [ratio(&n[0], &d)?, ratio(&n[1], &d)?, ratio(&n[2], &d)?],
         depth,
-        clockwise: sign == Sign::Minus,
+        clockwise: d.sign() == Sign::Minus,
     })
+}
+
+/// Whether [`ray_cast_exact`] hits, without its ratios: the same decisions (its ratios have
+/// non-zero denominators, so each is an f64).
+pub(super) fn ray_hits_exact(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> bool {
+    solve(tri, nx, ny, state).is_some()
 }
 
 #[cfg(test)]
@@ -165,7 +190,9 @@ mod tests {
             ny in coordinate(),
             state in state(),
         ) {
-            prop_assert_eq!(ray_cast_exact(&tri, nx, ny, &state), ray_cast_rational(&tri, nx, ny, &state));
+            let hit = ray_cast_exact(&tri, nx, ny, &state);
+            prop_assert_eq!(ray_hits_exact(&tri, nx, ny, &state), hit.is_some());
+            prop_assert_eq!(hit, ray_cast_rational(&tri, nx, ny, &state));
         }
     }
 

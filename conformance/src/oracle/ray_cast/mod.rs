@@ -46,6 +46,16 @@ pub fn ray_cast(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Opt
     }
 }
 
+/// Whether the ray through NDC point `(nx, ny)` hits `tri`: [`ray_cast`]`.is_some()`, with
+/// no ratio computed where the exact solve decides.
+#[must_use]
+pub fn ray_hits(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> bool {
+    match ray_cast_f64(tri, nx, ny, state) {
+        Filtered::Sure(hit) => hit.is_some(),
+        Filtered::Unsure => exact::ray_hits_exact(tri, nx, ny, state),
+    }
+}
+
 enum Filtered {
     Sure(Option<Hit>),
     Unsure,
@@ -212,6 +222,7 @@ mod tests {
                 ..DrawState::default()
             };
             let decision = |h: Option<Hit>| h.map(|h| h.clockwise);
+            prop_assert_eq!(ray_hits(&tri, nx, ny, &state), decision(ray_cast(&tri, nx, ny, &state)).is_some());
             prop_assert_eq!(
                 decision(ray_cast(&tri, nx, ny, &state)),
                 decision(exact::ray_cast_exact(&tri, nx, ny, &state))

@@ -134,8 +134,10 @@ pub fn mesh_expectation(scene: &Scene, band: f64, relax: Relax) -> (Vec<Expect>,
                     continue;
                 }
                 let d = distance_to_outline(o, s, cut);
-                // The rounding is never negative: within the band, it need not be computed.
-                near_boundary[i] = d < band || (d.is_finite() && d < band + rounding.at(s));
+                // The rounding is never negative: within the band, it need not be computed;
+                // nor beyond the band and the row's bound on it.
+                near_boundary[i] =
+                    d < band || (d.is_finite() && d < band + bound && d < band + rounding.at(s));
             }
         }
     }

@@ -133,17 +133,13 @@ fn ray_cast_f64(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Fil
     let (nz, nw) = (weighted(2), weighted(3));
     let near = near_distance(state.depth_range, nz, nw);
     let far = sub(nw, nz);
-    let mut signs = vec![d, n[0], n[1], n[2], nw];
-    if state.clip_near {
-        signs.push(near);
-    }
-    if state.clip_far {
-        signs.push(far);
-    }
     // A value exactly zero may be decisive (a sample on an edge): let the exact path say,
     // unless a sure denominator and a sure sign already make it a miss (a sample on one edge
     // of a triangle and outside another, in a mesh: most fallbacks, issue 47).
-    if !signs.iter().all(|s| s.sure()) {
+    let signs_sure = [d, n[0], n[1], n[2], nw].iter().all(|s| s.sure())
+        && (!state.clip_near || near.sure())
+        && (!state.clip_far || far.sure());
+    if !signs_sure {
         let s = d.v.signum();
         let misses = |x: &Bounded| x.sure() && x.v * s < 0.0;
         let missed = n.iter().any(misses)

@@ -1,7 +1,8 @@
-//! A rasterizer that hangs, aborts, prints to stdout, allocates without bound, floods stdout
+//! A rasterizer that hangs, aborts (always, or once), prints to stdout, allocates without bound, floods stdout
 //! without a newline or leaves a grandchild behind, run as `certify` runs rules: in a child
 //! process. The hang and the abort fail the rule with a message naming what happened and the
-//! case it happened on; the noise does no harm; the allocation meets the memory limit and
+//! case it happened on (found again by a second run; an abort that run does not repeat is
+//! said to be so); the noise does no harm; the allocation meets the memory limit and
 //! fails its rule saying so; the flood costs refrast no memory; the grandchild does not outlive
 //! the rule; a profile the suite cannot judge is refused by the child before the rule runs, in
 //! a child as in this process. (This file is its own harness: started with `ISOLATION_CHILD`
@@ -42,6 +43,14 @@ impl Rasterizer for Misbehaving {
             "abort" if far => {
                 eprintln!("about to abort on purpose");
                 std::process::abort();
+            }
+            "flaky" if far => {
+                // Aborts in the first process only: a second run goes past the case.
+                let marker = std::env::var_os("ISOLATION_FLAKY_FILE").unwrap_or_default();
+                if std::fs::exists(&marker).is_ok_and(|there| !there) {
+                    let _ = std::fs::write(&marker, "aborted once");
+                    std::process::abort();
+                }
             }
             "noise" => println!("a line the rasterizer prints on its own"),
             "hog" if far => hog(),
@@ -88,6 +97,11 @@ fn flood() {
     }
 }
 
+/// The file whose absence makes the flaky rasterizer abort (and which it then writes).
+fn flaky_file() -> std::path::PathBuf {
+    std::env::temp_dir().join(format!("refrast-isolation-flaky-{}", std::process::id()))
+}
+
 /// Where the grandchild writes its process ID (named by the test's process, passed down).
 fn grandchild_file() -> std::path::PathBuf {
     std::env::temp_dir().join(format!("refrast-isolation-grandchild-{}", std::process::id()))
@@ -122,7 +136,8 @@ fn main() {
         let mut child = Command::new(std::env::current_exe().expect("this test binary"));
         child
             .env("ISOLATION_CHILD", kind)
-            .env("ISOLATION_PID_FILE", grandchild_file());
+            .env("ISOLATION_PID_FILE", grandchild_file())
+            .env("ISOLATION_FLAKY_FILE", flaky_file());
         let start = Instant::now();
         let ChildRun::Ran(report, _) = run_rule_isolated(&rule, child, options) else {
             panic!("the misbehaving rasterizer builds anywhere");
@@ -150,7 +165,24 @@ fn main() {
         message.contains("about to abort on purpose"),
         "stderr is shown: {message}"
     );
-    assert!(abort.counterexample.is_some(), "the case it aborted on is named");
+    let case = abort.counterexample.clone().unwrap_or_default();
+    assert!(
+        case.contains("positions"),
+        "the case it aborted on is named: {case}"
+    );
+
+    // An abort a second run does not repeat: the case goes unnamed, and the message says why.
+    let _ = std::fs::remove_file(flaky_file());
+    let (flaky, _) = run("flaky");
+    let _ = std::fs::remove_file(flaky_file());
+    assert_eq!(flaky.status, Status::Crash, "{flaky:#?}");
+    let message = flaky.message.clone().unwrap_or_default();
+    assert!(message.contains("SIGABRT"), "{message}");
+    assert!(
+        message.contains("a second run, to name that input, did not stop on it"),
+        "{message}"
+    );
+    assert_eq!(flaky.counterexample, None);
 
     let (noise, _) = run("noise");
     assert_eq!(noise.status, Status::Pass, "{noise:#?}");
@@ -220,7 +252,8 @@ fn main() {
     );
 
     println!(
-        "isolation: a hang timed out and an abort crashed its rule, each with a message; noise did no harm; an \
+        "isolation: a hang timed out and an abort crashed its rule, each with a message and its case (an abort \
+         a second run did not repeat, without); noise did no harm; an \
          allocation without bound met the memory limit; a flood cost no memory; a grandchild did not outlive its \
          rule; an unjudgeable profile was refused"
     );

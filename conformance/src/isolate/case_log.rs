@@ -2,10 +2,12 @@
 //! parent can name the input a crash or a hang happened on without hearing from every case.
 //!
 //! A protocol line per case woke the parent once a case: a sixth of `certify`'s time on the
-//! reference went to those wake-ups. The log is one positioned write a case and is read only
-//! when the parent polls for progress and when the child ends without a report. A write to a
-//! regular file is whole once the call returns, so a child killed by a signal leaves the last
-//! input complete. The file is `"{count:020} {len:020}\n"` then `len` bytes of the input as Rust.
+//! reference went to those wake-ups, and a tenth more to writing each input as Rust. The log
+//! is one positioned write a case, of the count alone until case [`CASE_TEXT_FROM_ENV`] (a
+//! second run's, naming the case the first stopped on), and is read only when the parent polls
+//! for progress and when the child ends without a report. A write to a regular file is whole
+//! once the call returns, so a child killed by a signal leaves the last input complete. The
+//! file is `"{count:020} {len:020}\n"` then `len` bytes of the input as Rust (none: no text).
 
 use std::fmt::{Debug, Write as _};
 use std::fs::{File, OpenOptions};
@@ -18,6 +20,10 @@ use tempfile::NamedTempFile;
 
 /// The environment variable that gives a child its log's path.
 pub(super) const CASE_LOG_ENV: &str = "REFRAST_CASE_LOG";
+
+/// The environment variable that makes a child write the text of each input from the one with
+/// this number (counting from 1) on: unset, no text.
+pub(super) const CASE_TEXT_FROM_ENV: &str = "REFRAST_CASE_TEXT_FROM";
 
 /// Bytes of the header: two 20-digit numbers, a space and a newline.
 const HEADER: usize = 42;
@@ -60,10 +66,11 @@ impl CaseLog {
         self.header().0
     }
 
-    /// The last input announced, as Rust: `None` before the first.
+    /// The last input announced, as Rust: `None` before the first and where it was logged
+    /// without its text.
     pub(super) fn last(&self) -> Option<String> {
         let (count, len) = self.header();
-        if count == 0 {
+        if count == 0 || len == 0 {
             return None;
         }
         let kept = len.min(MAX_INPUT);
@@ -77,29 +84,35 @@ impl CaseLog {
     }
 }
 
-/// The child's side: the open log, the inputs written so far, and a buffer kept between calls.
+/// The child's side: the open log, the inputs written so far, the first whose text it writes,
+/// and a buffer kept between calls.
 struct Writer {
     file: File,
     count: u64,
+    text_from: u64,
     text: String,
 }
 
 impl Writer {
-    /// Opens the log at `path` for writing.
-    fn open(path: &Path) -> io::Result<Self> {
+    /// Opens the log at `path` for writing, with the text of inputs from number `text_from` on.
+    fn open(path: &Path, text_from: u64) -> io::Result<Self> {
         Ok(Writer {
             file: OpenOptions::new().write(true).open(path)?,
             count: 0,
+            text_from,
             text: String::new(),
         })
     }
 
-    /// Writes `input` as the last one, counting it, in one positioned write.
+    /// Writes `input` as the last one, counting it, in one positioned write: its text only
+    /// from input `text_from` on.
     fn write(&mut self, input: &dyn Debug) {
         self.count += 1;
         self.text.clear();
         self.text.extend(std::iter::repeat_n(' ', HEADER));
-        let _ = write!(self.text, "{input:?}");
+        if self.count >= self.text_from {
+            let _ = write!(self.text, "{input:?}");
+        }
         let header = format!("{:020} {:020}\n", self.count, self.text.len() - HEADER);
         self.text.replace_range(..HEADER, &header);
         // A parent that cannot read the log names no input; nothing better to do on failure.
@@ -116,7 +129,11 @@ static WRITER: OnceLock<Option<Mutex<Writer>>> = OnceLock::new();
 pub(super) fn write(input: &dyn Debug) -> bool {
     let writer = WRITER.get_or_init(|| {
         let path = std::env::var_os(CASE_LOG_ENV)?;
-        Writer::open(Path::new(&path)).ok().map(Mutex::new)
+        let text_from = std::env::var(CASE_TEXT_FROM_ENV)
+            .ok()
+            .and_then(|n| n.parse().ok())
+            .unwrap_or(u64::MAX);
+        Writer::open(Path::new(&path), text_from).ok().map(Mutex::new)
     });
     let Some(writer) = writer else {
         return false;
@@ -130,15 +147,17 @@ mod tests {
     use super::*;
 
     /// The last input written is read back whole after a longer one, with the count; a log
-    /// never written names none.
+    /// never written, or written before the first input with text, names none.
     #[test]
     fn the_last_input_is_read_back() {
         let log = CaseLog::new().expect("a temp file");
         assert_eq!((log.count(), log.last()), (0, None));
-        let mut writer = Writer::open(log.path()).expect("the log opens");
+        let mut writer = Writer::open(log.path(), 2).expect("the log opens");
+        writer.write(&vec![1.5f32; 100]);
+        assert_eq!((log.count(), log.last()), (1, None), "before input 2, no text");
         writer.write(&vec![1.5f32; 100]);
         writer.write(&("positions", [0.25f32, -1.0]));
-        assert_eq!(log.count(), 2);
+        assert_eq!(log.count(), 3);
         assert_eq!(log.last().as_deref(), Some("(\"positions\", [0.25, -1.0])"));
     }
 
@@ -146,7 +165,7 @@ mod tests {
     #[test]
     fn a_huge_input_is_cut() {
         let log = CaseLog::new().expect("a temp file");
-        let mut writer = Writer::open(log.path()).expect("the log opens");
+        let mut writer = Writer::open(log.path(), 1).expect("the log opens");
         writer.write(&"x".repeat(usize::try_from(MAX_INPUT).unwrap_or(0) + 10));
         let last = log.last().unwrap_or_default();
         assert!(last.starts_with("\"xxx"), "{}", &last[..10]);

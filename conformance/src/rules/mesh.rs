@@ -10,7 +10,7 @@ use super::vertices::{samples_near_vertices_of_three, samples_on_vertices_of_thr
 use super::why;
 use crate::oracle::outline::{OutlinePoint, distance_to_outline, row_reach, visible_outline};
 use crate::oracle::raster::{sample_centre, sample_ndc};
-use crate::oracle::ray_cast::{CutRounding, ray_hits};
+use crate::oracle::ray_cast::{CutRounding, HitTest};
 use crate::picture::finite_outlines;
 use crate::scene::Scene;
 use crate::violation::{Expect, Violation, compare_coverage, count_fragments};
@@ -70,6 +70,7 @@ pub fn mesh_expectation(scene: &Scene, band: f64, relax: Relax) -> (Vec<Expect>,
         // Only samples this triangle can reach: within `band` of its outline, or inside it.
         let [xs, ys] = Reach::of(o).samples(band, width, height);
         let interior = Interior::of(o);
+        let hit_test = HitTest::new(t, &scene.state);
         // Segments not lying on a shared input edge (the boundary and the cuts), and segments
         // ending at a cut vertex; an outline with none (a mesh's inner triangle, an unclipped
         // one) is at no distance from any sample.
@@ -102,7 +103,7 @@ pub fn mesh_expectation(scene: &Scene, band: f64, relax: Relax) -> (Vec<Expect>,
                 if !inside[i] {
                     inside[i] = interior.contains(s).unwrap_or_else(|| {
                         let [nx, ny] = sample_ndc(width, height, x, y);
-                        ray_hits(t, nx, ny, &scene.state)
+                        hit_test.hits(nx, ny)
                     });
                 }
             }

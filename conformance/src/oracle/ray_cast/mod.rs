@@ -8,11 +8,13 @@
 
 mod cut_rounding;
 mod exact;
+mod hit_test;
 mod spread;
 
 pub use cut_rounding::CutRounding;
 #[cfg(test)]
 pub(crate) use cut_rounding::reference::cut_rounding_px as reference_cut_rounding_px;
+pub use hit_test::HitTest;
 pub use spread::spread;
 
 use refrast::DrawState;

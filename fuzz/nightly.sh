@@ -13,6 +13,7 @@
 #
 # Environment: FUZZ_TIMEOUT (s per input before libFuzzer calls it a hang, default 60),
 # FUZZ_RSS_MB (memory limit, default 2048), FUZZ_SKIP_CMIN=1 (keep the corpus as it grew),
+# FUZZ_TRACE_COMPARES=1 (libFuzzer's comparison tracing back on; off by default, fuzz/args.sh),
 # FUZZ_UPDATE_SEEDS=1 (replace fuzz/seeds/T by the fewest inputs of corpus and seeds that keep
 # their coverage, libFuzzer's -set_cover_merge; review and commit them).
 # Exit: 0 no crash; 1 a target crashed or hung; 2 bad usage or cargo-fuzz cannot be installed;
@@ -34,7 +35,7 @@ fi
 # The sanitizer build needs nightly; stable builds the same targets with -s none.
 build() {
   for t in "${targets[@]}"; do
-    "${fuzz[@]}" build "${sanitizer[@]}" "$t" || return 1
+    "${fuzz[@]}" build "${sanitizer[@]}" "${instrument[@]}" "$t" || return 1
   done
 }
 built=0
@@ -75,21 +76,21 @@ for t in "${targets[@]}"; do
   before_artifacts=$(failures "artifacts/$t")
   echo "== fuzzing $t for ${seconds} s (corpus: $(count "corpus/$t") kept, $(count "$seeds") seeds, $(count "regressions/$t") reproducers)"
   log="$logs/$t.log"
-  "${fuzz[@]}" run "${sanitizer[@]}" "$t" "corpus/$t" "$seeds" "regressions/$t" -- \
+  "${fuzz[@]}" run "${sanitizer[@]}" "${instrument[@]}" "$t" "corpus/$t" "$seeds" "regressions/$t" -- \
     -max_total_time="$seconds" -timeout="${FUZZ_TIMEOUT:-60}" -rss_limit_mb="${FUZZ_RSS_MB:-2048}" \
     -print_final_stats=1 >"$log" 2>&1
   status=$?
   tail -n 3 "$log" | sed 's/^/   /'
   grown=$(count "corpus/$t")
   if [[ ${FUZZ_SKIP_CMIN:-0} != 1 ]] && ((grown > 0)); then
-    "${fuzz[@]}" cmin "${sanitizer[@]}" "$t" "corpus/$t" -- -timeout="${FUZZ_TIMEOUT:-60}" >"$logs/$t.cmin" 2>&1 ||
+    "${fuzz[@]}" cmin "${sanitizer[@]}" "${instrument[@]}" "$t" "corpus/$t" -- -timeout="${FUZZ_TIMEOUT:-60}" >"$logs/$t.cmin" 2>&1 ||
       echo "   cmin failed for $t (corpus kept as it grew); see its log above" >&2
   fi
   if [[ ${FUZZ_UPDATE_SEEDS:-0} == 1 && $seeds != "seeds/$t" ]]; then
     echo "   $t shares $seeds with another target: left as it was"
   elif [[ ${FUZZ_UPDATE_SEEDS:-0} == 1 ]]; then
     fresh=$(mktemp -d)
-    if "${fuzz[@]}" run "${sanitizer[@]}" "$t" "$fresh" "corpus/$t" "seeds/$t" -- -set_cover_merge=1 \
+    if "${fuzz[@]}" run "${sanitizer[@]}" "${instrument[@]}" "$t" "$fresh" "corpus/$t" "seeds/$t" -- -set_cover_merge=1 \
       -timeout="${FUZZ_TIMEOUT:-60}" >"$logs/$t.seeds" 2>&1; then
       rm -f "seeds/$t"/* && mv "$fresh"/* "seeds/$t"/ 2>/dev/null
       echo "   seeds/$t now holds $(count "seeds/$t") inputs"

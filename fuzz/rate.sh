@@ -6,7 +6,8 @@
 #   fuzz/rate.sh [SECONDS] [TARGET...]      (default: 10 s a target, every target)
 #
 # Each target runs for SECONDS (-max_total_time, -seed=1, so the same inputs in the same
-# order) into a scratch corpus, pinned to CPU 0 (taskset, when present); nothing is written to
+# order) into a scratch corpus, pinned to CPU 0 (taskset, when present), with comparison tracing
+# as fuzz/nightly.sh has it (FUZZ_TRACE_COMPARES, fuzz/args.sh); nothing is written to
 # fuzz/corpus or fuzz/seeds. Prints a table: target, executions, exec/s (libFuzzer's average). Exit 2 on bad usage or without cargo-fuzz, 3 when the
 # targets do not build.
 set -uo pipefail
@@ -20,8 +21,8 @@ if ! cargo fuzz --version >/dev/null 2>&1; then
   exit 2
 fi
 for t in "${targets[@]}"; do
-  cargo fuzz build -s none "$t" >/dev/null 2>&1 || {
-    echo "fuzz/rate.sh: $t does not build (cargo fuzz build -s none $t)" >&2
+  cargo fuzz build -s none "${instrument[@]}" "$t" >/dev/null 2>&1 || {
+    echo "fuzz/rate.sh: $t does not build (cargo fuzz build -s none ${instrument[*]} $t)" >&2
     exit 3
   }
 done
@@ -34,7 +35,7 @@ printf '%-13s %10s %9s\n' target executions exec/s
 for t in "${targets[@]}"; do
   mkdir -p "$scratch/$t" "regressions/$t"
   log="$scratch/$t.log"
-  "${pin[@]}" cargo fuzz run -s none "$t" "$scratch/$t" "$(seeds_of "$t")" "regressions/$t" -- \
+  "${pin[@]}" cargo fuzz run -s none "${instrument[@]}" "$t" "$scratch/$t" "$(seeds_of "$t")" "regressions/$t" -- \
     -max_total_time="$seconds" -seed=1 -print_final_stats=1 >"$log" 2>&1
   status=$?
   execs=$(awk '$1 == "stat::number_of_executed_units:" { print $2 }' "$log" | tail -n 1)

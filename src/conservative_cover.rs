@@ -17,7 +17,7 @@ use crate::conservative::Conservative;
 use crate::draw::{Draw, Fragment};
 use crate::error::DrawError;
 use crate::fixed::FixedPoint;
-use crate::front::{FrontSetup, front_end};
+use crate::front::FrontSetup;
 use crate::lines_points_samples::Offsets;
 use crate::project::RasterVertex;
 use crate::reference::{DrawStats, Reference, Sample, Scratch};
@@ -140,18 +140,10 @@ impl Reference {
         };
         for primitive in 0..setup.triangles.len() {
             // Zero area once snapped is a degenerate triangle: culled, as declared.
-            let kept = match front_end(&setup, primitive, setup.corners(primitive), &mut scratch.front) {
-                Ok(kept) => kept,
-                Err(discard) => {
-                    stats.count(discard);
-                    continue;
-                }
+            let Some(kept) = stats.admit(&setup, primitive, &mut scratch.front) else {
+                continue;
             };
-            stats.traversed += 1;
-            let polygon: Vec<RasterVertex> = match &kept.whole {
-                Some(t) => t.vertices.to_vec(),
-                None => scratch.front.raster.clone(),
-            };
+            let polygon = kept.polygon(&scratch.front);
             build_fan(&polygon, config.fill, &mut fan);
             let agreeing: Vec<&FanTriangle> =
                 fan.iter().filter(|t| t.setup.winding() == kept.winding).collect();

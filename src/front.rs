@@ -149,6 +149,17 @@ pub struct Kept {
     pub depth_offset: f64,
 }
 
+impl Kept {
+    /// Its snapped polygon: the triangle's corners, or the clipped polygon in `scratch`.
+    #[must_use]
+    pub fn polygon(&self, scratch: &FrontScratch) -> Vec<RasterVertex> {
+        match &self.whole {
+            Some(t) => t.vertices.to_vec(),
+            None => scratch.raster.clone(),
+        }
+    }
+}
+
 /// Takes triangle `primitive`, whose corners are `corners` (as [`FrontSetup::corners`] gives
 /// them), through the front end: kept, or why it draws nothing.
 ///

@@ -29,7 +29,7 @@ use crate::distance::CornerDistances;
 use crate::draw::{Draw, Fragment};
 use crate::error::DrawError;
 use crate::fixed::FixedPoint;
-use crate::front::{Discard, FrontSetup, front_end};
+use crate::front::{Discard, FrontSetup};
 use crate::interp::interpolate;
 use crate::primitive::{PointClipping, SamplePattern, Topology};
 use crate::project::{RasterVertex, ViewportTransform};
@@ -166,18 +166,10 @@ impl Reference {
             ..DrawStats::default()
         };
         for primitive in 0..setup.triangles.len() {
-            let kept = match front_end(&setup, primitive, setup.corners(primitive), &mut scratch.front) {
-                Ok(kept) => kept,
-                Err(discard) => {
-                    stats.count(discard);
-                    continue;
-                }
+            let Some(kept) = stats.admit(&setup, primitive, &mut scratch.front) else {
+                continue;
             };
-            stats.traversed += 1;
-            let polygon: Vec<RasterVertex> = match &kept.whole {
-                Some(t) => t.vertices.to_vec(),
-                None => scratch.front.raster.clone(),
-            };
+            let polygon = kept.polygon(&scratch.front);
             let depth = FragmentDepth::new(draw.state.viewport_depth, kept.depth_offset);
             pixels.clear();
             for (k, &(ox, oy)) in offsets.iter().enumerate() {

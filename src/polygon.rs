@@ -8,7 +8,7 @@ use crate::bias::FragmentDepth;
 use crate::config::{ReferenceConfig, Traversal};
 use crate::distance::CornerDistances;
 use crate::draw::{Draw, Fragment};
-use crate::front::{FrontScratch, FrontSetup, front_end};
+use crate::front::{FrontScratch, FrontSetup};
 use crate::lines_points_samples::{Offsets, Owner};
 use crate::reference::{DrawStats, Reference};
 use crate::state::PolygonMode;
@@ -40,14 +40,9 @@ impl Reference {
             ..DrawStats::default()
         };
         for primitive in 0..setup.triangles.len() {
-            let kept = match front_end(&setup, primitive, setup.corners(primitive), &mut scratch) {
-                Ok(kept) => kept,
-                Err(discard) => {
-                    stats.count(discard);
-                    continue;
-                }
+            let Some(kept) = stats.admit(&setup, primitive, &mut scratch) else {
+                continue;
             };
-            stats.traversed += 1;
             let owner = Owner {
                 primitive: primitive as u32,
                 front_facing: kept.front_facing,

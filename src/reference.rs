@@ -6,7 +6,7 @@ use crate::draw::{Draw, Fragment};
 use crate::error::DrawError;
 use crate::features::{Features, SnapAccuracy, StateSupport};
 use crate::fixed::SnapRounding;
-use crate::front::{Discard, FrontScratch, FrontSetup, front_end};
+use crate::front::{Discard, FrontScratch, FrontSetup, Kept, front_end};
 use crate::interp::{Varyings, interpolate, interpolate_depth, screen_weights};
 use crate::primitive::{SAMPLE_COUNTS, SamplePattern};
 use crate::profile::{DepthConvention, Profile, Snapping, Spec};
@@ -37,6 +37,26 @@ pub struct DrawStats {
 }
 
 impl DrawStats {
+    /// Triangle `primitive` through [`front_end`], counted: traversed where kept, else by why
+    /// it draws nothing. The one front-end loop of every per-triangle drawing path.
+    pub(crate) fn admit(
+        &mut self,
+        setup: &FrontSetup<'_>,
+        primitive: usize,
+        scratch: &mut FrontScratch,
+    ) -> Option<Kept> {
+        match front_end(setup, primitive, setup.corners(primitive), scratch) {
+            Ok(kept) => {
+                self.traversed += 1;
+                Some(kept)
+            }
+            Err(discard) => {
+                self.count(discard);
+                None
+            }
+        }
+    }
+
     pub(crate) fn count(&mut self, discard: Discard) {
         *match discard {
             Discard::NonFinite => &mut self.non_finite,

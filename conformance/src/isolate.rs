@@ -5,9 +5,10 @@
 //! the test binary itself for [`crate::run_as_tests`]). The child builds the rasterizer, runs
 //! the rule with [`serve_rule`] and speaks one JSON object a line on its stdout, each after
 //! [`MARK`]: its profile (or why it cannot be built here), then the report. Every case is
-//! counted in a [`case_log`] before it is checked (or, in a child started without one, sent
-//! as a line with its text); a child that stops without a report is run again to write the
-//! text of the case it stopped on ([`watch`]). Lines without the mark are the rasterizer's own output and are kept for
+//! counted in a case log (`isolate/case_log.rs`) before it is checked (or, in a child started
+//! without one, sent as a line with its text); a child that stops without a report is run
+//! again to write the text of the case it stopped on (`isolate/watch.rs`). Lines without the
+//! mark are the rasterizer's own output and are kept for
 //! the failure message. Building in the child means an implementation that needs its own
 //! environment (a driver chosen by an environment variable) gets it there.
 //!

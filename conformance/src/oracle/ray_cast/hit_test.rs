@@ -9,8 +9,7 @@
 
 use refrast::DrawState;
 
-use super::{Bounded, add, exact, mul, sub};
-use crate::oracle::raster::near_distance;
+use super::{Bounded, Sums, add, exact, mul, sub};
 
 /// One triangle's numerators as affine functions of the ray's NDC point, with error bounds.
 pub struct HitTest {
@@ -51,37 +50,9 @@ impl HitTest {
         let n = self
             .n
             .map(|[c0, c1, c2]| add(add(c0, mul(c1, e(nx))), mul(c2, e(ny))));
-        let d = add(add(n[0], n[1]), n[2]);
-        let weighted = |k: usize| {
-            add(
-                add(mul(n[0], e(self.tri[0][k])), mul(n[1], e(self.tri[1][k]))),
-                mul(n[2], e(self.tri[2][k])),
-            )
-        };
-        let (nz, nw) = (weighted(2), weighted(3));
-        let state = &self.state;
-        let near = near_distance(state.depth_range, nz, nw);
-        let far = sub(nw, nz);
-        let s = d.v.signum();
-        // Hit: every numerator, w and the enabled plane distances of the denominator's sign.
-        let signs_sure = [d, n[0], n[1], n[2], nw].iter().all(|b| b.sure())
-            && (!state.clip_near || near.sure())
-            && (!state.clip_far || far.sure());
-        if signs_sure {
-            return n.iter().all(|ni| ni.v * s > 0.0)
-                && nw.v * s > 0.0
-                && (!state.clip_near || near.v * s > 0.0)
-                && (!state.clip_far || far.v * s > 0.0);
-        }
-        let misses = |x: &Bounded| x.sure() && x.v * s < 0.0;
-        let missed = n.iter().any(misses)
-            || misses(&nw)
-            || (state.clip_near && misses(&near))
-            || (state.clip_far && misses(&far));
-        if d.sure() && missed {
-            return false;
-        }
-        exact::ray_hits_exact(&self.tri, nx, ny, state)
+        Sums::of(&self.tri, &n)
+            .decide(&n, &self.state)
+            .unwrap_or_else(|| exact::ray_hits_exact(&self.tri, nx, ny, &self.state))
     }
 }
 
@@ -91,44 +62,14 @@ mod tests {
 
     use super::*;
     use crate::oracle::ray_cast::ray_hits;
-
-    /// Coordinates where the bounds matter: integers and halves (rays through edges and
-    /// vertices), small ranges, and extremes of f32.
-    fn coordinate() -> impl Strategy<Value = f64> {
-        prop_oneof![
-            4 => (-4i32..=4).prop_map(|k| f64::from(k) * 0.5),
-            4 => -2.0f64..2.0,
-            1 => (-30000.0f32..30000.0).prop_map(f64::from),
-            1 => prop_oneof![Just(1e-30), Just(-3e-38), Just(3e38), Just(0.0), Just(-0.0)],
-        ]
-    }
+    use crate::oracle::ray_cast::tests::ray_case;
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(3000))]
 
-        /// The set-up numerators decide every ray as `ray_hits` does: rays on edges and
-        /// through vertices, triangles nearly edge-on, every clipping state.
+        /// The set-up numerators decide every ray as `ray_hits` does.
         #[test]
-        fn set_up_numerators_decide_as_ray_hits(
-            tri in prop::array::uniform3(prop::array::uniform4(coordinate())),
-            nx in prop_oneof![(-4i32..=4).prop_map(|k| f64::from(k) * 0.5), -2.0f64..2.0],
-            ny in prop_oneof![(-4i32..=4).prop_map(|k| f64::from(k) * 0.5), -2.0f64..2.0],
-            clip in (any::<bool>(), any::<bool>(), any::<bool>()),
-            (on_edge, edge_on, t, u) in (any::<bool>(), any::<bool>(), 0.0f64..1.0, -0.5f64..1.5),
-        ) {
-            let mut tri = tri;
-            if edge_on {
-                tri[2] = std::array::from_fn(|k| tri[0][k] + u * (tri[1][k] - tri[0][k]));
-            }
-            let ndc = |p: [f64; 4]| [p[0] / p[3], p[1] / p[3]];
-            let (a, b) = (ndc(tri[0]), ndc(tri[1]));
-            let (nx, ny) = if on_edge { (a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])) } else { (nx, ny) };
-            let state = DrawState {
-                depth_range: if clip.0 { refrast::DepthRange::NegativeOneToOne } else { refrast::DepthRange::ZeroToOne },
-                clip_near: clip.1,
-                clip_far: clip.2,
-                ..DrawState::default()
-            };
+        fn set_up_numerators_decide_as_ray_hits((tri, nx, ny, state) in ray_case()) {
             prop_assert_eq!(HitTest::new(&tri, &state).hits(nx, ny), ray_hits(&tri, nx, ny, &state));
         }
     }

@@ -44,6 +44,7 @@ impl FillConvention {
     /// `(sx·ε, sy·ε²)`; the edge function then changes by `(a.y − b.y)·sx·ε + (b.x − a.x)·sy·ε²`,
     /// whose sign is that of the first term unless the edge is horizontal.
     #[must_use]
+    #[inline]
     pub fn owns_edge(self, a: FixedPoint, b: FixedPoint) -> bool {
         let (sx, sy) = match self {
             Self::TopLeft => (1, 1),
@@ -95,6 +96,7 @@ pub struct EdgeFunction {
 impl EdgeFunction {
     /// Sets up edge `a → b` of a clockwise triangle under `fill`.
     #[must_use]
+    #[inline]
     pub fn new(a: FixedPoint, b: FixedPoint, fill: FillConvention) -> Self {
         Self {
             origin: a,

@@ -45,7 +45,7 @@ impl DrawStats {
         primitive: usize,
         scratch: &mut FrontScratch,
     ) -> Option<Kept> {
-        match front_end(setup, primitive, setup.corners(primitive), scratch) {
+        match front_end(setup, primitive, setup.corners(primitive).each_ref(), scratch) {
             Ok(kept) => {
                 self.traversed += 1;
                 Some(kept)
@@ -153,9 +153,14 @@ impl Reference {
         scratch: &mut Scratch,
         visit: &mut impl FnMut(&Sample<'_>),
     ) -> Result<usize, Discard> {
-        let kept = front_end(setup, primitive, setup.corners(primitive), &mut scratch.front)?;
+        let kept = front_end(
+            setup,
+            primitive,
+            setup.corners(primitive).each_ref(),
+            &mut scratch.front,
+        )?;
         // Drawn whole, a triangle is its own fan; clipped, its polygon's fan is in the scratch.
-        let whole = kept.whole.map(|t| (t.vertices, [FanTriangle::whole(t.setup)]));
+        let whole = kept.whole.map(|t| (t.vertices(), [FanTriangle::whole(t.setup)]));
         let (raster, fan): (&[RasterVertex], &[FanTriangle]) = match &whole {
             Some((vertices, fan)) => (vertices, fan),
             None => (&scratch.front.raster, &scratch.front.fan),

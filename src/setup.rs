@@ -140,8 +140,8 @@ pub fn clipped_winding(input: &[ClipVertex; 3], snapped_area2: impl FnOnce() -> 
 /// An input triangle projected and snapped as it was given, before clipping, with nonzero area.
 #[derive(Clone, Copy, Debug)]
 pub struct SnappedTriangle {
-    /// The projected vertices, in input order.
-    pub vertices: [RasterVertex; 3],
+    /// The projected corners, in input order ([`SnappedTriangle::vertices`] with barycentrics).
+    pub points: [ProjectedPoint; 3],
     /// Its setup, which holds its signed area, computed once.
     pub setup: TriangleSetup,
 }
@@ -177,10 +177,15 @@ impl SnappedTriangle {
     #[inline]
     pub fn new(points: [ProjectedPoint; 3], fill: FillConvention) -> Option<Self> {
         let setup = TriangleSetup::new(points.map(|p| p.position), fill)?;
-        Some(Self {
-            vertices: [0, 1, 2].map(|k| points[k].corner(k)),
-            setup,
-        })
+        Some(Self { points, setup })
+    }
+
+    /// The projected vertices, in input order, each with its own barycentrics: built when
+    /// asked, since they are the same unit vectors for every triangle drawn whole.
+    #[must_use]
+    #[inline]
+    pub fn vertices(&self) -> [RasterVertex; 3] {
+        [0, 1, 2].map(|k| self.points[k].corner(k))
     }
 }
 
@@ -201,7 +206,10 @@ pub struct TriangleSetup {
 
 impl TriangleSetup {
     /// Sets up `v` under `fill`, computing its signed area once; `None` for a zero-area triangle.
+    ///
+    /// Inlined, so that a batched front end builds it in place rather than copying it.
     #[must_use]
+    #[inline]
     pub fn new(v: [FixedPoint; 3], fill: FillConvention) -> Option<Self> {
         let area2 = orient2d(v[0], v[1], v[2]);
         let winding = Winding::from_area2(area2);

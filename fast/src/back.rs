@@ -72,28 +72,31 @@ impl EdgeSteps {
         let origin = setup.edge_values(sample(0, 0));
         let (right, down) = (setup.edge_values(sample(1, 0)), setup.edge_values(sample(0, 1)));
         let far = 1 << 60;
+        // Written out, not `[0, 1, 2].map`: this runs once per triangle, and the closures were
+        // not inlined (a tenth of a frame of a million small triangles).
         let mut steps = Self {
             origin,
-            dx: [0, 1, 2].map(|k| right[k] - origin[k]),
-            dy: [0, 1, 2].map(|k| down[k] - origin[k]),
-            bias: [0, 1, 2].map(|k| {
-                let mut on_edge = [far; 3];
-                on_edge[k] = 0;
-                if setup.is_inside(on_edge) { 0 } else { -1 }
-            }),
+            dx: [right[0] - origin[0], right[1] - origin[1], right[2] - origin[2]],
+            dy: [down[0] - origin[0], down[1] - origin[1], down[2] - origin[2]],
+            bias: [0; 3],
             width: Width::Exact,
         };
+        for k in 0..3 {
+            let mut on_edge = [far; 3];
+            on_edge[k] = 0;
+            steps.bias[k] = if setup.is_inside(on_edge) { 0 } else { -1 };
+        }
         // A linear function takes its extremes over a rectangle at its corners; lanes reach up
-        // to a block's width past the last column.
-        let [x0, x1, y0, y1] = rect.map(i128::from);
-        let corners = [(x0, y0), (x1 + 8, y0), (x0, y1), (x1 + 8, y1)];
-        let max = corners
-            .iter()
-            .flat_map(|&(x, y)| steps.at_wide(x, y))
-            .map(i128::abs)
-            .max()
-            .unwrap_or(0);
-        steps.width = Width::holding(max + 1);
+        // to a block's width past the last column. In i64, checked: a value that overflows it
+        // is beyond every narrower width anyway.
+        let [x0, x1, y0, y1] = rect.map(i64::from);
+        let mut max = Some(0);
+        for (x, y) in [(x0, y0), (x1 + 8, y0), (x0, y1), (x1 + 8, y1)] {
+            for k in 0..3 {
+                max = max.zip(steps.magnitude(k, x, y)).map(|(a, b)| a.max(b));
+            }
+        }
+        steps.width = max.map_or(Width::Exact, |max| Width::holding(i128::from(max) + 1));
         steps
     }
 
@@ -105,10 +108,13 @@ impl EdgeSteps {
         [at(0), at(1), at(2)]
     }
 
-    /// The same at any `(x, y)`, in a type that cannot overflow.
-    fn at_wide(&self, x: i128, y: i128) -> [i128; 3] {
-        [0, 1, 2]
-            .map(|k| i128::from(self.origin[k]) + x * i128::from(self.dx[k]) + y * i128::from(self.dy[k]))
+    /// The magnitude of edge `k`'s value at any `(x, y)`, `None` where it overflows `i64`.
+    #[inline(always)]
+    fn magnitude(&self, k: usize, x: i64, y: i64) -> Option<i64> {
+        self.origin[k]
+            .checked_add(x.checked_mul(self.dx[k])?)?
+            .checked_add(y.checked_mul(self.dy[k])?)?
+            .checked_abs()
     }
 
     /// Visits every row of up to eight samples of `rect` (`[x0, x1, y0, y1]`, half-open,

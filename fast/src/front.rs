@@ -80,15 +80,16 @@ impl Chunk {
     /// One triangle through the front end the reference uses ([`front_end`]), its corners set
     /// up once per vertex, appended to `triangles`; its box, or `None` when it draws nothing.
     fn prepare_one(&mut self, setup: &DrawSetup<'_>, primitive: usize) -> Option<[u32; 4]> {
-        let corners = setup.front.triangles[primitive].map(|i| setup.vertices[i as usize]);
+        let corners = setup.front.triangles[primitive].map(|i| &setup.vertices[i as usize]);
         let kept = front_end(&setup.front, primitive, corners, &mut self.scratch).ok()?;
         let (x0, x1, y0, y1) = kept.rect.bounds();
         let rect = [x0, x1, y0, y1];
         let fans = self.fans.len();
-        let single = match kept.whole {
+        let single = match &kept.whole {
             Some(t) => {
                 // The corners in the setup's clockwise order, the order of its edge values.
-                let varyings = t.setup.order().map(|k| &t.vertices[k].varyings);
+                let vertices = t.vertices();
+                let varyings = t.setup.order().map(|k| &vertices[k].varyings);
                 Some(Single {
                     steps: EdgeSteps::new(&t.setup, setup.front.transform.bits, rect),
                     planes: Planes::new(

@@ -50,7 +50,7 @@ fn open_loop(draw: &Draw) -> Result<Vec<Fragment>, DrawError> {
     let mut kept = Vec::new();
     let mut indices = Vec::new();
     for i in 0..setup.triangles.len() {
-        if let Ok(k) = front_end(&setup, i, setup.corners(i), &mut scratch) {
+        if let Ok(k) = front_end(&setup, i, setup.corners(i).each_ref(), &mut scratch) {
             let [a, b, c] = setup.triangles[i];
             indices.extend([a, b, b, c]);
             kept.push((i, k.front_facing));

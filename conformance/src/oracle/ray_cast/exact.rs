@@ -58,18 +58,8 @@ struct Solved {
 /// The hit of [`super::ray_cast`] decided exactly, before any ratio; `None` for a miss and
 /// for non-finite input.
 fn solve(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Option<Solved> {
-    let flat: Vec<f64> = tri.iter().flatten().copied().collect();
-    let (p, _) = common_scale(&flat)?;
-    let (q, shift) = common_scale(&[nx, ny])?;
+    let (n, p) = numerators(tri, nx, ny)?;
     let c = |i: usize, k: usize| &p[4 * i + k];
-    // u = x − nx·w and v = y − ny·w, all times 2^(shift − e_tri): (X << shift) − NX·W.
-    let u: [BigInt; 3] = std::array::from_fn(|i| (c(i, 0) << shift) - &q[0] * c(i, 3));
-    let v: [BigInt; 3] = std::array::from_fn(|i| (c(i, 1) << shift) - &q[1] * c(i, 3));
-    let n = [
-        &u[1] * &v[2] - &u[2] * &v[1],
-        &u[2] * &v[0] - &u[0] * &v[2],
-        &u[0] * &v[1] - &u[1] * &v[0],
-    ];
     let d = &n[0] + &n[1] + &n[2];
     let sign = d.sign();
     if sign == Sign::NoSign {
@@ -89,6 +79,46 @@ fn solve(tri: &[[f64; 4]; 3], nx: f64, ny: f64, state: &DrawState) -> Option<Sol
         return None;
     }
     Some(Solved { n, d, z, w })
+}
+
+/// The barycentric numerators of the ray through `(nx, ny)` at `tri`, times one positive
+/// factor, with the triangle's coordinates scaled to integers by [`common_scale`]; `None` for
+/// non-finite input.
+fn numerators(tri: &[[f64; 4]; 3], nx: f64, ny: f64) -> Option<([BigInt; 3], Vec<BigInt>)> {
+    let flat: Vec<f64> = tri.iter().flatten().copied().collect();
+    let (p, _) = common_scale(&flat)?;
+    let (q, shift) = common_scale(&[nx, ny])?;
+    let c = |i: usize, k: usize| &p[4 * i + k];
+    // u = x − nx·w and v = y − ny·w, all times 2^(shift − e_tri): (X << shift) − NX·W.
+    let u: [BigInt; 3] = std::array::from_fn(|i| (c(i, 0) << shift) - &q[0] * c(i, 3));
+    let v: [BigInt; 3] = std::array::from_fn(|i| (c(i, 1) << shift) - &q[1] * c(i, 3));
+    let n = [
+        &u[1] * &v[2] - &u[2] * &v[1],
+        &u[2] * &v[0] - &u[0] * &v[2],
+        &u[0] * &v[1] - &u[1] * &v[0],
+    ];
+    Some((n, p))
+}
+
+/// Whether every ray misses `tri` for a reason that holds for all of them: the numerators'
+/// sum (the projected triangle's area) or their weighting of `w` (the hit's `w`, which must be
+/// positive) is zero for every ray. Both are affine in the ray's NDC point (the `nx·ny` terms
+/// cancel), so zero everywhere where zero at three rays not on one line. `false` for
+/// non-finite input, which [`solve`] misses anyway.
+///
+/// Such triangles (a corner repeated; a plane through the eye, two corners on one line
+/// through it) left the f64 filter unsure at every sample, each then solved here (issue 47).
+pub(super) fn misses_every_ray(tri: &[[f64; 4]; 3]) -> bool {
+    let at = |nx: f64, ny: f64| {
+        let (n, p) = numerators(tri, nx, ny)?;
+        let w = &n[0] * &p[3] + &n[1] * &p[7] + &n[2] * &p[11];
+        Some((&n[0] + &n[1] + &n[2], w))
+    };
+    let (Some(a), Some(b), Some(c)) = (at(0.0, 0.0), at(1.0, 0.0), at(0.0, 1.0)) else {
+        return false;
+    };
+    let rays = [a, b, c];
+    rays.iter().all(|(d, _)| d.is_zero()) || rays.iter().all(|(_, w)| w.is_zero())
 }
 
 /// [`super::ray_cast`] decided exactly; `None` for non-finite input.

@@ -64,7 +64,7 @@ enum Filtered {
 }
 
 /// A value with a bound on its rounding error.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Debug)]
 struct Bounded {
     v: f64,
     err: f64,
@@ -157,6 +157,7 @@ impl Sums {
     /// value exactly zero may be decisive (a sample on an edge), unless a sure denominator and
     /// one sure failing sign already make it a miss (a sample on one edge of a triangle and
     /// outside another, in a mesh: most fallbacks, issue 47).
+    #[inline]
     fn decide(&self, n: &[Bounded; 3], state: &DrawState) -> Option<bool> {
         let Sums { d, nz, nw } = *self;
         let near = near_distance(state.depth_range, nz, nw);
@@ -225,8 +226,9 @@ mod tests {
     }
 
     /// A triangle, a ray's NDC point and a clipping state where the filter's bounds matter:
-    /// rays on an edge and triangles nearly edge-on (a corner on the line through the others),
-    /// where signs are unsure, at every clipping state.
+    /// rays on an edge, triangles nearly edge-on (a corner on the line through the others) and
+    /// planes through the eye (two corners on one line through it), where signs are unsure,
+    /// at every clipping state.
     pub(super) fn ray_case() -> impl Strategy<Value = ([[f64; 4]; 3], f64, f64, DrawState)> {
         let ndc_coordinate = || prop_oneof![(-4i32..=4).prop_map(|k| f64::from(k) * 0.5), -2.0f64..2.0];
         (
@@ -234,30 +236,43 @@ mod tests {
             (ndc_coordinate(), ndc_coordinate()),
             (any::<bool>(), any::<bool>(), any::<bool>()),
             (any::<bool>(), any::<bool>(), 0.0f64..1.0, -0.5f64..1.5),
+            (
+                any::<bool>(),
+                prop_oneof![(-4i32..=4).prop_map(|k| f64::from(k) * 0.5), -3.0f64..3.0],
+            ),
         )
-            .prop_map(|(mut tri, (nx, ny), clip, (on_edge, edge_on, t, u))| {
-                if edge_on {
-                    tri[2] = std::array::from_fn(|k| tri[0][k] + u * (tri[1][k] - tri[0][k]));
-                }
-                let ndc = |p: [f64; 4]| [p[0] / p[3], p[1] / p[3]];
-                let (a, b) = (ndc(tri[0]), ndc(tri[1]));
-                let (nx, ny) = if on_edge {
-                    (a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]))
-                } else {
-                    (nx, ny)
-                };
-                let state = DrawState {
-                    depth_range: if clip.0 {
-                        refrast::DepthRange::NegativeOneToOne
+            .prop_map(
+                |(mut tri, (nx, ny), clip, (on_edge, edge_on, t, u), (through_eye, scale))| {
+                    if through_eye {
+                        // Corner 1 on the line through the eye and corner 0 (x, y and w scaled
+                        // alike, z free): the triangle's plane holds the eye.
+                        for k in [0, 1, 3] {
+                            tri[1][k] = scale * tri[0][k];
+                        }
+                    }
+                    if edge_on {
+                        tri[2] = std::array::from_fn(|k| tri[0][k] + u * (tri[1][k] - tri[0][k]));
+                    }
+                    let ndc = |p: [f64; 4]| [p[0] / p[3], p[1] / p[3]];
+                    let (a, b) = (ndc(tri[0]), ndc(tri[1]));
+                    let (nx, ny) = if on_edge {
+                        (a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]))
                     } else {
-                        refrast::DepthRange::ZeroToOne
-                    },
-                    clip_near: clip.1,
-                    clip_far: clip.2,
-                    ..DrawState::default()
-                };
-                (tri, nx, ny, state)
-            })
+                        (nx, ny)
+                    };
+                    let state = DrawState {
+                        depth_range: if clip.0 {
+                            refrast::DepthRange::NegativeOneToOne
+                        } else {
+                            refrast::DepthRange::ZeroToOne
+                        },
+                        clip_near: clip.1,
+                        clip_far: clip.2,
+                        ..DrawState::default()
+                    };
+                    (tri, nx, ny, state)
+                },
+            )
     }
 
     proptest! {

@@ -1,5 +1,6 @@
 //! `fast` at 1920×1080 with depth and colour, against the reference and the scalar baseline in
-//! the same run, with 1 and 2 threads.
+//! the same run, at each thread count of `REFRAST_BENCH_THREADS` (a comma-separated list;
+//! by default 1, 2 and the machine's parallelism): rows `fast_Nt` and `fast_resolve_Nt`.
 //!
 //! Scenes (docs/performance.md gives their timings, against `fast`'s targets): 100 000
 //! triangles of about 10 px, 10 000 of about 500 px, 1 000 of about 50 000 px (the shared
@@ -10,8 +11,10 @@
 //!
 //! Where Mesa's lavapipe opens (`mesa-vulkan-drivers`), the same draws go through it in the
 //! same run: `lavapipe` is its drawing time (`Gpu::resolve_timed`, reading back excluded) of a
-//! depth test and a primitive-id target, which `fast_resolve_2t` also times for `fast`
-//! (`Rasterizer::resolve`, 2 threads; lavapipe runs as many as the machine has cores).
+//! depth test and a primitive-id target, which `fast_resolve_Nt` also times for `fast`
+//! (`Rasterizer::resolve`). lavapipe runs as many threads as the machine has cores, or
+//! `LP_NUM_THREADS`, which Mesa reads once a process: with it set, the row is `lavapipe_Nt`
+//! (`scripts/bench_fast.py --threads` runs one process per count).
 //! `REFRAST_BENCH_DRIVER=swiftshader` (with `VK_ICD_FILENAMES` on Chromium's ICD) times
 //! SwiftShader instead, as `swiftshader`.
 
@@ -164,6 +167,37 @@ fn gpu_driver() -> Driver {
         })
 }
 
+/// The thread counts `fast` runs at: `REFRAST_BENCH_THREADS`, or 1, 2 and the machine's
+/// parallelism, in order, without repeats.
+fn thread_counts() -> Vec<usize> {
+    let mut counts = match std::env::var("REFRAST_BENCH_THREADS") {
+        Ok(list) => list
+            .split(',')
+            .map(|n| match n.trim().parse::<usize>() {
+                Ok(n) if n > 0 => n,
+                _ => {
+                    eprintln!(
+                        "REFRAST_BENCH_THREADS={list}: each entry must be a thread count of at least 1"
+                    );
+                    std::process::exit(2)
+                }
+            })
+            .collect(),
+        Err(_) => vec![1, 2, std::thread::available_parallelism().map_or(1, usize::from)],
+    };
+    counts.sort_unstable();
+    counts.dedup();
+    counts
+}
+
+/// The driver's row: its name, with lavapipe's thread count where `LP_NUM_THREADS` sets it.
+fn driver_row(driver: Driver) -> String {
+    match std::env::var("LP_NUM_THREADS") {
+        Ok(n) if driver == Driver::Lavapipe => format!("{}_{}t", driver.name(), n.trim()),
+        _ => driver.name().to_owned(),
+    }
+}
+
 fn bench(c: &mut Criterion) {
     // A hundredth of each scene under REFRAST_BENCH_SMALL, so that CI runs every row once
     // (`cargo test --benches` runs criterion's test mode) and the bench cannot rot.
@@ -179,9 +213,14 @@ fn bench(c: &mut Criterion) {
         ("large_50kpx", flat(scene(1_000 / k, 50_000.0))),
         ("torus_1m", torus(1000 / t, 500 / t)),
     ];
-    let (mut one, mut two) = (Fast::with_threads(1), Fast::with_threads(2));
+    let mut fasts: Vec<(usize, Fast)> = thread_counts()
+        .into_iter()
+        .map(|n| (n, Fast::with_threads(n)))
+        .collect();
     // Read by scripts/bench_fast.py into its metadata.
-    println!("simd {}", one.simd().name());
+    println!("simd {}", fasts[0].1.simd().name());
+    let threads: Vec<String> = fasts.iter().map(|(n, _)| n.to_string()).collect();
+    println!("threads {}", threads.join(","));
     let driver = gpu_driver();
     let mut gpu = Gpu::new(driver)
         .inspect_err(|why| eprintln!("{}: SKIPPED: {why}", driver.name()))
@@ -192,7 +231,7 @@ fn bench(c: &mut Criterion) {
         let (mut color, mut depth) = (target.color().to_vec(), target.depth().to_vec());
         let fragments = reference(&mut target, scene);
         let base_fragments = baseline(&mut color, &mut depth, &scene.raster);
-        fast(&mut one, &mut depth, &mut color, scene);
+        fast(&mut fasts[0].1, &mut depth, &mut color, scene);
         // `fast`'s contract: the reference's picture within its precision, except at ties.
         let draw = Renderer::default().mesh_draw(
             refrast::Viewport::new(WIDTH, HEIGHT).unwrap(),
@@ -223,19 +262,21 @@ fn bench(c: &mut Criterion) {
         group.bench_function("baseline", |b| {
             b.iter(|| black_box(baseline(&mut color, &mut depth, &scene.raster)))
         });
-        for (threads, r) in [(1, &mut one), (2, &mut two)] {
+        for (threads, r) in &mut fasts {
             group.bench_function(format!("fast_{threads}t"), |b| {
                 b.iter(|| fast(r, &mut depth, &mut color, scene));
             });
         }
         if let Some(gpu) = gpu.as_mut() {
-            let draw = fitted_draw(&two, scene);
-            group.bench_function("fast_resolve_2t", |b| {
-                b.iter(|| black_box(two.resolve(&draw).expect("draws")))
-            });
+            for (threads, r) in &mut fasts {
+                let draw = fitted_draw(r, scene);
+                group.bench_function(format!("fast_resolve_{threads}t"), |b| {
+                    b.iter(|| black_box(r.resolve(&draw).expect("draws")))
+                });
+            }
             let draw = fitted_draw(gpu, scene);
             // Each iteration draws and reads back; only the drawing is counted.
-            group.bench_function(driver.name(), |b| {
+            group.bench_function(driver_row(driver), |b| {
                 b.iter_custom(|n| {
                     (0..n)
                         .map(|_| gpu.resolve_timed(&draw).expect("the driver draws").1.drawing)

@@ -91,20 +91,14 @@ impl HitTest {
                 negate(cross(j, k, 0, 3)),
             ]
         });
-        // Coefficient by coefficient: the sum, and the weightings of corner coordinate `k`.
-        let sum = |c: usize| add(add(n[0][c], n[1][c]), n[2][c]);
-        let weighted = |k: usize, c: usize| {
-            add(
-                add(mul(n[0][c], e(tri[0][k])), mul(n[1][c], e(tri[1][k]))),
-                mul(n[2][c], e(tri[2][k])),
-            )
-        };
-        let (d, nw) = ([0, 1, 2].map(sum), [0, 1, 2].map(|c| weighted(3, c)));
+        // The sums are linear in the numerators: `Sums::of`, coefficient by coefficient.
+        let sums = [0, 1, 2].map(|c| Sums::of(tri, &[n[0][c], n[1][c], n[2][c]]));
+        let (d, nz, nw) = (sums.map(|s| s.d), sums.map(|s| s.nz), sums.map(|s| s.nw));
         // Only a function with no coefficient surely non-zero can be zero for every ray: the
         // exact test runs for those alone.
         let maybe_zero = |c: &[Bounded; 3]| !c.iter().any(|b| b.sure());
         let never = (maybe_zero(&d) || maybe_zero(&nw)) && exact::misses_every_ray(tri);
-        let affine = [n[0], n[1], n[2], d, [0, 1, 2].map(|c| weighted(2, c)), nw].map(Affine::of);
+        let affine = [n[0], n[1], n[2], d, nz, nw].map(Affine::of);
         HitTest {
             tri: *tri,
             state: *state,

@@ -127,6 +127,15 @@ fn draw_band<S: Simd, K: Sink>(
     );
 }
 
+/// Whether a triangle with box `rect` is worth testing block by block against what is stored
+/// ([`Sink::take_block`]): one whose box holds four blocks' worth of pixels. A smaller one
+/// covers few samples of each block it touches, fewer than the test would save (on a million
+/// triangles of a pixel or so, the test cost a tenth of the frame).
+#[inline(always)]
+fn occludable(rect: [u32; 4]) -> bool {
+    (rect[1] - rect[0]) * (rect[3] - rect[2]) >= 4 * 64
+}
+
 /// Draws the part of triangle `t` inside `tile` into `sink`.
 #[inline(always)]
 fn draw_in_tile<K: Sink>(
@@ -140,11 +149,25 @@ fn draw_in_tile<K: Sink>(
         return;
     };
     if let Some(single) = &t.single {
-        single.steps.traverse(
-            rect,
-            #[inline(always)]
-            |row| sink.take(&single.planes, row),
-        );
+        let planes = &single.planes;
+        if occludable(t.rect) {
+            single.steps.traverse::<true>(
+                rect,
+                #[inline(always)]
+                |block| sink.take_block(planes, block),
+            );
+        } else {
+            single.steps.traverse::<false>(
+                rect,
+                #[inline(always)]
+                |block| {
+                    block.rows(
+                        #[inline(always)]
+                        |row| sink.take(planes, row),
+                    )
+                },
+            );
+        }
         return;
     }
     draw_fan(transform, chunk, t, rect, sink);

@@ -17,10 +17,14 @@
 //! - **Binning**: each triangle's box is binned into 64×64 tiles; a row of tiles is a band, a
 //!   contiguous run of rows of every buffer, so threads own bands and need no locks.
 //! - **Back end**: per tile, triangles in primitive order; per triangle, 8×8 blocks rejected
-//!   whole from their corners (Abrash, *Rasterization on Larrabee*), each block row tested as
-//!   eight SIMD lanes of exact edge values: `i32` when the triangle's box is small, `f64`
-//!   (exact below 2^53) otherwise. A clipped polygon's fan goes through the reference's own
-//!   `traverse` on the tile's part of its box.
+//!   or accepted whole from their corners (Abrash, *Rasterization on Larrabee*), each block row
+//!   tested as eight SIMD lanes of exact edge values: `i32` when the triangle's box is small,
+//!   `f64` (exact below 2^53) otherwise. A clipped polygon's fan goes through the reference's
+//!   own `traverse` on the tile's part of its box.
+//! - **Hidden blocks**: under a `Less` or `LessOrEqual` test, a block of a triangle whose box
+//!   holds four blocks' worth of pixels is skipped when a lower bound of its depths fails
+//!   against an upper bound of the depths stored there (Greene's hierarchical z, `hiz.rs`): the
+//!   samples skipped are exactly ones that would fail, so no output changes.
 //! - **Interpolation**: depth and barycentrics as f32 planes over the exact edge values, set up
 //!   once per triangle; depth for eight lanes at once, no division per sample; a fragment's
 //!   perspective correction takes one reciprocal.
@@ -38,6 +42,7 @@ mod back;
 pub mod contract;
 mod drive;
 mod front;
+mod hiz;
 mod plane;
 mod simd;
 mod sink;
@@ -55,8 +60,9 @@ pub use crate::plane::PRECISION_BITS;
 pub use crate::simd::SimdLevel;
 
 use crate::drive::Buffers;
-use crate::sink::{BandRows, ResolveBand, ShadeBand};
-use crate::tiles::TILE;
+use crate::hiz::HiZ;
+use crate::sink::{ResolveBand, ShadeBand};
+use crate::tiles::{BandRows, TILE};
 
 /// The fast rasterizer's knobs: the reference's configuration it reproduces, and threads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -184,16 +190,20 @@ impl Fast {
             .chunks_mut(band)
             .zip(color.chunks_mut(band))
             .enumerate()
-            .map(|(i, (depth, color))| ShadeBand {
-                rows: BandRows {
+            .map(|(i, (depth, color))| {
+                let rows = BandRows {
                     y0: i as u32 * TILE,
                     width,
-                },
-                compare: draw.state.depth.compare,
-                write: draw.state.depth.write,
-                depth,
-                color,
-                shade: &shade,
+                };
+                ShadeBand {
+                    rows,
+                    compare: draw.state.depth.compare,
+                    write: draw.state.depth.write,
+                    hiz: HiZ::new(draw.state.depth.compare, width, TILE),
+                    depth,
+                    color,
+                    shade: &shade,
+                }
             })
             .collect();
         self.drive(draw, &mut sinks)
@@ -251,14 +261,18 @@ impl Rasterizer for Fast {
             .chunks_mut(band)
             .zip(primitive.chunks_mut(band))
             .enumerate()
-            .map(|(i, (depth, primitive))| ResolveBand {
-                rows: BandRows {
+            .map(|(i, (depth, primitive))| {
+                let rows = BandRows {
                     y0: i as u32 * TILE,
                     width: viewport.width(),
-                },
-                state,
-                depth,
-                primitive,
+                };
+                ResolveBand {
+                    rows,
+                    state,
+                    hiz: HiZ::new(state.compare, viewport.width(), TILE),
+                    depth,
+                    primitive,
+                }
             })
             .collect();
         self.drive(draw, &mut sinks)?;

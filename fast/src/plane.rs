@@ -103,6 +103,32 @@ impl Planes {
         depth
     }
 
+    /// A lower bound of [`depth`](Self::depth) at every sample of a rectangle whose corner
+    /// samples have the exact edge values `corners`: what a block's depth test can be decided
+    /// on before any sample (Greene's hierarchical z).
+    ///
+    /// Depth is linear in the edge values, so over a rectangle it is least at a corner. Each
+    /// sample's `f64` sum, and each corner's here, is within `3·2^-53` of the magnitude
+    /// `|z₀| + |e₁·g₁| + |e₂·g₂|` of the exact value, a convex function, so largest at a corner
+    /// too: the least corner less `2^-48` of the largest magnitude bounds every sample. Rounding
+    /// to `f32` and the clamp keep the order. Where a corner is not finite there is no bound:
+    /// NaN, which decides nothing.
+    #[inline(always)]
+    pub fn depth_floor(&self, corners: &[[f64; 3]; 4]) -> f32 {
+        let (mut least, mut magnitude) = (f64::INFINITY, 0.0f64);
+        for e in corners {
+            let (a, b) = (e[1] * self.gz[0], e[2] * self.gz[1]);
+            let size = self.z0.abs() + a.abs() + b.abs();
+            if !size.is_finite() {
+                return f32::NAN;
+            }
+            least = least.min((self.z0 + a) + b);
+            magnitude = magnitude.max(size);
+        }
+        let floor = least - magnitude * f64::powi(2.0, -48);
+        (floor as f32).clamp(self.depth_bounds[0], self.depth_bounds[1])
+    }
+
     /// The perspective-correct and screen barycentrics of `N` samples with exact edge values
     /// `e` (edge by edge, then lane by lane), each as three arrays of `N` lanes: the one
     /// formula, run on eight lanes at once (vectorised) or on one.
@@ -139,6 +165,30 @@ impl Planes {
         [mix(&self.barycentric, &p), screen]
     }
 
+    /// Lane `lane` of `row` as a fragment, with its depth among `depth` and its barycentrics.
+    #[inline(always)]
+    fn fragment(
+        &self,
+        row: &Lanes,
+        lane: usize,
+        depth: &[f32; LANES],
+        barycentric: [f32; 3],
+        screen: [f32; 3],
+    ) -> Fragment {
+        Fragment {
+            x: row.x0 + lane as u32,
+            y: row.y,
+            sample: 0,
+            primitive: self.primitive,
+            depth: depth[lane],
+            barycentric,
+            // No flat values: the profile declares none (StateSupport::flat empty).
+            flat: None,
+            screen_barycentric: self.screen.map(|_| screen),
+            front_facing: self.front_facing,
+        }
+    }
+
     /// Visits the fragments of the lanes of `row` in `mask`, in lane order, with their depths
     /// `depth` (from [`depth`](Self::depth)).
     ///
@@ -154,31 +204,25 @@ impl Planes {
         depth: &[f32; LANES],
         mut visit: impl FnMut(usize, Fragment),
     ) {
-        let fragment = |lane: usize, (barycentric, screen): ([f32; 3], [f32; 3])| Fragment {
-            x: row.x0 + lane as u32,
-            y: row.y,
-            sample: 0,
-            primitive: self.primitive,
-            depth: depth[lane],
-            barycentric,
-            // No flat values: the profile declares none (StateSupport::flat empty).
-            flat: None,
-            screen_barycentric: self.screen.map(|_| screen),
-            front_facing: self.front_facing,
-        };
         let e = &row.e;
         if mask.count_ones() > 4 {
             let [b, s] = self.barycentrics(*e);
             let at = |w: &[[f32; LANES]; 3], i: usize| [w[0][i], w[1][i], w[2][i]];
-            for_each_lane(mask, |lane| {
-                visit(lane, fragment(lane, (at(&b, lane), at(&s, lane))))
-            });
+            for_each_lane(
+                mask,
+                #[inline(always)]
+                |lane| visit(lane, self.fragment(row, lane, depth, at(&b, lane), at(&s, lane))),
+            );
         } else {
-            for_each_lane(mask, |lane| {
-                let [b, s] = self.barycentrics([[e[0][lane]], [e[1][lane]], [e[2][lane]]]);
-                let at = |w: [[f32; 1]; 3]| [w[0][0], w[1][0], w[2][0]];
-                visit(lane, fragment(lane, (at(b), at(s))));
-            });
+            for_each_lane(
+                mask,
+                #[inline(always)]
+                |lane| {
+                    let [b, s] = self.barycentrics([[e[0][lane]], [e[1][lane]], [e[2][lane]]]);
+                    let at = |w: [[f32; 1]; 3]| [w[0][0], w[1][0], w[2][0]];
+                    visit(lane, self.fragment(row, lane, depth, at(b), at(s)));
+                },
+            );
         }
     }
 }
@@ -186,8 +230,58 @@ impl Planes {
 #[cfg(test)]
 mod tests {
     use glam::DVec3;
+    use proptest::prelude::*;
 
     use super::*;
+
+    proptest! {
+        /// [`Planes::depth_floor`] of a block's corners is at most the depth of every sample of
+        /// the block, as the lanes compute it: planes steep and flat, depths near zero and far
+        /// outside the range, biased, clamped to a range either way round.
+        #[test]
+        fn depth_floor_bounds_every_sample_of_the_block(
+            depths in prop::array::uniform3(prop_oneof![-2.0f64..2.0, -1e9f64..1e9, Just(0.5)]),
+            area2 in prop_oneof![1i64..1000, 1i64..(1 << 45)],
+            offset in prop_oneof![Just(0.0), -1e-3f64..1e-3],
+            range in (0.0f32..1.0, 0.0f32..1.0),
+            start in prop::array::uniform2(-(1i64 << 45)..(1i64 << 45)),
+            dx in prop::array::uniform2(-(1i64 << 30)..(1i64 << 30)),
+            dy in prop::array::uniform2(-(1i64 << 30)..(1i64 << 30)),
+            size in (1u32..=8, 1u32..=8),
+        ) {
+            let corner = |depth| Varyings {
+                depth,
+                inv_w: 1.0,
+                barycentric: DVec3::X,
+                screen: None,
+            };
+            let corners = depths.map(corner);
+            let range = ViewportDepth { min: range.0, max: range.1 };
+            let planes = Planes::new(0, true, [&corners[0], &corners[1], &corners[2]], area2, range, offset);
+            // Edge values 1 and 2 (depth reads no others) at sample (x, y) of the block.
+            let value = |k: usize, x: u32, y: u32| start[k] + i64::from(x) * dx[k] + i64::from(y) * dy[k];
+            let (w, h) = size;
+            let corner_values = [(0, 0), (w - 1, 0), (0, h - 1), (w - 1, h - 1)]
+                .map(|(x, y)| [0.0, value(0, x, y) as f64, value(1, x, y) as f64]);
+            let floor = planes.depth_floor(&corner_values);
+            for y in 0..h {
+                // As a row's lanes hold them: the row's first value, plus the lane times the step.
+                let mut e = [[0.0; LANES]; 3];
+                for k in 0..2 {
+                    for (i, e) in e[k + 1].iter_mut().enumerate() {
+                        *e = value(k, 0, y) as f64 + i as f64 * dx[k] as f64;
+                    }
+                }
+                let depth = planes.depth(&e);
+                for (x, &d) in depth.iter().enumerate().take(w as usize) {
+                    prop_assert!(
+                        floor.is_nan() || d >= floor,
+                        "sample ({x}, {y}): depth {d} below the floor {floor}"
+                    );
+                }
+            }
+        }
+    }
 
     /// A row's fragments are the same bits whether its barycentrics come eight lanes at once
     /// (more than four kept) or lane by lane (four or fewer).

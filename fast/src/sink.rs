@@ -5,13 +5,24 @@
 
 use refrast::{CompareOp, DepthState, Fragment};
 
-use crate::back::{LANES, Lanes, for_each_lane};
+use crate::back::{Block, LANES, Lanes, for_each_lane};
+use crate::hiz::HiZ;
 use crate::plane::Planes;
+use crate::tiles::BandRows;
 
 /// What one band does with its covered samples, which come in primitive order per pixel.
 pub(crate) trait Sink: Send {
     /// Takes the covered lanes of `row`, a row of triangle `t`.
     fn take(&mut self, t: &Planes, row: &Lanes);
+
+    /// Takes the covered rows of `block`, a block of triangle `t`.
+    #[inline(always)]
+    fn take_block(&mut self, t: &Planes, block: &Block<'_>) {
+        block.rows(
+            #[inline(always)]
+            |row| self.take(t, row),
+        );
+    }
 }
 
 /// Keeps every fragment.
@@ -20,24 +31,6 @@ impl Sink for Vec<Fragment> {
     fn take(&mut self, t: &Planes, row: &Lanes) {
         let depth = t.depth(&row.e);
         t.fragments(row, row.mask, &depth, |_, fragment| self.push(fragment));
-    }
-}
-
-/// The rows of a band in a row-major buffer: where pixel `(x, y)` lies.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct BandRows {
-    /// The band's first row.
-    pub y0: u32,
-    /// The buffer's width.
-    pub width: u32,
-}
-
-impl BandRows {
-    /// The range of the band's slice that `row`'s lanes occupy.
-    #[inline(always)]
-    fn lanes(self, row: &Lanes) -> std::ops::Range<usize> {
-        let start = (row.y - self.y0) as usize * self.width as usize + row.x0 as usize;
-        start..start + row.n as usize
     }
 }
 
@@ -61,6 +54,8 @@ pub(crate) struct ResolveBand<'b> {
     pub depth: &'b mut [f32],
     /// The last primitive that passed, the band's rows.
     pub primitive: &'b mut [Option<u32>],
+    /// Bounds of `depth` per block.
+    pub hiz: HiZ,
 }
 
 impl Sink for ResolveBand<'_> {
@@ -83,6 +78,20 @@ impl Sink for ResolveBand<'_> {
             },
         );
     }
+
+    /// Skipped when every sample would fail the depth test; the block's bound tightened after
+    /// a triangle covers it.
+    #[inline(always)]
+    fn take_block(&mut self, t: &Planes, block: &Block<'_>) {
+        if self.hiz.occludes(self.rows, t, block, self.depth) {
+            return;
+        }
+        block.rows(
+            #[inline(always)]
+            |row| self.take(t, row),
+        );
+        self.hiz.drawn(self.rows, block, self.depth, self.state.write);
+    }
 }
 
 /// Early depth test, shading of what passes, depth and colour writes: `Renderer::draw_mesh`'s
@@ -100,6 +109,8 @@ pub(crate) struct ShadeBand<'b, C, F> {
     pub color: &'b mut [C],
     /// The shader: a colour, or `None` to discard.
     pub shade: &'b F,
+    /// Bounds of `depth` per block.
+    pub hiz: HiZ,
 }
 
 impl<C: Send, F: Fn(&Fragment) -> Option<C> + Sync> Sink for ShadeBand<'_, C, F> {
@@ -127,5 +138,19 @@ impl<C: Send, F: Fn(&Fragment) -> Option<C> + Sync> Sink for ShadeBand<'_, C, F>
                 }
             },
         );
+    }
+
+    /// Skipped when every sample would fail the depth test, before any is shaded; the block's
+    /// bound tightened after a triangle covers it.
+    #[inline(always)]
+    fn take_block(&mut self, t: &Planes, block: &Block<'_>) {
+        if self.hiz.occludes(self.rows, t, block, self.depth) {
+            return;
+        }
+        block.rows(
+            #[inline(always)]
+            |row| self.take(t, row),
+        );
+        self.hiz.drawn(self.rows, block, self.depth, self.write);
     }
 }

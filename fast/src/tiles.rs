@@ -6,6 +6,8 @@
 
 use refrast::Viewport;
 
+use crate::back::Lanes;
+
 /// The side of a tile in pixels.
 pub(crate) const TILE: u32 = 64;
 
@@ -63,6 +65,24 @@ impl TileGrid {
                 f((row * self.columns + column) as usize);
             }
         }
+    }
+}
+
+/// The rows of a band in a row-major buffer: where pixel `(x, y)` lies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct BandRows {
+    /// The band's first row.
+    pub y0: u32,
+    /// The buffer's width.
+    pub width: u32,
+}
+
+impl BandRows {
+    /// The range of the band's slice that `row`'s lanes occupy.
+    #[inline(always)]
+    pub fn lanes(self, row: &Lanes) -> std::ops::Range<usize> {
+        let start = (row.y - self.y0) as usize * self.width as usize + row.x0 as usize;
+        start..start + row.n as usize
     }
 }
 

@@ -13,7 +13,7 @@ use refrast::{
 };
 use refrast_fast::Fast;
 use refrast_fast::contract::{check_fragments, check_resolved, tolerance};
-use support::{mesh_draw, soup};
+use support::{layers, mesh_draw, soup};
 
 /// Depth and primitive buffers as bits.
 fn resolved_bits(r: &Resolved) -> (Vec<u32>, &[Option<u32>]) {
@@ -52,6 +52,13 @@ proptest! {
     /// on a pixel's sample, so that edges pass through samples and the fill rule decides.
     #[test]
     fn meshes_keep_the_contract(draw in mesh_draw(), threads in 1usize..3) {
+        agree(&draw, threads)?;
+    }
+
+    /// Layers over each other, ties and hidden blocks (which the resolve skips untested,
+    /// `hiz.rs`) included.
+    #[test]
+    fn hidden_layers_keep_the_contract(draw in layers(), threads in 1usize..3) {
         agree(&draw, threads)?;
     }
 }

@@ -3,7 +3,10 @@
 //! state.
 
 use proptest::prelude::*;
-use refrast::{CompareOp, CullMode, DepthRange, DepthState, Draw, DrawState, FrontFace, Viewport};
+use refrast::{
+    CompareOp, CullMode, DepthBias, DepthRange, DepthState, Draw, DrawState, FrontFace, Viewport,
+    ViewportDepth,
+};
 
 /// A coordinate: mostly on screen, sometimes far off it or huge.
 pub fn coordinate() -> impl Strategy<Value = f32> {
@@ -162,4 +165,69 @@ pub fn mesh_draw() -> impl Strategy<Value = Draw> {
             }
         },
     )
+}
+
+/// Layers drawn over each other, where most blocks are hidden: whole-viewport quads at depths
+/// from a few values (so that depths tie exactly) and large sloped triangles, under a depth
+/// test that is mostly `Less` or `LessOrEqual`, a viewport depth range either way round and,
+/// some of the time, a depth bias.
+pub fn layers() -> impl Strategy<Value = Draw> {
+    let quad = prop_oneof![Just(0.1f32), Just(0.3), Just(0.5), Just(0.9), -0.2f32..1.2].prop_map(|z| {
+        let c = |x: f32, y: f32| [x, y, z, 1.0];
+        vec![
+            [c(-1.0, -1.0), c(1.0, -1.0), c(1.0, 1.0)],
+            [c(-1.0, -1.0), c(1.0, 1.0), c(-1.0, 1.0)],
+        ]
+    });
+    let sloped = prop::array::uniform3((-1.5f32..1.5, -1.5f32..1.5, -0.2f32..1.2))
+        .prop_map(|v| vec![v.map(|(x, y, z)| [x, y, z, 1.0])]);
+    let layer = prop_oneof![quad, sloped];
+    let compare = prop_oneof![
+        4 => Just(CompareOp::Less),
+        4 => Just(CompareOp::LessOrEqual),
+        1 => Just(CompareOp::Greater),
+        1 => Just(CompareOp::Always),
+    ];
+    let viewport_depth = prop_oneof![
+        2 => Just(ViewportDepth::FULL),
+        1 => (0.0f32..1.0, 0.0f32..1.0).prop_map(|(min, max)| ViewportDepth { min, max }),
+    ];
+    let bias = prop_oneof![
+        2 => Just(None),
+        1 => (-4.0f32..4.0, -2.0f32..2.0).prop_map(|(constant, slope)| Some(DepthBias {
+            constant,
+            slope,
+            clamp: 0.0,
+        })),
+    ];
+    let size = (8u32..200, 8u32..200).prop_map(|(w, h)| Viewport::new(w, h).expect("a valid size"));
+    (
+        size,
+        prop::collection::vec(layer, 2..12),
+        state(),
+        compare,
+        viewport_depth,
+        bias,
+    )
+        .prop_map(|(viewport, layers, state, compare, viewport_depth, depth_bias)| {
+            let triangles: Vec<[[f32; 4]; 3]> = layers.concat();
+            let positions: Vec<[f32; 4]> = triangles.iter().flatten().copied().collect();
+            let indices = (0..triangles.len() as u32)
+                .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
+                .collect();
+            Draw {
+                state: DrawState {
+                    cull: CullMode::None,
+                    depth: DepthState {
+                        compare,
+                        ..state.depth
+                    },
+                    depth_range: DepthRange::ZeroToOne,
+                    viewport_depth,
+                    depth_bias,
+                    ..state
+                },
+                ..Draw::new(viewport, positions, indices)
+            }
+        })
 }

@@ -1,11 +1,13 @@
 //! Hierarchical depth (Greene, Kass and Miller, *Hierarchical Z-buffer visibility*, 1993): per
-//! 8×8 block of a band, an upper bound of the depths stored in it, so that a block of a
-//! triangle that fails a `Less` or `LessOrEqual` test at every sample is skipped before any.
+//! 8×8 block of a band, a bound of the depths stored in it, so that a block of a triangle that
+//! fails the depth test at every sample is skipped before any. Under `Less` and `LessOrEqual`
+//! the bound is an upper one; under `Greater` and `GreaterOrEqual` (reversed depth) a lower
+//! one, kept as the upper bound of the negated depths so that one comparison serves both.
 //!
-//! Under those two tests a depth is only ever replaced by a smaller or equal one, so a bound
-//! once true stays true whatever draws next; it is tightened from the buffer itself after a
-//! triangle covers a whole block. Skipping changes no output: the samples skipped are exactly
-//! ones whose test would have failed ([`Planes::depth_floor`] bounds them below).
+//! Under those four tests a depth is only ever replaced by one nearer in the test's direction,
+//! so a bound once true stays true whatever draws next; it is tightened from the buffer itself
+//! after a triangle covers a whole block. Skipping changes no output: the samples skipped are
+//! exactly ones whose test would have failed ([`Planes::depth_bounds`] holds their depths).
 
 use refrast::CompareOp;
 
@@ -13,20 +15,28 @@ use crate::back::{BLOCK, Block};
 use crate::plane::Planes;
 use crate::tiles::BandRows;
 
-/// A bound not yet read off the buffer: NaN, which no bound read off it is (see
-/// [`HiZ::refresh`]).
+/// A bound not yet read off the buffer: NaN, which no bound read off it is (`refresh`).
 const UNKNOWN: f32 = f32::NAN;
 
 /// The bounds of one band's blocks, and the test they decide.
 pub(crate) struct HiZ {
-    /// Per block, row-major, at least every depth stored in it (NaNs, which fail every
-    /// test, aside), or [`UNKNOWN`] before it is first read.
+    /// Per block, row-major, at least every depth stored in it times `−sign` (NaNs, which
+    /// fail every test, aside), or [`UNKNOWN`] before it is first read.
     bounds: Vec<f32>,
     /// Blocks per row.
     columns: usize,
-    /// Whether a depth equal to the bound fails (`Less`) or passes (`LessOrEqual`); `None`
-    /// for every other test, which this does not decide.
-    strict: Option<bool>,
+    /// The test's direction and strictness; `None` for every test this does not decide.
+    test: Option<Toward>,
+}
+
+/// Which way a depth test passes.
+#[derive(Clone, Copy, Debug)]
+struct Toward {
+    /// −1 where smaller depths pass (`Less`, `LessOrEqual`), 1 where greater ones do: bounds
+    /// and comparisons are on depths times `−sign`, where smaller always passes.
+    sign: f32,
+    /// Whether a depth equal to the stored one fails (`Less`, `Greater`).
+    strict: bool,
 }
 
 impl HiZ {
@@ -34,13 +44,16 @@ impl HiZ {
     /// `compare`; each is read off the depth buffer when first asked for, so that a draw of
     /// small triangles, which never asks, does not read the buffer twice.
     pub fn new(compare: CompareOp, width: u32, height: u32) -> Self {
-        let strict = match compare {
-            CompareOp::Less => Some(true),
-            CompareOp::LessOrEqual => Some(false),
+        let toward = |sign, strict| Some(Toward { sign, strict });
+        let test = match compare {
+            CompareOp::Less => toward(-1.0, true),
+            CompareOp::LessOrEqual => toward(-1.0, false),
+            CompareOp::Greater => toward(1.0, true),
+            CompareOp::GreaterOrEqual => toward(1.0, false),
             _ => None,
         };
         let columns = width.div_ceil(BLOCK) as usize;
-        let blocks = if strict.is_some() {
+        let blocks = if test.is_some() {
             columns * height.div_ceil(BLOCK) as usize
         } else {
             0
@@ -48,7 +61,7 @@ impl HiZ {
         Self {
             bounds: vec![UNKNOWN; blocks],
             columns,
-            strict,
+            test,
         }
     }
 
@@ -63,23 +76,28 @@ impl HiZ {
     /// band stores in `depth`.
     #[inline(always)]
     pub fn occludes(&mut self, rows: BandRows, t: &Planes, block: &Block<'_>, depth: &[f32]) -> bool {
-        let Some(strict) = self.strict else {
+        let Some(test) = self.test else {
             return false;
         };
-        let Some(corners) = block.corners() else {
+        let Some([least, most]) = block.corners().and_then(|c| t.depth_bounds(&c)) else {
             return false;
         };
-        let floor = t.depth_floor(&corners);
+        // The triangle's nearest depth in the test's direction, as a depth where smaller passes.
+        let floor = if test.sign < 0.0 { least } else { -most };
         let mut bound = self.bounds[self.index(rows, block.rect)];
         if bound.is_nan() {
             self.refresh(rows, block.rect, depth);
             bound = self.bounds[self.index(rows, block.rect)];
         }
-        if strict { floor >= bound } else { floor > bound }
+        if test.strict {
+            floor >= bound
+        } else {
+            floor > bound
+        }
     }
 
-    /// After `block` is drawn with depth writes `write` on: its bound tightened to the largest
-    /// depth now in it when the triangle covered it whole, so wrote (or tested) every sample.
+    /// After `block` is drawn with depth writes `write` on: its bound tightened to the depths
+    /// now in it when the triangle covered it whole, so wrote (or tested) every sample.
     #[inline(always)]
     pub fn drawn(&mut self, rows: BandRows, block: &Block<'_>, depth: &[f32], write: bool) {
         if block.full && write {
@@ -87,12 +105,14 @@ impl HiZ {
         }
     }
 
-    /// Tightens the bound of the block holding `rect` to the largest depth now in it.
+    /// Tightens the bound of the block holding `rect` to the farthest depth now in it in the
+    /// test's direction (as a depth where smaller passes).
     #[inline(always)]
     fn refresh(&mut self, rows: BandRows, rect: [u32; 4], depth: &[f32]) {
-        if self.strict.is_none() {
+        let Some(test) = self.test else {
             return;
-        }
+        };
+        let sign = -test.sign;
         let index = self.index(rows, rect);
         // Bands start on a block's first row, so blocks lie on multiples of 8 from theirs.
         let (x0, y0) = (rect[0] - rect[0] % BLOCK, rect[2] - rect[2] % BLOCK);
@@ -104,7 +124,9 @@ impl HiZ {
         let mut bound = f32::NEG_INFINITY;
         for y in first..last {
             let row = &depth[y * width + x0..y * width + x1];
-            bound = row.iter().fold(bound, |a, &b| if b > a { b } else { a });
+            bound = row
+                .iter()
+                .fold(bound, |a, &b| if sign * b > a { sign * b } else { a });
         }
         self.bounds[index] = bound;
     }

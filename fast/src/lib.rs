@@ -21,10 +21,10 @@
 //!   tested as eight SIMD lanes of exact edge values: `i32` when the triangle's box is small,
 //!   `f64` (exact below 2^53) otherwise. A clipped polygon's fan goes through the reference's
 //!   own `traverse` on the tile's part of its box.
-//! - **Hidden blocks**: under a `Less` or `LessOrEqual` test, a block of a triangle whose box
-//!   holds four blocks' worth of pixels is skipped when a lower bound of its depths fails
-//!   against an upper bound of the depths stored there (Greene's hierarchical z, `hiz.rs`): the
-//!   samples skipped are exactly ones that would fail, so no output changes.
+//! - **Hidden blocks**: under `Less`, `LessOrEqual`, `Greater` or `GreaterOrEqual`, a block of
+//!   a triangle whose box holds four blocks' worth of pixels is skipped when a bound of its
+//!   depths fails against a bound of the depths stored there (Greene's hierarchical z,
+//!   `hiz.rs`): the samples skipped are exactly ones that would fail, so no output changes.
 //! - **Interpolation**: depth and barycentrics as f32 planes over the exact edge values, set up
 //!   once per triangle; depth for eight lanes at once, no division per sample; a fragment's
 //!   perspective correction takes one reciprocal.

@@ -103,30 +103,33 @@ impl Planes {
         depth
     }
 
-    /// A lower bound of [`depth`](Self::depth) at every sample of a rectangle whose corner
-    /// samples have the exact edge values `corners`: what a block's depth test can be decided
-    /// on before any sample (Greene's hierarchical z).
+    /// Bounds of [`depth`](Self::depth), least first, at every sample of a rectangle whose
+    /// corner samples have the exact edge values `corners`: what a block's depth test can be
+    /// decided on before any sample (Greene's hierarchical z); `None` where a corner is not
+    /// finite.
     ///
-    /// Depth is linear in the edge values, so over a rectangle it is least at a corner. Each
-    /// sample's `f64` sum, and each corner's here, is within `3·2^-53` of the magnitude
-    /// `|z₀| + |e₁·g₁| + |e₂·g₂|` of the exact value, a convex function, so largest at a corner
-    /// too: the least corner less `2^-48` of the largest magnitude bounds every sample. Rounding
-    /// to `f32` and the clamp keep the order. Where a corner is not finite there is no bound:
-    /// NaN, which decides nothing.
+    /// Depth is linear in the edge values, so over a rectangle it is least and greatest at
+    /// corners. Each sample's `f64` sum, and each corner's here, is within `3·2^-53` of the
+    /// magnitude `|z₀| + |e₁·g₁| + |e₂·g₂|` of the exact value, a convex function, so largest
+    /// at a corner too: the extreme corners widened by `2^-48` of the largest magnitude bound
+    /// every sample. Rounding to `f32` and the clamp keep the order.
     #[inline(always)]
-    pub fn depth_floor(&self, corners: &[[f64; 3]; 4]) -> f32 {
-        let (mut least, mut magnitude) = (f64::INFINITY, 0.0f64);
+    pub fn depth_bounds(&self, corners: &[[f64; 3]; 4]) -> Option<[f32; 2]> {
+        let (mut least, mut most, mut magnitude) = (f64::INFINITY, f64::NEG_INFINITY, 0.0f64);
         for e in corners {
             let (a, b) = (e[1] * self.gz[0], e[2] * self.gz[1]);
             let size = self.z0.abs() + a.abs() + b.abs();
             if !size.is_finite() {
-                return f32::NAN;
+                return None;
             }
-            least = least.min((self.z0 + a) + b);
+            let z = (self.z0 + a) + b;
+            least = least.min(z);
+            most = most.max(z);
             magnitude = magnitude.max(size);
         }
-        let floor = least - magnitude * f64::powi(2.0, -48);
-        (floor as f32).clamp(self.depth_bounds[0], self.depth_bounds[1])
+        let margin = magnitude * f64::powi(2.0, -48);
+        let [low, high] = self.depth_bounds;
+        Some([least - margin, most + margin].map(|z| (z as f32).clamp(low, high)))
     }
 
     /// The perspective-correct and screen barycentrics of `N` samples with exact edge values
@@ -235,11 +238,11 @@ mod tests {
     use super::*;
 
     proptest! {
-        /// [`Planes::depth_floor`] of a block's corners is at most the depth of every sample of
-        /// the block, as the lanes compute it: planes steep and flat, depths near zero and far
+        /// [`Planes::depth_bounds`] of a block's corners hold the depth of every sample of the
+        /// block, as the lanes compute it: planes steep and flat, depths near zero and far
         /// outside the range, biased, clamped to a range either way round.
         #[test]
-        fn depth_floor_bounds_every_sample_of_the_block(
+        fn depth_bounds_hold_every_sample_of_the_block(
             depths in prop::array::uniform3(prop_oneof![-2.0f64..2.0, -1e9f64..1e9, Just(0.5)]),
             area2 in prop_oneof![1i64..1000, 1i64..(1 << 45)],
             offset in prop_oneof![Just(0.0), -1e-3f64..1e-3],
@@ -263,7 +266,9 @@ mod tests {
             let (w, h) = size;
             let corner_values = [(0, 0), (w - 1, 0), (0, h - 1), (w - 1, h - 1)]
                 .map(|(x, y)| [0.0, value(0, x, y) as f64, value(1, x, y) as f64]);
-            let floor = planes.depth_floor(&corner_values);
+            let Some([floor, ceiling]) = planes.depth_bounds(&corner_values) else {
+                return Err(TestCaseError::reject("a corner's depth is not finite"));
+            };
             for y in 0..h {
                 // As a row's lanes hold them: the row's first value, plus the lane times the step.
                 let mut e = [[0.0; LANES]; 3];
@@ -275,8 +280,8 @@ mod tests {
                 let depth = planes.depth(&e);
                 for (x, &d) in depth.iter().enumerate().take(w as usize) {
                     prop_assert!(
-                        floor.is_nan() || d >= floor,
-                        "sample ({x}, {y}): depth {d} below the floor {floor}"
+                        floor <= d && d <= ceiling,
+                        "sample ({x}, {y}): depth {d} outside [{floor}, {ceiling}]"
                     );
                 }
             }

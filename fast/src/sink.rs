@@ -44,6 +44,31 @@ fn passes(compare: CompareOp, new: &[f32; LANES], stored: &[f32]) -> u32 {
     pass
 }
 
+/// [`passes`] on a full row: the comparison made a constant before the loop over lanes, so
+/// that each arm's loop compiles to one vector comparison.
+#[inline(always)]
+fn passes_full(compare: CompareOp, new: &[f32; LANES], stored: &[f32; LANES]) -> u32 {
+    /// The lanes that pass `op`: with `op` a constant, one vector comparison.
+    #[inline(always)]
+    fn lanes(op: CompareOp, new: &[f32; LANES], stored: &[f32; LANES]) -> u32 {
+        let mut pass = 0;
+        for i in 0..LANES {
+            pass |= u32::from(op.passes(new[i], stored[i])) << i;
+        }
+        pass
+    }
+    match compare {
+        CompareOp::Never => lanes(CompareOp::Never, new, stored),
+        CompareOp::Less => lanes(CompareOp::Less, new, stored),
+        CompareOp::Equal => lanes(CompareOp::Equal, new, stored),
+        CompareOp::LessOrEqual => lanes(CompareOp::LessOrEqual, new, stored),
+        CompareOp::Greater => lanes(CompareOp::Greater, new, stored),
+        CompareOp::NotEqual => lanes(CompareOp::NotEqual, new, stored),
+        CompareOp::GreaterOrEqual => lanes(CompareOp::GreaterOrEqual, new, stored),
+        CompareOp::Always => lanes(CompareOp::Always, new, stored),
+    }
+}
+
 /// The depth test into a band of `Resolved`'s buffers, as `Resolved::from_fragments` does it.
 pub(crate) struct ResolveBand<'b> {
     /// Where the band lies.
@@ -65,8 +90,23 @@ impl Sink for ResolveBand<'_> {
         let new = t.depth(&row.e);
         let span = self.rows.lanes(row);
         let depth = &mut self.depth[span.clone()];
-        let pass = passes(self.state.compare, &new, depth) & row.mask;
         let primitive = &mut self.primitive[span];
+        // A full row: the test and both writes as eight-lane selects.
+        if let (Ok(depth), Ok(primitive)) = (
+            <&mut [f32; LANES]>::try_from(&mut *depth),
+            <&mut [Option<u32>; LANES]>::try_from(&mut *primitive),
+        ) {
+            let pass = passes_full(self.state.compare, &new, depth) & row.mask;
+            for i in 0..LANES {
+                let kept = pass >> i & 1 != 0;
+                if self.state.write {
+                    depth[i] = if kept { new[i] } else { depth[i] };
+                }
+                primitive[i] = if kept { Some(t.primitive) } else { primitive[i] };
+            }
+            return;
+        }
+        let pass = passes(self.state.compare, &new, depth) & row.mask;
         for_each_lane(
             pass,
             #[inline(always)]

@@ -120,7 +120,7 @@ impl EdgeSteps {
     /// Visits every 8×8 block of `rect` (`[x0, x1, y0, y1]`, half-open, non-empty) that no
     /// edge rejects whole, row of blocks by row of blocks, each cut to `rect`; with `ACCEPT`,
     /// each block says whether it is covered whole ([`Block::full`]), which a small
-    /// triangle's traversal does not ask (on 10-px triangles, asking cost a tenth of a frame).
+    /// triangle's traversal does not ask: it seldom covers a block whole.
     #[inline(always)]
     pub fn traverse<const ACCEPT: bool>(&self, rect: [u32; 4], mut visit: impl FnMut(&Block<'_>)) {
         let lanes = LaneSteps::new(self);
@@ -362,9 +362,10 @@ mod tests {
     }
 
     /// Block traversal, accepting whole blocks or not, visits exactly the samples the
-    /// reference's setup calls inside, with their exact edge values, on triangles with edges through samples
-    /// (ties), slivers and a counter-clockwise input, over rectangles that start and end off
-    /// the block grid, at every width.
+    /// reference's setup calls inside, with their exact edge values, on triangles with edges
+    /// through samples (ties), slivers, a counter-clockwise input and one that misses a block's
+    /// last sample by a subpixel, over rectangles that start and end off the block grid, at
+    /// every width.
     #[test]
     fn blocks_cover_what_the_setup_calls_inside() {
         let bits = SubpixelBits::DEFAULT;

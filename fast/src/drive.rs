@@ -129,8 +129,8 @@ fn draw_band<S: Simd, K: Sink>(
 
 /// Whether a triangle with box `rect` is worth testing block by block against what is stored
 /// ([`Sink::take_block`]): one whose box holds four blocks' worth of pixels. A smaller one
-/// covers few samples of each block it touches, fewer than the test would save (on a million
-/// triangles of a pixel or so, the test cost a tenth of the frame).
+/// covers few samples of each block it touches, so the test (a bound from four corners) would
+/// cost about what it could save.
 #[inline(always)]
 fn occludable(rect: [u32; 4]) -> bool {
     (rect[1] - rect[0]) * (rect[3] - rect[2]) >= 4 * 64

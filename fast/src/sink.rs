@@ -15,14 +15,43 @@ pub(crate) trait Sink: Send {
     /// Takes the covered lanes of `row`, a row of triangle `t`.
     fn take(&mut self, t: &Planes, row: &Lanes);
 
-    /// Takes the covered rows of `block`, a block of triangle `t`.
+    /// The band's depth buffer and its block bounds, where it tests depth.
+    #[inline(always)]
+    fn depth_bounds(&mut self) -> Option<Bounded<'_>> {
+        None
+    }
+
+    /// Takes the covered rows of `block`, a block of triangle `t`: where the band has
+    /// [`depth_bounds`](Self::depth_bounds), skipped when every sample would fail the depth
+    /// test, and the block's bound tightened after a triangle covers it.
     #[inline(always)]
     fn take_block(&mut self, t: &Planes, block: &Block<'_>) {
+        if let Some(b) = self.depth_bounds()
+            && b.hiz.occludes(b.rows, t, block, b.depth)
+        {
+            return;
+        }
         block.rows(
             #[inline(always)]
             |row| self.take(t, row),
         );
+        if let Some(b) = self.depth_bounds() {
+            b.hiz.drawn(b.rows, block, b.depth, b.write);
+        }
     }
+}
+
+/// A band's depth buffer with the bounds of its blocks: what [`Sink::take_block`] skips
+/// hidden blocks with.
+pub(crate) struct Bounded<'a> {
+    /// Per block, a bound of `depth`.
+    pub hiz: &'a mut HiZ,
+    /// Where the band lies.
+    pub rows: BandRows,
+    /// Depth, the band's rows.
+    pub depth: &'a [f32],
+    /// Whether passing fragments store their depth.
+    pub write: bool,
 }
 
 /// Keeps every fragment.
@@ -119,18 +148,14 @@ impl Sink for ResolveBand<'_> {
         );
     }
 
-    /// Skipped when every sample would fail the depth test; the block's bound tightened after
-    /// a triangle covers it.
     #[inline(always)]
-    fn take_block(&mut self, t: &Planes, block: &Block<'_>) {
-        if self.hiz.occludes(self.rows, t, block, self.depth) {
-            return;
-        }
-        block.rows(
-            #[inline(always)]
-            |row| self.take(t, row),
-        );
-        self.hiz.drawn(self.rows, block, self.depth, self.state.write);
+    fn depth_bounds(&mut self) -> Option<Bounded<'_>> {
+        Some(Bounded {
+            hiz: &mut self.hiz,
+            rows: self.rows,
+            depth: self.depth,
+            write: self.state.write,
+        })
     }
 }
 
@@ -180,17 +205,13 @@ impl<C: Send, F: Fn(&Fragment) -> Option<C> + Sync> Sink for ShadeBand<'_, C, F>
         );
     }
 
-    /// Skipped when every sample would fail the depth test, before any is shaded; the block's
-    /// bound tightened after a triangle covers it.
     #[inline(always)]
-    fn take_block(&mut self, t: &Planes, block: &Block<'_>) {
-        if self.hiz.occludes(self.rows, t, block, self.depth) {
-            return;
-        }
-        block.rows(
-            #[inline(always)]
-            |row| self.take(t, row),
-        );
-        self.hiz.drawn(self.rows, block, self.depth, self.write);
+    fn depth_bounds(&mut self) -> Option<Bounded<'_>> {
+        Some(Bounded {
+            hiz: &mut self.hiz,
+            rows: self.rows,
+            depth: self.depth,
+            write: self.write,
+        })
     }
 }

@@ -44,6 +44,14 @@ impl SubpixelBits {
     pub fn one(self) -> i64 {
         1 << self.0
     }
+
+    /// The pixel holding subpixel coordinate `v`: `⌊v / 2^bits⌋`, as an arithmetic shift,
+    /// which floors exactly as `div_euclid` by [`one`](Self::one) does, without a division.
+    #[must_use]
+    #[inline]
+    pub fn pixel_of(self, v: i64) -> i64 {
+        v >> self.0
+    }
 }
 
 impl Default for SubpixelBits {
@@ -175,6 +183,33 @@ impl SnapRounding {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The shift floors as `div_euclid` does, on both sides of zero, at every grid, up to the
+    /// coordinate limit.
+    #[test]
+    fn pixel_of_floors_as_division_does() {
+        for bits in SubpixelBits::MIN..=SubpixelBits::MAX {
+            let bits = SubpixelBits::new(bits).expect("in range");
+            let one = bits.one();
+            for v in [
+                0,
+                1,
+                -1,
+                one - 1,
+                one,
+                one + 1,
+                -one,
+                -one - 1,
+                -one + 1,
+                37 * one + 5,
+            ]
+            .into_iter()
+            .chain([FixedPoint::LIMIT, -FixedPoint::LIMIT, FixedPoint::LIMIT - 1])
+            {
+                assert_eq!(bits.pixel_of(v), v.div_euclid(one), "{v} at {bits:?}");
+            }
+        }
+    }
 
     /// Each rounding at a tie, just past one, and on a grid point (4 bits: 1/16 px).
     #[test]

@@ -49,8 +49,8 @@ impl PixelRect {
             ((lo.0.min(p.x), lo.1.min(p.y)), (hi.0.max(p.x), hi.1.max(p.y)))
         });
         // Pixel px has its sample at px·one + half: the first with sample ≥ min, the last with sample ≤ max.
-        let first = |min: i64| (min - half + one - 1).div_euclid(one);
-        let last = |max: i64| (max - half).div_euclid(one);
+        let first = |min: i64| bits.pixel_of(min - half + one - 1);
+        let last = |max: i64| bits.pixel_of(max - half);
         let clamp = |v: i64, side: u32| v.clamp(0, i64::from(side)) as u32;
         let rect = Self {
             x0: clamp(first(min_x), viewport.width()),

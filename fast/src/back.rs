@@ -35,7 +35,7 @@ pub(crate) enum Width {
 
 impl Width {
     /// The narrowest width holding every value of magnitude up to `max`.
-    fn holding(max: i128) -> Self {
+    fn holding(max: i64) -> Self {
         if max < 1 << 30 {
             Self::Narrow
         } else if max < 1 << 53 {
@@ -45,6 +45,18 @@ impl Width {
         }
     }
 }
+
+// Every edge value `EdgeSteps::new` reckons with, and each term of it, fits `i64` with room to
+// spare: coordinates are within `FixedPoint::LIMIT` (2^23 at the finest grid), so an edge's step
+// is below 2^24 subpixels, a value below 2^49, and a step times a column or row of the largest
+// viewport (plus two blocks) below 2^48.
+const _: () = {
+    let (limit, one) = (FixedPoint::LIMIT, 1 << SubpixelBits::MAX);
+    let step = 2 * limit;
+    let value = 2 * step * step;
+    let span = (refrast::MAX_VIEWPORT as i64 + 2 * BLOCK as i64) * one * step;
+    assert!(value + 4 * span < i64::MAX / 2);
+};
 
 /// A triangle's three edge functions as values at pixel (0, 0) and steps per pixel.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -86,18 +98,28 @@ impl EdgeSteps {
             on_edge[k] = 0;
             steps.bias[k] = if setup.is_inside(on_edge) { 0 } else { -1 };
         }
-        // A linear function takes its extremes over a rectangle at its corners; lanes reach up
-        // to a block's width past the last column. In i64, checked: a value that overflows it
-        // is beyond every narrower width anyway.
-        let [x0, x1, y0, y1] = rect.map(i64::from);
-        let mut max = Some(0);
-        for (x, y) in [(x0, y0), (x1 + 8, y0), (x0, y1), (x1 + 8, y1)] {
-            for k in 0..3 {
-                max = max.zip(steps.magnitude(k, x, y)).map(|(a, b)| a.max(b));
-            }
-        }
-        steps.width = max.map_or(Width::Exact, |max| Width::holding(i128::from(max) + 1));
+        steps.width = Width::holding(steps.reach(rect) + 1);
         steps
+    }
+
+    /// The largest magnitude of an edge value that traversals inside `rect` evaluate: lanes
+    /// reach up to a block's width past its last column.
+    ///
+    /// A linear function takes its extremes over a rectangle at its corners: the value at the
+    /// first plus each step's positive (or negative) part across it. Plain `i64`, which holds
+    /// every term (asserted at the top of this file); checked `i64` was a tenth of a frame of a
+    /// million small triangles.
+    fn reach(&self, rect: [u32; 4]) -> i64 {
+        let [x0, x1, y0, y1] = rect.map(i64::from);
+        let mut max = 0;
+        for k in 0..3 {
+            let first = self.origin[k] + x0 * self.dx[k] + y0 * self.dy[k];
+            let (across, down) = ((x1 + 8 - x0) * self.dx[k], (y1 - y0) * self.dy[k]);
+            let highest = first + across.max(0) + down.max(0);
+            let lowest = first + across.min(0) + down.min(0);
+            max = max.max(highest.abs()).max(lowest.abs());
+        }
+        max
     }
 
     /// The exact edge values at the sample of pixel `(x, y)`.
@@ -108,13 +130,34 @@ impl EdgeSteps {
         [at(0), at(1), at(2)]
     }
 
-    /// The magnitude of edge `k`'s value at any `(x, y)`, `None` where it overflows `i64`.
+    /// The box of the samples of `rect` (`[x0, x1, y0, y1]`, half-open, non-empty) that the
+    /// triangle covers, `None` when it covers none; `rect` itself where its values need more
+    /// than `i64` ([`Width::Exact`]).
+    ///
+    /// Sample by sample, so meant for boxes of a few pixels: a triangle smaller than a pixel
+    /// often covers no sample of its box, and is then neither set up further nor binned.
+    pub fn covered_box(&self, rect: [u32; 4]) -> Option<[u32; 4]> {
+        if self.width == Width::Exact {
+            return Some(rect);
+        }
+        let [x0, x1, y0, y1] = rect;
+        let mut covered: Option<[u32; 4]> = None;
+        for y in y0..y1 {
+            for x in x0..x1 {
+                if self.is_inside(self.at(x, y)) {
+                    let b = covered.get_or_insert([x, x + 1, y, y + 1]);
+                    *b = [b[0].min(x), b[1].max(x + 1), b[2], y + 1];
+                }
+            }
+        }
+        covered
+    }
+
+    /// Whether a sample with exact edge values `values` is covered: `value + bias ≥ 0` for
+    /// every edge, the reference's fill rule as [`EdgeSteps::new`] reads it off.
     #[inline(always)]
-    fn magnitude(&self, k: usize, x: i64, y: i64) -> Option<i64> {
-        self.origin[k]
-            .checked_add(x.checked_mul(self.dx[k])?)?
-            .checked_add(y.checked_mul(self.dy[k])?)?
-            .checked_abs()
+    fn is_inside(&self, values: [i64; 3]) -> bool {
+        (0..3).all(|k| values[k] + self.bias[k] >= 0)
     }
 
     /// Visits every 8×8 block of `rect` (`[x0, x1, y0, y1]`, half-open, non-empty) that no
@@ -364,8 +407,9 @@ mod tests {
     /// Block traversal, accepting whole blocks or not, visits exactly the samples the
     /// reference's setup calls inside, with their exact edge values, on triangles with edges
     /// through samples (ties), slivers, a counter-clockwise input and one that misses a block's
-    /// last sample by a subpixel, over rectangles that start and end off the block grid, at
-    /// every width.
+    /// last sample by a subpixel and one between samples that covers none, over rectangles that
+    /// start and end off the block grid, at every width; and the box of those samples is
+    /// [`EdgeSteps::covered_box`]'s.
     #[test]
     fn blocks_cover_what_the_setup_calls_inside() {
         let bits = SubpixelBits::DEFAULT;
@@ -378,6 +422,8 @@ mod tests {
             [(0, 0), (0, 3839), (3839, 0)],
             // Large enough for `f64` lanes.
             [(0, 0), (900_000, 1000), (2000, 800_000)],
+            // Smaller than a pixel, between samples: covers none.
+            [(140, 140), (200, 150), (150, 210)],
         ];
         let mut widths = Vec::new();
         for v in triangles {
@@ -385,6 +431,14 @@ mod tests {
             for rect in [[0, 30, 0, 30], [3, 21, 5, 19], [7, 9, 15, 16]] {
                 let mut steps = EdgeSteps::new(&s, bits, rect);
                 widths.push(steps.width);
+                // The reach from the corners is the largest value the lanes reach.
+                let [x0, x1, y0, y1] = rect.map(i64::from);
+                let reached = (y0..=y1).flat_map(|y| (x0..=x1 + 8).map(move |x| (x, y)));
+                let max = reached
+                    .flat_map(|(x, y)| (0..3).map(move |k| (k, x, y)))
+                    .map(|(k, x, y)| (steps.origin[k] + x * steps.dx[k] + y * steps.dy[k]).abs())
+                    .max();
+                assert_eq!(steps.reach(rect), max.unwrap_or(0), "{v:?} in {rect:?}");
                 for width in [steps.width, Width::Exact] {
                     steps.width = width;
                     let got = covered::<false>(&steps, rect);
@@ -400,6 +454,13 @@ mod tests {
                         }
                     }
                     assert_eq!(got, want, "{v:?} in {rect:?} at {width:?}");
+                    // The box of the same samples, or none; the whole rect beyond `i64`.
+                    let bounds = want.iter().fold(None, |b: Option<[u32; 4]>, &(y, x, _)| {
+                        let [x0, x1, y0, y1] = b.unwrap_or([x, x + 1, y, y + 1]);
+                        Some([x0.min(x), x1.max(x + 1), y0.min(y), y1.max(y + 1)])
+                    });
+                    let expected = if width == Width::Exact { Some(rect) } else { bounds };
+                    assert_eq!(steps.covered_box(rect), expected, "{v:?} in {rect:?}");
                 }
             }
         }

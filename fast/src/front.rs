@@ -23,6 +23,11 @@ pub(crate) struct DrawSetup<'d> {
     pub vertices: &'d [Corner],
 }
 
+/// The largest box, in pixels, cut to the samples its triangle covers before binning: most
+/// triangles smaller than a pixel or two cover none, or fewer tiles than their box touches;
+/// beyond it, testing every sample in the front end would cost what traversal does.
+const TIGHTENED: u32 = 16;
+
 /// A triangle that reached traversal: what the back end needs to draw it in any tile.
 #[derive(Clone, Debug)]
 pub(crate) struct Prepared {
@@ -81,17 +86,26 @@ impl Chunk {
     /// up once per vertex, appended to `triangles`; its box, or `None` when it draws nothing.
     fn prepare_one(&mut self, setup: &DrawSetup<'_>, primitive: usize) -> Option<[u32; 4]> {
         let corners = setup.front.triangles[primitive].map(|i| &setup.vertices[i as usize]);
-        let kept = front_end(&setup.front, primitive, corners, &mut self.scratch).ok()?;
+        // Borrowed where it lies: moved out of the `Result` (or through `.ok()?`), the
+        // ~340-byte record was copied once a triangle.
+        let kept = front_end(&setup.front, primitive, corners, &mut self.scratch);
+        let Ok(kept) = &kept else {
+            return None;
+        };
         let (x0, x1, y0, y1) = kept.rect.bounds();
-        let rect = [x0, x1, y0, y1];
+        let mut rect = [x0, x1, y0, y1];
         let fans = self.fans.len();
         let single = match &kept.whole {
             Some(t) => {
+                let steps = EdgeSteps::new(&t.setup, setup.front.transform.bits, rect);
+                if (x1 - x0) * (y1 - y0) <= TIGHTENED {
+                    rect = steps.covered_box(rect)?;
+                }
                 // The corners in the setup's clockwise order, the order of its edge values.
                 let vertices = t.vertices();
                 let varyings = t.setup.order().map(|k| &vertices[k].varyings);
                 Some(Single {
-                    steps: EdgeSteps::new(&t.setup, setup.front.transform.bits, rect),
+                    steps,
                     planes: Planes::new(
                         primitive as u32,
                         kept.front_facing,

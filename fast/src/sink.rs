@@ -63,14 +63,31 @@ impl Sink for Vec<Fragment> {
     }
 }
 
-/// Which of the lanes `new` pass `compare` against `stored` (as many as `new` has), as bits.
+/// Which of the lanes in `mask` pass `compare`, `new` against `stored` (as many as `stored`
+/// has, and `mask` none past them), as bits: only the lanes asked, the comparison matched once
+/// for all of them (matched per lane, it was an indirect jump per sample).
 #[inline(always)]
-fn passes(compare: CompareOp, new: &[f32; LANES], stored: &[f32]) -> u32 {
-    let mut pass = 0;
-    for (i, (&new, &stored)) in new.iter().zip(stored).enumerate() {
-        pass |= u32::from(compare.passes(new, stored)) << i;
+fn passes(compare: CompareOp, new: &[f32; LANES], stored: &[f32], mask: u32) -> u32 {
+    #[inline(always)]
+    fn lanes(op: CompareOp, new: &[f32; LANES], stored: &[f32], mask: u32) -> u32 {
+        let mut pass = 0;
+        for_each_lane(
+            mask,
+            #[inline(always)]
+            |i| pass |= u32::from(op.passes(new[i], stored[i])) << i,
+        );
+        pass
     }
-    pass
+    match compare {
+        CompareOp::Never => lanes(CompareOp::Never, new, stored, mask),
+        CompareOp::Less => lanes(CompareOp::Less, new, stored, mask),
+        CompareOp::Equal => lanes(CompareOp::Equal, new, stored, mask),
+        CompareOp::LessOrEqual => lanes(CompareOp::LessOrEqual, new, stored, mask),
+        CompareOp::Greater => lanes(CompareOp::Greater, new, stored, mask),
+        CompareOp::NotEqual => lanes(CompareOp::NotEqual, new, stored, mask),
+        CompareOp::GreaterOrEqual => lanes(CompareOp::GreaterOrEqual, new, stored, mask),
+        CompareOp::Always => lanes(CompareOp::Always, new, stored, mask),
+    }
 }
 
 /// [`passes`] on a full row: the comparison made a constant before the loop over lanes, so
@@ -135,7 +152,7 @@ impl Sink for ResolveBand<'_> {
             }
             return;
         }
-        let pass = passes(self.state.compare, &new, depth) & row.mask;
+        let pass = passes(self.state.compare, &new, depth, row.mask);
         for_each_lane(
             pass,
             #[inline(always)]
@@ -187,7 +204,7 @@ impl<C: Send, F: Fn(&Fragment) -> Option<C> + Sync> Sink for ShadeBand<'_, C, F>
         let new = t.depth(&row.e);
         let span = self.rows.lanes(row);
         let depth = &mut self.depth[span.clone()];
-        let pass = passes(self.compare, &new, depth) & row.mask;
+        let pass = passes(self.compare, &new, depth, row.mask);
         let color = &mut self.color[span];
         t.fragments(
             row,

@@ -23,9 +23,9 @@ pub(crate) struct DrawSetup<'d> {
     pub vertices: &'d [Corner],
 }
 
-/// The largest box, in pixels, cut to the samples its triangle covers before binning: most
-/// triangles smaller than a pixel or two cover none, or fewer tiles than their box touches;
-/// beyond it, testing every sample in the front end would cost what traversal does.
+/// The largest box, in pixels, cut to the samples its triangle covers before binning: a
+/// triangle smaller than a pixel or two often covers none, or fewer tiles than its box
+/// touches; beyond it, testing every sample in the front end would cost what traversal does.
 const TIGHTENED: u32 = 16;
 
 /// A triangle that reached traversal: what the back end needs to draw it in any tile.

@@ -55,7 +55,18 @@ impl ProjectedPoint {
     #[must_use]
     #[inline]
     pub fn corner(self, k: usize) -> RasterVertex {
-        self.vertex(DVec3::AXES[k], Some(DVec3::AXES[k]))
+        RasterVertex {
+            position: self.position,
+            varyings: self.corner_varyings(k),
+        }
+    }
+
+    /// What [`corner`](Self::corner) interpolates, without the position: for a caller that
+    /// sets up interpolation alone.
+    #[must_use]
+    #[inline]
+    pub fn corner_varyings(self, k: usize) -> Varyings {
+        self.vertex(DVec3::AXES[k], Some(DVec3::AXES[k])).varyings
     }
 }
 

@@ -314,11 +314,21 @@ struct LaneSteps<'a> {
     steps: &'a EdgeSteps,
     dx: [f64; 3],
     least: [f64; 3],
+    /// For [`Width::Narrow`]: each lane's offset from lane 0 (`i·dx`), per edge, in `i32`.
+    offsets: [[i32; LANES]; 3],
 }
 
 impl<'a> LaneSteps<'a> {
     #[inline(always)]
     fn new(steps: &'a EdgeSteps) -> Self {
+        let mut offsets = [[0; LANES]; 3];
+        if steps.width == Width::Narrow {
+            for (offsets, &dx) in offsets.iter_mut().zip(&steps.dx) {
+                for (i, offset) in offsets.iter_mut().enumerate() {
+                    *offset = i as i32 * dx as i32;
+                }
+            }
+        }
         Self {
             steps,
             dx: [steps.dx[0] as f64, steps.dx[1] as f64, steps.dx[2] as f64],
@@ -327,6 +337,7 @@ impl<'a> LaneSteps<'a> {
                 -steps.bias[1] as f64,
                 -steps.bias[2] as f64,
             ],
+            offsets,
         }
     }
 
@@ -343,20 +354,33 @@ impl<'a> LaneSteps<'a> {
         match width {
             None => {}
             Some(Width::Narrow) => {
-                for (k, &value) in values.iter().enumerate() {
-                    let (start, dx) = (value as i32, self.steps.dx[k] as i32);
-                    let least = -self.steps.bias[k] as i32;
-                    for (i, inside) in inside.iter_mut().enumerate() {
-                        *inside &= start + i as i32 * dx >= least;
+                // `value + bias` per edge and lane; all three are ≥ 0 exactly when their OR
+                // is (no sign bit): one vector OR and compare, where a comparison per edge
+                // combined lane by lane was not vectorised whole.
+                let mut biased = [[0i32; LANES]; 3];
+                for (k, biased) in biased.iter_mut().enumerate() {
+                    let start = values[k] as i32 + self.steps.bias[k] as i32;
+                    for (i, biased) in biased.iter_mut().enumerate() {
+                        *biased = start + self.offsets[k][i];
                     }
+                }
+                for (i, inside) in inside.iter_mut().enumerate() {
+                    *inside = biased[0][i] | biased[1][i] | biased[2][i] >= 0;
                 }
             }
             Some(Width::Wide) => {
-                for (k, &value) in values.iter().enumerate() {
-                    let start = value as f64;
-                    for (i, inside) in inside.iter_mut().enumerate() {
-                        *inside &= start + IOTA[i] * self.dx[k] >= self.least[k];
+                // The three edges' lanes first, then one combination per lane (as above).
+                let mut lanes = [[0.0; LANES]; 3];
+                for (k, lanes) in lanes.iter_mut().enumerate() {
+                    let start = values[k] as f64;
+                    for (i, lane) in lanes.iter_mut().enumerate() {
+                        *lane = start + IOTA[i] * self.dx[k];
                     }
+                }
+                let least = self.least;
+                for (i, inside) in inside.iter_mut().enumerate() {
+                    *inside =
+                        (lanes[0][i] >= least[0]) & (lanes[1][i] >= least[1]) & (lanes[2][i] >= least[2]);
                 }
             }
             Some(Width::Exact) => {
@@ -377,6 +401,14 @@ impl<'a> LaneSteps<'a> {
         if mask == 0 {
             return;
         }
+        let e = self.lane_values(values);
+        visit(&Lanes { x0, y, n, mask, e });
+    }
+
+    /// The exact edge values of the eight lanes whose lane 0 has `values`, as `f64` (rounded
+    /// once beyond 2^53, at [`Width::Exact`]).
+    #[inline(always)]
+    fn lane_values(&self, values: [i64; 3]) -> [[f64; LANES]; 3] {
         let mut e = [[0.0; LANES]; 3];
         for k in 0..3 {
             if self.steps.width == Width::Exact {
@@ -389,7 +421,7 @@ impl<'a> LaneSteps<'a> {
                 }
             }
         }
-        visit(&Lanes { x0, y, n, mask, e });
+        e
     }
 }
 
@@ -407,14 +439,17 @@ mod tests {
     /// Block traversal, accepting whole blocks or not, visits exactly the samples the
     /// reference's setup calls inside, with their exact edge values, on triangles with edges
     /// through samples (ties), slivers, a counter-clockwise input and one that misses a block's
-    /// last sample by a subpixel and one between samples that covers none, over rectangles that
-    /// start and end off the block grid, at every width; and the box of those samples is
+    /// last sample by a subpixel, one between samples that covers none and large ones with edges
+    /// through samples, over rectangles that start and end off the block grid, at every width;
+    /// and the box of those samples is
     /// [`EdgeSteps::covered_box`]'s.
     #[test]
     fn blocks_cover_what_the_setup_calls_inside() {
         let bits = SubpixelBits::DEFAULT;
         let triangles = [
             [(128, 128), (5000, 128), (128, 4000)],
+            // Right and bottom edges through samples, which the fill rule leaves out.
+            [(5248, 3968), (5248, 128), (128, 3968)],
             [(0, 0), (6000, 256 * 3 + 128), (300, 5000)],
             [(7000, 200), (100, 150), (3000, 6000)],
             [(-900, 4000), (9000, 4100), (9100, 4300)],
@@ -424,11 +459,21 @@ mod tests {
             [(0, 0), (900_000, 1000), (2000, 800_000)],
             // Smaller than a pixel, between samples: covers none.
             [(140, 140), (200, 150), (150, 210)],
+            // Large enough for `f64` lanes, with edges through samples, both ways round.
+            [(128, 128), (800_128, 128), (128, 800_128)],
+            [(128, 128), (128, 800_128), (800_128, 128)],
+            [(800_128, 800_128), (128, 800_128), (800_128, 128)],
+            [(800_128, 800_128), (800_128, 128), (128, 800_128)],
         ];
         let mut widths = Vec::new();
         for v in triangles {
             let s = setup(v);
-            for rect in [[0, 30, 0, 30], [3, 21, 5, 19], [7, 9, 15, 16]] {
+            for rect in [
+                [0, 30, 0, 30],
+                [3, 21, 5, 19],
+                [7, 9, 15, 16],
+                [1550, 1580, 1550, 1580],
+            ] {
                 let mut steps = EdgeSteps::new(&s, bits, rect);
                 widths.push(steps.width);
                 // The reach from the corners is the largest value the lanes reach.

@@ -102,8 +102,10 @@ impl Chunk {
                     rect = steps.covered_box(rect)?;
                 }
                 // The corners in the setup's clockwise order, the order of its edge values.
-                let vertices = t.vertices();
-                let varyings = t.setup.order().map(|k| &vertices[k].varyings);
+                let [a, b, c] = t.setup.order();
+                let corner = |k: usize| t.points[k].corner_varyings(k);
+                let (a, b, c) = (corner(a), corner(b), corner(c));
+                let varyings = [&a, &b, &c];
                 Some(Single {
                     steps,
                     planes: Planes::new(

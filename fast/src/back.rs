@@ -114,7 +114,8 @@ impl EdgeSteps {
         let mut max = 0;
         for k in 0..3 {
             let first = self.origin[k] + x0 * self.dx[k] + y0 * self.dy[k];
-            let (across, down) = ((x1 + 8 - x0) * self.dx[k], (y1 - y0) * self.dy[k]);
+            let past = x1 + i64::from(BLOCK);
+            let (across, down) = ((past - x0) * self.dx[k], (y1 - y0) * self.dy[k]);
             let highest = first + across.max(0) + down.max(0);
             let lowest = first + across.min(0) + down.min(0);
             max = max.max(highest.abs()).max(lowest.abs());

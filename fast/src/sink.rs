@@ -63,56 +63,56 @@ impl Sink for Vec<Fragment> {
     }
 }
 
-/// Which of the lanes in `mask` pass `compare`, `new` against `stored` (as many as `stored`
-/// has, and `mask` none past them), as bits: only the lanes asked, the comparison matched once
-/// for all of them (matched per lane, it was an indirect jump per sample).
+/// Calls `f` with `compare` as a constant: each arm inlines `f` with its own comparison, so
+/// that a loop over lanes inside `f` compiles without a match (an indirect jump) per lane.
 #[inline(always)]
-fn passes(compare: CompareOp, new: &[f32; LANES], stored: &[f32], mask: u32) -> u32 {
-    #[inline(always)]
-    fn lanes(op: CompareOp, new: &[f32; LANES], stored: &[f32], mask: u32) -> u32 {
-        let mut pass = 0;
-        for_each_lane(
-            mask,
-            #[inline(always)]
-            |i| pass |= u32::from(op.passes(new[i], stored[i])) << i,
-        );
-        pass
-    }
+fn with_constant(compare: CompareOp, f: impl Fn(CompareOp) -> u32) -> u32 {
     match compare {
-        CompareOp::Never => lanes(CompareOp::Never, new, stored, mask),
-        CompareOp::Less => lanes(CompareOp::Less, new, stored, mask),
-        CompareOp::Equal => lanes(CompareOp::Equal, new, stored, mask),
-        CompareOp::LessOrEqual => lanes(CompareOp::LessOrEqual, new, stored, mask),
-        CompareOp::Greater => lanes(CompareOp::Greater, new, stored, mask),
-        CompareOp::NotEqual => lanes(CompareOp::NotEqual, new, stored, mask),
-        CompareOp::GreaterOrEqual => lanes(CompareOp::GreaterOrEqual, new, stored, mask),
-        CompareOp::Always => lanes(CompareOp::Always, new, stored, mask),
+        CompareOp::Never => f(CompareOp::Never),
+        CompareOp::Less => f(CompareOp::Less),
+        CompareOp::Equal => f(CompareOp::Equal),
+        CompareOp::LessOrEqual => f(CompareOp::LessOrEqual),
+        CompareOp::Greater => f(CompareOp::Greater),
+        CompareOp::NotEqual => f(CompareOp::NotEqual),
+        CompareOp::GreaterOrEqual => f(CompareOp::GreaterOrEqual),
+        CompareOp::Always => f(CompareOp::Always),
     }
 }
 
-/// [`passes`] on a full row: the comparison made a constant before the loop over lanes, so
-/// that each arm's loop compiles to one vector comparison.
+/// Which of the lanes in `mask` pass `compare`, `new` against `stored` (as many as `stored`
+/// has, and `mask` none past them), as bits: only the lanes asked, the comparison a constant
+/// ([`with_constant`]).
+#[inline(always)]
+fn passes(compare: CompareOp, new: &[f32; LANES], stored: &[f32], mask: u32) -> u32 {
+    with_constant(
+        compare,
+        #[inline(always)]
+        |op| {
+            let mut pass = 0;
+            for_each_lane(
+                mask,
+                #[inline(always)]
+                |i| pass |= u32::from(op.passes(new[i], stored[i])) << i,
+            );
+            pass
+        },
+    )
+}
+
+/// [`passes`] on a full row, every lane: with the comparison a constant, one vector comparison.
 #[inline(always)]
 fn passes_full(compare: CompareOp, new: &[f32; LANES], stored: &[f32; LANES]) -> u32 {
-    /// The lanes that pass `op`: with `op` a constant, one vector comparison.
-    #[inline(always)]
-    fn lanes(op: CompareOp, new: &[f32; LANES], stored: &[f32; LANES]) -> u32 {
-        let mut pass = 0;
-        for i in 0..LANES {
-            pass |= u32::from(op.passes(new[i], stored[i])) << i;
-        }
-        pass
-    }
-    match compare {
-        CompareOp::Never => lanes(CompareOp::Never, new, stored),
-        CompareOp::Less => lanes(CompareOp::Less, new, stored),
-        CompareOp::Equal => lanes(CompareOp::Equal, new, stored),
-        CompareOp::LessOrEqual => lanes(CompareOp::LessOrEqual, new, stored),
-        CompareOp::Greater => lanes(CompareOp::Greater, new, stored),
-        CompareOp::NotEqual => lanes(CompareOp::NotEqual, new, stored),
-        CompareOp::GreaterOrEqual => lanes(CompareOp::GreaterOrEqual, new, stored),
-        CompareOp::Always => lanes(CompareOp::Always, new, stored),
-    }
+    with_constant(
+        compare,
+        #[inline(always)]
+        |op| {
+            let mut pass = 0;
+            for i in 0..LANES {
+                pass |= u32::from(op.passes(new[i], stored[i])) << i;
+            }
+            pass
+        },
+    )
 }
 
 /// The depth test into a band of `Resolved`'s buffers, as `Resolved::from_fragments` does it.

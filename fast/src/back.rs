@@ -123,6 +123,12 @@ impl EdgeSteps {
         max
     }
 
+    /// A value read from its start, middle and end, for bringing it into the cache.
+    #[inline(always)]
+    pub fn warm(&self) -> u32 {
+        (self.origin[0] ^ self.dy[0] ^ self.bias[2]) as u32
+    }
+
     /// The exact edge values at the sample of pixel `(x, y)`.
     #[inline]
     pub fn at(&self, x: u32, y: u32) -> [i64; 3] {

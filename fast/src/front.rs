@@ -41,6 +41,19 @@ pub(crate) struct Prepared {
     pub single: Option<Single>,
 }
 
+impl Prepared {
+    /// A value read from each part of the record (its box, its edge steps, its planes), for
+    /// bringing it into the cache before it is drawn (`drive::warm_tile`).
+    #[inline(always)]
+    pub fn warm(&self) -> u32 {
+        let mut seen = self.rect[0] ^ self.fans.start;
+        if let Some(single) = &self.single {
+            seen ^= single.steps.warm() ^ single.planes.warm();
+        }
+        seen
+    }
+}
+
 /// A triangle drawn as one fan triangle that agrees with its winding: its coverage and its
 /// interpolation, set up once.
 #[derive(Clone, Copy, Debug)]

@@ -21,6 +21,9 @@
 //!   tested as eight SIMD lanes of exact edge values: `i32` when the triangle's box is small,
 //!   `f64` (exact below 2^53) otherwise. A clipped polygon's fan goes through the reference's
 //!   own `traverse` on the tile's part of its box.
+//! - **Warming**: before a tile's triangles are drawn, one value per cache line of the
+//!   buffers under it and a few of each triangle's record are read, independently, so that
+//!   their misses overlap instead of stalling the first samples drawn one at a time.
 //! - **Hidden blocks**: under `Less`, `LessOrEqual`, `Greater` or `GreaterOrEqual`, a block of
 //!   a triangle whose box holds four blocks' worth of pixels is skipped when a bound of its
 //!   depths fails against a bound of the depths stored there (Greene's hierarchical z,

@@ -90,6 +90,15 @@ impl Planes {
         }
     }
 
+    /// A value read from fields spread over it, for bringing it into the cache (a hint: which
+    /// lines they fall in is the compiler's layout).
+    #[inline(always)]
+    pub fn warm(&self) -> u32 {
+        let floats = self.z0.to_bits() ^ self.inv_w[2].to_bits() ^ self.inv_area.to_bits();
+        let corners = self.barycentric[0][0].to_bits() ^ self.barycentric[2][2].to_bits();
+        self.primitive ^ corners ^ floats as u32 ^ u32::from(self.screen.is_some())
+    }
+
     /// Window depth at eight samples from their exact edge values `e`, clamped to the
     /// viewport's depth range (as [`ViewportDepth::fragment_depth`] does, in the same order).
     #[inline(always)]

@@ -190,6 +190,24 @@ impl EdgeSteps {
         }
     }
 
+    /// Visits every row of `rect` (`[x0, x1, y0, y1]`, half-open, non-empty, at most
+    /// [`LANES`] wide) with a covered sample, top to bottom, lane 0 on its first column: a
+    /// narrow box's traversal, without blocks, which would classify each block and, where the
+    /// box straddles a block's edge, visit each of its rows twice.
+    #[inline(always)]
+    pub fn rows(&self, rect: [u32; 4], mut visit: impl FnMut(&Lanes)) {
+        debug_assert!(rect[1] - rect[0] <= BLOCK);
+        let lanes = LaneSteps::new(self);
+        let [x0, x1, y0, y1] = rect;
+        let mut values = self.at(x0, y0);
+        for y in y0..y1 {
+            lanes.row(values, x0, y, x1 - x0, false, &mut visit);
+            for (value, dy) in values.iter_mut().zip(self.dy) {
+                *value += dy;
+            }
+        }
+    }
+
     /// The block `rect`, or `None` when one edge leaves every sample of it outside; with
     /// `ACCEPT`, the block is `full` when no edge leaves any sample outside (Abrash's trivial
     /// accept).
@@ -448,8 +466,8 @@ mod tests {
     /// through samples (ties), slivers, a counter-clockwise input and one that misses a block's
     /// last sample by a subpixel, one between samples that covers none and large ones with edges
     /// through samples, over rectangles that start and end off the block grid, at every width;
-    /// and the box of those samples is
-    /// [`EdgeSteps::covered_box`]'s.
+    /// so does the traversal row by row of a narrow rectangle ([`EdgeSteps::rows`]); and the
+    /// box of those samples is [`EdgeSteps::covered_box`]'s.
     #[test]
     fn blocks_cover_what_the_setup_calls_inside() {
         let bits = SubpixelBits::DEFAULT;
@@ -480,6 +498,8 @@ mod tests {
                 [3, 21, 5, 19],
                 [7, 9, 15, 16],
                 [1550, 1580, 1550, 1580],
+                // Narrow: drawn row by row without blocks, one across a block's edge.
+                [5, 13, 2, 11],
             ] {
                 let mut steps = EdgeSteps::new(&s, bits, rect);
                 widths.push(steps.width);
@@ -495,6 +515,9 @@ mod tests {
                     steps.width = width;
                     let got = covered::<false>(&steps, rect);
                     assert_eq!(got, covered::<true>(&steps, rect), "{v:?} accepting blocks");
+                    if rect[1] - rect[0] <= BLOCK {
+                        assert_eq!(got, covered_rows(&steps, rect), "{v:?} row by row");
+                    }
                     let mut want = Vec::new();
                     for y in rect[2]..rect[3] {
                         for x in rect[0]..rect[1] {
@@ -517,6 +540,19 @@ mod tests {
             }
         }
         assert!(widths.contains(&Width::Narrow) && widths.contains(&Width::Wide));
+    }
+
+    /// The covered samples of `rect` visited row by row ([`EdgeSteps::rows`]), sorted, with
+    /// the bits of their edge values.
+    fn covered_rows(steps: &EdgeSteps, rect: [u32; 4]) -> Vec<(u32, u32, [u64; 3])> {
+        let mut got = Vec::new();
+        steps.rows(rect, |row| {
+            for_each_lane(row.mask, |lane| {
+                got.push((row.y, row.x0 + lane as u32, row.values(lane).map(f64::to_bits)))
+            });
+        });
+        got.sort_unstable();
+        got
     }
 
     /// The covered samples of `rect`, sorted, with the bits of their edge values.

@@ -3,7 +3,8 @@
 //!
 //! Order of work, and so of fragments: for each batch of [`BATCH`] primitives, every band; in
 //! a band, tile by tile left to right; in a tile, primitive order; in a triangle, 8×8 blocks
-//! row by row, samples row-major within a block. Each pixel sees its primitives in draw order,
+//! row by row, samples row-major within a block (where its part of the tile is at most 8
+//! pixels wide, rows top to bottom, no blocks). Each pixel sees its primitives in draw order,
 //! so a depth test in the bands gives the reference's result.
 
 use fearless_simd::{Level, Simd, dispatch};
@@ -12,7 +13,7 @@ use rayon::prelude::*;
 use refrast::stage::{Corner, FrontSetup, PixelRect, ViewportTransform, traverse};
 use refrast::{Draw, DrawError, FixedPoint, ReferenceConfig, Traversal};
 
-use crate::back::Lanes;
+use crate::back::{BLOCK, Lanes};
 use crate::front::{Chunk, DrawSetup, Prepared};
 use crate::sink::Sink;
 use crate::tiles::{TileGrid, intersect};
@@ -185,6 +186,12 @@ fn draw_in_tile<K: Sink>(
                 rect,
                 #[inline(always)]
                 |block| sink.take_block(planes, block),
+            );
+        } else if rect[1] - rect[0] <= BLOCK {
+            single.steps.rows(
+                rect,
+                #[inline(always)]
+                |row| sink.take(planes, row),
             );
         } else {
             single.steps.traverse::<false>(

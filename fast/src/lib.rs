@@ -19,7 +19,8 @@
 //! - **Back end**: per tile, triangles in primitive order; per triangle, 8×8 blocks rejected
 //!   or accepted whole from their corners (Abrash, *Rasterization on Larrabee*), each block row
 //!   tested as eight SIMD lanes of exact edge values: `i32` when the triangle's box is small,
-//!   `f64` (exact below 2^53) otherwise. A clipped polygon's fan goes through the reference's
+//!   `f64` (exact below 2^53) otherwise; a part of a tile at most 8 pixels wide goes row by row,
+//!   without blocks. A clipped polygon's fan goes through the reference's
 //!   own `traverse` on the tile's part of its box.
 //! - **Warming**: before a tile's triangles are drawn, one value per cache line of the
 //!   buffers under it and a few of each triangle's record are read, independently, so that
@@ -38,7 +39,8 @@
 //!
 //! [`rasterize`](Rasterizer::rasterize) returns fragments by band of 64 rows, top to bottom;
 //! within a band by batch of 16 384 primitives, then tile left to right, then primitive, then
-//! 8×8 block row by row, then sample row-major. Compare with the reference as sorted sets.
+//! 8×8 block row by row, then sample row-major (a triangle whose part of the tile is at most 8
+//! pixels wide: row by row). Compare with the reference as sorted sets.
 #![forbid(unsafe_code)]
 
 mod back;

@@ -23,7 +23,11 @@ use crate::tiles::{TileGrid, intersect};
 pub(crate) const BATCH: usize = 1 << 14;
 
 /// Runs `f` on every item, spread over `pool`'s threads when there is one.
-fn for_each<T: Send>(pool: Option<&ThreadPool>, items: &mut [T], f: impl Fn(usize, &mut T) + Sync) {
+pub(crate) fn for_each<T: Send>(
+    pool: Option<&ThreadPool>,
+    items: &mut [T],
+    f: impl Fn(usize, &mut T) + Sync,
+) {
     match pool {
         Some(pool) => pool.install(|| items.par_iter_mut().enumerate().for_each(|(i, t)| f(i, t))),
         None => items.iter_mut().enumerate().for_each(|(i, t)| f(i, t)),

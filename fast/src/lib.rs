@@ -150,6 +150,13 @@ impl Fast {
         SimdLevel::of(self.level())
     }
 
+    /// Calls `f` on every item of `items`, spread over this rasterizer's threads (on the
+    /// calling thread with one): for work that follows a draw at its thread count, such as
+    /// shading a visibility buffer band by band.
+    pub fn for_each<T: Send>(&self, items: &mut [T], f: impl Fn(&mut T) + Sync) {
+        drive::for_each(self.pool.as_deref(), items, |_, item| f(item));
+    }
+
     /// Draws `draw` into `sinks`, one per band of tiles, with this rasterizer's configuration,
     /// SIMD level, threads and buffers.
     fn drive<K: sink::Sink>(&mut self, draw: &Draw, sinks: &mut [K]) -> Result<(), DrawError> {

@@ -295,6 +295,13 @@ pub trait ShadingRasterizer {
     where
         C: Send,
         F: Fn(&Fragment) -> Option<C> + Sync;
+
+    /// Calls `f` on every item of `items`, spread over the rasterizer's own threads where it
+    /// has them: [`render_shaded`] shades its visibility buffer so, a band of rows an item,
+    /// at the thread count the rasterizing had. One after another by default.
+    fn for_each<T: Send>(&self, items: &mut [T], f: impl Fn(&mut T) + Sync) {
+        items.iter_mut().for_each(f);
+    }
 }
 
 /// refrast-fast depth-tests and shades as it rasterizes, into the buffers given.
@@ -312,7 +319,16 @@ impl ShadingRasterizer for refrast_fast::Fast {
     {
         self.render(draw, depth, color, shade)
     }
+
+    fn for_each<T: Send>(&self, items: &mut [T], f: impl Fn(&mut T) + Sync) {
+        refrast_fast::Fast::for_each(self, items, f);
+    }
 }
+
+/// Rows of a picture shaded as one item of [`ShadingRasterizer::for_each`]: enough that
+/// handing items to threads costs little against shading them, few enough that 1080p has
+/// dozens to share.
+const SHADED_ROWS: usize = 16;
 
 /// What a pixel shows after the depth test: the last fragment that passed, as much of it as
 /// the shader reads; `primitive == u32::MAX` where none did.
@@ -325,7 +341,8 @@ struct Visible {
 /// Clears `target` and draws `job` into it as [`render`] does, pixel for pixel, through a
 /// [`ShadingRasterizer`]: no list of fragments is built or sorted, and each pixel is shaded
 /// once, from the fragment that won its depth test (a visibility buffer; the shader reads
-/// nothing else of a fragment, so the colour is the one `render` leaves there).
+/// nothing else of a fragment, so the colour is the one `render` leaves there), band by band
+/// over the rasterizer's threads ([`ShadingRasterizer::for_each`]).
 pub fn render_shaded<R: ShadingRasterizer + ?Sized>(
     rasterizer: &mut R,
     job: &Job<'_>,
@@ -375,11 +392,15 @@ pub fn render_shaded<R: ShadingRasterizer + ?Sized>(
     };
     rasterizer.rasterize_shaded(&draw, depth, &mut visible, record)?;
     let shader = Shader::new(job);
-    for (pixel, v) in color.iter_mut().zip(&visible) {
-        if v.primitive != u32::MAX {
-            *pixel = to_rgba8(shader.color(v.primitive, v.barycentric));
+    let band = viewport.width() as usize * SHADED_ROWS;
+    let mut bands: Vec<_> = color.chunks_mut(band).zip(visible.chunks(band)).collect();
+    rasterizer.for_each(&mut bands, |(color, visible)| {
+        for (pixel, v) in color.iter_mut().zip(visible.iter()) {
+            if v.primitive != u32::MAX {
+                *pixel = to_rgba8(shader.color(v.primitive, v.barycentric));
+            }
         }
-    }
+    });
     if job.mode == Mode::Depth {
         let greys = depth_greys(target.depth(), job.state.depth.clear);
         for (pixel, grey) in target.color_mut().iter_mut().zip(greys) {

@@ -47,6 +47,8 @@ fn picture_of(
 #[test]
 fn render_shaded_through_fast_is_render_through_the_reference_within_fasts_precision() {
     let mut fast = refrast_fast::Fast::with_threads(1);
+    // Its rasterizing and the visibility buffer's shading spread over two threads.
+    let mut two = refrast_fast::Fast::with_threads(2);
     let checker = Texture::checker(8, 8, Vec4::ONE, Vec4::new(0.2, 0.2, 0.25, 1.0));
     for name in [
         "room",
@@ -105,6 +107,20 @@ fn render_shaded_through_fast_is_render_through_the_reference_within_fasts_preci
                 tolerance(),
             )
             .unwrap_or_else(|e| panic!("{name}, {mode}, {:?}: {e}", state.cull));
+            // Each pixel rasterized and shaded on its own: the same bits at any thread count.
+            let mut threaded = Framebuffer::new(w, h).unwrap();
+            refrast_render::render_shaded(&mut two, &job, &mut threaded).unwrap();
+            let bits = |f: &Framebuffer| {
+                (
+                    f.color().to_vec(),
+                    f.depth().iter().map(|d| d.to_bits()).collect::<Vec<_>>(),
+                )
+            };
+            assert!(
+                bits(&threaded) == bits(&shaded),
+                "{name}, {mode}, {:?}: two threads differ from one",
+                state.cull
+            );
         }
     }
 }

@@ -20,8 +20,8 @@
 //!   or accepted whole from their corners (Abrash, *Rasterization on Larrabee*), each block row
 //!   tested as eight SIMD lanes of exact edge values: `i32` when the triangle's box is small,
 //!   `f64` (exact below 2^53) otherwise; a part of a tile at most 8 pixels wide goes row by row,
-//!   without blocks. A clipped polygon's fan goes through the reference's
-//!   own `traverse` on the tile's part of its box.
+//!   without blocks. A clipped polygon's fan goes through the reference's own `traverse` on the
+//!   tile's part of its box.
 //! - **Warming**: before a tile's triangles are drawn, one value per cache line of the
 //!   buffers under it and a few of each triangle's record are read, independently, so that
 //!   their misses overlap instead of stalling the first samples drawn one at a time.

@@ -11,6 +11,8 @@
 //! - [`texture`]: textures sampled nearest or bilinear;
 //! - [`mode`]: what a picture shows (points, wire, fill, depth, normals, barycentric, overdraw);
 //! - [`draw`]: a picture through any rasterizer;
+//! - [`shaded`]: a picture through a rasterizer that shades as it rasterizes, each pixel shaded
+//!   once from a visibility buffer;
 //! - [`multisample`]: a picture at several samples per pixel, resolved with a box filter;
 //! - [`output`]: PNG files written whole or not at all.
 
@@ -23,13 +25,15 @@ pub mod output;
 pub mod room;
 pub mod scene;
 pub mod shade;
+pub mod shaded;
 pub mod shapes;
 pub mod texture;
 pub mod view;
 
-pub use draw::{Job, ShadingRasterizer, Stats, render, render_shaded};
+pub use draw::{Job, Stats, render};
 pub use mode::Mode;
 pub use multisample::render_multisampled;
 pub use shade::{Light, Shading};
+pub use shaded::{ShadingRasterizer, render_shaded};
 pub use texture::{Sampling, Texture};
 pub use view::{Lens, Overrides, View};

@@ -68,12 +68,11 @@ const LINE: usize = 64;
 #[inline(always)]
 fn warm_lines<T: Copy>(rows: BandRows, band: &[T], rect: [u32; 4], bits: impl Fn(T) -> u32) {
     let step = (LINE / size_of::<T>()).max(1);
-    let [x0, x1, y0, y1] = rect.map(|v| v as usize);
+    let [x0, x1, y0, y1] = rect;
     let mut seen = 0;
     for y in y0..y1 {
-        let start = (y - rows.y0 as usize) * rows.width as usize;
         for x in (x0..x1).step_by(step) {
-            seen ^= bits(band[start + x]);
+            seen ^= bits(band[rows.index(x, y)]);
         }
     }
     std::hint::black_box(seen);

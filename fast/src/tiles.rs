@@ -78,10 +78,16 @@ pub(crate) struct BandRows {
 }
 
 impl BandRows {
+    /// Where pixel `(x, y)`, a pixel of the band, lies in the band's slice.
+    #[inline(always)]
+    pub fn index(self, x: u32, y: u32) -> usize {
+        (y - self.y0) as usize * self.width as usize + x as usize
+    }
+
     /// The range of the band's slice that `row`'s lanes occupy.
     #[inline(always)]
     pub fn lanes(self, row: &Lanes) -> std::ops::Range<usize> {
-        let start = (row.y - self.y0) as usize * self.width as usize + row.x0 as usize;
+        let start = self.index(row.x0, row.y);
         start..start + row.n as usize
     }
 }
